@@ -1,0 +1,76 @@
+"""From intensities and sides to RGBA: colormaps, two-sided colours, line drawings."""
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+DEFAULT_LOWER = "#d9925b"      # the underside: a warm tan, distinct from any sequential cmap
+LAMBERT_LOWER = (1.0, 0.78, 0.55)
+LINE_UPPER = "#1b2a49"
+LINE_LOWER = "#b8322a"
+
+
+def to_rgb(color, name="color"):
+    """An (r, g, b) float triple in [0, 1] from any matplotlib colour spec."""
+    if isinstance(color, (tuple, list, np.ndarray)) and len(color) in (3, 4) and all(
+            isinstance(c, (int, float, np.number)) and not isinstance(c, bool) for c in color):
+        rgb = np.asarray(color[:3], dtype=float)
+        if rgb.max() > 1.0:
+            rgb = rgb / 255.0
+        if (rgb < 0).any() or (rgb > 1).any():
+            raise ValueError(f"{name} {color!r} has components outside [0, 1] (or 0..255)")
+        return tuple(rgb)
+    from matplotlib.colors import to_rgb as mpl_to_rgb
+    try:
+        return tuple(mpl_to_rgb(color))
+    except (ValueError, TypeError):
+        raise ValueError(f"{name} {color!r} is not a colour: use a name ('tan'), hex ('#d9925b') "
+                         "or an (r, g, b) tuple") from None
+
+
+def to_rgba8(color, name="background"):
+    if color is None:
+        return np.array([0, 0, 0, 0], dtype=np.uint8)
+    if isinstance(color, (tuple, list)) and len(color) == 4:
+        rgb = to_rgb(color[:3], name)
+        a = float(color[3])
+        a = a / 255.0 if a > 1 else a
+    else:
+        rgb = to_rgb(color, name)
+        a = 1.0
+    return np.round(np.array([*rgb, a]) * 255).astype(np.uint8)
+
+
+@functools.lru_cache(maxsize=32)
+def colormap_lut(cmap):
+    """(256, 3) float LUT of a matplotlib colormap name."""
+    import matplotlib
+    try:
+        cm = matplotlib.colormaps[cmap]
+    except KeyError:
+        raise ValueError(f"unknown colormap {cmap!r}: use a matplotlib name such as 'viridis'") from None
+    return cm(np.linspace(0.0, 1.0, 256))[:, :3].astype(np.float32)
+
+
+def side_colors(shading, cmap="viridis", upper_color=None, lower_color=DEFAULT_LOWER):
+    """(lut, lower_rgb): the upper side's colour table indexed by height (one row for
+    a flat colour) and the lower side's colour. The reference model ("lambert") is
+    grey above and warm-tinted below, so the two sides stay distinguishable."""
+    if shading == "lambert":
+        return np.ones((1, 3), dtype=np.float64), np.array(LAMBERT_LOWER)
+    if upper_color is not None:
+        lut = np.array([to_rgb(upper_color, "upper_color")], dtype=np.float64)
+    else:
+        lut = colormap_lut(cmap).astype(np.float64)
+    return lut, np.array(to_rgb(lower_color, "lower_color"), dtype=np.float64)
+
+
+def line_rgba(side, background=(255, 255, 255, 255)):
+    """A horizon line drawing: dark lines for the upper side, red for the lower."""
+    H, W = side.shape
+    out = np.empty((H, W, 4), dtype=np.uint8)
+    out[:] = to_rgba8(background)
+    out[side > 0] = to_rgba8(LINE_UPPER)
+    out[side < 0] = to_rgba8(LINE_LOWER)
+    return out

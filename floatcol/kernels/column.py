@@ -1,0 +1,325 @@
+"""The shaded floating column, App. A.2, in independent column mode.
+
+Each pixel column is rendered on its own, front to back: sampling planes t = const
+advance away from the viewer, the column keeps the floating interval [ymin, ymax] of
+screen rows already covered, and every newly visible span between the previous and
+the current sample is filled by interpolation (depth, u, v, w, normal, intensity).
+
+Coverage is decided at pixel centres from the floating-point screen row of the
+samples, so silhouettes land where the exact surface puts them. A hole (f NaN,
+infinite or complex), the domain edge and the near clipping plane break the run; the
+break is located by bisection, so edges are clean, and the next valid sample starts a
+fresh run. Pixels painted by an earlier run stay (they are nearer), which keeps
+occlusion exact when a run does not cover one interval.
+
+In perspective the sampling planes are ordered by distance from the viewpoint along
+t: rays whose direction has a positive t component meet the surface in increasing t,
+rays pointing back past the nadir in decreasing t, so a column runs an ascending pass
+from the viewpoint's t outward and, if the domain reaches behind it, a descending one.
+"""
+import math
+
+import numpy as np
+from numba import prange
+
+from ._jit import ngjit, ngjit_parallel
+from .layout import (
+    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIDE, G_T, G_U, G_V, G_W,
+    S_OK, S_OUTSIDE,
+    VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_ORTHO, VP_SA,
+    VP_SB, VP_T0, VP_T1, VP_UA, VP_UB, VP_VA, VP_VB, VP_WHI, VP_WLO,
+)
+from .sample import column_x0, sample_point
+
+# Per-sample attribute vector
+A_Y = 0      # screen row from the bottom (float)
+A_Z = 1      # screen depth
+A_U = 2
+A_V = 3
+A_W = 4
+A_NX = 5
+A_NY = 6
+A_NZ = 7
+A_I = 8
+A_T = 9
+A_SIZE = 10
+
+EDGE_BISECTIONS = 16
+# Column state ``run``: is a run open, its floating interval, and the last s found
+# (at which t, with which ds/dt) to start the next perspective Newton iteration
+RUN_OPEN = 0
+RUN_YMIN = 1
+RUN_YMAX = 2
+RUN_GUESS = 3
+RUN_GUESS_T = 4
+RUN_SLOPE = 5
+RUN_SIZE = 6
+# Horizon-line records (see horizon.py): per column and line, the line's screen row,
+# the run's floating interval just before it, and the t where that run started.
+H_Y = 0
+H_LO = 1
+H_HI = 2
+H_TS = 3
+H_SIZE = 4
+
+
+@ngjit
+def _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, t, out, run):
+    if vp[VP_ORTHO] == 0.0 and not _may_meet_domain(vp, x0, t):
+        return S_OUTSIDE, 0
+    # Newton start: the last solution extrapolated along t
+    guess = run[RUN_GUESS] + run[RUN_SLOPE] * (t - run[RUN_GUESS_T])
+    st, ev, y, z, u, v, w, nx, ny, nz, lam = sample_point(kind, f, fu, fv, hf, hfp, vp, x0, t,
+                                                          guess)
+    if st == S_OK:
+        s = w - vp[VP_CW]
+        dt = t - run[RUN_GUESS_T]
+        run[RUN_SLOPE] = (s - run[RUN_GUESS]) / dt if dt != 0.0 else 0.0
+        run[RUN_GUESS] = s
+        run[RUN_GUESS_T] = t
+        out[A_Y] = y
+        out[A_Z] = z
+        out[A_U] = u
+        out[A_V] = v
+        out[A_W] = w
+        out[A_NX] = nx
+        out[A_NY] = ny
+        out[A_NZ] = nz
+        out[A_I] = lam
+        out[A_T] = t
+    return st, ev
+
+
+@ngjit
+def _chord(vp, r_lo, r_hi, t):
+    """Does the segment r in [r_lo, r_hi] of plane t meet the domain rectangle?"""
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    lo = r_lo
+    hi = r_hi
+    # u = cu + r cb + t sb in [ua, ub];  v = cv - r sb + t cb in [va, vb]   (eq. 2)
+    for base, slope, a, b in ((vp[VP_CU] + t * sb, cb, vp[VP_UA], vp[VP_UB]),
+                              (vp[VP_CV] + t * cb, -sb, vp[VP_VA], vp[VP_VB])):
+        if abs(slope) < 1e-15:
+            if base < a or base > b:
+                return False
+        else:
+            r1 = (a - base) / slope
+            r2 = (b - base) / slope
+            lo = max(lo, min(r1, r2))
+            hi = min(hi, max(r1, r2))
+    return lo <= hi + 1e-9 * (1.0 + abs(hi))
+
+
+@ngjit
+def _may_meet_domain(vp, x0, t):
+    """Perspective pre-check: can the column plane's point at t lie in the domain,
+    given the estimated range of w? Saves Newton solves far outside."""
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    d1 = vp[VP_D1]
+    d3 = vp[VP_D3]
+    s_lo = vp[VP_WLO] - vp[VP_CW]
+    s_hi = vp[VP_WHI] - vp[VP_CW]
+    ra = x0 * (s_lo * sa + t * ca + d3) / d1
+    rb = x0 * (s_hi * sa + t * ca + d3) / d1
+    return _chord(vp, min(ra, rb), max(ra, rb), t)
+
+
+@ngjit
+def _ortho_chord(vp, x0):
+    """t-interval of the orthographic column line r = x0 inside the domain."""
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    lo = -np.inf
+    hi = np.inf
+    for base, slope, a, b in ((vp[VP_CU] + x0 * cb, sb, vp[VP_UA], vp[VP_UB]),
+                              (vp[VP_CV] - x0 * sb, cb, vp[VP_VA], vp[VP_VB])):
+        if abs(slope) < 1e-15:
+            if base < a or base > b:
+                return 1.0, -1.0
+        else:
+            t1 = (a - base) / slope
+            t2 = (b - base) / slope
+            lo = max(lo, min(t1, t2))
+            hi = min(hi, max(t1, t2))
+    return lo, hi
+
+
+@ngjit
+def _fill_span(gcol, run, prev, cur, sigma, persp, d3, H):
+    """Paint the rows that the span prev -> cur newly uncovers (App. A.2 Interpolate)."""
+    y = cur[A_Y]
+    if run[RUN_OPEN] == 0.0:
+        run[RUN_OPEN] = 1.0
+        run[RUN_YMIN] = y
+        run[RUN_YMAX] = y
+        return
+    if y > run[RUN_YMAX]:                      # above the column's max: upper side if ascending
+        j0 = int(math.floor(run[RUN_YMAX])) + 1
+        j1 = int(math.floor(y))
+        side = sigma
+        run[RUN_YMAX] = y
+    elif y < run[RUN_YMIN]:                    # below the min
+        j0 = int(math.ceil(y))
+        j1 = int(math.ceil(run[RUN_YMIN])) - 1
+        side = -sigma
+        run[RUN_YMIN] = y
+    else:
+        return                          # hidden: inside the floating interval
+    j0 = max(j0, 0)
+    j1 = min(j1, H - 1)
+    if j0 > j1:
+        return
+    yp = prev[A_Y]
+    dy = y - yp
+    if persp:
+        qp = 1.0 / (prev[A_Z] + d3)
+        qc = 1.0 / (cur[A_Z] + d3)
+    for j in range(j0, j1 + 1):
+        if gcol[j, G_SIDE] != 0.0:
+            continue                    # painted by an earlier, nearer run
+        ls = min(max((j - yp) / dy, 0.0), 1.0)
+        if persp:                       # perspective-correct weight along the chord
+            lw = ls * qc / ((1.0 - ls) * qp + ls * qc)
+        else:
+            lw = ls
+        gcol[j, G_DEPTH] = prev[A_Z] + lw * (cur[A_Z] - prev[A_Z])
+        gcol[j, G_U] = prev[A_U] + lw * (cur[A_U] - prev[A_U])
+        gcol[j, G_V] = prev[A_V] + lw * (cur[A_V] - prev[A_V])
+        gcol[j, G_W] = prev[A_W] + lw * (cur[A_W] - prev[A_W])
+        gcol[j, G_NX] = prev[A_NX] + lw * (cur[A_NX] - prev[A_NX])
+        gcol[j, G_NY] = prev[A_NY] + lw * (cur[A_NY] - prev[A_NY])
+        gcol[j, G_NZ] = prev[A_NZ] + lw * (cur[A_NZ] - prev[A_NZ])
+        gcol[j, G_I] = prev[A_I] + lw * (cur[A_I] - prev[A_I])
+        gcol[j, G_T] = prev[A_T] + lw * (cur[A_T] - prev[A_T])
+        gcol[j, G_SIDE] = side
+
+
+@ngjit
+def _grid_range(t0, dt, ta, tb):
+    """Indices k of the planes t0 + k dt strictly between ta < tb."""
+    eps = 1e-6 * dt
+    ka = int(math.floor((ta - t0) / dt)) + 1
+    if t0 + ka * dt <= ta + eps:
+        ka += 1
+    kb = int(math.ceil((tb - t0) / dt)) - 1
+    if t0 + kb * dt >= tb - eps:
+        kb -= 1
+    return ka, kb
+
+
+@ngjit
+def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, hrec, hstride,
+                 prev, cur, edge, tmp, run):
+    """One front-to-back pass over t from ta to tb (sigma = +1 ascending, -1
+    descending). Returns the number of evaluations of f."""
+    H = gcol.shape[0]
+    persp = vp[VP_ORTHO] == 0.0
+    d3 = vp[VP_D3]
+    t0 = vp[VP_T0]
+    dt = vp[VP_DT]
+    lo = min(ta, tb)
+    hi = max(ta, tb)
+    ka, kb = _grid_range(t0, dt, lo, hi)
+    n_inner = max(kb - ka + 1, 0)
+    n = n_inner + 2 if hi > lo else 1
+    evals = 0
+    run[RUN_OPEN] = 0.0
+    run_start = 0.0
+    prev_st = -1
+    prev_t = 0.0
+    for i in range(n):
+        if i == 0:
+            t = ta
+            k = -1
+        elif i == n - 1:
+            t = tb
+            k = -1
+        else:
+            k = ka + (i - 1) if sigma > 0 else kb - (i - 1)
+            t = t0 + k * dt
+        st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, t, cur, run)
+        evals += ev
+        if prev_st >= 0 and (prev_st == S_OK) != (st == S_OK):
+            # A run starts or ends between prev_t and t: bisect for its edge.
+            if st == S_OK:
+                t_ok = t
+                t_bad = prev_t
+            else:
+                t_ok = prev_t
+                t_bad = t
+            found = False
+            for _ in range(EDGE_BISECTIONS):
+                tm = 0.5 * (t_ok + t_bad)
+                st_m, ev_m = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, tm, tmp, run)
+                evals += ev_m
+                if st_m == S_OK:
+                    t_ok = tm
+                    edge[:] = tmp
+                    found = True
+                else:
+                    t_bad = tm
+            if found:
+                if run[RUN_OPEN] == 0.0:
+                    run_start = edge[A_T]
+                _fill_span(gcol, run, prev, edge, sigma, persp, d3, H)
+                prev[:] = edge
+        if st == S_OK:
+            if run[RUN_OPEN] == 0.0:
+                run_start = t
+            if hstride > 0 and k >= 0 and k % hstride == 0:
+                m = k // hstride
+                if m < hrec.shape[0]:
+                    hrec[m, H_Y] = cur[A_Y]
+                    hrec[m, H_LO] = run[RUN_YMIN] if run[RUN_OPEN] != 0.0 else np.inf
+                    hrec[m, H_HI] = run[RUN_YMAX] if run[RUN_OPEN] != 0.0 else -np.inf
+                    hrec[m, H_TS] = run_start
+            _fill_span(gcol, run, prev, cur, sigma, persp, d3, H)
+            prev[:] = cur
+        else:
+            run[RUN_OPEN] = 0.0
+        prev_st = st
+        prev_t = t
+    return evals
+
+
+@ngjit
+def render_column(kind, f, fu, fv, hf, hfp, vp, col, gcol, hrec, hstride):
+    """Render pixel column ``col`` into gcol (H, G_SIZE); returns evaluations of f."""
+    gcol[:, :] = np.nan
+    gcol[:, G_DEPTH] = np.inf
+    gcol[:, G_SIDE] = 0.0
+    hrec[:, :] = np.nan
+    x0 = column_x0(vp, col)
+    prev = np.empty(A_SIZE)
+    cur = np.empty(A_SIZE)
+    edge = np.empty(A_SIZE)
+    tmp = np.empty(A_SIZE)
+    run = np.zeros(RUN_SIZE)
+    evals = 0
+    if vp[VP_ORTHO] != 0.0:
+        lo, hi = _ortho_chord(vp, x0)
+        if lo <= hi:
+            evals += _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, lo, hi, 1.0,
+                                  gcol, hrec, hstride, prev, cur, edge, tmp, run)
+        return evals
+    t_lo = vp[VP_T0]
+    t_hi = vp[VP_T1]
+    t_view = -vp[VP_D3] * vp[VP_CA]      # the viewpoint's t, eq. (1)
+    if t_hi > t_view:
+        evals += _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, max(t_lo, t_view), t_hi,
+                              1.0, gcol, hrec, hstride, prev, cur, edge, tmp, run)
+    if t_lo < t_view:
+        evals += _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, min(t_hi, t_view), t_lo,
+                              -1.0, gcol, hrec, hstride, prev, cur, edge, tmp, run)
+    return evals
+
+
+@ngjit_parallel
+def column_kernel(kind, f, fu, fv, hf, hfp, vp, gbuf, hrec, hstride, evals):
+    """Render every column in parallel into gbuf (W, H, G_SIZE), cleared here; hrec (W, n_lines, H_SIZE) receives horizon-line records when
+    hstride > 0. Each column writes only its own slices: no shared scratch."""
+    W = gbuf.shape[0]
+    for c in prange(W):
+        evals[c] = render_column(kind, f, fu, fv, hf, hfp, vp, c, gbuf[c], hrec[c], hstride)

@@ -1,0 +1,52 @@
+"""Layouts of the flat arrays that cross the Python/kernel boundary."""
+
+# View parameter vector ``vp`` (float64), built by view.View.params().
+VP_ORTHO = 0      # 1.0 orthographic, 0.0 perspective
+VP_CA = 1         # cos(alpha)
+VP_SA = 2         # sin(alpha)
+VP_CB = 3         # cos(beta)
+VP_SB = 4         # sin(beta)
+VP_D1 = 5         # viewpoint-to-screen distance (ERRATA 1)
+VP_D3 = 6         # viewpoint-to-origin distance, d1 + d2
+VP_SCALE = 7      # pixels per unit on the screen plane (the paper's Ratio)
+VP_W = 8          # image width in pixels
+VP_H = 9          # image height in pixels
+VP_CU = 10        # world point at the screen origin: u
+VP_CV = 11        # ... v
+VP_CW = 12        # ... w
+VP_UA = 13        # domain u in [UA, UB], v in [VA, VB]
+VP_UB = 14
+VP_VA = 15
+VP_VB = 16
+VP_WLO = 17       # estimated range of w (perspective pre-check only)
+VP_WHI = 18
+VP_T0 = 19        # first sampling plane t = T0 (relative to the centre)
+VP_T1 = 20        # last sampling plane
+VP_DT = 21        # distance between sampling planes
+VP_LX = 22        # unit vector toward a directional light, screen coordinates;
+VP_LY = 23        # all zero = light at the viewpoint (the reference model)
+VP_LZ = 24
+VP_SIZE = 25
+
+# Surface kinds
+SURF_FUNCTION = 0
+SURF_HEIGHTFIELD = 1
+
+# G-buffer channels, gbuf shape (W, H, G_SIZE) float32, rows counted from the BOTTOM
+G_DEPTH = 0       # screen z of the seen point (larger = farther)
+G_U = 1
+G_V = 2
+G_W = 3
+G_NX = 4          # unit upper-side normal in screen coordinates, eq. (11)
+G_NY = 5
+G_NZ = 6
+G_I = 7           # lambert intensity interpolated between samples (iis)
+G_T = 8           # t of the seen point (relative to the centre)
+G_SIDE = 9        # +1 upper side, -1 lower side, 0 nothing
+G_SIZE = 10
+
+# Sample status
+S_OK = 0
+S_HOLE = 1        # f is NaN, infinite or complex there
+S_OUTSIDE = 2     # outside the domain rectangle
+S_BEHIND = 3      # in front of the screen plane (perspective, ERRATA 1)

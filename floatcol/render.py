@@ -1,0 +1,257 @@
+"""render(): validate, build the View, run the kernels, return a Render."""
+from __future__ import annotations
+
+import math
+import os
+import tempfile
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import color
+from .kernels.column import H_SIZE, column_kernel
+from .kernels.horizon import horizon_kernel
+from .kernels.layout import G_DEPTH, G_NX, G_NZ, G_SIZE, G_U, G_V, G_W
+from .kernels.shade import (
+    INTERP_INTENSITY, INTERP_NORMAL, finish_kernel, shade_kernel, upper_w_range)
+from .surface import Surface, as_surface, check_range
+from .view import View, build_view
+
+METHODS = ("column", "horizon")
+SHADINGS = ("default", "lambert")
+INTERPOLATIONS = {"normal": INTERP_NORMAL, "nis": INTERP_NORMAL,
+                  "intensity": INTERP_INTENSITY, "iis": INTERP_INTENSITY}
+DEFAULT_RANGE = (-10.0, 10.0)   # as sympy's plot3d
+DEFAULT_LINES = 160             # horizon lines, as in the paper's figures
+#: the key light of the default shading: from the upper left, toward the viewer
+DEFAULT_LIGHT = (-0.45, 0.55, -1.0)
+DEFAULT_AMBIENT = 0.25
+
+
+@dataclass
+class Render:
+    """The result of :func:`render`. Array row 0 is the top row of the picture.
+
+    rgba (H, W, 4) uint8; intensity (H, W) float32 in [0, 1], NaN where no surface is
+    seen; side (H, W) int8, +1 where the upper side is seen, -1 the lower, 0 nothing;
+    depth (H, W) float32 screen z of the seen point (larger = farther), +inf where none;
+    stats: "samples" (evaluations of f), "seconds", and more. ``u``, ``v``, ``w`` and
+    ``normal`` give the seen point's coordinates and unit normal per pixel.
+    """
+    rgba: np.ndarray
+    intensity: np.ndarray
+    side: np.ndarray
+    depth: np.ndarray
+    stats: dict
+    view: View = field(repr=False)
+    gbuffer: np.ndarray = field(repr=False)   # (W, H, G_SIZE), rows from the bottom
+    #: method="horizon": t (relative to the centre) of the line at each line pixel
+    line_t: np.ndarray = field(default=None, repr=False)
+
+    def _channel(self, g):
+        return self.gbuffer[:, ::-1, g].T
+
+    @property
+    def u(self):
+        return self._channel(G_U)
+
+    @property
+    def v(self):
+        return self._channel(G_V)
+
+    @property
+    def w(self):
+        return self._channel(G_W)
+
+    @property
+    def normal(self):
+        """(H, W, 3) unit upper-side normal in screen coordinates (NaN where none)."""
+        n = self.gbuffer[:, ::-1, G_NX:G_NZ + 1].transpose(1, 0, 2).astype(np.float64)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return n / np.linalg.norm(n, axis=2, keepdims=True)
+
+    def save(self, path):
+        """Write ``rgba`` as a PNG (atomically: a temporary file renamed at the end)."""
+        save_png(self.rgba, path)
+
+    def _repr_png_(self):
+        import io
+        from PIL import Image
+        buf = io.BytesIO()
+        Image.fromarray(self.rgba, "RGBA").save(buf, format="PNG")
+        return buf.getvalue()
+
+
+def save_png(rgba, path):
+    from PIL import Image
+    path = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise ValueError(f"cannot write {path}: folder {folder} does not exist")
+    fd, tmp = tempfile.mkstemp(prefix=".floatcol-", suffix=".png", dir=folder)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            Image.fromarray(np.ascontiguousarray(rgba), "RGBA").save(fh, format="PNG")
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+
+
+def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
+           projection="orthographic", d1=None, d2=None, scale=None, method="column",
+           shading="default", *, interpolation="normal", step=None, lines=DEFAULT_LINES,
+           vars=None, center=None, cmap="viridis", upper_color=None,
+           lower_color=color.DEFAULT_LOWER, vmin=None, vmax=None, background=None,
+           light=None, ambient=None) -> Render:
+    """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
+
+    Parameters
+    ----------
+    expr : sympy expression, str, callable f(u, v), Surface or HeightField
+        Free symbols are u and v unless ``vars=(x, y)`` names others.
+    u, v : (low, high)
+        The domain rectangle; default (-10, 10), or a HeightField's own extent.
+    size : (width, height) in pixels.
+    elev, azim : degrees. elev > 0 looks down on the surface; alpha = -elev, beta = azim.
+    projection : "orthographic" or "perspective" (d1: viewpoint-to-screen distance,
+        d2: screen-to-origin distance, as in eqs. (9)-(10)).
+    scale : pixels per unit (the paper's Ratio); None fits the surface in the image.
+    method : "column" (shaded) or "horizon" (monochrome line drawing, ``lines`` lines).
+    shading : "default" (ambient + diffuse key light, height colormap, two-coloured
+        sides) or "lambert" (I = |L.N|/(|L||N|), light at the viewpoint, no ambient).
+    interpolation : "normal" (nis, per-pixel lighting) or "intensity" (iis, Gouraud).
+    step : distance between sampling planes; default about one pixel on screen.
+    center : world point (u, v, w) at the image centre; None the origin (as in the
+        paper), "auto" the middle of the domain and of the range of f.
+
+    Returns
+    -------
+    Render
+        with ``rgba``, ``intensity``, ``side``, ``depth`` and ``stats``.
+
+    Examples
+    --------
+    >>> import floatcol as fc
+    >>> r = fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(160, 120))
+    >>> r.rgba.shape, r.side.dtype
+    ((120, 160, 4), dtype('int8'))
+    """
+    t_start = time.perf_counter()
+    if not isinstance(method, str) or method not in METHODS:
+        raise ValueError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    if not isinstance(shading, str) or shading not in SHADINGS:
+        raise ValueError(f"shading must be one of {', '.join(SHADINGS)}, got {shading!r}")
+    if not isinstance(interpolation, str) or interpolation not in INTERPOLATIONS:
+        raise ValueError("interpolation must be 'normal' (nis) or 'intensity' (iis), "
+                         f"got {interpolation!r}")
+    surface = as_surface(expr, vars)
+    domain = _domain(surface, u, v)
+    if shading == "lambert":
+        if light is not None:
+            raise ValueError("shading='lambert' lights from the viewpoint; leave light=None "
+                             "or use shading='default'")
+        light_dir = None
+        amb = 0.0 if ambient is None else _fraction("ambient", ambient)
+    else:
+        light_dir = DEFAULT_LIGHT if light is None else light
+        amb = DEFAULT_AMBIENT if ambient is None else _fraction("ambient", ambient)
+    view = build_view(surface, domain, size, elev, azim, projection, d1, d2, scale,
+                      center, step, light_dir)
+    hstride = 0
+    n_lines = 1
+    if method == "horizon":
+        n_lines = _whole("lines", lines)
+        hstride = max(1, int(round(view.planes / n_lines)))
+        n_lines = view.planes // hstride + 1
+    t_setup = time.perf_counter()
+
+    W, H = view.width, view.height
+    vp = view.params()
+    gbuf = np.empty((W, H, G_SIZE), dtype=np.float32)
+    hrec = np.empty((W, n_lines, H_SIZE), dtype=np.float64)
+    evals = np.zeros(W, dtype=np.int64)
+    column_kernel(*surface.kernel_args(), vp, gbuf, hrec, hstride, evals)
+    t_kernel = time.perf_counter()
+    line_t = None
+
+    if method == "horizon":
+        lines_img = np.zeros((W, H), dtype=np.int8)
+        lt = np.full((W, H), np.nan, dtype=np.float32)
+        horizon_kernel(hrec, gbuf, vp, hstride, lines_img, lt)
+        line_t = np.ascontiguousarray(lt[:, ::-1].T)
+        side = np.ascontiguousarray(lines_img[:, ::-1].T)
+        on = side != 0
+        intensity = np.where(on, np.float32(1.0), np.float32(np.nan)).astype(np.float32)
+        depth = np.where(on, gbuf[:, ::-1, G_DEPTH].T, np.inf).astype(np.float32)
+        rgba = color.line_rgba(side, background=(255, 255, 255, 255) if background is None else background)
+    else:
+        shade = np.empty((W, H), dtype=np.float32)
+        shade_kernel(gbuf, vp, INTERPOLATIONS[interpolation], amb, shade)
+        lut, lower_rgb = color.side_colors(shading, cmap, upper_color, lower_color)
+        w_lo, w_hi = _height_limits(gbuf, vmin, vmax)
+        if background is None:
+            background = (0, 0, 0, 255) if shading == "lambert" else (255, 255, 255, 255)
+        intensity = np.empty((H, W), dtype=np.float32)
+        side = np.empty((H, W), dtype=np.int8)
+        depth = np.empty((H, W), dtype=np.float32)
+        rgba = np.empty((H, W, 4), dtype=np.uint8)
+        finish_kernel(gbuf, shade, lut, w_lo, w_hi, lower_rgb, color.to_rgba8(background),
+                      intensity, side, depth, rgba)
+    t_end = time.perf_counter()
+    stats = {
+        "samples": int(evals.sum()),
+        "seconds": t_end - t_start,
+        "kernel_seconds": t_kernel - t_setup,
+        "setup_seconds": t_setup - t_start,
+        "planes": view.planes,
+        "step": view.step,
+        "scale": view.scale,
+        "lines": n_lines if method == "horizon" else 0,
+        "method": method,
+        "derivatives": surface.derivatives,
+    }
+    return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t)
+
+
+def _height_limits(gbuf, vmin, vmax):
+    """The colormap's height range: vmin/vmax, else that of the seen upper side."""
+    if vmin is None or vmax is None:
+        lo = np.empty(gbuf.shape[0])
+        hi = np.empty(gbuf.shape[0])
+        upper_w_range(gbuf, lo, hi)
+        lo_s, hi_s = float(lo.min()), float(hi.max())
+        if not lo_s <= hi_s:
+            lo_s, hi_s = 0.0, 1.0
+    w_lo = lo_s if vmin is None else float(vmin)
+    w_hi = hi_s if vmax is None else float(vmax)
+    return w_lo, w_hi
+
+
+def _domain(surface: Surface, u, v):
+    default = surface.default_domain
+    if u is None:
+        u = default[0] if default else DEFAULT_RANGE
+    if v is None:
+        v = default[1] if default else DEFAULT_RANGE
+    return check_range(surface.variables[0], u), check_range(surface.variables[1], v)
+
+
+def _fraction(name, x):
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number in [0, 1], got {x!r}") from None
+    if not 0.0 <= x <= 1.0 or math.isnan(x):
+        raise ValueError(f"{name} must be in [0, 1], got {x}")
+    return x
+
+
+def _whole(name, x):
+    if isinstance(x, bool) or not isinstance(x, (int, np.integer)) or x < 1:
+        raise ValueError(f"{name} must be a positive whole number, got {x!r}")
+    return int(x)

@@ -1,0 +1,309 @@
+"""Surfaces: what the kernels sample.
+
+A Surface carries f, f_u and f_v as compiled Numba cfuncs (DESIGN.md section 4), so a
+new expression costs a few tens of milliseconds and never recompiles a kernel, or a
+height grid read as a bilinear function (the paper's "digital height field").
+"""
+from __future__ import annotations
+
+import functools
+import logging
+import math
+import numbers
+
+import numpy as np
+
+from .kernels._jit import compile_surface_fn
+from .kernels.layout import SURF_FUNCTION, SURF_HEIGHTFIELD
+from .kernels.sample import eval_grid
+
+log = logging.getLogger(__name__)
+
+DEFAULT_VARS = ("u", "v")
+
+
+class Surface:
+    """A function surface w = f(u, v) ready for the kernels.
+
+    Build one with :func:`as_surface` (sympy expression, string or callable) or
+    :class:`HeightField`. ``evaluate(u, v)`` gives w with NaN at holes.
+    """
+
+    kind = SURF_FUNCTION
+
+    def __init__(self, f, fu, fv, *, expr=None, variables=DEFAULT_VARS,
+                 derivatives="symbolic"):
+        self.f = f
+        self.fu = fu
+        self.fv = fv
+        self.expr = expr
+        self.variables = tuple(variables)
+        self.derivatives = derivatives
+        self.hf = np.zeros((2, 2))
+        self.hfp = np.array([0.0, 1.0, 0.0, 1.0])
+
+    #: Default domain when the caller gives none (None: the caller must choose).
+    default_domain = None
+
+    def kernel_args(self):
+        """(kind, f, fu, fv, hf, hfp): what every kernel takes to sample the surface."""
+        return self.kind, self.f, self.fu, self.fv, self.hf, self.hfp
+
+    def evaluate(self, u, v, derivatives=False):
+        """w = f(u, v) on arrays (NaN at holes); with derivatives, (w, f_u, f_v)."""
+        u, v = np.broadcast_arrays(np.asarray(u, dtype=np.float64),
+                                   np.asarray(v, dtype=np.float64))
+        out = np.empty((u.size, 3))
+        eval_grid(*self.kernel_args(), np.ascontiguousarray(u).ravel(),
+                  np.ascontiguousarray(v).ravel(), out)
+        res = [out[:, i].reshape(u.shape) for i in range(3)]
+        return tuple(res) if derivatives else res[0]
+
+    def __repr__(self):
+        what = self.expr if self.expr is not None else "callable"
+        return f"Surface({what}, vars={self.variables}, derivatives={self.derivatives})"
+
+
+class HeightField(Surface):
+    """A grid of heights read as a bilinear function with exact piecewise partials.
+
+    ``z[j, i]`` is the height at ``(u_i, v_j)`` (rows follow v, columns follow u, as
+    in matplotlib's ``plot_surface(X, Y, Z)`` with ``meshgrid``); the grid spans
+    ``u = (a, b)`` and ``v = (c, d)``, by default the index ranges. NaN cells are holes.
+    """
+
+    kind = SURF_HEIGHTFIELD
+
+    def __init__(self, z, u=None, v=None):
+        try:
+            z = np.array(z, dtype=np.float64)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"HeightField needs a 2-D array of numbers: {exc}") from None
+        if z.ndim != 2 or z.shape[0] < 2 or z.shape[1] < 2:
+            raise ValueError(
+                f"HeightField needs a 2-D array of at least 2 x 2 heights, got shape {z.shape}")
+        z[~np.isfinite(z)] = np.nan
+        nv, nu = z.shape
+        u = check_range("u", (0.0, nu - 1.0) if u is None else u)
+        v = check_range("v", (0.0, nv - 1.0) if v is None else v)
+        super().__init__(_zero_fn(), _zero_fn(), _zero_fn(), variables=DEFAULT_VARS,
+                         derivatives="bilinear")
+        self.hf = np.ascontiguousarray(z)
+        self.hfp = np.array([u[0], u[1], v[0], v[1]], dtype=np.float64)
+        self.default_domain = (u, v)
+
+    def __repr__(self):
+        (a, b), (c, d) = self.default_domain
+        return f"HeightField({self.hf.shape[0]}x{self.hf.shape[1]}, u=({a}, {b}), v=({c}, {d}))"
+
+
+def check_range(name, rng):
+    """A validated (low, high) float pair, or ValueError naming what to fix."""
+    try:
+        lo, hi = rng
+        lo = float(lo)
+        hi = float(hi)
+    except (TypeError, ValueError):
+        raise ValueError(f"range {name} must be a pair (low, high) of numbers, got {rng!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        raise ValueError(f"range {name} = ({lo}, {hi}) must be finite")
+    if hi < lo:
+        raise ValueError(f"range {name} = ({lo}, {hi}) is reversed: low must be below high")
+    if hi == lo:
+        raise ValueError(f"range {name} = ({lo}, {hi}) is empty: low must be below high")
+    return lo, hi
+
+
+def as_surface(expr, vars=None) -> Surface:
+    """A Surface from a sympy expression, a string, a number, a callable f(u, v), or a
+    Surface (returned as is). Free symbols must be the two variables (``vars``,
+    default u and v)."""
+    if isinstance(expr, Surface):
+        return expr
+    names = _variable_names(vars)
+    if callable(expr) and not _is_sympy(expr) and not isinstance(expr, str):
+        return _callable_surface(expr, names)
+    e = parse_expression(expr, names)
+    return _compiled_expression(e, names)
+
+
+def _variable_names(vars):
+    if vars is None:
+        return DEFAULT_VARS
+    try:
+        names = tuple(str(x) for x in vars)
+    except TypeError:
+        raise ValueError(f"vars must name two variables, e.g. vars=('x', 'y'), got {vars!r}") from None
+    if len(names) != 2 or names[0] == names[1] or not all(n.isidentifier() for n in names):
+        raise ValueError(f"vars must name two different variables, e.g. vars=('x', 'y'), got {vars!r}")
+    return names
+
+
+def _is_sympy(obj):
+    try:
+        import sympy
+    except ImportError:  # pragma: no cover - sympy is a dependency
+        return False
+    return isinstance(obj, sympy.Basic)
+
+
+def parse_expression(expr, names=DEFAULT_VARS):
+    """The sympy expression of a string / number / sympy object, in the variables
+    ``names`` (as plain sympy Symbols). ValueError says what to fix."""
+    import sympy as sp
+    from sympy.parsing.sympy_parser import (
+        convert_xor, implicit_multiplication, parse_expr, standard_transformations)
+
+    syms = {n: sp.Symbol(n) for n in names}
+    if isinstance(expr, str):
+        text = expr.strip()
+        if not text:
+            raise ValueError("the expression is empty: give a formula in "
+                             f"{names[0]} and {names[1]}, e.g. '3*sin({names[0]}*cos({names[1]}))'")
+        try:
+            e = parse_expr(text, local_dict=dict(syms),
+                           transformations=standard_transformations + (convert_xor, implicit_multiplication))
+        except Exception as exc:  # sympy raises SyntaxError, TokenError, TypeError, ...
+            raise ValueError(_parse_error_message(text, exc)) from None
+    elif isinstance(expr, numbers.Number) and not isinstance(expr, bool):
+        e = sp.sympify(expr)
+    elif isinstance(expr, sp.Basic):
+        e = expr
+    else:
+        raise ValueError(f"cannot draw {type(expr).__name__} {expr!r}: pass a sympy expression, "
+                         "a string, a callable f(u, v), a Surface or a HeightField")
+    if not isinstance(e, sp.Expr) or isinstance(e, (sp.logic.boolalg.Boolean,)):
+        raise ValueError(f"{expr!r} is not a scalar expression: give a formula for the height w")
+    by_name = {}
+    unknown = []
+    for s in sorted(e.free_symbols, key=str):
+        if s.name in syms:
+            by_name[s] = syms[s.name]
+        else:
+            unknown.append(s.name)
+    if unknown:
+        hint = "" if len(unknown) > 2 else (
+            f" (or pass vars={tuple(unknown) if len(unknown) == 2 else None} to use them)"
+            if len(unknown) == 2 else "")
+        raise ValueError(
+            f"unknown symbol{'s' if len(unknown) > 1 else ''} {', '.join(unknown)} in "
+            f"{e}: the variables are {names[0]} and {names[1]}{hint}")
+    return e.xreplace(by_name)
+
+
+def _parse_error_message(text, exc):
+    """One line saying where the string stops making sense."""
+    probe = text.replace("^", "**")
+    try:
+        compile(probe, "<expression>", "eval")
+    except SyntaxError as se:
+        off = (se.offset or 0) - 1
+        if off < 0 or off >= len(probe):
+            off = len(probe)            # Python blames the end: the formula is incomplete
+        pos = off - probe[:off].count("**") + text[:off].count("**")  # '^' -> '**' shift
+        pos = min(max(pos, 0), len(text))
+        return (f"could not parse expression {text!r} ({se.msg}) at character {pos + 1}: "
+                f"{text[:pos]}<here>{text[pos:]}")
+    return f"could not parse expression {text!r}: {type(exc).__name__}: {exc}"
+
+
+# ---------------------------------------------------------------- compilation
+
+def _numba_namespace():
+    import numba
+
+    @numba.njit(cache=False)
+    def dirac_delta(x, *args):
+        return 0.0
+
+    return {"DiracDelta": dirac_delta}
+
+
+@functools.lru_cache(maxsize=256)
+def _compiled_expression(e, names):
+    """Surface for expression e (memoized on the expression and variable names)."""
+    import sympy as sp
+    su, sv = (sp.Symbol(n) for n in names)
+    f_py, f = _compile_scalar(e, su, sv)
+    parts = []
+    how = "symbolic"
+    for sym, axis in ((su, 0), (sv, 1)):
+        d = sp.diff(e, sym)
+        compiled = None
+        if not d.has(sp.Derivative, sp.Subs):
+            try:
+                compiled = _compile_scalar(d, su, sv)[1]
+            except ValueError:
+                compiled = None
+        if compiled is None:
+            how = "central differences"
+            compiled = _central_difference(f_py, axis)
+        parts.append(compiled)
+    return Surface(f, parts[0], parts[1], expr=e, variables=names, derivatives=how)
+
+
+def _compile_scalar(e, su, sv):
+    """(njit-able python function, cfunc) for a scalar sympy expression."""
+    import numba
+    import sympy as sp
+    is_complex = bool(e.has(sp.I)) or any(
+        n.is_real is False for n in e.atoms(sp.Number))
+    try:
+        if is_complex:
+            g = numba.njit(sp.lambdify((su, sv), e, modules="cmath"))
+
+            def py(u, v):
+                z = g(u, v) + 0j
+                if abs(z.imag) <= 1e-12 * (1.0 + abs(z.real)):
+                    return z.real
+                return math.nan          # a complex value is a hole
+        else:
+            py = sp.lambdify((su, sv), e, modules=[_numba_namespace(), "math"])
+        log.debug("compiling %s", e)
+        return py, compile_surface_fn(py)
+    except Exception as exc:
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise ValueError(f"cannot compile {e} for the renderer: {first}") from None
+
+
+def _central_difference(py, axis):
+    import numba
+    fj = numba.njit(py)
+    if axis == 0:
+        def d(u, v):
+            h = 6e-6 * max(1.0, abs(u))
+            return (fj(u + h, v) - fj(u - h, v)) / (2.0 * h)
+    else:
+        def d(u, v):
+            h = 6e-6 * max(1.0, abs(v))
+            return (fj(u, v + h) - fj(u, v - h)) / (2.0 * h)
+    return compile_surface_fn(d)
+
+
+def _callable_surface(fn, names):
+    import inspect
+    py = getattr(fn, "py_func", None) or getattr(fn, "_pyfunc", None) or fn
+    try:
+        params = inspect.signature(py).parameters
+        if len([p for p in params.values()
+                if p.default is p.empty and p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]) > 2:
+            raise ValueError(f"the callable {getattr(py, '__name__', py)!r} must take two arguments (u, v)")
+    except (TypeError, ValueError) as exc:
+        if isinstance(exc, ValueError):
+            raise
+    try:
+        f = compile_surface_fn(py)
+    except Exception as exc:
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise ValueError(
+            f"cannot compile the callable {getattr(py, '__name__', py)!r} with Numba ({first}); "
+            "write it with scalar math (the math module) or pass a sympy expression") from None
+    return Surface(f, _central_difference(py, 0), _central_difference(py, 1),
+                   variables=names, derivatives="central differences")
+
+
+@functools.lru_cache(maxsize=1)
+def _zero_fn():
+    def zero(u, v):
+        return 0.0
+    return compile_surface_fn(zero)

@@ -1,0 +1,248 @@
+"""The camera: Gordon's eqs. (1)-(10), the pixel convention, fitting and step size.
+
+Screen coordinates x, y, z (z into the screen); r, s, t by tilting y = 0 by alpha
+about x (eq. 1); u, w, v by turning r, t by beta about s = w (eq. 2). Public angles
+are matplotlib-like: ``alpha = -radians(elev)`` (ERRATA 3: elev > 0 looks down),
+``beta = radians(azim)``. Perspective: viewpoint at (0, 0, -d3), screen plane at
+distance d1 from it, d3 = d1 + d2 (ERRATA 1). Pixel column c and paper row j (0 at
+the bottom) sit at ``x0 = (c - (W-1)/2) / scale``, ``y0 = (j - (H-1)/2) / scale``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .kernels import layout as L
+
+PROJECTIONS = {"orthographic": True, "ortho": True, "perspective": False, "persp": False}
+FIT_GRID = 65          # samples per side used to fit the picture and estimate w
+FIT_MARGIN = 0.05      # fraction of the half-size left free around the fitted picture
+MAX_PLANES = 40000     # cap on sampling planes per column (the step grows past it)
+
+
+@dataclass(frozen=True)
+class View:
+    width: int
+    height: int
+    elev: float
+    azim: float
+    orthographic: bool
+    d1: float
+    d2: float
+    scale: float
+    center: tuple          # world point (u, v, w) at the screen origin
+    domain: tuple          # ((ua, ub), (va, vb))
+    t_range: tuple         # first and last sampling plane t (relative to center)
+    step: float            # distance between sampling planes
+    w_range: tuple         # estimated range of w over the domain
+    light: tuple = (0.0, 0.0, 0.0)   # toward a directional light; zeros = headlight
+
+    @property
+    def alpha(self):
+        return -math.radians(self.elev)
+
+    @property
+    def beta(self):
+        return math.radians(self.azim)
+
+    @property
+    def d3(self):
+        return self.d1 + self.d2
+
+    @property
+    def planes(self):
+        return int(math.floor((self.t_range[1] - self.t_range[0]) / self.step)) + 1
+
+    def params(self) -> np.ndarray:
+        """The flat float64 vector the kernels read (kernels/layout.py)."""
+        vp = np.zeros(L.VP_SIZE)
+        vp[L.VP_ORTHO] = 1.0 if self.orthographic else 0.0
+        vp[L.VP_CA] = math.cos(self.alpha)
+        vp[L.VP_SA] = math.sin(self.alpha)
+        vp[L.VP_CB] = math.cos(self.beta)
+        vp[L.VP_SB] = math.sin(self.beta)
+        vp[L.VP_D1] = self.d1
+        vp[L.VP_D3] = self.d3
+        vp[L.VP_SCALE] = self.scale
+        vp[L.VP_W] = self.width
+        vp[L.VP_H] = self.height
+        vp[L.VP_CU], vp[L.VP_CV], vp[L.VP_CW] = self.center
+        (vp[L.VP_UA], vp[L.VP_UB]), (vp[L.VP_VA], vp[L.VP_VB]) = self.domain
+        vp[L.VP_WLO], vp[L.VP_WHI] = self.w_range
+        vp[L.VP_T0], vp[L.VP_T1] = self.t_range
+        vp[L.VP_DT] = self.step
+        vp[L.VP_LX], vp[L.VP_LY], vp[L.VP_LZ] = self.light
+        return vp
+
+    def to_screen(self, u, v, w):
+        """Screen (x, y, z) of world points, eqs. (1)-(2) inverted."""
+        ca, sa = math.cos(self.alpha), math.sin(self.alpha)
+        cb, sb = math.cos(self.beta), math.sin(self.beta)
+        du = np.asarray(u, dtype=float) - self.center[0]
+        dv = np.asarray(v, dtype=float) - self.center[1]
+        s = np.asarray(w, dtype=float) - self.center[2]
+        r = du * cb - dv * sb
+        t = du * sb + dv * cb
+        return r, s * ca - t * sa, s * sa + t * ca
+
+    def project(self, u, v, w):
+        """Pixel coordinates (column, array row with 0 at the top) of world points;
+        NaN where a point is in front of the perspective screen plane."""
+        x, y, z = self.to_screen(u, v, w)
+        if not self.orthographic:
+            depth = z + self.d3
+            ok = depth > self.d1
+            m = np.where(ok, self.d1 / np.where(ok, depth, 1.0), np.nan)
+            x, y = x * m, y * m
+        col = x * self.scale + (self.width - 1) / 2
+        row = (self.height - 1) / 2 - y * self.scale
+        return col, row
+
+
+def _number(name, value, positive=False):
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(x):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    if positive and x <= 0:
+        raise ValueError(f"{name} must be positive, got {value!r}")
+    return x
+
+
+def check_size(size):
+    try:
+        w, h = size
+    except (TypeError, ValueError):
+        raise ValueError(f"size must be (width, height) in pixels, got {size!r}") from None
+    out = []
+    for name, x in (("width", w), ("height", h)):
+        if isinstance(x, bool) or not isinstance(x, (int, np.integer, float)) or x != int(x):
+            raise ValueError(f"size {name} must be a whole number of pixels, got {x!r}")
+        if int(x) <= 0:
+            raise ValueError(f"size {name} must be positive, got {x!r}")
+        if int(x) > 32768:
+            raise ValueError(f"size {name} = {x} is too large (at most 32768 pixels)")
+        out.append(int(x))
+    return tuple(out)
+
+
+def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthographic",
+               d1=None, d2=None, scale=None, center=None, step=None, light=None) -> View:
+    """Validate the camera options and fit what was left as None.
+
+    ``scale=None`` fits the domain and the range of f into the image with a small
+    margin; ``d1``/``d2`` default to twice the radius of the surface's bounding box
+    each; ``step=None`` puts the sampling planes about one pixel apart on screen
+    (at the nearest point in perspective).
+    """
+    width, height = check_size(size)
+    elev = _number("elev", elev)
+    if not -90.0 <= elev <= 90.0:
+        raise ValueError(f"elev must be between -90 and 90 degrees, got {elev}")
+    azim = _number("azim", azim)
+    if not isinstance(projection, str) or projection.lower() not in PROJECTIONS:
+        raise ValueError(f"projection must be 'orthographic' or 'perspective', got {projection!r}")
+    ortho = PROJECTIONS[projection.lower()]
+    (ua, ub), (va, vb) = domain
+
+    # A grid over the domain: the extent of the surface for fitting.
+    gu, gv = np.meshgrid(np.linspace(ua, ub, FIT_GRID), np.linspace(va, vb, FIT_GRID))
+    gw = surface.evaluate(gu, gv)
+    ok = np.isfinite(gw)
+    w_lo, w_hi = _robust_range(gw[ok]) if ok.any() else (0.0, 0.0)
+    if center is None:
+        center = (0.0, 0.0, 0.0)
+    elif isinstance(center, str) and center == "auto":
+        center = (0.5 * (ua + ub), 0.5 * (va + vb), 0.5 * (w_lo + w_hi))
+    else:
+        try:
+            center = tuple(_number("center", c) for c in center)
+        except TypeError:
+            raise ValueError(f"center must be None, 'auto' or (u, v, w), got {center!r}") from None
+        if len(center) != 3:
+            raise ValueError(f"center must be None, 'auto' or (u, v, w), got {center!r}")
+
+    pu = np.concatenate([gu[ok], gu.ravel()])
+    pv = np.concatenate([gv[ok], gv.ravel()])
+    pw = np.concatenate([np.clip(gw[ok], w_lo, w_hi), np.full(gu.size, center[2])])
+    if not ok.any():
+        pw[:] = center[2]
+    radius = float(np.sqrt(((pu - center[0]) ** 2 + (pv - center[1]) ** 2
+                            + (pw - center[2]) ** 2).max()))
+    radius = max(radius, 1e-9)
+    if ortho:
+        d1 = 1.0 if d1 is None else _number("d1", d1, positive=True)
+        d2 = 1.0 if d2 is None else _number("d2", d2, positive=True)
+    else:
+        d1 = 2.0 * radius if d1 is None else _number("d1", d1, positive=True)
+        d2 = 2.0 * radius if d2 is None else _number("d2", d2, positive=True)
+
+    cb, sb = math.cos(math.radians(azim)), math.sin(math.radians(azim))
+    corners_t = [(cu_ - center[0]) * sb + (cv_ - center[1]) * cb
+                 for cu_ in (ua, ub) for cv_ in (va, vb)]
+    t_range = (min(corners_t), max(corners_t))
+    spread = max(w_hi - w_lo, 1e-9)
+    wmin_all = float(gw[ok].min()) if ok.any() else 0.0
+    wmax_all = float(gw[ok].max()) if ok.any() else 0.0
+    w_range = (wmin_all - spread, wmax_all + spread)
+
+    proto = View(width, height, elev, azim, ortho, d1, d2, 1.0, center, domain, t_range,
+                 1.0, w_range, (0.0, 0.0, 0.0))
+    if scale is None:
+        x, y, z = proto.to_screen(pu, pv, pw)
+        if not ortho:
+            depth = z + proto.d3
+            keep = depth > d1
+            if not keep.any():
+                raise ValueError("the whole surface is in front of the screen plane: "
+                                 "increase d1 + d2 (move the viewpoint back)")
+            x, y = x[keep] * d1 / depth[keep], y[keep] * d1 / depth[keep]
+        half_w = 0.5 * max(width - 1, 1) * (1 - FIT_MARGIN)
+        half_h = 0.5 * max(height - 1, 1) * (1 - FIT_MARGIN)
+        ax = max(float(np.abs(x).max()), 1e-12)
+        ay = max(float(np.abs(y).max()), 1e-12)
+        scale = min(half_w / ax, half_h / ay)
+    else:
+        scale = _number("scale", scale, positive=True)
+
+    if step is None:
+        if ortho:
+            step = 1.0 / scale
+        else:
+            _, _, z = proto.to_screen(pu, pv, pw)
+            nearest = max(float((z + proto.d3).min()), d1)
+            step = nearest / (d1 * scale)
+    else:
+        step = _number("step", step, positive=True)
+    step = max(step, (t_range[1] - t_range[0]) / MAX_PLANES)
+
+    if light is None:
+        light = (0.0, 0.0, 0.0)
+    else:
+        try:
+            lv = np.array([_number("light", c) for c in light], dtype=float)
+        except TypeError:
+            raise ValueError(f"light must be a direction (x, y, z) in screen coordinates, got {light!r}") from None
+        if lv.shape != (3,) or not np.linalg.norm(lv) > 0:
+            raise ValueError(f"light must be a non-zero direction (x, y, z), got {light!r}")
+        light = tuple(lv / np.linalg.norm(lv))
+    return View(width, height, elev, azim, ortho, float(d1), float(d2), float(scale),
+                tuple(float(c) for c in center), ((float(ua), float(ub)), (float(va), float(vb))),
+                t_range, float(step), w_range, light)
+
+
+def _robust_range(w):
+    """min and max of w, unless a few values run off far beyond the bulk (a pole):
+    then the bulk's range with some room, so a spike does not shrink the picture."""
+    lo, hi = float(w.min()), float(w.max())
+    p1, p99 = np.percentile(w, [1.0, 99.0])
+    bulk = max(p99 - p1, 1e-12)
+    if hi > p99 + 2 * bulk:
+        hi = float(p99 + 0.5 * bulk)
+    if lo < p1 - 2 * bulk:
+        lo = float(p1 - 0.5 * bulk)
+    return lo, hi

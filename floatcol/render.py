@@ -1,6 +1,7 @@
 """render(): validate, build the View, run the kernels, return a Render."""
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import tempfile
@@ -126,8 +127,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         sides) or "lambert" (I = |L.N|/(|L||N|), light at the viewpoint, no ambient).
     interpolation : "normal" (nis, per-pixel lighting) or "intensity" (iis, Gouraud).
     step : distance between sampling planes; default about one pixel on screen.
-    center : world point (u, v, w) at the image centre; None the origin (as in the
-        paper), "auto" the middle of the domain and of the range of f.
+    center : world point (u, v, w) at the image centre. None: the middle of the
+        domain and of the range of f when scale is fitted, the origin (as in the
+        paper and DESIGN.md's pixel convention) when scale is given; or "auto".
 
     Returns
     -------
@@ -165,9 +167,13 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     hstride = 0
     n_lines = 1
     if method == "horizon":
+        # n_lines planes evenly spread over t; the dense planes between them (about a
+        # pixel apart) only decide what is hidden.
         n_lines = _whole("lines", lines)
-        hstride = max(1, int(round(view.planes / n_lines)))
-        n_lines = view.planes // hstride + 1
+        t0, t1 = view.t_range
+        spacing = (t1 - t0) / max(n_lines - 1, 1)
+        hstride = max(1, int(math.ceil(spacing / view.step - 1e-9)))
+        view = dataclasses.replace(view, step=spacing / hstride)
     t_setup = time.perf_counter()
 
     W, H = view.width, view.height

@@ -172,7 +172,9 @@ def parse_expression(expr, names=DEFAULT_VARS):
     else:
         raise ValueError(f"cannot draw {type(expr).__name__} {expr!r}: pass a sympy expression, "
                          "a string, a callable f(u, v), a Surface or a HeightField")
-    if not isinstance(e, sp.Expr) or isinstance(e, (sp.logic.boolalg.Boolean,)):
+    if not isinstance(e, sp.Expr) or isinstance(e, (sp.core.relational.Relational,
+                                                     sp.logic.boolalg.BooleanFunction,
+                                                     sp.logic.boolalg.BooleanAtom)):
         raise ValueError(f"{expr!r} is not a scalar expression: give a formula for the height w")
     by_name = {}
     unknown = []

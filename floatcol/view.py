@@ -135,7 +135,8 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
     """Validate the camera options and fit what was left as None.
 
     ``scale=None`` fits the domain and the range of f into the image with a small
-    margin; ``d1``/``d2`` default to twice the radius of the surface's bounding box
+    margin, centred on the middle of both unless ``center`` says otherwise (a given
+    scale keeps the paper's origin at the image centre); ``d1``/``d2`` default to twice the radius of the surface's bounding box
     each; ``step=None`` puts the sampling planes about one pixel apart on screen
     (at the nearest point in perspective).
     """
@@ -153,16 +154,19 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
     gu, gv = np.meshgrid(np.linspace(ua, ub, FIT_GRID), np.linspace(va, vb, FIT_GRID))
     gw = surface.evaluate(gu, gv)
     ok = np.isfinite(gw)
-    w_lo, w_hi = _robust_range(gw[ok]) if ok.any() else (0.0, 0.0)
+    w_lo, w_hi = _robust_range(gw) if ok.any() else (0.0, 0.0)
     if center is None:
-        center = (0.0, 0.0, 0.0)
-    elif isinstance(center, str) and center == "auto":
+        # A fitted picture is centred; a given scale keeps the paper's origin.
+        center = "auto" if scale is None else (0.0, 0.0, 0.0)
+    if isinstance(center, str) and center == "auto":
         center = (0.5 * (ua + ub), 0.5 * (va + vb), 0.5 * (w_lo + w_hi))
     else:
         try:
             center = tuple(_number("center", c) for c in center)
         except TypeError:
             raise ValueError(f"center must be None, 'auto' or (u, v, w), got {center!r}") from None
+    if isinstance(center, str):
+        raise ValueError(f"center must be None, 'auto' or (u, v, w), got {center!r}")
         if len(center) != 3:
             raise ValueError(f"center must be None, 'auto' or (u, v, w), got {center!r}")
 
@@ -235,14 +239,22 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
                 t_range, float(step), w_range, light)
 
 
-def _robust_range(w):
-    """min and max of w, unless a few values run off far beyond the bulk (a pole):
-    then the bulk's range with some room, so a spike does not shrink the picture."""
+def _robust_range(grid):
+    """min and max of w over the fit grid, unless a tail runs off like a pole: then
+    the bulk's range with some room, so a spike to infinity does not shrink the
+    picture. A pole shows as an extreme that grows when the grid is refined (the
+    full grid against every other point); a resolved peak does not."""
+    w = grid[np.isfinite(grid)]
+    coarse = grid[::2, ::2]
+    coarse = coarse[np.isfinite(coarse)]
     lo, hi = float(w.min()), float(w.max())
-    p1, p99 = np.percentile(w, [1.0, 99.0])
-    bulk = max(p99 - p1, 1e-12)
-    if hi > p99 + 2 * bulk:
-        hi = float(p99 + 0.5 * bulk)
-    if lo < p1 - 2 * bulk:
-        lo = float(p1 - 0.5 * bulk)
+    if coarse.size < 4:
+        return lo, hi
+    med = float(np.median(w))
+    p5, p95 = (float(x) for x in np.percentile(w, [5.0, 95.0]))
+    bulk = max(p95 - p5, 1e-12)
+    if hi - p95 > bulk and hi - med > 1.8 * (float(coarse.max()) - med):
+        hi = p95 + 0.5 * bulk
+    if p5 - lo > bulk and med - lo > 1.8 * (med - float(coarse.min())):
+        lo = p5 - 0.5 * bulk
     return lo, hi

@@ -74,9 +74,10 @@ def bilinear_surface(z, u_rng, v_rng):
 
 
 def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1=None, d2=None,
-            scale=None, steps=1500, bisections=40, w_bound=None):
+            scale=None, steps=1500, bisections=40, w_bound=None, center=(0.0, 0.0, 0.0)):
     """Ray-cast the surface given as numpy (f, f_u, f_v). scale and, in perspective,
-    d1 and d2 must be given (take them from the render being checked)."""
+    d1 and d2 must be given (take them from the render being checked); ``center`` is
+    the world point (u, v, w) at the screen origin."""
     f, fu, fv = funcs
     W, H = size
     a, b = -np.radians(elev), np.radians(azim)
@@ -87,9 +88,11 @@ def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1
     y0 = (j - (H - 1) / 2) / scale
     ortho = projection.startswith("ortho")
 
-    def world(x, y, z):           # screen -> (u, w, v): eqs. (1)-(2)
+    cu, cv, cw = center
+
+    def world(x, y, z):           # screen -> (u, w, v): eqs. (1)-(2), then the centre
         r, s, t = x, y * ca + z * sa, -y * sa + z * ca
-        return r * cb + t * sb, s, -r * sb + t * cb, t
+        return cu + r * cb + t * sb, cw + s, cv - r * sb + t * cb, t
 
     if ortho:
         big = 4 * (abs(u_rng[0]) + abs(u_rng[1]) + abs(v_rng[0]) + abs(v_rng[1]) + (w_bound or 10))
@@ -148,7 +151,7 @@ def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1
         lx, ly, lz = -dirn
     else:
         lx, ly, lz = org - p
-    lu, lw, lv, _ = (world(lx, ly, lz)[k] for k in range(4))
+    lu, lw, lv, _ = (world(lx, ly, lz)[k] - world(0.0, 0.0, 0.0)[k] for k in range(4))
     with np.errstate(all="ignore"):
         inten = np.abs(lu * nu + lw * nw + lv * nv) / (
             np.sqrt(lu ** 2 + lw ** 2 + lv ** 2) * np.sqrt(nu ** 2 + nw ** 2 + nv ** 2))

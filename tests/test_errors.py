@@ -1,0 +1,67 @@
+"""Bad input raises ValueError naming what to fix."""
+import pytest
+
+import floatcol as fc
+
+CASES = [
+    (dict(expr="x*y"), "unknown symbols x, y"),
+    (dict(expr="3*sin(u"), "could not parse expression '3*sin(u'"),
+    (dict(expr="u +* v"), "at character"),
+    (dict(expr=""), "expression is empty"),
+    (dict(expr="u < v"), "not a scalar expression"),
+    (dict(expr=object()), "cannot draw"),
+    (dict(expr="u", u=(1, 1)), "range u = (1.0, 1.0) is empty"),
+    (dict(expr="u", v=(2, -2)), "range v = (2.0, -2.0) is reversed"),
+    (dict(expr="u", u=("a", 1)), "range u must be a pair"),
+    (dict(expr="u", u=(0, float("inf"))), "must be finite"),
+    (dict(expr="u", size=(0, 10)), "size width must be positive"),
+    (dict(expr="u", size=(10, -3)), "size height must be positive"),
+    (dict(expr="u", size=(10.5, 3)), "whole number"),
+    (dict(expr="u", size=100), "size must be (width, height)"),
+    (dict(expr="u", method="raytrace"), "method must be one of column, horizon"),
+    (dict(expr="u", shading="phong"), "shading must be one of default, lambert"),
+    (dict(expr="u", interpolation="cubic"), "interpolation must be"),
+    (dict(expr="u", projection="fisheye"), "projection must be 'orthographic' or 'perspective'"),
+    (dict(expr="u", elev=120), "elev must be between -90 and 90"),
+    (dict(expr="u", azim="east"), "azim must be a number"),
+    (dict(expr="u", scale=-1), "scale must be positive"),
+    (dict(expr="u", projection="perspective", d1=0), "d1 must be positive"),
+    (dict(expr="u", step=0), "step must be positive"),
+    (dict(expr="u", vars=("x", "x")), "two different variables"),
+    (dict(expr="u", method="horizon", lines=0), "lines must be a positive whole number"),
+    (dict(expr="u", cmap="no-such-map"), "unknown colormap 'no-such-map'"),
+    (dict(expr="u", lower_color="notacolour"), "is not a colour"),
+    (dict(expr="u", shading="lambert", light=(1, 0, 0)), "lights from the viewpoint"),
+]
+
+
+@pytest.mark.parametrize("kwargs,message", CASES)
+def test_value_error_says_what_to_fix(kwargs, message):
+    kwargs = dict(kwargs)
+    expr = kwargs.pop("expr")
+    with pytest.raises(ValueError) as info:
+        fc.render(expr, size=kwargs.pop("size", (20, 15)), **kwargs)
+    assert message in str(info.value)
+
+
+def test_heightfield_errors():
+    with pytest.raises(ValueError, match="2-D array of at least 2 x 2"):
+        fc.HeightField([1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match="2-D array of numbers"):
+        fc.HeightField([["a", "b"], ["c", "d"]])
+    with pytest.raises(ValueError, match="range u"):
+        fc.HeightField([[0, 1], [1, 0]], u=(1, 0))
+
+
+def test_uncompilable_callable_is_a_clear_error():
+    def f(u, v):
+        return {"a": u}["a"] + object()
+    with pytest.raises(ValueError, match="cannot compile the callable 'f'"):
+        fc.render(f, size=(20, 15))
+
+
+def test_unknown_symbol_suggests_vars():
+    with pytest.raises(ValueError, match=r"pass vars=\('x', 'y'\)"):
+        fc.render("sin(x*y)", size=(20, 15))
+    r = fc.render("sin(x*y)", vars=("x", "y"), size=(20, 15))
+    assert (r.side != 0).any()

@@ -1,0 +1,87 @@
+"""Surfaces: symbolic partials, callables, height fields."""
+import math
+
+import numpy as np
+import sympy as sp
+
+import floatcol as fc
+from conftest import reference_for
+from reference import bilinear_surface, psnr, raycast
+
+
+def test_symbolic_partials_are_exact():
+    s = fc.as_surface("3*sin(u*cos(v))")
+    u = np.array([0.3, -1.7, 2.2])
+    v = np.array([1.1, 0.4, -2.9])
+    w, wu, wv = s.evaluate(u, v, derivatives=True)
+    np.testing.assert_allclose(w, 3 * np.sin(u * np.cos(v)), rtol=1e-13)
+    np.testing.assert_allclose(wu, 3 * np.cos(u * np.cos(v)) * np.cos(v), rtol=1e-12)
+    np.testing.assert_allclose(wv, -3 * np.cos(u * np.cos(v)) * u * np.sin(v), rtol=1e-12)
+    assert s.derivatives == "symbolic"
+
+
+def test_sympy_objects_and_other_variable_names():
+    x, y = sp.symbols("x y", real=True)
+    s = fc.as_surface(sp.exp(-x ** 2) * y, vars=(x, y))
+    assert math.isclose(s.evaluate(1.0, 2.0), 2 * math.exp(-1), rel_tol=1e-14)
+    assert fc.as_surface("u^2").evaluate(3.0, 0.0) == 9.0       # ^ is power
+
+
+def test_compiled_surfaces_are_memoized():
+    assert fc.as_surface("u*v + 1") is fc.as_surface("u*v + 1")
+
+
+def test_callable_uses_central_differences_and_matches_expression():
+    def f(u, v):
+        return math.sin(u) * math.cos(v)
+    s = fc.as_surface(f)
+    assert s.derivatives == "central differences"
+    _, wu, wv = s.evaluate(np.array([0.7]), np.array([-0.4]), derivatives=True)
+    assert abs(wu[0] - math.cos(0.7) * math.cos(-0.4)) < 1e-8
+    assert abs(wv[0] + math.sin(0.7) * math.sin(-0.4)) < 1e-8
+    kw = dict(u=(-3, 3), v=(-3, 3), size=(120, 90), elev=40, azim=30, shading="lambert")
+    a = fc.render(f, **kw)
+    b = fc.render("sin(u)*cos(v)", **kw)
+    assert (a.side == b.side).all()
+    assert psnr(a.intensity, b.intensity) > 60
+
+
+def test_uncompilable_derivative_falls_back_to_differences():
+    s = fc.as_surface("u + floor(v)")       # d/dv floor is not a function sympy prints
+    assert s.evaluate(1.0, 2.5) == 3.0
+
+
+def test_heightfield_is_bilinear_with_exact_partials():
+    z = np.array([[0.0, 1.0, 4.0], [2.0, 3.0, 1.0]])      # z[j, i] at (u_i, v_j)
+    hf = fc.HeightField(z, u=(0, 2), v=(10, 11))
+    w, wu, wv = hf.evaluate(np.array([0.5, 1.25, 2.0]), np.array([10.5, 10.0, 11.0]), True)
+    np.testing.assert_allclose(w, [1.5, 1.75, 1.0])
+    np.testing.assert_allclose(wu, [1.0, 3.0, -2.0])
+    np.testing.assert_allclose(wv, [2.0, 0.75, -3.0])   # by hand: 2*0.75 + (-3)*0.25
+    assert np.isnan(hf.evaluate(2.5, 10.5))                 # outside the grid
+
+
+def test_heightfield_render_matches_ray_caster():
+    rng = np.random.default_rng(1)
+    z = np.cumsum(np.cumsum(rng.normal(size=(24, 32)), 0), 1) * 0.05
+    hf = fc.HeightField(z, u=(-4, 4), v=(-3, 3))
+    r = fc.render(hf, size=(160, 120), elev=35, azim=25, shading="lambert")
+    vw = r.view
+    ref = raycast(bilinear_surface(z, (-4, 4), (-3, 3)), (-4, 4), (-3, 3), (160, 120), 35, 25,
+                  "orthographic", scale=vw.scale, steps=2000, center=vw.center)
+    # measured: 99.96 % agreement, 26.55 dB. The normal jumps at every cell edge
+    # (5 pixels apart here); nis interpolates across the jump over the one-pixel span
+    # that holds it, the ray caster does not.
+    assert (r.side == ref.side).mean() > 0.999
+    assert psnr(r.intensity, ref.intensity) > 25
+
+
+def test_heightfield_holes():
+    z = np.ones((10, 10))
+    z[3:6, 3:6] = np.nan
+    r = fc.render(fc.HeightField(z), size=(80, 60), elev=90, azim=0)
+    seen = r.side != 0
+    assert seen.mean() > 0.3
+    # no painted pixel inside the missing cells (cells 2..6 touch a NaN corner)
+    inside = (r.u > 2.05) & (r.u < 5.95) & (r.v > 2.05) & (r.v < 5.95)
+    assert not (seen & inside).any()

@@ -1,0 +1,33 @@
+"""Columns are independent: identical arrays for any number of threads."""
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import floatcol as fc
+
+CASES = [dict(projection="orthographic", method="column"),
+         dict(projection="perspective", method="column"),
+         dict(projection="perspective", method="horizon", elev=60)]
+SCRIPT = """
+import sys, numpy as np, numba, floatcol as fc
+assert numba.get_num_threads() == 1
+kw = eval(sys.argv[2])
+r = fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(160, 120), **kw)
+np.savez(sys.argv[1], rgba=r.rgba, intensity=r.intensity, side=r.side, depth=r.depth,
+         samples=r.stats["samples"])
+"""
+
+
+@pytest.mark.parametrize("kw", CASES)
+def test_one_thread_equals_default(tmp_path, kw):
+    out = tmp_path / "one.npz"
+    env = dict(os.environ, NUMBA_NUM_THREADS="1")
+    subprocess.run([sys.executable, "-c", SCRIPT, str(out), repr(kw)], check=True, env=env)
+    one = np.load(out)
+    r = fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(160, 120), **kw)
+    for name in ("rgba", "intensity", "side", "depth"):
+        np.testing.assert_array_equal(one[name], getattr(r, name), err_msg=name)
+    assert int(one["samples"]) == r.stats["samples"]

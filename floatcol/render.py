@@ -94,6 +94,9 @@ def save_png(rgba, path):
     try:
         with os.fdopen(fd, "wb") as fh:
             Image.fromarray(np.ascontiguousarray(rgba), "RGBA").save(fh, format="PNG")
+        umask = os.umask(0)            # mkstemp makes 0600; give the usual permissions
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, path)
     except BaseException:
         try:

@@ -21,6 +21,10 @@ def test_render_writes_png(tmp_path):
     im = Image.open(tmp_path / "out.png")
     assert im.size == (120, 90)
     assert list(tmp_path.iterdir()) == [tmp_path / "out.png"]     # no temporary left
+    import os
+    umask = os.umask(0)
+    os.umask(umask)
+    assert (tmp_path / "out.png").stat().st_mode & 0o777 == 0o666 & ~umask
 
 
 @pytest.mark.parametrize("args,needle", [

@@ -5,7 +5,6 @@ import numpy as np
 import sympy as sp
 
 import floatcol as fc
-from conftest import reference_for
 from reference import bilinear_surface, psnr, raycast
 
 

@@ -91,24 +91,19 @@ def _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, t, out, run):
 
 
 @ngjit
-def _chord(vp, r_lo, r_hi, t):
-    """Does the segment r in [r_lo, r_hi] of plane t meet the domain rectangle?"""
-    cb = vp[VP_CB]
-    sb = vp[VP_SB]
-    lo = r_lo
-    hi = r_hi
-    # u = cu + r cb + t sb in [ua, ub];  v = cv - r sb + t cb in [va, vb]   (eq. 2)
-    for base, slope, a, b in ((vp[VP_CU] + t * sb, cb, vp[VP_UA], vp[VP_UB]),
-                              (vp[VP_CV] + t * cb, -sb, vp[VP_VA], vp[VP_VB])):
+def _clip_line(vp, u0, du, v0, dv, lo, hi):
+    """Clip [lo, hi] to the parameters lam with (u0 + lam du, v0 + lam dv) inside the
+    domain rectangle. Returns (lo, hi); lo > hi when the line misses it."""
+    for base, slope, a, b in ((u0, du, vp[VP_UA], vp[VP_UB]), (v0, dv, vp[VP_VA], vp[VP_VB])):
         if abs(slope) < 1e-15:
             if base < a or base > b:
-                return False
+                return 1.0, -1.0
         else:
-            r1 = (a - base) / slope
-            r2 = (b - base) / slope
-            lo = max(lo, min(r1, r2))
-            hi = min(hi, max(r1, r2))
-    return lo <= hi + 1e-9 * (1.0 + abs(hi))
+            l1 = (a - base) / slope
+            l2 = (b - base) / slope
+            lo = max(lo, min(l1, l2))
+            hi = min(hi, max(l1, l2))
+    return lo, hi
 
 
 @ngjit
@@ -117,13 +112,17 @@ def _may_meet_domain(vp, x0, t):
     given the estimated range of w? Saves Newton solves far outside."""
     ca = vp[VP_CA]
     sa = vp[VP_SA]
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
     d1 = vp[VP_D1]
     d3 = vp[VP_D3]
     s_lo = vp[VP_WLO] - vp[VP_CW]
     s_hi = vp[VP_WHI] - vp[VP_CW]
     ra = x0 * (s_lo * sa + t * ca + d3) / d1
     rb = x0 * (s_hi * sa + t * ca + d3) / d1
-    return _chord(vp, min(ra, rb), max(ra, rb), t)
+    # along r on plane t: u = cu + t sb + r cb, v = cv + t cb - r sb   (eq. 2)
+    lo, hi = _clip_line(vp, vp[VP_CU] + t * sb, cb, vp[VP_CV] + t * cb, -sb, min(ra, rb), max(ra, rb))
+    return lo <= hi + 1e-9 * (1.0 + abs(hi))
 
 
 @ngjit
@@ -131,19 +130,8 @@ def _ortho_chord(vp, x0):
     """t-interval of the orthographic column line r = x0 inside the domain."""
     cb = vp[VP_CB]
     sb = vp[VP_SB]
-    lo = -np.inf
-    hi = np.inf
-    for base, slope, a, b in ((vp[VP_CU] + x0 * cb, sb, vp[VP_UA], vp[VP_UB]),
-                              (vp[VP_CV] - x0 * sb, cb, vp[VP_VA], vp[VP_VB])):
-        if abs(slope) < 1e-15:
-            if base < a or base > b:
-                return 1.0, -1.0
-        else:
-            t1 = (a - base) / slope
-            t2 = (b - base) / slope
-            lo = max(lo, min(t1, t2))
-            hi = min(hi, max(t1, t2))
-    return lo, hi
+    # along t on r = x0: u = cu + x0 cb + t sb, v = cv - x0 sb + t cb   (eq. 3)
+    return _clip_line(vp, vp[VP_CU] + x0 * cb, sb, vp[VP_CV] - x0 * sb, cb, -np.inf, np.inf)
 
 
 @ngjit

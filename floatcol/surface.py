@@ -184,9 +184,7 @@ def parse_expression(expr, names=DEFAULT_VARS):
         else:
             unknown.append(s.name)
     if unknown:
-        hint = "" if len(unknown) > 2 else (
-            f" (or pass vars={tuple(unknown) if len(unknown) == 2 else None} to use them)"
-            if len(unknown) == 2 else "")
+        hint = f" (or pass vars={tuple(unknown)} to use them)" if len(unknown) == 2 else ""
         raise ValueError(
             f"unknown symbol{'s' if len(unknown) > 1 else ''} {', '.join(unknown)} in "
             f"{e}: the variables are {names[0]} and {names[1]}{hint}")
@@ -286,13 +284,13 @@ def _callable_surface(fn, names):
     import inspect
     py = getattr(fn, "py_func", None) or getattr(fn, "_pyfunc", None) or fn
     try:
-        params = inspect.signature(py).parameters
-        if len([p for p in params.values()
-                if p.default is p.empty and p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]) > 2:
-            raise ValueError(f"the callable {getattr(py, '__name__', py)!r} must take two arguments (u, v)")
-    except (TypeError, ValueError) as exc:
-        if isinstance(exc, ValueError):
-            raise
+        params = inspect.signature(py).parameters.values()
+    except (TypeError, ValueError):      # builtins may have no signature: let Numba judge
+        params = ()
+    required = [p for p in params if p.default is p.empty
+                and p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+    if len(required) > 2:
+        raise ValueError(f"the callable {getattr(py, '__name__', py)!r} must take two arguments (u, v)")
     try:
         f = compile_surface_fn(py)
     except Exception as exc:

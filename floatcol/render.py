@@ -177,6 +177,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         spacing = (t1 - t0) / max(n_lines - 1, 1)
         hstride = max(1, int(math.ceil(spacing / view.step - 1e-9)))
         view = dataclasses.replace(view, step=spacing / hstride)
+    if background is None:
+        black = method == "column" and shading == "lambert"
+        background = (0, 0, 0, 255) if black else (255, 255, 255, 255)
     t_setup = time.perf_counter()
 
     W, H = view.width, view.height
@@ -197,14 +200,12 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         on = side != 0
         intensity = np.where(on, np.float32(1.0), np.float32(np.nan)).astype(np.float32)
         depth = np.where(on, gbuf[:, ::-1, G_DEPTH].T, np.inf).astype(np.float32)
-        rgba = color.line_rgba(side, background=(255, 255, 255, 255) if background is None else background)
+        rgba = color.line_rgba(side, background=background)
     else:
         shade = np.empty((W, H), dtype=np.float32)
         shade_kernel(gbuf, vp, INTERPOLATIONS[interpolation], amb, shade)
         lut, lower_rgb = color.side_colors(shading, cmap, upper_color, lower_color)
         w_lo, w_hi = _height_limits(gbuf, vmin, vmax)
-        if background is None:
-            background = (0, 0, 0, 255) if shading == "lambert" else (255, 255, 255, 255)
         intensity = np.empty((H, W), dtype=np.float32)
         side = np.empty((H, W), dtype=np.int8)
         depth = np.empty((H, W), dtype=np.float32)

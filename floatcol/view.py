@@ -196,8 +196,8 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
 
     proto = View(width, height, elev, azim, ortho, d1, d2, 1.0, center, domain, t_range,
                  1.0, w_range, (0.0, 0.0, 0.0))
+    x, y, z = proto.to_screen(pu, pv, pw)       # the fit points on screen
     if scale is None:
-        x, y, z = proto.to_screen(pu, pv, pw)
         if not ortho:
             depth = z + proto.d3
             keep = depth > d1
@@ -217,7 +217,6 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
         if ortho:
             step = 1.0 / scale
         else:
-            _, _, z = proto.to_screen(pu, pv, pw)
             nearest = max(float((z + proto.d3).min()), d1)
             step = nearest / (d1 * scale)
     else:

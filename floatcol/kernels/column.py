@@ -306,7 +306,8 @@ def render_column(kind, f, fu, fv, hf, hfp, vp, col, gcol, hrec, hstride):
 
 @ngjit_parallel
 def column_kernel(kind, f, fu, fv, hf, hfp, vp, gbuf, hrec, hstride, evals):
-    """Render every column in parallel into gbuf (W, H, G_SIZE), cleared here; hrec (W, n_lines, H_SIZE) receives horizon-line records when
+    """Render every column in parallel into gbuf (W, H, G_SIZE), cleared here;
+    hrec (W, n_lines, H_SIZE) receives horizon-line records when
     hstride > 0. Each column writes only its own slices: no shared scratch."""
     W = gbuf.shape[0]
     for c in prange(W):

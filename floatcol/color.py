@@ -42,9 +42,18 @@ def to_rgba8(color, name="background"):
     return np.round(np.array([*rgb, a]) * 255).astype(np.uint8)
 
 
-@functools.lru_cache(maxsize=32)
 def colormap_lut(cmap):
-    """(256, 3) float LUT of a matplotlib colormap name."""
+    """(256, 3) float LUT of a matplotlib colormap (a name or a Colormap)."""
+    if isinstance(cmap, str):
+        return _named_lut(cmap)
+    from matplotlib.colors import Colormap
+    if not isinstance(cmap, Colormap):
+        raise ValueError(f"cmap must be a matplotlib colormap or its name, got {cmap!r}")
+    return cmap(np.linspace(0.0, 1.0, 256))[:, :3].astype(np.float32)
+
+
+@functools.lru_cache(maxsize=32)
+def _named_lut(cmap):
     import matplotlib
     try:
         cm = matplotlib.colormaps[cmap]

@@ -3,8 +3,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import os
-import tempfile
 import time
 from dataclasses import dataclass, field
 
@@ -16,6 +14,7 @@ from .kernels.horizon import horizon_kernel
 from .kernels.layout import G_DEPTH, G_NX, G_NZ, G_SIZE, G_U, G_V, G_W
 from .kernels.shade import (
     INTERP_INTENSITY, INTERP_NORMAL, finish_kernel, shade_kernel, upper_w_range)
+from .output import png_bytes, save_image
 from .surface import Surface, as_surface, check_range
 from .view import View, build_view
 
@@ -73,37 +72,17 @@ class Render:
             return n / np.linalg.norm(n, axis=2, keepdims=True)
 
     def save(self, path):
-        """Write ``rgba`` as a PNG (atomically: a temporary file renamed at the end)."""
-        save_png(self.rgba, path)
+        """Write ``rgba`` to a PNG (or .jpg, .pdf, .svg), atomically: a temporary file
+        renamed at the end."""
+        save_image(self.rgba, path)
 
     def _repr_png_(self):
-        import io
-        from PIL import Image
-        buf = io.BytesIO()
-        Image.fromarray(self.rgba, "RGBA").save(buf, format="PNG")
-        return buf.getvalue()
+        return png_bytes(self.rgba)
 
 
 def save_png(rgba, path):
-    from PIL import Image
-    path = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(folder):
-        raise ValueError(f"cannot write {path}: folder {folder} does not exist")
-    fd, tmp = tempfile.mkstemp(prefix=".floatcol-", suffix=".png", dir=folder)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            Image.fromarray(np.ascontiguousarray(rgba), "RGBA").save(fh, format="PNG")
-        umask = os.umask(0)            # mkstemp makes 0600; give the usual permissions
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
+    """Write an RGBA array as a PNG, atomically (kept for callers of 0.1)."""
+    save_image(rgba, path)
 
 
 def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
@@ -111,7 +90,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            shading="default", *, interpolation="normal", step=None, lines=DEFAULT_LINES,
            vars=None, center=None, cmap="viridis", upper_color=None,
            lower_color=color.DEFAULT_LOWER, vmin=None, vmax=None, background=None,
-           light=None, ambient=None) -> Render:
+           light=None, ambient=None, focal_length=None, pixel_step=1.0) -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -129,7 +108,10 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     shading : "default" (ambient + diffuse key light, height colormap, two-coloured
         sides) or "lambert" (I = |L.N|/(|L||N|), light at the viewpoint, no ambient).
     interpolation : "normal" (nis, per-pixel lighting) or "intensity" (iis, Gouraud).
-    step : distance between sampling planes; default about one pixel on screen.
+    step : distance between sampling planes; default ``pixel_step`` (1) pixels on screen
+        (at the nearest point in perspective).
+    focal_length : perspective only, instead of d1/d2: matplotlib's focal length
+        (the surface's bounding sphere fills a field of view of 2 atan(1/f)).
     center : world point (u, v, w) at the image centre. None: the middle of the
         domain and of the range of f when scale is fitted, the origin (as in the
         paper and DESIGN.md's pixel convention) when scale is given; or "auto".
@@ -166,7 +148,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         light_dir = DEFAULT_LIGHT if light is None else light
         amb = DEFAULT_AMBIENT if ambient is None else _fraction("ambient", ambient)
     view = build_view(surface, domain, size, elev, azim, projection, d1, d2, scale,
-                      center, step, light_dir)
+                      center, step, light_dir, focal_length, pixel_step)
     hstride = 0
     n_lines = 1
     if method == "horizon":
@@ -190,6 +172,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     column_kernel(*surface.kernel_args(), vp, gbuf, hrec, hstride, evals)
     t_kernel = time.perf_counter()
     line_t = None
+    w_limits = None
 
     if method == "horizon":
         lines_img = np.zeros((W, H), dtype=np.int8)
@@ -206,6 +189,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         shade_kernel(gbuf, vp, INTERPOLATIONS[interpolation], amb, shade)
         lut, lower_rgb = color.side_colors(shading, cmap, upper_color, lower_color)
         w_lo, w_hi = _height_limits(gbuf, vmin, vmax)
+        w_limits = (w_lo, w_hi)
         intensity = np.empty((H, W), dtype=np.float32)
         side = np.empty((H, W), dtype=np.int8)
         depth = np.empty((H, W), dtype=np.float32)
@@ -224,6 +208,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         "lines": n_lines if method == "horizon" else 0,
         "method": method,
         "derivatives": surface.derivatives,
+        "w_limits": w_limits,      # the colormap's height range (column method)
     }
     return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t)
 

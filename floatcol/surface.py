@@ -147,9 +147,9 @@ def _is_sympy(obj):
     return isinstance(obj, sympy.Basic)
 
 
-def parse_expression(expr, names=DEFAULT_VARS):
-    """The sympy expression of a string / number / sympy object, in the variables
-    ``names`` (as plain sympy Symbols). ValueError says what to fix."""
+def sympify_expression(expr, names=()):
+    """The sympy expression of a string / number / sympy object, with ``names`` read as
+    plain sympy Symbols; its free symbols are not checked. ValueError says what to fix."""
     import sympy as sp
     from sympy.parsing.sympy_parser import (
         convert_xor, implicit_multiplication, parse_expr, standard_transformations)
@@ -158,8 +158,9 @@ def parse_expression(expr, names=DEFAULT_VARS):
     if isinstance(expr, str):
         text = expr.strip()
         if not text:
+            a, b = (tuple(names) + DEFAULT_VARS)[:2] if len(names) < 2 else names[:2]
             raise ValueError("the expression is empty: give a formula in "
-                             f"{names[0]} and {names[1]}, e.g. '3*sin({names[0]}*cos({names[1]}))'")
+                             f"{a} and {b}, e.g. '3*sin({a}*cos({b}))'")
         try:
             e = parse_expr(text, local_dict=dict(syms),
                            transformations=standard_transformations + (convert_xor, implicit_multiplication))
@@ -176,6 +177,20 @@ def parse_expression(expr, names=DEFAULT_VARS):
                                                      sp.logic.boolalg.BooleanFunction,
                                                      sp.logic.boolalg.BooleanAtom)):
         raise ValueError(f"{expr!r} is not a scalar expression: give a formula for the height w")
+    return e
+
+
+def free_names(expr):
+    """Sorted names of the free symbols of an expression or string."""
+    return sorted({s.name for s in sympify_expression(expr).free_symbols})
+
+
+def parse_expression(expr, names=DEFAULT_VARS):
+    """The sympy expression of a string / number / sympy object, in the variables
+    ``names`` (as plain sympy Symbols). ValueError says what to fix."""
+    import sympy as sp
+    syms = {n: sp.Symbol(n) for n in names}
+    e = sympify_expression(expr, names)
     by_name = {}
     unknown = []
     for s in sorted(e.free_symbols, key=str):

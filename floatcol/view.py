@@ -131,14 +131,16 @@ def check_size(size):
 
 
 def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthographic",
-               d1=None, d2=None, scale=None, center=None, step=None, light=None) -> View:
+               d1=None, d2=None, scale=None, center=None, step=None, light=None,
+               focal_length=None, pixel_step=1.0) -> View:
     """Validate the camera options and fit what was left as None.
 
     ``scale=None`` fits the domain and the range of f into the image with a small
     margin, centred on the middle of both unless ``center`` says otherwise (a given
     scale keeps the paper's origin at the image centre); ``d1``/``d2`` default to twice the radius of the surface's bounding box
-    each; ``step=None`` puts the sampling planes about one pixel apart on screen
-    (at the nearest point in perspective).
+    each, or, given ``focal_length`` f (matplotlib's meaning), the viewpoint sits where
+    the surface's bounding sphere fills a field of view of 2 atan(1/f); ``step=None`` puts the sampling planes about one pixel apart on screen
+    (at the nearest point in perspective), or ``pixel_step`` pixels apart.
     """
     width, height = check_size(size)
     elev = _number("elev", elev)
@@ -160,13 +162,13 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
         center = "auto" if scale is None else (0.0, 0.0, 0.0)
     if isinstance(center, str) and center == "auto":
         center = (0.5 * (ua + ub), 0.5 * (va + vb), 0.5 * (w_lo + w_hi))
+    elif isinstance(center, str):
+        raise ValueError(f"center must be None, 'auto' or (u, v, w), got {center!r}")
     else:
         try:
             center = tuple(_number("center", c) for c in center)
         except TypeError:
             raise ValueError(f"center must be None, 'auto' or (u, v, w), got {center!r}") from None
-    if isinstance(center, str):
-        raise ValueError(f"center must be None, 'auto' or (u, v, w), got {center!r}")
         if len(center) != 3:
             raise ValueError(f"center must be None, 'auto' or (u, v, w), got {center!r}")
 
@@ -181,6 +183,13 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
     if ortho:
         d1 = 1.0 if d1 is None else _number("d1", d1, positive=True)
         d2 = 1.0 if d2 is None else _number("d2", d2, positive=True)
+    elif focal_length is not None:
+        if d1 is not None or d2 is not None:
+            raise ValueError("give either focal_length or d1/d2, not both")
+        f = _number("focal_length", focal_length, positive=True)
+        d3 = radius * math.sqrt(1.0 + f * f)      # sphere of `radius` fills the view
+        d1 = 0.9 * (d3 - radius)                  # screen plane in front of it all
+        d2 = d3 - d1
     else:
         d1 = 2.0 * radius if d1 is None else _number("d1", d1, positive=True)
         d2 = 2.0 * radius if d2 is None else _number("d2", d2, positive=True)
@@ -214,11 +223,12 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
         scale = _number("scale", scale, positive=True)
 
     if step is None:
+        px = _number("pixel_step", pixel_step, positive=True)
         if ortho:
-            step = 1.0 / scale
+            step = px / scale
         else:
             nearest = max(float((z + proto.d3).min()), d1)
-            step = nearest / (d1 * scale)
+            step = px * nearest / (d1 * scale)
     else:
         step = _number("step", step, positive=True)
     step = max(step, (t_range[1] - t_range[0]) / MAX_PLANES)

@@ -1,0 +1,391 @@
+"""plot_surface(): sympy plot3d's call form, matplotlib's option names.
+
+``fc.plot_surface(expr, (x, -2, 2), (y, -2, 2), cmap="magma", elev=30, azim=-60)``
+returns a :class:`SurfacePlot`. Angles follow matplotlib's ``view_init``: the eye is at
+azimuth ``azim`` (degrees from the +x axis, counter-clockwise seen from above) and
+elevation ``elev``; :func:`floatcol.render` keeps the paper's angles, and
+:func:`mpl_to_paper_angles` converts.
+"""
+from __future__ import annotations
+
+import inspect
+import math
+
+import numpy as np
+from matplotlib.cm import ScalarMappable as _ScalarMappable
+from matplotlib.colors import Normalize as _Normalize
+
+from . import color
+from .color import colormap_lut
+from .output import png_bytes, save_image
+from .render import DEFAULT_RANGE, Render, render
+from .surface import HeightField, Surface, as_surface, check_range, free_names
+from .view import _robust_range
+
+#: plot_surface's own defaults where they differ from render()'s
+DEFAULT_SIZE = (800, 600)
+DEFAULT_ELEV = 30.0
+DEFAULT_AZIM = -60.0          # matplotlib's default view
+DEFAULT_PROJ = "persp"        # matplotlib's default proj_type
+PROJ_TYPES = {"persp": "perspective", "perspective": "perspective",
+              "ortho": "orthographic", "orthographic": "orthographic"}
+
+#: render() options that plot_surface passes through under their own names
+_RENDER_OPTIONS = set(inspect.signature(render).parameters) - {
+    "expr", "u", "v", "size", "elev", "azim", "projection", "vars", "cmap", "vmin",
+    "vmax", "upper_color", "light", "ambient", "focal_length"}
+_OWN_OPTIONS = {"cmap", "norm", "vmin", "vmax", "color", "shade", "lightsource", "elev",
+                "azim", "proj_type", "focal_length", "size", "dpi", "ambient", "light",
+                "upper_color", "projection"}
+
+
+def mpl_to_paper_angles(elev, azim):
+    """(elev, azim) of matplotlib's view_init -> those of :func:`floatcol.render`.
+
+    Gordon's camera looks along (cos e sin b, cos e cos b, -sin e) in (u, v, w) with
+    b the paper's azimuth; matplotlib's eye sits at (cos e cos a, cos e sin a, sin e).
+    The eye is opposite the view direction, so b = -90 - a."""
+    return float(elev), _wrap(-90.0 - float(azim))
+
+
+def _wrap(a):
+    return (a + 180.0) % 360.0 - 180.0
+
+
+def world_to_screen_direction(d, elev, azim):
+    """A direction in world (u, v, w) -> screen (x, y, z) for render()'s angles."""
+    a, b = -math.radians(elev), math.radians(azim)
+    ca, sa, cb, sb = math.cos(a), math.sin(a), math.cos(b), math.sin(b)
+    du, dv, s = d
+    r = du * cb - dv * sb
+    t = du * sb + dv * cb
+    return (r, s * ca - t * sa, s * sa + t * ca)
+
+
+def parse_ranges(expr, ranges, extra=()):
+    """Variables and domain from sympy's (symbol, low, high) ranges.
+
+    Returns ((name_u, name_v), ((a, b), (c, d)) or None per missing range). Missing
+    variables come from the expression's free symbols (sorted by name, as sympy does,
+    ``extra`` names such as the time t left out); missing ranges default to (-10, 10).
+    """
+    if len(ranges) > 2:
+        raise ValueError(f"give at most two ranges (symbol, low, high), got {len(ranges)}")
+    names, bounds = [], []
+    for rng in ranges:
+        try:
+            sym, lo, hi = rng
+        except (TypeError, ValueError):
+            raise ValueError(f"a range must be (symbol, low, high), e.g. (x, -2, 2), got {rng!r}") from None
+        name = str(sym)
+        if not name.isidentifier():
+            raise ValueError(f"range variable {sym!r} must be a symbol or a name such as 'x'")
+        names.append(name)
+        bounds.append(check_range(name, (_real(name, lo), _real(name, hi))))
+    if isinstance(expr, (Surface, HeightField)) or (callable(expr) and not _is_expression(expr)):
+        free = []
+    else:
+        free = [n for n in free_names(expr) if n not in extra]
+    for n in free:
+        if len(names) < 2 and n not in names:
+            names.append(n)
+            bounds.append(None)
+    if len(names) == 2 and names[0] == names[1]:
+        raise ValueError(f"the two ranges name the same variable {names[0]!r}")
+    for fallback in ("x", "y", "u", "v"):
+        if len(names) < 2 and fallback not in names:
+            names.append(fallback)
+            bounds.append(None)
+    unknown = [n for n in free if n not in names]
+    if unknown:
+        raise ValueError(f"unknown symbol{'s' if len(unknown) > 1 else ''} "
+                         f"{', '.join(unknown)}: the variables are {names[0]} and {names[1]} "
+                         "(give a range (symbol, low, high) for each variable)")
+    return tuple(names), tuple(bounds)
+
+
+def _is_expression(obj):
+    import sympy
+    return isinstance(obj, (str, sympy.Basic))
+
+
+def _real(name, x):
+    try:
+        return float(x)
+    except (TypeError, ValueError):
+        raise ValueError(f"the bounds of {name} must be real numbers, got {x!r}") from None
+
+
+class SurfacePlot(_ScalarMappable):
+    """A surface ready to draw; made by :func:`plot_surface`.
+
+    ``draw(size)`` renders at a pixel size and keeps the result as ``.render``;
+    ``rgba`` / ``save`` / ``show`` / ``_repr_png_`` draw at ``size`` on first use. The
+    plot is a matplotlib ScalarMappable for its height colormap (``fig.colorbar(plot)``).
+    In an Axes (``ax=``) it re-renders at the Axes' pixel size on every figure draw.
+    """
+
+    def __init__(self, surface, domain, *, size=DEFAULT_SIZE, elev=DEFAULT_ELEV,
+                 azim=DEFAULT_AZIM, proj_type=DEFAULT_PROJ, focal_length=None, cmap=None,
+                 norm=None, vmin=None, vmax=None, color=None, shade=True, lightsource=None,
+                 light=None, ambient=None, dpi=100, label="", render_options=None):
+        from matplotlib.colors import Normalize
+        from .view import check_size
+
+        self.surface = surface
+        self.domain = domain
+        self.label = label
+        self.size = check_size(size)
+        self.dpi = _positive("dpi", dpi)
+        self.elev, self.azim = float(elev), float(azim)
+        if not -90.0 <= self.elev <= 90.0:
+            raise ValueError(f"elev must be between -90 and 90 degrees, got {elev}")
+        if not isinstance(proj_type, str) or proj_type.lower() not in PROJ_TYPES:
+            raise ValueError(f"proj_type must be 'persp' or 'ortho', got {proj_type!r}")
+        self.projection = PROJ_TYPES[proj_type.lower()]
+        self.focal_length = focal_length if self.projection == "perspective" else None
+        if focal_length is not None:
+            _positive("focal_length", focal_length)
+        self.shade = bool(shade)
+        if lightsource is not None and light is not None:
+            raise ValueError("give either lightsource (a matplotlib LightSource) or light, not both")
+        if lightsource is not None and not hasattr(lightsource, "direction"):
+            raise ValueError(f"lightsource must be a matplotlib.colors.LightSource, got {lightsource!r}")
+        self.lightsource = lightsource
+        self.light = light
+        self.ambient = ambient
+        self.upper_color = None
+        if color is not None and cmap is None:
+            self.upper_color = _rgb(color)
+        if norm is not None and not isinstance(norm, Normalize):
+            raise ValueError(f"norm must be a matplotlib.colors.Normalize, got {norm!r}")
+        if norm is not None and (vmin is not None or vmax is not None):
+            raise ValueError("give either norm or vmin/vmax, not both (as in matplotlib)")
+        self.options = dict(render_options or {})
+        self.zoom = 1.0
+        self.pixel_step = None         # None: the render default (1 pixel)
+        self.render: Render | None = None
+        self.artist = None
+
+        if isinstance(cmap, str):
+            colormap_lut(cmap)                # a clear error for an unknown name, now
+        super().__init__(norm=norm, cmap=cmap or "viridis")
+        lo, hi = self._height_range() if vmin is None or vmax is None else (vmin, vmax)
+        norm = self.norm
+        if norm.vmin is None:
+            norm.vmin = float(lo if vmin is None else vmin)
+        if norm.vmax is None:
+            norm.vmax = float(hi if vmax is None else vmax)
+        self.set_array(np.array([norm.vmin, norm.vmax]))
+
+    @property
+    def axes(self):
+        """The Axes the plot draws into (None when standalone): fig.colorbar(plot)
+        takes its room from there."""
+        return None if self.artist is None else self.artist.axes
+
+    def changed(self):
+        # a new cmap / clim / norm: the picture must be drawn again
+        super().changed()
+        self._stale()
+
+    def _height_range(self):
+        """The colormap's default range: f over the whole domain, as matplotlib takes
+        the range of the mesh (not of what one view happens to show)."""
+        (ua, ub), (va, vb) = self.domain
+        gu, gv = np.meshgrid(np.linspace(ua, ub, 129), np.linspace(va, vb, 129))
+        w = self.surface.evaluate(gu, gv)
+        if not np.isfinite(w).any():
+            return 0.0, 1.0
+        lo, hi = _robust_range(np.where(np.isfinite(w), w, np.nan))
+        return (lo, hi) if hi > lo else (lo - 0.5, hi + 0.5)
+
+    # -- camera -------------------------------------------------------------------
+    def view_init(self, elev=None, azim=None):
+        """Set the view as matplotlib's Axes3D.view_init does (degrees)."""
+        if elev is not None:
+            self.elev = float(np.clip(elev, -90.0, 90.0))
+        if azim is not None:
+            self.azim = float(azim)
+        self._stale()
+
+    def _stale(self):
+        if self.artist is not None:
+            self.artist.stale = True
+
+    def render_kwargs(self, size):
+        """The render() call this plot makes at a pixel size."""
+        elev, azim = mpl_to_paper_angles(self.elev, self.azim)
+        kw = dict(self.options)
+        kw.update(size=tuple(size), elev=elev, azim=azim, projection=self.projection,
+                  u=self.domain[0], v=self.domain[1])
+        if self.focal_length is not None:
+            kw["focal_length"] = self.focal_length
+        if kw.get("method", "column") == "column":
+            kw.update(cmap=self.cmap, vmin=self.norm.vmin, vmax=self.norm.vmax)
+            if self.upper_color is not None:
+                kw["upper_color"] = self.upper_color
+        shading = kw.get("shading", "default")
+        if shading != "lambert":
+            if not self.shade:
+                kw["ambient"] = 1.0           # shade=False: flat colours, as matplotlib
+            elif self.ambient is not None:
+                kw["ambient"] = self.ambient
+            if self.lightsource is not None:
+                kw["light"] = world_to_screen_direction(self.lightsource.direction, elev, azim)
+            elif self.light is not None:
+                kw["light"] = self.light
+        if self.pixel_step is not None and kw.get("step") is None:
+            kw["pixel_step"] = self.pixel_step
+        if self.zoom != 1.0 and kw.get("scale") is None:
+            fit = render_view(self.surface, kw)
+            kw["scale"] = fit.scale * self.zoom
+            kw["center"] = fit.center
+        return kw
+
+    # -- drawing ------------------------------------------------------------------
+    def draw(self, size=None) -> Render:
+        """Render at ``size`` (default: the plot's) and keep it as ``.render``."""
+        r = render(self.surface, **self.render_kwargs(size or self.size))
+        if r.stats["method"] == "column" and type(self.norm) is not _Normalize \
+                and self.upper_color is None and r.stats.get("w_limits") is not None:
+            _recolor(r, self)                # a non-linear norm (LogNorm, ...)
+        self.render = r
+        return r
+
+    def _current(self):
+        if self.render is None or self.render.rgba.shape[1::-1] != self.size:
+            self.draw(self.size)
+        return self.render
+
+    @property
+    def rgba(self):
+        """(H, W, 4) uint8 picture of the most recent draw (drawn at ``size`` if none)."""
+        return self._current().rgba
+
+    def save(self, path, dpi=None):
+        """Write the picture at ``size``: .png, .jpg, .pdf or .svg (atomically)."""
+        from .output import check_output
+        check_output(path)
+        r = self.draw(self.size) if self.render is None or self.artist is not None \
+            else self._current()
+        return save_image(r.rgba, path, dpi=dpi or self.dpi)
+
+    def show(self):
+        """Show the picture in a matplotlib window (or inline in Jupyter)."""
+        import matplotlib.pyplot as plt
+        if self.artist is not None:
+            plt.show()
+            return
+        w, h = self.size
+        fig = plt.figure(figsize=(w / self.dpi, h / self.dpi), dpi=self.dpi)
+        ax = fig.add_axes((0, 0, 1, 1))
+        attach(self, ax)
+        plt.show()
+
+    def _repr_png_(self):
+        return png_bytes(self._current().rgba)
+
+    def __repr__(self):
+        return (f"SurfacePlot({self.label or self.surface!r}, size={self.size}, "
+                f"elev={self.elev:g}, azim={self.azim:g}, proj_type={self.projection!r})")
+
+
+def render_view(surface, kw):
+    """The View render() would fit for these keyword arguments."""
+    from .render import _domain
+    from .view import build_view
+    domain = _domain(surface, kw.get("u"), kw.get("v"))
+    return build_view(surface, domain, kw["size"], kw["elev"], kw["azim"],
+                      kw.get("projection", "orthographic"), kw.get("d1"), kw.get("d2"),
+                      None, kw.get("center"), None, None, kw.get("focal_length"))
+
+
+def _recolor(r, mappable):
+    """Colour the upper side through a general matplotlib norm (in place)."""
+    up = r.side > 0
+    if not up.any():
+        return
+    rgb = mappable.to_rgba(r.w[up], bytes=False)[:, :3]
+    lam = r.intensity[up][:, None]
+    r.rgba[up, :3] = np.clip(np.round(rgb * lam * 255.0), 0, 255).astype(np.uint8)
+
+
+def _rgb(c):
+    return color.to_rgb(c, "color")
+
+
+def _positive(name, x):
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a positive number, got {x!r}") from None
+    if not x > 0 or not math.isfinite(x):
+        raise ValueError(f"{name} must be a positive number, got {x!r}")
+    return x
+
+
+def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options) -> SurfacePlot:
+    """Draw w = f(x, y) with the floating column algorithm, in sympy's call form.
+
+    Parameters
+    ----------
+    expr : sympy expression, string, callable, Surface or HeightField
+    *ranges : (symbol, low, high), up to two, as sympy's ``plot3d``; a missing range
+        is (-10, 10) (a HeightField's own extent for a HeightField).
+    ax : a matplotlib Axes to draw into (re-rendered at its pixel size on every draw).
+    interactive : with ``ax``: drag to rotate, scroll to zoom.
+    cmap, norm, vmin, vmax, color, shade, lightsource : as matplotlib's plot_surface.
+    elev, azim : matplotlib's view_init angles (default 30, -60).
+    proj_type : "persp" (default, as matplotlib) or "ortho"; ``focal_length`` as
+        matplotlib's.
+    size : (width, height) pixels when not in an Axes (default 800x600); ``dpi`` for
+        PDF/SVG output.
+    **options : any other :func:`floatcol.render` option: method, shading,
+        interpolation, step, pixel_step, lines, upper_color, lower_color, background,
+        ambient, light, scale, center, d1, d2.
+
+    Returns
+    -------
+    SurfacePlot
+    """
+    unknown = sorted(set(options) - _RENDER_OPTIONS - _OWN_OPTIONS)
+    if unknown:
+        known = ", ".join(sorted(_RENDER_OPTIONS | _OWN_OPTIONS))
+        raise ValueError(f"unknown option{'s' if len(unknown) > 1 else ''} "
+                         f"{', '.join(unknown)}; plot_surface knows: {known}")
+    if "projection" in options:
+        if "proj_type" in options:
+            raise ValueError("give either proj_type or projection, not both")
+        options["proj_type"] = options.pop("projection")
+    if "upper_color" in options and "color" not in options:
+        options["color"] = options.pop("upper_color")
+    names, bounds = parse_ranges(expr, ranges)
+    if isinstance(expr, Surface):
+        surface = expr
+    else:
+        surface = as_surface(expr, names if not callable(expr) or _is_expression(expr) else None)
+    default = surface.default_domain
+    domain = tuple(
+        b if b is not None else (default[i] if default else DEFAULT_RANGE)
+        for i, b in enumerate(bounds))
+    domain = tuple(check_range(surface.variables[i], d) for i, d in enumerate(domain))
+    own = {k: options.pop(k) for k in list(options) if k in _OWN_OPTIONS}
+    if ax is not None:
+        own.setdefault("size", _axes_pixels(ax))
+    plot = SurfacePlot(surface, domain, label=label, render_options=options, **own)
+    if ax is not None:
+        attach(plot, ax, interactive=interactive)
+    elif interactive:
+        raise ValueError("interactive=True needs a matplotlib Axes: pass ax=")
+    return plot
+
+
+def _axes_pixels(ax):
+    bb = ax.bbox
+    return max(1, int(round(bb.width))), max(1, int(round(bb.height)))
+
+
+def attach(plot, ax, interactive=False):
+    from .mpl import SurfaceImage
+    return SurfaceImage.attach(plot, ax, interactive=interactive)

@@ -1,0 +1,84 @@
+"""A sympy plotting backend: ``plot3d(expr, (x, a, b), (y, c, d), backend=SympyBackend)``.
+
+sympy hands the backend its data series; each surface series z = f(x, y) is drawn by
+:func:`floatcol.plot_surface` into one matplotlib Axes. floatcol options (elev, azim,
+cmap, proj_type, method, ...) can be given to ``plot3d`` directly, as can sympy's
+``title`` and ``size`` (inches, as for sympy's matplotlib backend).
+"""
+from __future__ import annotations
+
+from sympy.plotting.plot import Plot
+
+from .plot import _OWN_OPTIONS, _RENDER_OPTIONS, plot_surface
+
+#: options plot3d passes on that floatcol takes
+_FLOATCOL_OPTIONS = (_OWN_OPTIONS | _RENDER_OPTIONS) - {"size"}
+
+
+class SympyBackend(Plot):
+    """sympy ``Plot`` subclass drawing surfaces with floatcol (show, save, close)."""
+
+    def __init__(self, *series, **kwargs):
+        self._fc_options = {k: kwargs.pop(k) for k in list(kwargs) if k in _FLOATCOL_OPTIONS}
+        super().__init__(*series, **kwargs)
+        self._fig = None
+        self.plots = []
+
+    @property
+    def fig(self):
+        """The matplotlib Figure (built on first use)."""
+        if self._fig is None:
+            self._build()
+        return self._fig
+
+    def _build(self):
+        from matplotlib.figure import Figure
+        surfaces = [s for s in self._series if getattr(s, "is_3Dsurface", False)]
+        others = [s for s in self._series if s not in surfaces]
+        if others or any(getattr(s, "is_parametric", False) for s in surfaces):
+            raise ValueError("floatcol's sympy backend draws surfaces z = f(x, y) "
+                             "(plot3d); use sympy's default backend for other plots")
+        if not surfaces:
+            raise ValueError("nothing to draw: plot3d needs an expression")
+        if len(surfaces) > 1:
+            raise ValueError(f"floatcol draws one surface per picture; got {len(surfaces)} "
+                             "(call plot3d once per expression)")
+        figsize = self.size if self.size else (8.0, 6.0)
+        if self._show_requested():
+            import matplotlib.pyplot as plt
+            fig = plt.figure(figsize=figsize)
+        else:
+            fig = Figure(figsize=figsize)
+        ax = fig.add_axes((0.0, 0.0, 1.0, 0.93 if self.title else 1.0))
+        s = surfaces[0]
+        self.plots = [plot_surface(s.expr, (s.var_x, s.start_x, s.end_x),
+                                   (s.var_y, s.start_y, s.end_y), ax=ax,
+                                   label=str(s.expr), **self._fc_options)]
+        if self.title:
+            fig.suptitle(str(self.title))
+        self._fig = fig
+
+    def _show_requested(self):
+        return getattr(self, "_want_window", False)
+
+    def show(self):
+        import matplotlib.pyplot as plt
+        self._want_window = True
+        if self._fig is None or not plt.fignum_exists(getattr(self._fig, "number", -1)):
+            self._fig = None
+            self._build()
+        plt.show()
+
+    def save(self, path):
+        """Write the figure (any format matplotlib writes), atomically."""
+        from .output import atomic_file, check_output
+        formats = {".png": 1, ".jpg": 1, ".jpeg": 1, ".pdf": 1, ".svg": 1}
+        path, ext = check_output(path, formats)
+        with atomic_file(path) as tmp:
+            self.fig.savefig(tmp, format=ext[1:].replace("jpg", "jpeg"))
+
+    def close(self):
+        if self._fig is not None:
+            import matplotlib.pyplot as plt
+            plt.close(self._fig)
+        self._fig = None

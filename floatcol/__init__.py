@@ -1,7 +1,20 @@
 """floatcol: shaded pictures of w = f(u, v) by Gordon's floating column algorithm."""
+from .animate import Animation, animate
+from .plot import SurfacePlot, plot_surface
 from .render import Render, render
 from .surface import HeightField, Surface, as_surface
 from .view import View
 
-__version__ = "0.1.0"
-__all__ = ["render", "Render", "Surface", "HeightField", "as_surface", "View", "__version__"]
+__version__ = "0.2.0"
+
+
+def __getattr__(name):
+    # the sympy backend subclasses sympy's Plot: import it only when asked for
+    if name == "SympyBackend":
+        from .sympy_backend import SympyBackend
+        return SympyBackend
+    raise AttributeError(f"module 'floatcol' has no attribute {name!r}")
+
+
+__all__ = ["Animation", "HeightField", "Render", "Surface", "SurfacePlot", "SympyBackend",
+           "View", "__version__", "animate", "as_surface", "plot_surface", "render"]

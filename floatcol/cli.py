@@ -1,4 +1,9 @@
-"""The ``floatcol`` command. It calls the public API only (never a kernel)."""
+"""The ``floatcol`` command. It calls the public API only (never a kernel).
+
+User mistakes (a bad expression, range, option or path) print one line on stderr and
+exit with status 2, and leave no output file behind: every file is written to a
+temporary name and renamed at the end.
+"""
 from __future__ import annotations
 
 import argparse
@@ -6,10 +11,15 @@ import os
 import sys
 
 EXAMPLES = """examples:
-  floatcol render "3*sin(u*cos(v))" -o surface.png
-  floatcol render "u**2 - v**2" --u=-2:2 --v=-2:2 --proj perspective --elev 40 -o saddle.png
-  floatcol render "sin(x*y)" --vars x,y --method horizon --size 800x600 -o lines.png
+  floatcol render "3*sin(u*cos(v))" --u=-5:5 --v=-5:5 -o surface.png
+  floatcol render "x**2 - y**2" --x=-2:2 --y=-2:2 --proj ortho --elev 40 -o saddle.pdf
+  floatcol render "sin(x*y)" --method horizon --size 800x600 -o lines.png
+  floatcol animate "exp(-(x^2+y^2)/8)*cos(2*sqrt(x^2+y^2) - t)" --x=-6:6 --y=-6:6 --t 0:6.283 --frames 48 -o wave.gif
+  floatcol gallery build -o site/gallery
 """
+
+RENDER_OUTPUTS = (".png", ".jpg", ".jpeg", ".pdf", ".svg")
+ANIMATION_OUTPUTS = (".gif", ".mp4")
 
 
 class UsageError(Exception):
@@ -37,42 +47,79 @@ def _size(text):
     return w, h
 
 
+def _surface_options(p, default_size="800x600"):
+    """Options shared by render and animate; they mirror plot_surface's."""
+    p.add_argument("expr", help="the height as a formula, e.g. '3*sin(u*cos(v))' (^ is power)")
+    p.add_argument("--u", "--x", dest="u", type=_range, default=None, metavar="LOW:HIGH",
+                   help="range of the first variable (default -10:10)")
+    p.add_argument("--v", "--y", dest="v", type=_range, default=None, metavar="LOW:HIGH",
+                   help="range of the second variable (default -10:10)")
+    p.add_argument("--vars", default=None, metavar="X,Y",
+                   help="the two variables, in order (default: the formula's symbols sorted, as sympy)")
+    p.add_argument("--size", type=_size, default=_size(default_size), metavar="WxH",
+                   help=f"pixels (default {default_size})")
+    p.add_argument("--elev", type=float, default=30.0, help="degrees above the surface (default 30, as matplotlib)")
+    p.add_argument("--azim", type=float, default=-60.0, help="azimuth of the eye in degrees (default -60, as matplotlib)")
+    p.add_argument("--proj", default="persp", choices=["persp", "ortho", "perspective", "orthographic"],
+                   help="projection (default persp, as matplotlib)")
+    p.add_argument("--focal-length", type=float, default=None, help="perspective focal length, as matplotlib")
+    p.add_argument("--method", default="column", choices=["column", "horizon"],
+                   help="shaded floating column or monochrome floating horizon")
+    p.add_argument("--shading", default="default", choices=["default", "lambert"])
+    p.add_argument("--interpolation", default="normal", choices=["normal", "intensity"],
+                   help="normal (nis, per pixel) or intensity (iis, Gouraud)")
+    p.add_argument("--lines", type=int, default=None, help="horizon: number of lines (default 160)")
+    p.add_argument("--cmap", default=None, help="matplotlib colormap of the upper side (default viridis)")
+    p.add_argument("--color", default=None, help="one colour for the upper side instead of a colormap")
+    p.add_argument("--lower-color", default=None, help="colour of the lower side")
+    p.add_argument("--vmin", type=float, default=None, help="height at the colormap's start")
+    p.add_argument("--vmax", type=float, default=None, help="height at the colormap's end")
+    p.add_argument("--no-shade", action="store_true", help="flat colours, no lighting")
+    p.add_argument("--background", default=None, help="background colour, e.g. white or none")
+    p.add_argument("--dpi", type=float, default=100.0, help="dots per inch of PDF/SVG output (default 100)")
+
+
 def build_parser():
     from . import __version__
     p = _Parser(prog="floatcol", description="Shaded pictures of w = f(u, v) by the floating "
                 "column algorithm (Gordon 2001).", epilog=EXAMPLES,
                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--version", action="version", version=f"floatcol {__version__}")
-    sub = p.add_subparsers(dest="command", parser_class=_Parser)
-    r = sub.add_parser("render", help="render an expression to a PNG", epilog=EXAMPLES,
-                       formatter_class=argparse.RawDescriptionHelpFormatter)
-    r.add_argument("expr", help="the height w as a formula, e.g. '3*sin(u*cos(v))'")
-    r.add_argument("-o", "--output", default="surface.png", help="PNG file to write (default surface.png)")
-    r.add_argument("--u", type=_range, default=None, metavar="LOW:HIGH", help="u range (default -10:10)")
-    r.add_argument("--v", type=_range, default=None, metavar="LOW:HIGH", help="v range (default -10:10)")
-    r.add_argument("--vars", default=None, metavar="X,Y", help="names of the two variables (default u,v)")
-    r.add_argument("--size", type=_size, default=(800, 600), metavar="WxH", help="pixels (default 800x600)")
-    r.add_argument("--elev", type=float, default=30.0, help="degrees above the surface (default 30)")
-    r.add_argument("--azim", type=float, default=30.0, help="turn about the vertical, degrees (default 30)")
-    r.add_argument("--proj", default="orthographic", choices=["orthographic", "perspective", "ortho", "persp"])
-    r.add_argument("--d1", type=float, default=None, help="perspective: viewpoint to screen")
-    r.add_argument("--d2", type=float, default=None, help="perspective: screen to origin")
-    r.add_argument("--scale", type=float, default=None, help="pixels per unit (default: fit)")
-    r.add_argument("--method", default="column", choices=["column", "horizon"])
-    r.add_argument("--shading", default="default", choices=["default", "lambert"])
-    r.add_argument("--interpolation", default="normal", choices=["normal", "intensity"])
-    r.add_argument("--cmap", default="viridis", help="matplotlib colormap for the upper side")
-    r.add_argument("--center", default="auto", help="'auto' (middle of the picture), 'origin', or U,V,W")
+    sub = p.add_subparsers(dest="command", parser_class=_Parser, metavar="{render,animate,gallery}")
+    r = sub.add_parser("render", help="render an expression to an image (png, jpg, pdf, svg)",
+                       epilog=EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
+    _surface_options(r)
+    r.add_argument("-o", "--output", default="surface.png",
+                   help="file to write: .png, .jpg, .pdf or .svg (default surface.png)")
+    a = sub.add_parser("animate", help="render w = f(u, v, t) to a GIF or MP4",
+                       epilog=EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
+    _surface_options(a, default_size="480x360")
+    a.add_argument("-o", "--output", default="surface.gif", help="file to write: .gif or .mp4")
+    a.add_argument("--t", dest="t", type=_range, default=(0.0, 6.283185307179586),
+                   metavar="LOW:HIGH", help="time range (default 0:2pi)")
+    a.add_argument("--time-var", default="t", help="name of the time variable (default t)")
+    a.add_argument("--frames", type=int, default=60, help="number of frames (default 60)")
+    a.add_argument("--fps", type=float, default=20.0, help="frames per second (default 20)")
+    g = sub.add_parser("gallery", help="build the example gallery")
+    gsub = g.add_subparsers(dest="gallery_command", parser_class=_Parser, metavar="{build}")
+    gb = gsub.add_parser("build", help="run the gallery scripts; write images, thumbnails and index.html")
+    gb.add_argument("-o", "--output", default="gallery-build", help="folder to write (default gallery-build)")
+    gb.add_argument("--source", default=None, help="folder of example scripts (default: the gallery/ of this checkout)")
+    gb.add_argument("--only", nargs="+", default=None, metavar="NAME", help="build only these examples")
     return p
 
 
-def _fix_negative_ranges(argv):
-    """Let '--u -5:5' work: argparse would take '-5:5' for an option."""
+_NEGATIVE_OK = ("--u", "--v", "--x", "--y", "--t", "--vmin", "--vmax", "--elev", "--azim")
+
+
+def _fix_negative_values(argv):
+    """Let '--u -5:5' and '--azim -60' work: argparse would take '-5:5' for an option."""
     out = []
     i = 0
     while i < len(argv):
         a = argv[i]
-        if a in ("--u", "--v") and i + 1 < len(argv) and argv[i + 1].startswith("-"):
+        if a in _NEGATIVE_OK and i + 1 < len(argv) and argv[i + 1][:1] == "-" \
+                and argv[i + 1][1:2] in "0123456789.":
             out.append(f"{a}={argv[i + 1]}")
             i += 2
             continue
@@ -84,49 +131,106 @@ def _fix_negative_ranges(argv):
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
-        args = build_parser().parse_args(_fix_negative_ranges(argv))
+        args = build_parser().parse_args(_fix_negative_values(argv))
         if args.command is None:
             raise UsageError("say what to do, e.g. floatcol render \"3*sin(u*cos(v))\" -o surface.png")
-        return _render(args)
-    except UsageError as exc:
-        print(f"floatcol: error: {exc}", file=sys.stderr)
-        return 2
-    except ValueError as exc:
+        if args.command == "render":
+            return _render(args)
+        if args.command == "animate":
+            return _animate(args)
+        if args.gallery_command is None:
+            raise UsageError("say what to do: floatcol gallery build -o DIR")
+        return _gallery(args)
+    except (UsageError, ValueError) as exc:
         print(f"floatcol: error: {exc}", file=sys.stderr)
         return 2
     except OSError as exc:
         print(f"floatcol: error: cannot write {getattr(exc, 'filename', '') or 'output'}: "
               f"{exc.strerror or exc}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("floatcol: interrupted", file=sys.stderr)
+        return 130
+
+
+def _check_output(path, allowed):
+    ext = os.path.splitext(path)[1].lower()
+    if ext not in allowed:
+        raise UsageError(f"output {path!r} must end in {', '.join(allowed)}")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise UsageError(f"cannot write {path}: folder {folder} does not exist")
+    if not os.access(folder, os.W_OK):
+        raise UsageError(f"cannot write {path}: folder {folder} is not writable")
+    if os.path.isdir(path):
+        raise UsageError(f"cannot write {path}: it is a folder")
+
+
+def _ranges(args):
+    names = None
+    if args.vars:
+        names = [n.strip() for n in args.vars.split(",")]
+        if len(names) != 2 or not all(n.isidentifier() for n in names):
+            raise UsageError(f"--vars {args.vars!r} must name two variables, e.g. x,y")
+    if names is None:
+        if args.u is None and args.v is None:
+            return ()
+        from .plot import parse_ranges
+        names, _ = parse_ranges(args.expr, (), extra=(getattr(args, "time_var", None),))
+    return tuple((n, *(r if r is not None else (-10.0, 10.0)))
+                 for n, r in zip(names, (args.u, args.v)))
+
+
+def _options(args):
+    opts = dict(size=args.size, elev=args.elev, azim=args.azim, proj_type=args.proj,
+                method=args.method, shading=args.shading, interpolation=args.interpolation,
+                dpi=args.dpi)
+    for name in ("focal_length", "cmap", "color", "vmin", "vmax", "lines"):
+        value = getattr(args, name)
+        if value is not None:
+            opts[name] = value
+    if args.lower_color is not None:
+        opts["lower_color"] = args.lower_color
+    if args.no_shade:
+        opts["shade"] = False
+    if args.background is not None:
+        opts["background"] = None if args.background.lower() == "none" else args.background
+    return opts
 
 
 def _render(args):
-    out = args.output
-    if not out.lower().endswith(".png"):
-        raise UsageError(f"output {out!r} must end in .png")
-    folder = os.path.dirname(os.path.abspath(out))
-    if not os.path.isdir(folder):
-        raise UsageError(f"cannot write {out}: folder {folder} does not exist")
-    if not os.access(folder, os.W_OK):
-        raise UsageError(f"cannot write {out}: folder {folder} is not writable")
-    center = args.center
-    if center == "origin":
-        center = None
-    elif center != "auto":
-        try:
-            center = tuple(float(x) for x in center.split(","))
-        except ValueError:
-            raise UsageError(f"--center {center!r} must be auto, origin or U,V,W") from None
-    vars_ = tuple(args.vars.split(",")) if args.vars else None
+    _check_output(args.output, RENDER_OUTPUTS)
     import floatcol as fc
-    r = fc.render(args.expr, u=args.u, v=args.v, size=args.size, elev=args.elev, azim=args.azim,
-                  projection=args.proj, d1=args.d1, d2=args.d2, scale=args.scale,
-                  method=args.method, shading=args.shading, interpolation=args.interpolation,
-                  vars=vars_, center=center, cmap=args.cmap)
-    r.save(out)
-    s = r.stats
-    print(f"wrote {out} ({args.size[0]}x{args.size[1]}, {s['samples']} samples, "
+    plot = fc.plot_surface(args.expr, *_ranges(args), **_options(args))
+    plot.save(args.output)
+    s = plot.render.stats
+    print(f"wrote {args.output} ({args.size[0]}x{args.size[1]}, {s['samples']} samples, "
           f"{s['seconds'] * 1e3:.0f} ms)")
+    return 0
+
+
+def _animate(args):
+    _check_output(args.output, ANIMATION_OUTPUTS)
+    import floatcol as fc
+    anim = fc.animate(args.expr, *_ranges(args), t=(args.time_var, *args.t), frames=args.frames,
+                      fps=args.fps, output=args.output, **_options(args))
+    print(f"wrote {args.output} ({len(anim)} frames, {args.size[0]}x{args.size[1]}, "
+          f"{anim.stats['seconds']:.1f} s)")
+    return 0
+
+
+def _gallery(args):
+    from .gallery import build
+    out = args.output
+    parent = os.path.dirname(os.path.abspath(out))
+    if not os.path.isdir(parent):
+        raise UsageError(f"cannot write {out}: folder {parent} does not exist")
+    result = build(out, source=args.source, only=args.only)
+    print(f"wrote {result.index} ({len(result.examples)} examples)")
+    if result.failed:
+        for name, err in result.failed.items():
+            print(f"floatcol: error: example {name} failed: {err}", file=sys.stderr)
+        return 1
     return 0
 
 

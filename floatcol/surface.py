@@ -6,6 +6,7 @@ height grid read as a bilinear function (the paper's "digital height field").
 """
 from __future__ import annotations
 
+import copy
 import functools
 import logging
 import math
@@ -32,15 +33,25 @@ class Surface:
     kind = SURF_FUNCTION
 
     def __init__(self, f, fu, fv, *, expr=None, variables=DEFAULT_VARS,
-                 derivatives="symbolic"):
+                 derivatives="symbolic", time=None):
         self.f = f
         self.fu = fu
         self.fv = fv
         self.expr = expr
         self.variables = tuple(variables)
         self.derivatives = derivatives
+        self.time = time            # name of the time parameter, or None
         self.hf = np.zeros((2, 2))
-        self.hfp = np.array([0.0, 1.0, 0.0, 1.0])
+        self.hfp = np.array([0.0, 1.0, 0.0, 1.0])   # hfp[0]: the time t
+
+    def at(self, t):
+        """The same surface at time ``t`` (same compiled functions, no recompile)."""
+        if self.kind != SURF_FUNCTION:
+            raise ValueError("only a function surface has a time parameter")
+        other = copy.copy(self)
+        other.hfp = self.hfp.copy()
+        other.hfp[0] = float(t)
+        return other
 
     #: Default domain when the caller gives none (None: the caller must choose).
     default_domain = None
@@ -114,17 +125,26 @@ def check_range(name, rng):
     return lo, hi
 
 
-def as_surface(expr, vars=None) -> Surface:
+def as_surface(expr, vars=None, time=None) -> Surface:
     """A Surface from a sympy expression, a string, a number, a callable f(u, v), or a
     Surface (returned as is). Free symbols must be the two variables (``vars``,
-    default u and v)."""
+    default u and v) and, if ``time`` names it, a time parameter: then
+    ``surface.at(t)`` gives the surface at time t without compiling again."""
     if isinstance(expr, Surface):
         return expr
     names = _variable_names(vars)
     if callable(expr) and not _is_sympy(expr) and not isinstance(expr, str):
+        if time is not None:
+            raise ValueError("a time-varying surface must be an expression, not a callable")
         return _callable_surface(expr, names)
-    e = parse_expression(expr, names)
-    return _compiled_expression(e, names)
+    if time is not None:
+        time = str(time)
+        if not time.isidentifier() or time in names:
+            raise ValueError(f"the time {time!r} must be a name other than {names[0]} and {names[1]}")
+        e = parse_expression(expr, names + (time,))
+    else:
+        e = parse_expression(expr, names)
+    return _compiled_expression(e, names, time)
 
 
 def _variable_names(vars):
@@ -235,11 +255,12 @@ def _numba_namespace():
 
 
 @functools.lru_cache(maxsize=256)
-def _compiled_expression(e, names):
+def _compiled_expression(e, names, time=None):
     """Surface for expression e (memoized on the expression and variable names)."""
     import sympy as sp
     su, sv = (sp.Symbol(n) for n in names)
-    f_py, f = _compile_scalar(e, su, sv)
+    st = sp.Symbol(time) if time is not None else sp.Dummy("t")
+    f_py, f = _compile_scalar(e, su, sv, st)
     parts = []
     how = "symbolic"
     for sym, axis in ((su, 0), (sv, 1)):
@@ -247,17 +268,18 @@ def _compiled_expression(e, names):
         compiled = None
         if not d.has(sp.Derivative, sp.Subs):
             try:
-                compiled = _compile_scalar(d, su, sv)[1]
+                compiled = _compile_scalar(d, su, sv, st)[1]
             except ValueError:
                 compiled = None
         if compiled is None:
             how = "central differences"
             compiled = _central_difference(f_py, axis)
         parts.append(compiled)
-    return Surface(f, parts[0], parts[1], expr=e, variables=names, derivatives=how)
+    return Surface(f, parts[0], parts[1], expr=e, variables=names, derivatives=how,
+                   time=time)
 
 
-def _compile_scalar(e, su, sv):
+def _compile_scalar(e, su, sv, st):
     """(njit-able python function, cfunc) for a scalar sympy expression."""
     import numba
     import sympy as sp
@@ -265,15 +287,15 @@ def _compile_scalar(e, su, sv):
         n.is_real is False for n in e.atoms(sp.Number))
     try:
         if is_complex:
-            g = numba.njit(sp.lambdify((su, sv), e, modules="cmath"))
+            g = numba.njit(sp.lambdify((su, sv, st), e, modules="cmath"))
 
-            def py(u, v):
-                z = g(u, v) + 0j
+            def py(u, v, t):
+                z = g(u, v, t) + 0j
                 if abs(z.imag) <= 1e-12 * (1.0 + abs(z.real)):
                     return z.real
                 return math.nan          # a complex value is a hole
         else:
-            py = sp.lambdify((su, sv), e, modules=[_numba_namespace(), "math"])
+            py = sp.lambdify((su, sv, st), e, modules=[_numba_namespace(), "math"])
         log.debug("compiling %s", e)
         return py, compile_surface_fn(py)
     except Exception as exc:
@@ -285,18 +307,20 @@ def _central_difference(py, axis):
     import numba
     fj = numba.njit(py)
     if axis == 0:
-        def d(u, v):
+        def d(u, v, t):
             h = 6e-6 * max(1.0, abs(u))
-            return (fj(u + h, v) - fj(u - h, v)) / (2.0 * h)
+            return (fj(u + h, v, t) - fj(u - h, v, t)) / (2.0 * h)
     else:
-        def d(u, v):
+        def d(u, v, t):
             h = 6e-6 * max(1.0, abs(v))
-            return (fj(u, v + h) - fj(u, v - h)) / (2.0 * h)
+            return (fj(u, v + h, t) - fj(u, v - h, t)) / (2.0 * h)
     return compile_surface_fn(d)
 
 
 def _callable_surface(fn, names):
     import inspect
+
+    import numba
     py = getattr(fn, "py_func", None) or getattr(fn, "_pyfunc", None) or fn
     try:
         params = inspect.signature(py).parameters.values()
@@ -307,18 +331,22 @@ def _callable_surface(fn, names):
     if len(required) > 2:
         raise ValueError(f"the callable {getattr(py, '__name__', py)!r} must take two arguments (u, v)")
     try:
-        f = compile_surface_fn(py)
+        fj = numba.njit(py)
+
+        def py3(u, v, t):
+            return fj(u, v)
+        f = compile_surface_fn(py3)
     except Exception as exc:
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         raise ValueError(
             f"cannot compile the callable {getattr(py, '__name__', py)!r} with Numba ({first}); "
             "write it with scalar math (the math module) or pass a sympy expression") from None
-    return Surface(f, _central_difference(py, 0), _central_difference(py, 1),
+    return Surface(f, _central_difference(py3, 0), _central_difference(py3, 1),
                    variables=names, derivatives="central differences")
 
 
 @functools.lru_cache(maxsize=1)
 def _zero_fn():
-    def zero(u, v):
+    def zero(u, v, t):
         return 0.0
     return compile_surface_fn(zero)

@@ -1,9 +1,16 @@
-"""The floatcol command: success writes a PNG; user mistakes print one line, exit 2,
-and leave no file."""
+"""The floatcol command: each success writes its file; each user mistake prints one
+line on stderr, exits 2, shows no traceback and leaves no file."""
+import os
 import subprocess
 import sys
 
+import numpy as np
 import pytest
+from PIL import Image
+
+from floatcol.cli import main
+
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 
 def run(*args, cwd):
@@ -11,44 +18,107 @@ def run(*args, cwd):
                           capture_output=True, text=True)
 
 
+def run_here(capsys, monkeypatch, tmp_path, *args):
+    monkeypatch.chdir(tmp_path)
+    code = main(list(args))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
 def test_render_writes_png(tmp_path):
     p = run("render", "3*sin(u*cos(v))", "--u", "-5:5", "--v=-5:5", "--size", "120x90",
-            "-o", "out.png", cwd=tmp_path)
+            "--azim", "-40", "-o", "out.png", cwd=tmp_path)
     assert p.returncode == 0, p.stderr
-    data = (tmp_path / "out.png").read_bytes()
-    assert data[:8] == b"\x89PNG\r\n\x1a\n"
-    from PIL import Image
+    assert (tmp_path / "out.png").read_bytes()[:8] == PNG_MAGIC
     im = Image.open(tmp_path / "out.png")
     assert im.size == (120, 90)
     assert list(tmp_path.iterdir()) == [tmp_path / "out.png"]     # no temporary left
-    import os
     umask = os.umask(0)
     os.umask(umask)
     assert (tmp_path / "out.png").stat().st_mode & 0o777 == 0o666 & ~umask
 
 
+def test_render_matches_plot_surface(capsys, monkeypatch, tmp_path):
+    """The CLI's options mean what plot_surface's do: same picture, pixel for pixel."""
+    import floatcol as fc
+    code, out, _ = run_here(capsys, monkeypatch, tmp_path, "render", "x**2 - y**2",
+                            "--x=-2:2", "--y=-1:1", "--size", "64x48", "--elev", "40",
+                            "--azim", "-30", "--proj", "ortho", "--cmap", "magma", "-o", "s.png")
+    assert code == 0 and out.startswith("wrote s.png")
+    want = fc.plot_surface("x**2 - y**2", ("x", -2, 2), ("y", -1, 1), size=(64, 48), elev=40,
+                           azim=-30, proj_type="ortho", cmap="magma").rgba
+    got = np.asarray(Image.open(tmp_path / "s.png"))
+    assert np.array_equal(got, want)
+
+
+@pytest.mark.parametrize("ext,magic", [(".jpg", b"\xff\xd8\xff"), (".pdf", b"%PDF"),
+                                       (".svg", b"<?xml")])
+def test_render_other_formats(capsys, monkeypatch, tmp_path, ext, magic):
+    code, _, err = run_here(capsys, monkeypatch, tmp_path, "render", "sin(u)*cos(v)",
+                            "--size", "40x30", "-o", "out" + ext)
+    assert code == 0, err
+    assert (tmp_path / ("out" + ext)).read_bytes()[:len(magic)] == magic
+    assert [p.name for p in tmp_path.iterdir()] == ["out" + ext]
+
+
+def test_animate_writes_gif_with_frames(capsys, monkeypatch, tmp_path):
+    code, out, err = run_here(capsys, monkeypatch, tmp_path, "animate", "sin(x - t)*cos(y)",
+                              "--x=-3:3", "--y=-3:3", "--size", "48x36", "--frames", "5",
+                              "--t", "0:3", "-o", "w.gif")
+    assert code == 0, err
+    im = Image.open(tmp_path / "w.gif")
+    assert im.n_frames == 5 and im.size == (48, 36)
+    assert [p.name for p in tmp_path.iterdir()] == ["w.gif"]
+
+
 @pytest.mark.parametrize("args,needle", [
     (["render", "3*sin(u", "-o", "x.png"], "could not parse"),
-    (["render", "x*y", "-o", "x.png"], "unknown symbols x, y"),
+    (["render", "x*y*z", "-o", "x.png"], "unknown symbol z"),
     (["render", "u", "--u", "2:1", "-o", "x.png"], "reversed"),
+    (["render", "u", "--u", "1:1", "-o", "x.png"], "empty"),
     (["render", "u", "--u", "a:b", "-o", "x.png"], "LOW:HIGH"),
     (["render", "u", "--size", "0x10", "-o", "x.png"], "positive"),
+    (["render", "u", "--size", "big", "-o", "x.png"], "WIDTHxHEIGHT"),
     (["render", "u", "-o", "no/such/dir/x.png"], "does not exist"),
-    (["render", "u", "-o", "x.jpg"], "must end in .png"),
+    (["render", "u", "-o", "x.gif"], "must end in .png"),
     (["render", "u", "--bogus", "-o", "x.png"], "unrecognized arguments"),
     (["render", "u", "--proj", "fisheye", "-o", "x.png"], "invalid choice"),
+    (["render", "u", "--cmap", "nosuchmap", "-o", "x.png"], "nosuchmap"),
+    (["render", "u", "--elev", "120", "-o", "x.png"], "elev"),
+    (["render", "u*v", "--vars", "u", "-o", "x.png"], "--vars"),
+    (["animate", "sin(u - t)", "--frames", "0", "-o", "x.gif"], "frames"),
+    (["animate", "sin(u - t)", "--t", "1:1", "-o", "x.gif"], "time range"),
+    (["animate", "sin(u - t)", "-o", "x.png"], "must end in .gif"),
+    (["gallery"], "gallery build"),
+    (["frobnicate"], "invalid choice"),
     ([], "say what to do"),
 ])
-def test_user_mistakes_exit_2_with_one_line(tmp_path, args, needle):
-    p = run(*args, cwd=tmp_path)
-    assert p.returncode == 2
-    lines = p.stderr.strip().splitlines()
-    assert len(lines) == 1, p.stderr
+def test_user_mistakes_exit_2_with_one_line(capsys, monkeypatch, tmp_path, args, needle):
+    code, out, err = run_here(capsys, monkeypatch, tmp_path, *args)
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
     assert needle in lines[0]
-    assert "Traceback" not in p.stderr
     assert list(tmp_path.iterdir()) == []
 
 
-def test_version():
+def test_output_that_is_a_folder(capsys, monkeypatch, tmp_path):
+    (tmp_path / "x.png").mkdir()
+    code, _, err = run_here(capsys, monkeypatch, tmp_path, "render", "u", "-o", "x.png")
+    assert code == 2 and "folder" in err and len(err.strip().splitlines()) == 1
+    assert [p.name for p in tmp_path.iterdir()] == ["x.png"] and not any((tmp_path / "x.png").iterdir())
+
+
+def test_mistake_through_the_real_command_has_no_traceback(tmp_path):
+    p = run("render", "sin(u", "-o", "x.png", cwd=tmp_path)
+    assert p.returncode == 2
+    assert "Traceback" not in p.stderr and len(p.stderr.strip().splitlines()) == 1
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_help_has_examples_and_version():
+    p = subprocess.run([sys.executable, "-m", "floatcol.cli", "--help"], capture_output=True, text=True)
+    assert p.returncode == 0 and "examples:" in p.stdout and "floatcol animate" in p.stdout
     p = subprocess.run([sys.executable, "-m", "floatcol.cli", "--version"], capture_output=True, text=True)
-    assert p.returncode == 0 and p.stdout.startswith("floatcol ")
+    import floatcol
+    assert p.returncode == 0 and p.stdout.strip() == f"floatcol {floatcol.__version__}"

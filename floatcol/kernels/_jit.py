@@ -2,8 +2,9 @@
 import numba
 from numba import types
 
-#: Signature of every user function the kernels call: w = f(u, v).
-SURFACE_SIG = types.float64(types.float64, types.float64)
+#: Signature of every user function the kernels call: w = f(u, v, t), t the surface's
+#: parameter (the time of a time-varying surface; ignored by most functions).
+SURFACE_SIG = types.float64(types.float64, types.float64, types.float64)
 #: First-class function type of such a function (DESIGN.md section 4).
 SurfaceFn = types.FunctionType(SURFACE_SIG)
 
@@ -14,7 +15,7 @@ ngjit_parallel = numba.njit(cache=True, nogil=True, parallel=True, error_model="
 
 
 def compile_surface_fn(pyfunc):
-    """Compile a scalar Python function ``(u, v) -> float`` to a Numba cfunc.
+    """Compile a scalar Python function ``(u, v, t) -> float`` to a Numba cfunc.
 
     ``error_model="numpy"`` makes 1/0 an infinity (a hole), never an exception.
     """

@@ -44,13 +44,15 @@ def heightfield_eval(hf, hfp, u, v):
 
 @ngjit
 def surface_eval(kind, f, fu, fv, hf, hfp, u, v):
-    """w = f(u, v) and its partials; NaN w means a hole."""
+    """w = f(u, v) and its partials; NaN w means a hole. A function surface's
+    parameter t (the time of an animation) is hfp[0]."""
     if kind == SURF_HEIGHTFIELD:
         return heightfield_eval(hf, hfp, u, v)
-    w = f(u, v)
+    t = hfp[0]
+    w = f(u, v, t)
     if not math.isfinite(w):
         return np.nan, np.nan, np.nan
-    return w, fu(u, v), fv(u, v)
+    return w, fu(u, v, t), fv(u, v, t)
 
 
 @ngjit

@@ -1,0 +1,195 @@
+"""Time-varying surfaces w = f(u, v, t) (Gordon §6.1: a new picture per frame).
+
+``fc.animate(expr, (u, a, b), (v, c, d), t=(0, 2*pi), frames=60, output="wave.gif")``
+renders each frame with one camera, scale and colormap range for the whole clip (fitted
+to the envelope of all frames, so nothing jumps) and writes a GIF (Pillow) or an MP4
+(imageio-ffmpeg, the optional ``video`` extra).
+"""
+from __future__ import annotations
+
+import base64
+import math
+
+import numpy as np
+
+from .output import atomic_file, check_output
+from .plot import parse_ranges, plot_surface, render_view
+from .surface import as_surface, check_range, sympify_expression
+
+ANIMATION_FORMATS = {".gif": "GIF", ".mp4": "MP4"}
+
+
+class Animation:
+    """Frames of a time-varying surface: ``frames`` (list of (H, W, 4) uint8),
+    ``times``, ``fps``; ``save(path)`` writes .gif or .mp4."""
+
+    def __init__(self, frames, times, fps, stats=None):
+        self.frames = frames
+        self.times = times
+        self.fps = fps
+        self.stats = stats or {}
+
+    def __len__(self):
+        return len(self.frames)
+
+    def save(self, path):
+        path, ext = check_output(path, ANIMATION_FORMATS)
+        if ext == ".gif":
+            write_gif(self.frames, path, self.fps)
+        else:
+            write_mp4(self.frames, path, self.fps)
+        return path
+
+    def _repr_html_(self):
+        import io
+        buf = io.BytesIO()
+        _gif_images(self.frames)[0].save(buf, format="GIF", save_all=True,
+                                          append_images=_gif_images(self.frames)[1:],
+                                          duration=round(1000 / self.fps), loop=0)
+        data = base64.b64encode(buf.getvalue()).decode("ascii")
+        return f'<img src="data:image/gif;base64,{data}"/>'
+
+
+def _gif_images(frames):
+    from PIL import Image
+    out = []
+    for f in frames:
+        img = Image.fromarray(np.ascontiguousarray(f), "RGBA")
+        white = Image.new("RGBA", img.size, (255, 255, 255, 255))
+        out.append(Image.alpha_composite(white, img).convert("RGB").quantize(
+            colors=255, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE))
+    return out
+
+
+def write_gif(frames, path, fps):
+    images = _gif_images(frames)
+    with atomic_file(path) as tmp:
+        images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:],
+                       duration=max(20, round(1000 / fps)), loop=0)
+
+
+def write_mp4(frames, path, fps):
+    try:
+        import imageio_ffmpeg
+    except ImportError:
+        raise ValueError("writing MP4 needs imageio-ffmpeg: pip install 'floatcol[video]' "
+                         "(or write a .gif)") from None
+    h, w = frames[0].shape[:2]
+    H, W = h + h % 2, w + w % 2                 # yuv420p wants even sides
+    with atomic_file(path) as tmp:
+        writer = imageio_ffmpeg.write_frames(tmp, (W, H), fps=fps, codec="libx264",
+                                             pix_fmt_in="rgb24", pix_fmt_out="yuv420p",
+                                             macro_block_size=1, quality=8,
+                                             output_params=["-f", "mp4"])
+        writer.send(None)
+        try:
+            for f in frames:
+                rgb = np.full((H, W, 3), 255, dtype=np.uint8)
+                a = f[..., 3:4].astype(np.float32) / 255.0
+                rgb[:h, :w] = np.round(f[..., :3] * a + 255.0 * (1.0 - a)).astype(np.uint8)
+                writer.send(np.ascontiguousarray(rgb))
+        finally:
+            writer.close()
+
+
+class _Envelope:
+    """The upper or lower envelope of several surfaces: what the clip's camera fits."""
+
+    default_domain = None
+
+    def __init__(self, surfaces, upper):
+        self.surfaces = surfaces
+        self.upper = upper
+        self.variables = surfaces[0].variables
+
+    def evaluate(self, u, v):
+        ws = np.stack([s.evaluate(u, v) for s in self.surfaces])
+        fin = np.isfinite(ws)
+        if self.upper:
+            out = np.where(fin, ws, -np.inf).max(axis=0)
+        else:
+            out = np.where(fin, ws, np.inf).min(axis=0)
+        return np.where(np.isfinite(out), out, np.nan)
+
+
+def _time_range(t):
+    if isinstance(t, (tuple, list)) and len(t) == 3:
+        name, lo, hi = t
+        name = str(name)
+    elif isinstance(t, (tuple, list)) and len(t) == 2:
+        name, (lo, hi) = "t", t
+    else:
+        raise ValueError(f"t must be (low, high) or (symbol, low, high), got {t!r}")
+    try:
+        lo, hi = float(lo), float(hi)
+    except (TypeError, ValueError):
+        raise ValueError(f"the bounds of {name} must be real numbers, got {t!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi)) or lo == hi:
+        raise ValueError(f"the time range {name} = {lo}..{hi} must be finite and not empty")
+    return name, lo, hi
+
+
+def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
+            endpoint=False, progress=True, **options) -> Animation:
+    """Render w = f(u, v, t) at ``frames`` times in ``t`` = (low, high) or
+    (symbol, low, high) (the symbol defaults to t). ``endpoint=False`` leaves out
+    t = high, so a periodic clip loops without a repeated frame. ``output``: a .gif or
+    .mp4 file to write. Other options as :func:`floatcol.plot_surface`. Returns an
+    :class:`Animation`.
+    """
+    import time as _time
+
+    from tqdm.auto import tqdm
+
+    t_name, t_lo, t_hi = _time_range(t)
+    if isinstance(frames, bool) or not isinstance(frames, (int, np.integer)) or frames < 1:
+        raise ValueError(f"frames must be a positive whole number, got {frames!r}")
+    if not isinstance(fps, (int, float)) or isinstance(fps, bool) or not 0 < fps <= 120:
+        raise ValueError(f"fps must be a number in (0, 120], got {fps!r}")
+    if output is not None:
+        output, _ = check_output(output, ANIMATION_FORMATS)
+    start = _time.perf_counter()
+    names, bounds = parse_ranges(expr, ranges, extra=(t_name,))
+    if t_name in names:
+        raise ValueError(f"{t_name} is the time; the surface's variables must be two others")
+    base = as_surface(sympify_expression(expr, names + (t_name,)), names, time=t_name)
+    domain = tuple(check_range(n, b if b is not None else (-10.0, 10.0))
+                   for n, b in zip(names, bounds))
+    times = np.linspace(t_lo, t_hi, frames, endpoint=endpoint and frames > 1)
+    surfaces = [base.at(tk) for tk in times]      # one compilation for the clip
+    ranges_ = [(names[0], *domain[0]), (names[1], *domain[1])]
+
+    # One camera for the clip: fitted to the envelope of all frames.
+    vmin, vmax = options.pop("vmin", None), options.pop("vmax", None)
+    first = plot_surface(surfaces[0], *ranges_, vmin=0.0, vmax=1.0, **options)
+    kw = first.render_kwargs(first.size)
+    upper, lower = _Envelope(surfaces, True), _Envelope(surfaces, False)
+    (ua, ub), (va, vb) = domain
+    gu, gv = np.meshgrid(np.linspace(ua, ub, 65), np.linspace(va, vb, 65))
+    hi_grid, lo_grid = upper.evaluate(gu, gv), lower.evaluate(gu, gv)
+    w_hi = float(np.nanmax(hi_grid)) if np.isfinite(hi_grid).any() else 1.0
+    w_lo = float(np.nanmin(lo_grid)) if np.isfinite(lo_grid).any() else 0.0
+    fixed = {}
+    if kw.get("scale") is None:
+        center = kw.get("center") or (0.5 * (ua + ub), 0.5 * (va + vb), 0.5 * (w_lo + w_hi))
+        kw_fit = dict(kw, center=center)
+        views = [render_view(s, kw_fit) for s in (upper, lower)]
+        fixed.update(scale=min(v.scale for v in views), center=tuple(center))
+        if kw["projection"] == "perspective":
+            fixed.update(d1=min(v.d1 for v in views), d2=max(v.d2 for v in views))
+            options.pop("focal_length", None)
+    if "norm" not in options:
+        fixed["vmin"] = w_lo if vmin is None else vmin
+        fixed["vmax"] = (w_hi if w_hi > w_lo else w_lo + 1.0) if vmax is None else vmax
+    out = []
+    samples = 0
+    for s in tqdm(surfaces, desc="floatcol animate", unit="frame", delay=1.0,
+                  disable=not progress, leave=False):
+        r = plot_surface(s, *ranges_, **options, **fixed).draw()
+        samples += r.stats["samples"]
+        out.append(r.rgba)
+    anim = Animation(out, times, fps, {"samples": samples,
+                                       "seconds": _time.perf_counter() - start})
+    if output is not None:
+        anim.save(output)
+    return anim

@@ -27,6 +27,7 @@ class SurfaceImage(AxesImage):
     @classmethod
     def attach(cls, plot, ax, interactive=False):
         art = cls(ax, plot)
+        art.set_extent((*ax.get_xlim(), *ax.get_ylim()))
         plot.artist = art
         ax.add_image(art)
         ax.set_axis_off()
@@ -52,6 +53,9 @@ class SurfaceImage(AxesImage):
         self._imcache = None
         self.set_extent((x0, x1, y0, y1))
         super().draw(renderer)
+
+    def get_window_extent(self, renderer=None):
+        return self.axes.bbox
 
     def get_cursor_data(self, event):
         """The surface point under the mouse: (u, v, w), or None over background."""

@@ -38,6 +38,7 @@ class View:
     step: float            # distance between sampling planes
     w_range: tuple         # estimated range of w over the domain
     light: tuple = (0.0, 0.0, 0.0)   # toward a directional light; zeros = headlight
+    f_range: tuple = (0.0, 0.0)       # min and max of f on the fitting grid
 
     @property
     def alpha(self):
@@ -74,6 +75,7 @@ class View:
         vp[L.VP_T0], vp[L.VP_T1] = self.t_range
         vp[L.VP_DT] = self.step
         vp[L.VP_LX], vp[L.VP_LY], vp[L.VP_LZ] = self.light
+        vp[L.VP_FLO], vp[L.VP_FHI] = self.f_range
         return vp
 
     def to_screen(self, u, v, w):
@@ -245,7 +247,7 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
         light = tuple(lv / np.linalg.norm(lv))
     return View(width, height, elev, azim, ortho, float(d1), float(d2), float(scale),
                 tuple(float(c) for c in center), ((float(ua), float(ub)), (float(va), float(vb))),
-                t_range, float(step), w_range, light)
+                t_range, float(step), w_range, light, (wmin_all, wmax_all))
 
 
 def _robust_range(grid):

@@ -43,3 +43,19 @@ def test_complex_values_are_holes():
     r = fc.render("sqrt(-1)*u + 1", u=(-1, 1), v=(-1, 1), size=(40, 30))
     assert (r.side == 0).all()
     assert np.isnan(r.intensity).all()
+
+
+@pytest.mark.parametrize("projection", ["orthographic", "perspective"])
+def test_ring_with_two_vertical_rims_matches_ray_caster(projection):
+    """An annulus whose inner and outer rims are vertical (f_u, f_v infinite there).
+    In perspective, Newton's placement on the column plane used to leave the surface
+    at the rims and whole columns went missing; the bracketed fallback finds them.
+    Measured agreement: 98.89 % ortho, 99.10 % persp (the rims, which the ray
+    caster's marching also grazes)."""
+    expr, u = "sqrt(4 - u**2 - v**2) + sqrt(u**2 + v**2 - 1) - 2", (-2.2, 2.2)
+    r = fc.render(expr, u=u, v=u, size=(160, 120), elev=30, azim=20, shading="lambert",
+                  projection=projection)
+    ref = reference_for(r, expr, u, u, 30, 20, projection)
+    assert (r.side == ref.side).mean() > 0.985
+    # every column the ray caster sees surface in, floatcol does too
+    assert ((r.side != 0).any(axis=0) == (ref.side != 0).any(axis=0)).mean() > 0.98

@@ -26,7 +26,9 @@ VP_DT = 21        # distance between sampling planes
 VP_LX = 22        # unit vector toward a directional light, screen coordinates;
 VP_LY = 23        # all zero = light at the viewpoint (the reference model)
 VP_LZ = 24
-VP_SIZE = 25
+VP_FLO = 25       # min and max of f on the fitting grid (where perspective samples
+VP_FHI = 26       # search for the surface when Newton fails)
+VP_SIZE = 27
 
 # Surface kinds
 SURF_FUNCTION = 0

@@ -10,7 +10,7 @@ from ._jit import ngjit
 from .layout import (
     S_BEHIND, S_HOLE, S_OK, S_OUTSIDE, SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_H, VP_LX, VP_LY, VP_LZ, VP_ORTHO,
-    VP_SA, VP_SB, VP_W,
+    VP_FHI, VP_FLO, VP_SA, VP_SB, VP_W,
     VP_SCALE, VP_UA, VP_UB, VP_VA, VP_VB,
 )
 
@@ -18,6 +18,10 @@ from .layout import (
 # point still count as inside.
 DOMAIN_EPS = 1e-9
 NEWTON_ITERS = 12
+SCAN_MIN = 3          # fallback scan of s when Newton fails (holes, steep rims):
+SCAN_MAX = 24         # about one point per SCAN_PIXELS of the searched segment
+SCAN_PIXELS = 4.0
+BISECT_ITERS = 40
 
 
 @ngjit
@@ -130,10 +134,20 @@ def sample_point(kind, f, fu, fv, hf, hfp, vp, x0, t, s_guess):
             if dg == 0.0 or not math.isfinite(dg):
                 break
             s = s - g / dg
-        if not math.isfinite(w):
-            return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
-        if abs(k * g) * vp[VP_SCALE] > 1e-2:     # Newton did not converge
-            return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
+        if not math.isfinite(w) or abs(k * g) * vp[VP_SCALE] > 1e-3:
+            # Newton left the surface (a hole, or a steep rim where f_u, f_v blow
+            # up): bracket a root of g(s) = f - cw - s over the range of w instead.
+            s_b, n_b = _bracketed_s(kind, f, fu, fv, hf, hfp, vp, r0, k, t, s)
+            evals += n_b
+            if not math.isfinite(s_b):
+                return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
+            r = r0 + k * s_b
+            u = cu + r * cb + t * sb
+            v = cv - r * sb + t * cb
+            w, wu, wv = surface_eval(kind, f, fu, fv, hf, hfp, u, v)
+            evals += 1
+            if not math.isfinite(w):
+                return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
         if not in_domain(vp, u, v):
             return S_OUTSIDE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
         s = w - cw
@@ -178,3 +192,68 @@ def eval_grid(kind, f, fu, fv, hf, hfp, u, v, out):
         out[i, 0] = w
         out[i, 1] = wu
         out[i, 2] = wv
+
+
+@ngjit
+def _g_at(kind, f, fu, fv, hf, hfp, vp, r0, k, t, s):
+    """g(s) = f(u(s), v(s)) - cw - s on the line of plane t inside Pi (NaN: a hole)."""
+    r = r0 + k * s
+    u = vp[VP_CU] + r * vp[VP_CB] + t * vp[VP_SB]
+    v = vp[VP_CV] - r * vp[VP_SB] + t * vp[VP_CB]
+    w = surface_eval(kind, f, fu, fv, hf, hfp, u, v)[0]
+    return w - vp[VP_CW] - s
+
+
+@ngjit
+def _bracketed_s(kind, f, fu, fv, hf, hfp, vp, r0, k, t, s_near):
+    """The root of g nearest ``s_near``, found by scanning s over the range of f on
+    the fitting grid (with a quarter of it to spare on each side), about one point
+    per SCAN_PIXELS of the segment's length on screen, then bisecting. NaN when g
+    has no sign change between two finite values (the line meets only holes).
+    Returns (s, evaluations)."""
+    spare = 0.25 * (vp[VP_FHI] - vp[VP_FLO]) + 1e-9
+    s_lo = vp[VP_FLO] - spare - vp[VP_CW]
+    s_hi = vp[VP_FHI] + spare - vp[VP_CW]
+    seg_px = abs(k) * (s_hi - s_lo) * vp[VP_SCALE]
+    n = min(SCAN_MAX, max(SCAN_MIN, int(math.ceil(seg_px / SCAN_PIXELS)) + 1))
+    ds = (s_hi - s_lo) / (n - 1)
+    evals = 0
+    best_a = np.nan
+    best_b = np.nan
+    ga_best = np.nan
+    prev_s = s_lo
+    prev_g = _g_at(kind, f, fu, fv, hf, hfp, vp, r0, k, t, s_lo)
+    evals += 1
+    for i in range(1, n):
+        cur_s = s_lo + i * ds
+        cur_g = _g_at(kind, f, fu, fv, hf, hfp, vp, r0, k, t, cur_s)
+        evals += 1
+        if math.isfinite(prev_g) and math.isfinite(cur_g) and (prev_g >= 0.0) != (cur_g >= 0.0):
+            mid = 0.5 * (prev_s + cur_s)
+            if not math.isfinite(best_a) or abs(mid - s_near) < abs(0.5 * (best_a + best_b) - s_near):
+                best_a = prev_s
+                best_b = cur_s
+                ga_best = prev_g
+        prev_s = cur_s
+        prev_g = cur_g
+    if not math.isfinite(best_a):
+        return np.nan, evals
+    a = best_a
+    b = best_b
+    ga = ga_best
+    tol = 1e-4 / (vp[VP_SCALE] * max(abs(k), 1e-12))
+    for _ in range(BISECT_ITERS):
+        m = 0.5 * (a + b)
+        gm = _g_at(kind, f, fu, fv, hf, hfp, vp, r0, k, t, m)
+        evals += 1
+        if not math.isfinite(gm):
+            # a hole inside the bracket: keep the half next to the finite end a
+            b = m
+        elif (gm >= 0.0) == (ga >= 0.0):
+            a = m
+            ga = gm
+        else:
+            b = m
+        if abs(k * (b - a)) * vp[VP_SCALE] <= 1e-4 and abs(b - a) <= tol:
+            break
+    return a if math.isfinite(ga) else np.nan, evals

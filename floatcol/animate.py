@@ -21,7 +21,8 @@ ANIMATION_FORMATS = {".gif": "GIF", ".mp4": "MP4"}
 
 class Animation:
     """Frames of a time-varying surface: ``frames`` (list of (H, W, 4) uint8),
-    ``times``, ``fps``; ``save(path)`` writes .gif or .mp4."""
+    ``times``, ``fps``; ``save(path)`` writes .gif or .mp4. ``stats["camera"]`` holds
+    the plot_surface options the whole clip was drawn with (scale, center, vmin, ...)."""
 
     def __init__(self, frames, times, fps, stats=None):
         self.frames = frames
@@ -189,7 +190,8 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
         samples += r.stats["samples"]
         out.append(r.rgba)
     anim = Animation(out, times, fps, {"samples": samples,
-                                       "seconds": _time.perf_counter() - start})
+                                       "seconds": _time.perf_counter() - start,
+                                       "camera": fixed})
     if output is not None:
         anim.save(output)
     return anim

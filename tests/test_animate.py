@@ -1,0 +1,76 @@
+"""Time-varying surfaces: one compilation, one camera, the right frames."""
+import math
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import floatcol as fc
+
+
+def test_surface_at_t_equals_the_substituted_expression():
+    s = fc.as_surface("sin(u - t)*cos(v)", time="t")
+    u = np.linspace(-2, 2, 7)
+    v = np.linspace(-1, 1, 7)
+    for t in (0.0, 0.7, 2.5):
+        st = s.at(t)
+        assert st.f is s.f                                    # no recompilation
+        fixed = fc.as_surface(f"sin(u - {t})*cos(v)")
+        assert np.allclose(st.evaluate(u, v, derivatives=True),
+                           fixed.evaluate(u, v, derivatives=True), atol=1e-12)
+
+
+def test_frames_follow_the_formula_and_share_one_camera():
+    anim = fc.animate("sin(x - t)", ("x", -3, 3), ("y", -1, 1), t=(0, 2 * math.pi),
+                      frames=4, size=(80, 60), proj_type="ortho", progress=False)
+    # t = 2 pi is left out (endpoint=False), so a periodic clip loops cleanly
+    assert len(anim) == 4 and anim.times == pytest.approx([0, math.pi / 2, math.pi, 1.5 * math.pi])
+    camera = anim.stats["camera"]
+    assert {"scale", "center", "vmin", "vmax"} <= set(camera)
+    for k in (1, 2):
+        alone = fc.plot_surface(f"sin(x - {float(anim.times[k])!r})", ("x", -3, 3), ("y", -1, 1),
+                                size=(80, 60), proj_type="ortho", **camera).rgba
+        assert np.abs(alone.astype(int) - anim.frames[k]).max() <= 1
+    assert not np.array_equal(anim.frames[0], anim.frames[2])
+
+
+def test_fixed_camera_across_frames():
+    """The clip's scale and colour range come from all frames: a bump that grows
+    keeps the ground plane fixed on screen."""
+    anim = fc.animate("t*exp(-(x^2 + y^2))", ("x", -2, 2), ("y", -2, 2), t=(0, 1), frames=3,
+                      endpoint=True, size=(80, 60), progress=False)
+    extents = []
+    for f in anim.frames:
+        rows, cols = np.nonzero(f[..., :3].astype(int).sum(axis=2) < 3 * 250)
+        extents.append((rows.max(), cols.min(), cols.max()))
+    # the plane's near, left and right corners stay on the same pixels
+    assert extents[0] == extents[1] == extents[2]
+    # while a single frame fitted on its own would be framed differently
+    alone = fc.plot_surface("0*x", ("x", -2, 2), ("y", -2, 2), size=(80, 60)).rgba
+    rows, cols = np.nonzero(alone[..., :3].astype(int).sum(axis=2) < 3 * 250)
+    assert (rows.max(), cols.min(), cols.max()) != extents[0]
+
+
+def test_gif_and_mp4(tmp_path):
+    anim = fc.animate("sin(x + t)*cos(y)", ("x", -3, 3), ("y", -3, 3), t=(0, 1), frames=5,
+                      size=(63, 47), output=tmp_path / "a.gif", progress=False)
+    assert Image.open(tmp_path / "a.gif").n_frames == 5
+    anim.save(tmp_path / "a.mp4")
+    data = (tmp_path / "a.mp4").read_bytes()
+    assert data[4:8] == b"ftyp"
+    import imageio_ffmpeg
+    frames = list(imageio_ffmpeg.read_frames(str(tmp_path / "a.mp4")))
+    assert len(frames) - 1 == 5                               # first item is metadata
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.gif", "a.mp4"]
+    assert "data:image/gif;base64" in anim._repr_html_()
+
+
+@pytest.mark.parametrize("kw,needle", [
+    (dict(frames=0), "frames"), (dict(t=(1, 1)), "time range"), (dict(t=5), "t must be"),
+    (dict(fps=0), "fps"), (dict(output="clip.avi"), "must end in"),
+])
+def test_bad_animation_options(kw, needle, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError, match=needle):
+        fc.animate("sin(x - t)", ("x", -1, 1), ("y", -1, 1), size=(20, 20), progress=False, **kw)
+    assert list(tmp_path.iterdir()) == []

@@ -1,0 +1,125 @@
+"""The matplotlib artist: re-rendered at the Axes' true pixel size on every draw."""
+import io
+
+import matplotlib
+import numpy as np
+import pytest
+from PIL import Image
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.backend_bases import MouseEvent  # noqa: E402
+
+import floatcol as fc  # noqa: E402
+
+EXPR = "3*sin(x*cos(y))"
+RNG = (("x", -5, 5), ("y", -5, 5))
+
+
+@pytest.fixture
+def fig_ax():
+    fig = plt.figure(figsize=(4, 3), dpi=100)
+    ax = fig.add_axes((0.1, 0.1, 0.6, 0.8))
+    yield fig, ax
+    plt.close(fig)
+
+
+def _png(fig, **kw):
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", **kw)
+    return np.asarray(Image.open(buf))
+
+
+def test_savefig_renders_at_the_axes_pixel_size(fig_ax):
+    fig, ax = fig_ax
+    plot = fc.plot_surface(EXPR, *RNG, ax=ax)
+    for dpi in (100, 300):
+        out = _png(fig, dpi=dpi)
+        w, h = round(0.6 * 4 * dpi), round(0.8 * 3 * dpi)
+        assert plot.render.rgba.shape == (h, w, 4)
+        # the figure holds the render pixel for pixel (no resampling): the Axes
+        # occupies rows/columns from its bbox; compare where the surface is
+        x0 = round(0.1 * 4 * dpi)
+        y0 = out.shape[0] - round(0.1 * 3 * dpi) - h
+        region = out[y0:y0 + h, x0:x0 + w, :3].astype(int)
+        mine = plot.render.rgba[..., :3].astype(int)
+        seen = plot.render.side != 0
+        assert (np.abs(region - mine).max(axis=2)[seen] <= 1).mean() > 0.999
+
+
+def test_resize_gives_a_new_render_size(fig_ax):
+    fig, ax = fig_ax
+    plot = fc.plot_surface(EXPR, *RNG, ax=ax)
+    fig.canvas.draw()
+    assert plot.render.rgba.shape[:2] == (240, 240)
+    fig.set_size_inches(8, 2)
+    fig.canvas.draw()
+    assert plot.render.rgba.shape[:2] == (160, 480)
+
+
+def test_vector_output_embeds_a_full_resolution_image(fig_ax, tmp_path):
+    fig, ax = fig_ax
+    plot = fc.plot_surface(EXPR, *RNG, ax=ax)
+    fig.savefig(tmp_path / "f.pdf", dpi=200)
+    assert plot.render.rgba.shape[:2] == (480, 480)
+    assert (tmp_path / "f.pdf").read_bytes()[:4] == b"%PDF"
+
+
+def test_colorbar_shows_the_height_colormap(fig_ax):
+    fig, ax = fig_ax
+    plot = fc.plot_surface(EXPR, *RNG, ax=ax, cmap="magma", vmin=-3, vmax=3)
+    cb = fig.colorbar(plot)
+    assert cb.mappable is plot and cb.cmap.name == "magma"
+    assert (cb.vmin, cb.vmax) == (-3, 3)
+    fig.canvas.draw()
+    plot.set_clim(-1, 1)                       # a ScalarMappable change re-colours
+    assert plot.artist.stale
+    before = plot.render.rgba.copy()
+    fig.canvas.draw()
+    assert cb.vmin == -1
+    assert not np.array_equal(before, plot.render.rgba)
+
+
+def _mouse(fig, name, x, y, button=1, step=0):
+    ev = MouseEvent(name, fig.canvas, x, y, button=button, step=step)
+    fig.canvas.callbacks.process(name, ev)
+
+
+def test_interactive_drag_rotates_and_scroll_zooms(fig_ax):
+    fig, ax = fig_ax
+    plot = fc.plot_surface(EXPR, *RNG, ax=ax, interactive=True)
+    fig.canvas.draw()
+    first = plot.render
+    bb = ax.bbox
+    cx, cy = bb.x0 + bb.width / 2, bb.y0 + bb.height / 2
+    _mouse(fig, "button_press_event", cx, cy)
+    _mouse(fig, "motion_notify_event", cx + bb.width / 4, cy)      # a quarter: 45 degrees
+    assert plot.azim == pytest.approx(-60 - 45)
+    fig.canvas.draw()
+    drag = plot.render
+    assert drag.view.azim != first.view.azim
+    _mouse(fig, "button_release_event", cx + bb.width / 4, cy)
+    fig.canvas.draw()
+    final = plot.render
+    # while dragging the planes are 2 pixels apart: about half the samples
+    assert drag.stats["step"] == pytest.approx(2 * final.stats["step"], rel=1e-9)
+    assert drag.stats["samples"] < 0.7 * final.stats["samples"]
+    assert final.view.azim == drag.view.azim
+    _mouse(fig, "scroll_event", cx, cy, button="up", step=2)
+    fig.canvas.draw()
+    assert plot.render.view.scale == pytest.approx(final.view.scale * 1.1 ** 2, rel=1e-9)
+
+
+def test_cursor_data_is_the_surface_point(fig_ax):
+    fig, ax = fig_ax
+    plot = fc.plot_surface("x + 2*y", ("x", -1, 1), ("y", -1, 1), ax=ax, proj_type="ortho")
+    fig.canvas.draw()
+    r = plot.render
+    rows, cols = np.nonzero(r.side > 0)
+    i = len(rows) // 2
+    bb = ax.bbox
+    ev = MouseEvent("motion_notify_event", fig.canvas, bb.x0 + (cols[i] + 0.5),
+                    bb.y1 - (rows[i] + 0.5))
+    u, v, w = plot.artist.get_cursor_data(ev)
+    assert w == pytest.approx(u + 2 * v, abs=1e-4)
+    assert "w=" in plot.artist.format_cursor_data((u, v, w))

@@ -1,0 +1,182 @@
+"""plot_surface: sympy plot3d's call forms, matplotlib's option names and angles."""
+import io
+
+import matplotlib
+import numpy as np
+import pytest
+import sympy as sp
+from PIL import Image
+
+matplotlib.use("Agg")
+
+import floatcol as fc  # noqa: E402
+from floatcol.plot import mpl_to_paper_angles  # noqa: E402
+
+x, y, a, b = sp.symbols("x y a b")
+SMALL = (64, 48)
+
+
+def test_call_forms_agree():
+    """Symbols, strings and sympy objects name the same surface and domain."""
+    ref = fc.plot_surface(sp.sin(x * y), (x, -2, 2), (y, -1, 1), size=SMALL)
+    same = [fc.plot_surface("sin(x*y)", ("x", -2, 2), ("y", -1, 1), size=SMALL),
+            fc.plot_surface("sin(x*y)", (x, -2, 2), (y, -1, 1), size=SMALL),
+            fc.plot_surface(sp.sin(x * y), (x, -2, 2), ("y", -1, 1), size=SMALL)]
+    for p in same:
+        assert p.surface.variables == ("x", "y")
+        assert p.domain == ((-2.0, 2.0), (-1.0, 1.0))
+        assert np.array_equal(p.rgba, ref.rgba)
+
+
+def test_range_order_decides_the_axes():
+    """The first range is the horizontal u axis, whatever the names sort to."""
+    p = fc.plot_surface(a + 2 * b, (b, 0, 1), (a, -3, 3), size=SMALL)
+    assert p.surface.variables == ("b", "a")
+    assert p.domain == ((0.0, 1.0), (-3.0, 3.0))
+    w = p.surface.evaluate(np.array([1.0]), np.array([0.5]))     # b = 1, a = 0.5
+    assert w[0] == pytest.approx(2.5)
+
+
+def test_default_ranges_are_sympys():
+    p = fc.plot_surface(x * y, size=SMALL)
+    assert p.surface.variables == ("x", "y")                      # sorted, as sympy
+    assert p.domain == ((-10.0, 10.0), (-10.0, 10.0))
+    q = fc.plot_surface("u - v", ("u", 0, 1), size=SMALL)          # the other: default
+    assert q.domain == ((0.0, 1.0), (-10.0, 10.0))
+
+
+def test_heightfield_keeps_its_extent():
+    z = np.add.outer(np.arange(5.0), np.arange(7.0))
+    p = fc.plot_surface(fc.HeightField(z, u=(0, 3), v=(0, 2)), size=SMALL)
+    assert p.domain == ((0.0, 3.0), (0.0, 2.0))
+
+
+@pytest.mark.parametrize("bad,needle", [
+    (dict(ranges=[(x, 2, 1)]), "reversed"),
+    (dict(ranges=[(x, 0, 1), (x, 0, 1)]), "same variable"),
+    (dict(ranges=[(x, 0, 1), (y, 0, 1), ("z", 0, 1)]), "at most two"),
+    (dict(ranges=[(x, 0)]), "(symbol, low, high)"),
+    (dict(expr=x * y * a, ranges=[(x, 0, 1), (y, 0, 1)]), "unknown symbol a"),
+    (dict(expr=x * y * a), "unknown symbol y: the variables are a and x"),
+    (dict(options=dict(camera=3)), "unknown option camera"),
+    (dict(options=dict(proj_type="fisheye")), "proj_type"),
+    (dict(options=dict(cmap="nosuchmap")), "nosuchmap"),
+    (dict(options=dict(norm=3)), "Normalize"),
+    (dict(options=dict(lightsource="north")), "LightSource"),
+    (dict(options=dict(elev=100)), "elev"),
+    (dict(options=dict(interactive=True)), "ax="),
+])
+def test_bad_input_names_what_to_fix(bad, needle):
+    expr = bad.get("expr", sp.sin(x * y))
+    with pytest.raises(ValueError, match=needle.replace("(", r"\(").replace(")", r"\)")):
+        fc.plot_surface(expr, *bad.get("ranges", []), size=SMALL, **bad.get("options", {}))
+
+
+def test_angles_follow_matplotlib():
+    """Project the domain's corners with matplotlib's own Axes3D camera (orthographic,
+    equal x/y ranges, so its box scaling is uniform) and with floatcol's View for the
+    same elev/azim: the two quadrilaterals agree up to scale and shift."""
+    import matplotlib.pyplot as plt
+    from mpl_toolkits.mplot3d import proj3d
+    cu = np.array([-1.0, 1.0, 1.0, -1.0])
+    cv = np.array([-1.0, -1.0, 1.0, 1.0])
+    cw = np.array([0.0, 0.0, 0.0, 0.0])
+    for elev, azim in [(30, -60), (45, 30), (20, 160), (60, -135)]:
+        fig = plt.figure()
+        ax = fig.add_subplot(projection="3d", proj_type="ortho")
+        ax.set_xlim(-1, 1)
+        ax.set_ylim(-1, 1)
+        ax.set_zlim(-1, 1)
+        ax.view_init(elev, azim)
+        mx, my, _ = proj3d.proj_transform(cu, cv, cw, ax.get_proj())
+        plt.close(fig)
+        p = fc.plot_surface("0*x", ("x", -1, 1), ("y", -1, 1), elev=elev, azim=azim,
+                            proj_type="ortho", size=(200, 200))
+        col, row = p.draw().view.project(cu, cv, cw)
+        ours = np.stack([col, -row], 1)
+        theirs = np.stack([mx, my], 1)
+        ours = (ours - ours.mean(0)) / np.linalg.norm(ours - ours.mean(0))
+        theirs = (theirs - theirs.mean(0)) / np.linalg.norm(theirs - theirs.mean(0))
+        assert np.abs(ours - theirs).max() < 1e-9, (elev, azim)
+    assert mpl_to_paper_angles(30, -60) == (30.0, -30.0)
+
+
+def test_lightsource_is_a_world_direction():
+    """A LightSource straight overhead lights a horizontal plane fully and equally in
+    every view; one at the horizon leaves it at the ambient level."""
+    from matplotlib.colors import LightSource
+    for azim in (-60, 40):
+        top = fc.plot_surface("0*x + 1", ("x", -1, 1), ("y", -1, 1), size=SMALL, azim=azim,
+                              lightsource=LightSource(azdeg=0, altdeg=90), ambient=0.2).draw()
+        seen = top.side != 0
+        assert np.allclose(top.intensity[seen], 1.0, atol=1e-5)
+        low = fc.plot_surface("0*x + 1", ("x", -1, 1), ("y", -1, 1), size=SMALL, azim=azim,
+                              lightsource=LightSource(azdeg=0, altdeg=0), ambient=0.2).draw()
+        assert np.allclose(low.intensity[low.side != 0], 0.2, atol=1e-5)
+
+
+def test_shade_false_gives_flat_colour():
+    p = fc.plot_surface("x*y", ("x", -1, 1), ("y", -1, 1), size=SMALL, color="red", shade=False)
+    up = p.render_kwargs(SMALL) and p.draw().side > 0
+    assert up.any()
+    assert np.all(p.rgba[up][:, :3] == [255, 0, 0])
+
+
+def test_vmin_vmax_and_norm_set_the_colours():
+    from matplotlib.colors import LogNorm, Normalize
+    p = fc.plot_surface("x + 2", ("x", -1, 1), ("y", -1, 1), size=SMALL, shade=False,
+                        cmap="gray", vmin=1, vmax=3)
+    r = p.draw()
+    up = r.side > 0
+    want = np.round((r.w[up] - 1) / 2 * 255)
+    assert np.abs(r.rgba[up][:, 0].astype(float) - want).max() <= 1.5
+    q = fc.plot_surface("x + 2", ("x", -1, 1), ("y", -1, 1), size=SMALL, shade=False,
+                        cmap="gray", norm=LogNorm(1, 3))
+    rq = q.draw()
+    upq = rq.side > 0
+    want = np.round(np.log(rq.w[upq]) / np.log(3) * 255)
+    assert np.abs(rq.rgba[upq][:, 0].astype(float) - want).max() <= 1.5
+    lin = fc.plot_surface("x + 2", ("x", -1, 1), ("y", -1, 1), size=SMALL, norm=Normalize(1, 3))
+    assert (lin.norm.vmin, lin.norm.vmax) == (1, 3)
+
+
+def test_default_colour_range_is_f_over_the_domain():
+    p = fc.plot_surface("x", ("x", -3, 5), ("y", 0, 1), size=SMALL)
+    assert p.norm.vmin == pytest.approx(-3) and p.norm.vmax == pytest.approx(5)
+
+
+def test_focal_length_widens_the_perspective():
+    """A shorter focal length puts the eye nearer: the near edge grows relative to the
+    far edge, as with matplotlib's focal_length."""
+    def ratio(fl):
+        p = fc.plot_surface("0*x", ("x", -1, 1), ("y", -1, 1), size=(200, 200), elev=30,
+                            azim=-90, focal_length=fl)
+        view = p.draw().view
+        near = np.ptp(view.project(np.array([-1.0, 1.0]), np.array([-1.0, -1.0]), np.zeros(2))[0])
+        far = np.ptp(view.project(np.array([-1.0, 1.0]), np.array([1.0, 1.0]), np.zeros(2))[0])
+        return near / far
+    assert ratio(0.5) > ratio(2.0) > ratio(8.0) > 1.0
+
+
+@pytest.mark.parametrize("ext,magic", [(".png", b"\x89PNG"), (".jpg", b"\xff\xd8\xff"),
+                                       (".pdf", b"%PDF"), (".svg", b"<?xml")])
+def test_save_formats(tmp_path, ext, magic):
+    p = fc.plot_surface("sin(x)*y", ("x", -2, 2), ("y", -1, 1), size=SMALL)
+    p.save(tmp_path / ("s" + ext))
+    assert (tmp_path / ("s" + ext)).read_bytes()[:len(magic)] == magic
+    assert [f.name for f in tmp_path.iterdir()] == ["s" + ext]
+
+
+def test_save_refuses_unknown_format_and_writes_nothing(tmp_path):
+    p = fc.plot_surface("x", ("x", 0, 1), ("y", 0, 1), size=SMALL)
+    with pytest.raises(ValueError, match="must end in"):
+        p.save(tmp_path / "s.bmp")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_repr_png_is_the_picture():
+    p = fc.plot_surface("cos(x)*cos(y)", ("x", -3, 3), ("y", -3, 3), size=SMALL)
+    data = p._repr_png_()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    assert np.array_equal(np.asarray(Image.open(io.BytesIO(data))), p.rgba)
+    assert p.render.rgba.shape == (48, 64, 4)

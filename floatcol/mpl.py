@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from matplotlib.image import AxesImage
 
-DRAG_PIXEL_STEP = 2.0
+DRAG_PIXEL_STEP = 3.0
 ZOOM_PER_STEP = 1.1
 
 
@@ -45,7 +45,18 @@ class SurfaceImage(AxesImage):
     def draw(self, renderer):
         if not self.get_visible():
             return
-        r = self.plot.draw(self.pixel_size(renderer))
+        size = self.pixel_size(renderer)
+        r = self.plot.draw(size)
+        bb = self.axes.bbox
+        if renderer.get_image_magnification() == 1.0 and self.get_alpha() is None:
+            # a raster canvas: the render is already the Axes' pixels, so put it
+            # there directly (matplotlib's resampling would only copy it)
+            gc = renderer.new_gc()
+            gc.set_clip_rectangle(bb)
+            renderer.draw_image(gc, int(round(bb.x0)), int(round(bb.y0)), r.rgba[::-1])
+            gc.restore()
+            self.stale = False
+            return
         x0, x1 = self.axes.get_xlim()
         y0, y1 = self.axes.get_ylim()
         # set the data without the stale callbacks: this is the draw itself

@@ -1,0 +1,75 @@
+"""Draw the pictures the docs use (small PNGs committed under docs/img).
+
+Run: python docs/make_figures.py
+"""
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+import floatcol as fc  # noqa: E402
+
+IMG = Path(__file__).parent / "img"
+
+
+def camera():
+    """The paper's camera: viewpoint, screen, one pixel column's plane Pi and the
+    sampling planes t = const cutting the surface in the column's curve."""
+    fig = plt.figure(figsize=(7, 5), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    ax.view_init(22, -58)
+    u = np.linspace(-3, 3, 41)
+    U, V = np.meshgrid(u, u)
+    W = 0.6 * np.sin(U * np.cos(V / 1.5))
+    ax.plot_surface(U, V, W, color="#9ecae1", alpha=0.45, linewidth=0)
+    # the view: looking along +v from far back, a column plane Pi at u = 0.8
+    eye = np.array([0.8 * 0.2, -9.0, 3.2])
+    ax.scatter(*eye, color="k", s=20)
+    ax.text(*(eye + [0, 0, 0.4]), "viewpoint", fontsize=9)
+    # screen rectangle between the viewpoint and the surface
+    sv = -6.0
+    sx, sz = np.meshgrid([-1.6, 1.6], [0.2, 2.4])
+    ax.plot_surface(sx, np.full_like(sx, sv), sz, color="#fdd0a2", alpha=0.5)
+    ax.text(1.2, sv, 2.7, "screen", fontsize=9)
+    # the column: a vertical line on the screen; Pi = the plane through it and the eye
+    cx = 0.35
+    ax.plot([cx, cx], [sv, sv], [0.2, 2.4], color="#d62728", lw=2)
+    tt = np.linspace(-3, 3, 200)
+    k = (cx - eye[0]) / (sv - eye[1])          # Pi: u - eye_u = k (v - eye_v)
+    cu = eye[0] + k * (tt - eye[1])
+    cw = 0.6 * np.sin(cu * np.cos(tt / 1.5))
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    ends = [eye[0] + k * (v - eye[1]) for v in (sv, 3.0)]
+    pi = [(ends[0], sv, -1.2), (ends[1], 3.0, -1.2), (ends[1], 3.0, 2.4), (ends[0], sv, 2.4)]
+    ax.add_collection3d(Poly3DCollection([pi], color="#d62728", alpha=0.08))
+    ax.text(ends[1], 3.0, 2.5, "Π", fontsize=12, color="#d62728")
+    ax.plot(cu, tt, cw, color="#d62728", lw=2.2, label="the column's curve (Π ∩ surface)")
+    for t in np.linspace(-2.7, 2.7, 10):       # sampling planes t = const, front to back
+        uu = eye[0] + k * (t - eye[1])
+        ww = 0.6 * np.sin(uu * np.cos(t / 1.5))
+        ax.plot([uu, uu], [t, t], [-1.2, 1.6], color="#555", lw=0.6, alpha=0.6)
+        ax.scatter(uu, t, ww, color="#d62728", s=8)
+    ax.set_xlabel("u")
+    ax.set_ylabel("v")
+    ax.set_zlabel("w")
+    ax.set_box_aspect((1, 2, 0.7))
+    ax.legend(loc="upper left", fontsize=8)
+    ax.set_title("One pixel column: plane Π, sampling planes, samples front to back", fontsize=10)
+    fig.savefig(IMG / "camera.png", dpi=100, bbox_inches="tight")
+    plt.close(fig)
+
+
+def examples():
+    fc.plot_surface("3*sin(x*cos(y))", ("x", -5, 5), ("y", -5, 5), size=(480, 360),
+                    cmap="viridis").save(IMG / "demo.png")
+    fc.plot_surface("sin(x*y)", ("x", -3, 3), ("y", -3, 3), method="horizon", lines=90,
+                    size=(480, 360), proj_type="ortho").save(IMG / "horizon.png")
+
+
+if __name__ == "__main__":
+    IMG.mkdir(exist_ok=True)
+    camera()
+    examples()

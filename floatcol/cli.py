@@ -154,16 +154,9 @@ def main(argv=None):
 
 
 def _check_output(path, allowed):
-    ext = os.path.splitext(path)[1].lower()
-    if ext not in allowed:
-        raise UsageError(f"output {path!r} must end in {', '.join(allowed)}")
-    folder = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(folder):
-        raise UsageError(f"cannot write {path}: folder {folder} does not exist")
-    if not os.access(folder, os.W_OK):
-        raise UsageError(f"cannot write {path}: folder {folder} is not writable")
-    if os.path.isdir(path):
-        raise UsageError(f"cannot write {path}: it is a folder")
+    """Refuse a bad output path before any work (the same checks the writers make)."""
+    from .output import check_output
+    check_output(path, dict.fromkeys(allowed))
 
 
 def _ranges(args):

@@ -4,3 +4,41 @@ Nothing here imports sympy or matplotlib; the kernels see a surface only as thre
 compiled function values (f, f_u, f_v) or a height grid, and a view only as a flat
 float64 parameter vector (see ``layout.py``).
 """
+import hashlib as _hashlib
+import os as _os
+from pathlib import Path as _Path
+
+
+def _drop_stale_cache(here=None):
+    """Numba's disk cache checks only the file of the cached function itself, so a
+    kernel would keep a stale copy of a helper inlined from another file (sample.py
+    into column.py) after that file changes, e.g. after a ``git pull`` of an editable
+    install. Key the whole cache on a hash of every kernel source instead: when the
+    hash changes, drop the cached kernels (they recompile once)."""
+    here = _Path(__file__).resolve().parent if here is None else _Path(here)
+    digest = _hashlib.sha256()
+    for p in sorted(here.glob("*.py")):
+        digest.update(p.name.encode())
+        digest.update(p.read_bytes())
+    stamp_text = digest.hexdigest()
+    folders = [here / "__pycache__"]
+    if _os.environ.get("NUMBA_CACHE_DIR"):
+        folders.append(_Path(_os.environ["NUMBA_CACHE_DIR"]))
+    for folder in folders:
+        stamp = folder / "floatcol-kernels.stamp"
+        try:
+            if stamp.is_file() and stamp.read_text() == stamp_text:
+                continue
+            stems = {q.stem for q in here.glob("*.py")}
+            if folder.is_dir():
+                for f in folder.rglob("*"):
+                    if f.suffix in (".nbi", ".nbc") and f.name.split(".")[0] in stems \
+                            and "floatcol" in str(f):
+                        f.unlink()
+            folder.mkdir(parents=True, exist_ok=True)
+            stamp.write_text(stamp_text)
+        except OSError:          # a read-only install: numba caches elsewhere
+            pass
+
+
+_drop_stale_cache()

@@ -90,7 +90,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            shading="default", *, interpolation="normal", step=None, lines=DEFAULT_LINES,
            vars=None, center=None, cmap="viridis", upper_color=None,
            lower_color=color.DEFAULT_LOWER, vmin=None, vmax=None, background=None,
-           light=None, ambient=None, focal_length=None, pixel_step=1.0) -> Render:
+           light=None, ambient=None, focal_length=None, pixel_step=1.0,
+           placement="exact") -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -110,6 +111,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     interpolation : "normal" (nis, per-pixel lighting) or "intensity" (iis, Gouraud).
     step : distance between sampling planes; default ``pixel_step`` (1) pixels on screen
         (at the nearest point in perspective).
+    placement : perspective only: "exact" puts every sample on its column's plane
+        (ERRATA 2, the default); "paper" uses Gordon's approximate eq. (9) point,
+        which lies off the plane when elev != 0 (to reproduce the paper's figures).
     focal_length : perspective only, instead of d1/d2: matplotlib's focal length
         (the surface's bounding sphere fills a field of view of 2 atan(1/f)).
     center : world point (u, v, w) at the image centre. None: the middle of the
@@ -148,7 +152,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         light_dir = DEFAULT_LIGHT if light is None else light
         amb = DEFAULT_AMBIENT if ambient is None else _fraction("ambient", ambient)
     view = build_view(surface, domain, size, elev, azim, projection, d1, d2, scale,
-                      center, step, light_dir, focal_length, pixel_step)
+                      center, step, light_dir, focal_length, pixel_step, placement)
     hstride = 0
     n_lines = 1
     if method == "horizon":

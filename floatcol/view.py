@@ -39,6 +39,7 @@ class View:
     w_range: tuple         # estimated range of w over the domain
     light: tuple = (0.0, 0.0, 0.0)   # toward a directional light; zeros = headlight
     f_range: tuple = (0.0, 0.0)       # min and max of f on the fitting grid
+    placement: str = "exact"          # perspective: "exact" on Pi, or "paper" (eq. 9)
 
     @property
     def alpha(self):
@@ -76,6 +77,7 @@ class View:
         vp[L.VP_DT] = self.step
         vp[L.VP_LX], vp[L.VP_LY], vp[L.VP_LZ] = self.light
         vp[L.VP_FLO], vp[L.VP_FHI] = self.f_range
+        vp[L.VP_PAPER] = 1.0 if self.placement == "paper" else 0.0
         return vp
 
     def to_screen(self, u, v, w):
@@ -134,7 +136,7 @@ def check_size(size):
 
 def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthographic",
                d1=None, d2=None, scale=None, center=None, step=None, light=None,
-               focal_length=None, pixel_step=1.0) -> View:
+               focal_length=None, pixel_step=1.0, placement="exact") -> View:
     """Validate the camera options and fit what was left as None.
 
     ``scale=None`` fits the domain and the range of f into the image with a small
@@ -145,6 +147,9 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
     (at the nearest point in perspective), or ``pixel_step`` pixels apart.
     """
     width, height = check_size(size)
+    if placement not in ("exact", "paper"):
+        raise ValueError(f"placement must be 'exact' (samples on the column plane) or 'paper' "
+                         f"(Gordon's approximate eq. 9 point), got {placement!r}")
     elev = _number("elev", elev)
     if not -90.0 <= elev <= 90.0:
         raise ValueError(f"elev must be between -90 and 90 degrees, got {elev}")
@@ -247,7 +252,7 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
         light = tuple(lv / np.linalg.norm(lv))
     return View(width, height, elev, azim, ortho, float(d1), float(d2), float(scale),
                 tuple(float(c) for c in center), ((float(ua), float(ub)), (float(va), float(vb))),
-                t_range, float(step), w_range, light, (wmin_all, wmax_all))
+                t_range, float(step), w_range, light, (wmin_all, wmax_all), placement)
 
 
 def _robust_range(grid):

@@ -28,7 +28,8 @@ VP_LY = 23        # all zero = light at the viewpoint (the reference model)
 VP_LZ = 24
 VP_FLO = 25       # min and max of f on the fitting grid (where perspective samples
 VP_FHI = 26       # search for the surface when Newton fails)
-VP_SIZE = 27
+VP_PAPER = 27     # 1.0: perspective samples at the paper's eq. (9) point, off Pi
+VP_SIZE = 28
 
 # Surface kinds
 SURF_FUNCTION = 0

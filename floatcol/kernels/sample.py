@@ -10,7 +10,7 @@ from ._jit import ngjit
 from .layout import (
     S_BEHIND, S_HOLE, S_OK, S_OUTSIDE, SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_H, VP_LX, VP_LY, VP_LZ, VP_ORTHO,
-    VP_FHI, VP_FLO, VP_SA, VP_SB, VP_W,
+    VP_FHI, VP_FLO, VP_PAPER, VP_SA, VP_SB, VP_W,
     VP_SCALE, VP_UA, VP_UB, VP_VA, VP_VB,
 )
 
@@ -118,6 +118,12 @@ def sample_point(kind, f, fu, fv, hf, hfp, vp, x0, t, s_guess):
         u = 0.0
         v = 0.0
         g = np.inf
+        paper = vp[VP_PAPER] != 0.0
+        if paper:
+            # The paper's approximation (ERRATA 2): f at the eq. (9) point s = 0,
+            # displayed in this column although it lies off Pi when alpha != 0.
+            s = 0.0
+            k = 0.0
         for _ in range(NEWTON_ITERS):
             r = r0 + k * s
             u = cu + r * cb + t * sb             # eq. (2)
@@ -134,7 +140,7 @@ def sample_point(kind, f, fu, fv, hf, hfp, vp, x0, t, s_guess):
             if dg == 0.0 or not math.isfinite(dg):
                 break
             s = s - g / dg
-        if not math.isfinite(w) or abs(k * g) * vp[VP_SCALE] > 1e-3:
+        if not paper and (not math.isfinite(w) or abs(k * g) * vp[VP_SCALE] > 1e-3):
             # Newton left the surface (a hole, or a steep rim where f_u, f_v blow
             # up): bracket a root of g(s) = f - cw - s over the range of w instead.
             s_b, n_b = _bracketed_s(kind, f, fu, fv, hf, hfp, vp, r0, k, t, s)
@@ -148,6 +154,8 @@ def sample_point(kind, f, fu, fv, hf, hfp, vp, x0, t, s_guess):
             evals += 1
             if not math.isfinite(w):
                 return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
+        if not math.isfinite(w):
+            return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
         if not in_domain(vp, u, v):
             return S_OUTSIDE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
         s = w - cw

@@ -229,6 +229,7 @@ class SurfacePlot(_ScalarMappable):
         if shading != "lambert":
             if not self.shade:
                 kw["ambient"] = 1.0           # shade=False: flat colours, as matplotlib
+                kw["specular"] = 0.0
             elif self.ambient is not None:
                 kw["ambient"] = self.ambient
             if self.lightsource is not None:

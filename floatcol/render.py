@@ -27,6 +27,9 @@ DEFAULT_LINES = 160             # horizon lines, as in the paper's figures
 #: the key light of the default shading: from the upper left, toward the viewer
 DEFAULT_LIGHT = (-0.45, 0.55, -1.0)
 DEFAULT_AMBIENT = 0.25
+#: Phong highlights of the default shading (the paper has none)
+DEFAULT_SPECULAR = 0.2
+DEFAULT_SHININESS = 30.0
 
 
 @dataclass
@@ -91,7 +94,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            vars=None, center=None, cmap="viridis", upper_color=None,
            lower_color=color.DEFAULT_LOWER, vmin=None, vmax=None, background=None,
            light=None, ambient=None, focal_length=None, pixel_step=1.0,
-           placement="exact") -> Render:
+           placement="exact", specular=None, shininess=None) -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -111,6 +114,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     interpolation : "normal" (nis, per-pixel lighting) or "intensity" (iis, Gouraud).
     step : distance between sampling planes; default ``pixel_step`` (1) pixels on screen
         (at the nearest point in perspective).
+    specular, shininess : Phong highlights on top of the diffuse light (default
+        shading only; default 0.2 and 30; ``specular=0`` turns them off). They are
+        added to ``rgba``; ``intensity`` stays the ambient + diffuse term.
     placement : perspective only: "exact" puts every sample on its column's plane
         (ERRATA 2, the default); "paper" uses Gordon's approximate eq. (9) point,
         which lies off the plane when elev != 0 (to reproduce the paper's figures).
@@ -146,11 +152,17 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         if light is not None:
             raise ValueError("shading='lambert' lights from the viewpoint; leave light=None "
                              "or use shading='default'")
+        if specular:
+            raise ValueError("shading='lambert' is the diffuse reference model; use "
+                             "shading='default' for specular highlights")
         light_dir = None
         amb = 0.0 if ambient is None else _fraction("ambient", ambient)
+        spec = 0.0
     else:
         light_dir = DEFAULT_LIGHT if light is None else light
         amb = DEFAULT_AMBIENT if ambient is None else _fraction("ambient", ambient)
+        spec = DEFAULT_SPECULAR if specular is None else _fraction("specular", specular)
+    shine = DEFAULT_SHININESS if shininess is None else _positive("shininess", shininess)
     view = build_view(surface, domain, size, elev, azim, projection, d1, d2, scale,
                       center, step, light_dir, focal_length, pixel_step, placement)
     hstride = 0
@@ -190,7 +202,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         rgba = color.line_rgba(side, background=background)
     else:
         shade = np.empty((W, H), dtype=np.float32)
-        shade_kernel(gbuf, vp, INTERPOLATIONS[interpolation], amb, shade)
+        spec_img = np.empty((W, H), dtype=np.float32)
+        shade_kernel(gbuf, vp, INTERPOLATIONS[interpolation], amb, spec, shine, shade, spec_img)
         lut, lower_rgb = color.side_colors(shading, cmap, upper_color, lower_color)
         w_lo, w_hi = _height_limits(gbuf, vmin, vmax)
         w_limits = (w_lo, w_hi)
@@ -198,7 +211,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         side = np.empty((H, W), dtype=np.int8)
         depth = np.empty((H, W), dtype=np.float32)
         rgba = np.empty((H, W, 4), dtype=np.uint8)
-        finish_kernel(gbuf, shade, lut, w_lo, w_hi, lower_rgb, color.to_rgba8(background),
+        finish_kernel(gbuf, shade, spec_img, lut, w_lo, w_hi, lower_rgb, color.to_rgba8(background),
                       intensity, side, depth, rgba)
     t_end = time.perf_counter()
     stats = {
@@ -247,6 +260,16 @@ def _fraction(name, x):
         raise ValueError(f"{name} must be a number in [0, 1], got {x!r}") from None
     if not 0.0 <= x <= 1.0 or math.isnan(x):
         raise ValueError(f"{name} must be in [0, 1], got {x}")
+    return x
+
+
+def _positive(name, x):
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a positive number, got {x!r}") from None
+    if not x > 0 or not math.isfinite(x):
+        raise ValueError(f"{name} must be a positive number, got {x}")
     return x
 
 

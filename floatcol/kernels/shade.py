@@ -15,10 +15,15 @@ INTERP_NORMAL = 1      # nis: the normal is interpolated and lit at each pixel
 
 
 @ngjit_parallel
-def shade_kernel(gbuf, vp, interp, ambient, out):
+def shade_kernel(gbuf, vp, interp, ambient, specular, shininess, out, spec_out):
     """out (W, H) float32: I = ambient + (1 - ambient) |L.N| / (|L| |N|) in [0, 1],
     NaN where nothing is seen. The light is vp's directional light, or the viewpoint
     when that is zero (the exact reference model, eq. 12); the surface is two-sided.
+
+    spec_out (W, H) float32: Phong's specular term specular * max(R.V, 0)^shininess
+    (the paper has none), with V toward the viewpoint, N turned toward the viewer
+    (the side that is seen) and R the reflection of L about N; zero where the light
+    is behind the seen side. It uses the per-pixel normal in both interpolations.
     """
     W = gbuf.shape[0]
     H = gbuf.shape[1]
@@ -36,32 +41,60 @@ def shade_kernel(gbuf, vp, interp, ambient, out):
             px = gbuf[c, j]
             if px[G_SIDE] == 0.0:
                 out[c, j] = np.nan
+                spec_out[c, j] = 0.0
                 continue
+            # V: from the seen point toward the viewpoint (orthographic: the viewer)
+            if ortho:
+                vx = 0.0
+                vy = 0.0
+                vz = -1.0
+            else:
+                y0 = (j - (vp[VP_H] - 1.0) * 0.5) / scale
+                m = (px[G_DEPTH] + d3) / d1
+                vx = -x0 * m
+                vy = -y0 * m
+                vz = -(px[G_DEPTH] + d3)
+                vn = math.sqrt(vx * vx + vy * vy + vz * vz)
+                vx /= vn
+                vy /= vn
+                vz /= vn
+            if headlight:
+                lx = vx
+                ly = vy
+                lz = vz
+            else:
+                lx = lx0
+                ly = ly0
+                lz = lz0
+            nx = px[G_NX]
+            ny = px[G_NY]
+            nz = px[G_NZ]
+            nn = math.sqrt(nx * nx + ny * ny + nz * nz)
             if interp == INTERP_INTENSITY:
                 lam = px[G_I]
             else:
-                nx = px[G_NX]
-                ny = px[G_NY]
-                nz = px[G_NZ]
-                if not headlight:
-                    lx = lx0
-                    ly = ly0
-                    lz = lz0
-                elif ortho:
-                    lx = 0.0
-                    ly = 0.0
-                    lz = -1.0
-                else:
-                    # L from the seen point (x1, y1, z1) to the viewpoint (0, 0, -d3)
-                    y0 = (j - (vp[VP_H] - 1.0) * 0.5) / scale
-                    m = (px[G_DEPTH] + d3) / d1
-                    lx = -x0 * m
-                    ly = -y0 * m
-                    lz = -(px[G_DEPTH] + d3)
-                nn = math.sqrt(nx * nx + ny * ny + nz * nz)
                 ll = math.sqrt(lx * lx + ly * ly + lz * lz)
                 lam = abs(lx * nx + ly * ny + lz * nz) / (ll * nn) if nn > 0.0 else 0.0
             out[c, j] = ambient + (1.0 - ambient) * min(lam, 1.0)
+            sp = 0.0
+            if specular > 0.0 and nn > 0.0:
+                nx /= nn
+                ny /= nn
+                nz /= nn
+                if nx * vx + ny * vy + nz * vz < 0.0:        # the seen side's normal
+                    nx = -nx
+                    ny = -ny
+                    nz = -nz
+                ll = math.sqrt(lx * lx + ly * ly + lz * lz)
+                nl = (nx * lx + ny * ly + nz * lz) / ll
+                if nl > 0.0:
+                    rx = 2.0 * nl * nx - lx / ll
+                    ry = 2.0 * nl * ny - ly / ll
+                    rz = 2.0 * nl * nz - lz / ll
+                    rv = rx * vx + ry * vy + rz * vz
+                    if rv > 0.0:
+                        sp = specular * rv ** shininess
+            spec_out[c, j] = sp
 
 
 @ngjit_parallel
@@ -82,13 +115,14 @@ def upper_w_range(gbuf, lo, hi):
 
 
 @ngjit_parallel
-def finish_kernel(gbuf, shade, lut, w_lo, w_hi, lower_rgb, background,
+def finish_kernel(gbuf, shade, spec, lut, w_lo, w_hi, lower_rgb, background,
                   intensity, side, depth, rgba):
     """Assemble the public arrays, top row first: intensity, side, depth and rgba.
 
     The upper side takes its colour from ``lut`` indexed by w over [w_lo, w_hi]
     (a one-row lut is a flat colour), the lower side ``lower_rgb``; both are
-    multiplied by the shade. Background pixels get ``background`` (uint8 RGBA).
+    multiplied by the shade, plus the white specular term ``spec``. Background
+    pixels get ``background`` (uint8 RGBA).
     """
     W = gbuf.shape[0]
     H = gbuf.shape[1]
@@ -116,7 +150,8 @@ def finish_kernel(gbuf, shade, lut, w_lo, w_hi, lower_rgb, background,
                 r = lower_rgb[0]
                 g = lower_rgb[1]
                 b = lower_rgb[2]
-            rgba[i, c, 0] = np.uint8(min(r * lam * 255.0 + 0.5, 255.0))
-            rgba[i, c, 1] = np.uint8(min(g * lam * 255.0 + 0.5, 255.0))
-            rgba[i, c, 2] = np.uint8(min(b * lam * 255.0 + 0.5, 255.0))
+            sp = spec[c, j]
+            rgba[i, c, 0] = np.uint8(min((r * lam + sp) * 255.0 + 0.5, 255.0))
+            rgba[i, c, 1] = np.uint8(min((g * lam + sp) * 255.0 + 0.5, 255.0))
+            rgba[i, c, 2] = np.uint8(min((b * lam + sp) * 255.0 + 0.5, 255.0))
             rgba[i, c, 3] = 255

@@ -2,7 +2,6 @@
 files it wrote."""
 import ast
 from html.parser import HTMLParser
-from pathlib import Path
 
 import pytest
 

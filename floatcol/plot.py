@@ -129,14 +129,13 @@ class SurfacePlot(_ScalarMappable):
                  azim=DEFAULT_AZIM, proj_type=DEFAULT_PROJ, focal_length=None, cmap=None,
                  norm=None, vmin=None, vmax=None, color=None, shade=True, lightsource=None,
                  light=None, ambient=None, dpi=100, label="", render_options=None):
-        from matplotlib.colors import Normalize
-        from .view import check_size
+        from .view import _number, check_size
 
         self.surface = surface
         self.domain = domain
         self.label = label
         self.size = check_size(size)
-        self.dpi = _positive("dpi", dpi)
+        self.dpi = _number("dpi", dpi, positive=True)
         self.elev, self.azim = float(elev), float(azim)
         if not -90.0 <= self.elev <= 90.0:
             raise ValueError(f"elev must be between -90 and 90 degrees, got {elev}")
@@ -145,7 +144,7 @@ class SurfacePlot(_ScalarMappable):
         self.projection = PROJ_TYPES[proj_type.lower()]
         self.focal_length = focal_length if self.projection == "perspective" else None
         if focal_length is not None:
-            _positive("focal_length", focal_length)
+            _number("focal_length", focal_length, positive=True)
         self.shade = bool(shade)
         if lightsource is not None and light is not None:
             raise ValueError("give either lightsource (a matplotlib LightSource) or light, not both")
@@ -157,7 +156,7 @@ class SurfacePlot(_ScalarMappable):
         self.upper_color = None
         if color is not None and cmap is None:
             self.upper_color = _rgb(color)
-        if norm is not None and not isinstance(norm, Normalize):
+        if norm is not None and not isinstance(norm, _Normalize):
             raise ValueError(f"norm must be a matplotlib.colors.Normalize, got {norm!r}")
         if norm is not None and (vmin is not None or vmax is not None):
             raise ValueError("give either norm or vmin/vmax, not both (as in matplotlib)")
@@ -268,9 +267,7 @@ class SurfacePlot(_ScalarMappable):
         """Write the picture at ``size``: .png, .jpg, .pdf or .svg (atomically)."""
         from .output import check_output
         check_output(path)
-        r = self.draw(self.size) if self.render is None or self.artist is not None \
-            else self._current()
-        return save_image(r.rgba, path, dpi=dpi or self.dpi)
+        return save_image(self._current().rgba, path, dpi=dpi or self.dpi)
 
     def show(self):
         """Show the picture in a matplotlib window (or inline in Jupyter)."""
@@ -314,16 +311,6 @@ def _recolor(r, mappable):
 
 def _rgb(c):
     return color.to_rgb(c, "color")
-
-
-def _positive(name, x):
-    try:
-        x = float(x)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a positive number, got {x!r}") from None
-    if not x > 0 or not math.isfinite(x):
-        raise ValueError(f"{name} must be a positive number, got {x!r}")
-    return x
 
 
 def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options) -> SurfacePlot:

@@ -16,7 +16,7 @@ from .kernels.shade import (
     INTERP_INTENSITY, INTERP_NORMAL, finish_kernel, shade_kernel, upper_w_range)
 from .output import png_bytes, save_image
 from .surface import Surface, as_surface, check_range
-from .view import View, build_view
+from .view import View, _number, build_view
 
 METHODS = ("column", "horizon")
 SHADINGS = ("default", "lambert")
@@ -162,7 +162,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         light_dir = DEFAULT_LIGHT if light is None else light
         amb = DEFAULT_AMBIENT if ambient is None else _fraction("ambient", ambient)
         spec = DEFAULT_SPECULAR if specular is None else _fraction("specular", specular)
-    shine = DEFAULT_SHININESS if shininess is None else _positive("shininess", shininess)
+    shine = DEFAULT_SHININESS if shininess is None else _number("shininess", shininess, positive=True)
     view = build_view(surface, domain, size, elev, azim, projection, d1, d2, scale,
                       center, step, light_dir, focal_length, pixel_step, placement)
     hstride = 0
@@ -260,16 +260,6 @@ def _fraction(name, x):
         raise ValueError(f"{name} must be a number in [0, 1], got {x!r}") from None
     if not 0.0 <= x <= 1.0 or math.isnan(x):
         raise ValueError(f"{name} must be in [0, 1], got {x}")
-    return x
-
-
-def _positive(name, x):
-    try:
-        x = float(x)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a positive number, got {x!r}") from None
-    if not x > 0 or not math.isfinite(x):
-        raise ValueError(f"{name} must be a positive number, got {x}")
     return x
 
 

@@ -22,6 +22,7 @@ class SympyBackend(Plot):
         self._fc_options = {k: kwargs.pop(k) for k in list(kwargs) if k in _FLOATCOL_OPTIONS}
         super().__init__(*series, **kwargs)
         self._fig = None
+        self._want_window = False      # show() builds the figure through pyplot
         self.plots = []
 
     @property
@@ -44,7 +45,7 @@ class SympyBackend(Plot):
             raise ValueError(f"floatcol draws one surface per picture; got {len(surfaces)} "
                              "(call plot3d once per expression)")
         figsize = self.size if self.size else (8.0, 6.0)
-        if self._show_requested():
+        if self._want_window:
             import matplotlib.pyplot as plt
             fig = plt.figure(figsize=figsize)
         else:
@@ -58,9 +59,6 @@ class SympyBackend(Plot):
             fig.suptitle(str(self.title))
         self._fig = fig
 
-    def _show_requested(self):
-        return getattr(self, "_want_window", False)
-
     def show(self):
         import matplotlib.pyplot as plt
         self._want_window = True
@@ -72,8 +70,7 @@ class SympyBackend(Plot):
     def save(self, path):
         """Write the figure (any format matplotlib writes), atomically."""
         from .output import atomic_file, check_output
-        formats = {".png": 1, ".jpg": 1, ".jpeg": 1, ".pdf": 1, ".svg": 1}
-        path, ext = check_output(path, formats)
+        path, ext = check_output(path)
         with atomic_file(path) as tmp:
             self.fig.savefig(tmp, format=ext[1:].replace("jpg", "jpeg"))
 

@@ -21,6 +21,7 @@ def _drop_stale_cache(here=None):
         digest.update(p.name.encode())
         digest.update(p.read_bytes())
     stamp_text = digest.hexdigest()
+    stems = {q.stem for q in here.glob("*.py")}
     folders = [here / "__pycache__"]
     if _os.environ.get("NUMBA_CACHE_DIR"):
         folders.append(_Path(_os.environ["NUMBA_CACHE_DIR"]))
@@ -29,7 +30,6 @@ def _drop_stale_cache(here=None):
         try:
             if stamp.is_file() and stamp.read_text() == stamp_text:
                 continue
-            stems = {q.stem for q in here.glob("*.py")}
             if folder.is_dir():
                 for f in folder.rglob("*"):
                     if f.suffix in (".nbi", ".nbc") and f.name.split(".")[0] in stems \

@@ -11,6 +11,7 @@ import numpy as np
 from . import color
 from .kernels.column import H_SIZE, column_kernel
 from .kernels.horizon import horizon_kernel
+from .kernels import layout as L
 from .kernels.layout import G_DEPTH, G_NX, G_NZ, G_SIZE, G_U, G_V, G_W
 from .kernels.shade import (
     INTERP_INTENSITY, INTERP_NORMAL, finish_kernel, shade_kernel, upper_w_range)
@@ -30,6 +31,19 @@ DEFAULT_AMBIENT = 0.25
 #: Phong highlights of the default shading (the paper has none)
 DEFAULT_SPECULAR = 0.2
 DEFAULT_SHININESS = 30.0
+#: artifact corrections (section 5): what fixes a ridge, and what fixes a shading
+#: problem (intensity jump, bump); the default is the best picture per cost measured
+#: by benchmarks/bench_fidelity.py
+CORRECTIONS = {"none": (L.FIX_NONE, L.FIX_NONE),
+               "spline": (L.FIX_SPLINE, L.FIX_NONE),
+               "supersample": (L.FIX_SUPER, L.FIX_SUPER),
+               "adaptive": (L.FIX_ADAPTIVE, L.FIX_ADAPTIVE),
+               "spline+supersample": (L.FIX_SPLINE, L.FIX_SUPER),
+               "spline+adaptive": (L.FIX_SPLINE, L.FIX_ADAPTIVE)}
+DEFAULT_CORRECTIONS = "spline+adaptive"
+DETECTORS = {"ridge": L.DETECT_RIDGE, "intensity": L.DETECT_JUMP, "bump": L.DETECT_BUMP}
+DEFAULT_JUMP = 1.0 / 16.0       # the paper's threshold: 1/16 of the maximal intensity
+DEFAULT_RATE = 16               # the paper's supersampling rate
 
 
 @dataclass
@@ -94,7 +108,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            vars=None, center=None, cmap="viridis", upper_color=None,
            lower_color=color.DEFAULT_LOWER, vmin=None, vmax=None, background=None,
            light=None, ambient=None, focal_length=None, pixel_step=1.0,
-           placement="exact", specular=None, shininess=None) -> Render:
+           placement="exact", specular=None, shininess=None,
+           corrections=DEFAULT_CORRECTIONS, detect=None, jump_threshold=DEFAULT_JUMP,
+           supersample_rate=DEFAULT_RATE, spline_tolerance=None) -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -120,6 +136,17 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     placement : perspective only: "exact" puts every sample on its column's plane
         (ERRATA 2, the default); "paper" uses Gordon's approximate eq. (9) point,
         which lies off the plane when elev != 0 (to reproduce the paper's figures).
+    corrections : the artifact corrections of section 5, applied between two samples
+        where a problem is detected: "none", "spline" (ridges: the extremum of a
+        cubic spline, eqs. 13-22, becomes a sample), "supersample" (``supersample_rate``
+        samples across the span), "adaptive" (halve the span while the problem
+        persists, down to 1/``supersample_rate``), or "spline+supersample" /
+        "spline+adaptive" (splines for ridges, the other for shading problems).
+    detect : which problems to look for, any of "ridge" (V.N changes sign),
+        "intensity" (a jump above ``jump_threshold``) and "bump" (section 5.3).
+        Default: ridge and intensity, plus bump with interpolation="intensity".
+    spline_tolerance : iterate the spline (end of section 5.2) until |V.N| at its
+        extremum is at most this; None: one step, as in the paper.
     focal_length : perspective only, instead of d1/d2: matplotlib's focal length
         (the surface's bounding sphere fills a field of view of 2 atan(1/f)).
     center : world point (u, v, w) at the image centre. None: the middle of the
@@ -178,10 +205,15 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     if background is None:
         black = method == "column" and shading == "lambert"
         background = (0, 0, 0, 255) if black else (255, 255, 255, 255)
+    fixes = _corrections(corrections, detect, interpolation, jump_threshold, supersample_rate,
+                         spline_tolerance)
     t_setup = time.perf_counter()
 
     W, H = view.width, view.height
     vp = view.params()
+    if method == "column":
+        (vp[L.VP_FIX_RIDGE], vp[L.VP_FIX_SHADE], vp[L.VP_DETECT], vp[L.VP_JUMP], vp[L.VP_RATE],
+         vp[L.VP_SPLINE_TOL]) = fixes
     gbuf = np.empty((W, H, G_SIZE), dtype=np.float32)
     hrec = np.empty((W, n_lines, H_SIZE), dtype=np.float64)
     evals = np.zeros(W, dtype=np.int64)
@@ -228,6 +260,34 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         "w_limits": w_limits,      # the colormap's height range (column method)
     }
     return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t)
+
+
+def _corrections(corrections, detect, interpolation, jump, rate, tol):
+    """Check the correction options; the six VP_FIX_RIDGE .. VP_SPLINE_TOL values."""
+    if not isinstance(corrections, str) or corrections not in CORRECTIONS:
+        raise ValueError(f"corrections must be one of {', '.join(map(repr, CORRECTIONS))}, "
+                         f"got {corrections!r}")
+    fix_r, fix_s = CORRECTIONS[corrections]
+    if detect is None:
+        detect = ("ridge", "intensity") + (("bump",) if INTERPOLATIONS[interpolation]
+                                            == INTERP_INTENSITY else ())
+    elif isinstance(detect, str):
+        detect = (detect,)
+    mask = 0
+    try:
+        names = list(detect)
+    except TypeError:
+        raise ValueError(f"detect must be a list of {', '.join(DETECTORS)}, got {detect!r}") from None
+    for name in names:
+        if name not in DETECTORS:
+            raise ValueError(f"detect: unknown problem {name!r}; use any of "
+                             f"{', '.join(DETECTORS)}")
+        mask |= DETECTORS[name]
+    jump = _fraction("jump_threshold", jump)
+    if isinstance(rate, bool) or not isinstance(rate, (int, np.integer)) or not 2 <= rate <= 256:
+        raise ValueError(f"supersample_rate must be a whole number from 2 to 256, got {rate!r}")
+    tol = 0.0 if tol is None else _fraction("spline_tolerance", tol)
+    return float(fix_r), float(fix_s), float(mask), jump, float(rate), tol
 
 
 def _height_limits(gbuf, vmin, vmax):

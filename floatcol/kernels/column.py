@@ -24,27 +24,22 @@ from numba import prange
 
 from ._jit import ngjit, ngjit_parallel
 from .layout import (
+    A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIDE, G_T, G_U, G_V, G_W,
-    S_OK, S_OUTSIDE,
-    VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_ORTHO, VP_SA,
-    VP_SB, VP_T0, VP_T1, VP_UA, VP_UB, VP_VA, VP_VB, VP_WHI, VP_WLO,
+    FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
+    VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
+    VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1, VP_UA,
+    VP_UB, VP_VA, VP_VB, VP_WHI, VP_WLO,
 )
+from .correct import hermite_extremum, probe, ridge_between, shading_problem, wants_ridge
 from .sample import column_x0, sample_point
 
-# Per-sample attribute vector
-A_Y = 0      # screen row from the bottom (float)
-A_Z = 1      # screen depth
-A_U = 2
-A_V = 3
-A_W = 4
-A_NX = 5
-A_NY = 6
-A_NZ = 7
-A_I = 8
-A_T = 9
-A_SIZE = 10
 
 EDGE_BISECTIONS = 16
+#: Spline iterations when VP_SPLINE_TOL > 0 (section 5.2's optional iteration)
+SPLINE_MAX_ITERS = 8
+#: Depth of the correction stack: adaptive subdivision down to 1/256 of a step
+STACK_SIZE = 12
 # Column state ``run``: is a run open, its floating interval, and the last s found
 # (at which t, with which ds/dt) to start the next perspective Newton iteration
 RUN_OPEN = 0
@@ -87,6 +82,8 @@ def _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, t, out, run):
         out[A_NZ] = nz
         out[A_I] = lam
         out[A_T] = t
+        if vp[VP_DETECT] != 0.0:
+            out[A_VN], out[A_BUMP], out[A_SLOPE] = probe(vp, x0, out)
     return st, ev
 
 
@@ -185,6 +182,117 @@ def _fill_span(gcol, run, prev, cur, sigma, persp, d3, H):
 
 
 @ngjit
+def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, run, sigma, persp, d3, H,
+             stk, sdepth, left, mid):
+    """Fill the span prev -> cur of an open run, correcting the problems that
+    App. A.2's Problem() finds (Problem_Correction()): a ridge by the cubic spline's
+    extremum taken as an extra sample (section 5.2), or by supersampling; an intensity
+    jump or a bump by supersampling at VP_RATE times the frequency, or adaptively:
+    halving the span while the problem persists, down to 1/VP_RATE of it. Returns the
+    number of evaluations of f."""
+    detect = int(vp[VP_DETECT])
+    fix_r = int(vp[VP_FIX_RIDGE]) if wants_ridge(detect) else FIX_NONE
+    fix_s = int(vp[VP_FIX_SHADE])
+    if fix_r == FIX_NONE and fix_s == FIX_NONE:
+        _fill_span(gcol, run, prev, cur, sigma, persp, d3, H)
+        return 0
+    if not ((fix_r != FIX_NONE and ridge_between(vp, x0, prev, cur, run[RUN_YMIN], run[RUN_YMAX]))
+            or (fix_s != FIX_NONE and shading_problem(vp, x0, prev, cur, detect, run[RUN_YMIN],
+                                                      run[RUN_YMAX]))):
+        _fill_span(gcol, run, prev, cur, sigma, persp, d3, H)     # the common case
+        return 0
+    rate = max(int(vp[VP_RATE]), 2)
+    max_depth = min(int(math.ceil(math.log2(rate) - 1e-9)), STACK_SIZE - 2)
+    evals = 0
+    left[:] = prev
+    stk[0, :] = cur
+    sdepth[0] = 0
+    n = 1
+    while n > 0:
+        right = stk[n - 1]
+        d = sdepth[n - 1]
+        fix = FIX_NONE
+        if fix_r != FIX_NONE and ridge_between(vp, x0, left, right, run[RUN_YMIN], run[RUN_YMAX]):
+            fix = fix_r
+            if fix == FIX_SPLINE and d > 0:
+                fix = FIX_NONE          # one spline per span; its own iteration refines it
+        if fix == FIX_NONE and fix_s != FIX_NONE and \
+                shading_problem(vp, x0, left, right, detect, run[RUN_YMIN], run[RUN_YMAX]):
+            fix = fix_s
+        if fix == FIX_ADAPTIVE and d < max_depth:
+            st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0,
+                                  0.5 * (left[A_T] + right[A_T]), mid, run)
+            evals += ev
+            if st == S_OK:
+                stk[n, :] = mid
+                sdepth[n] = d + 1
+                sdepth[n - 1] = d + 1
+                n += 1
+                continue
+        elif fix == FIX_SPLINE:
+            st, ev = _spline_top(kind, f, fu, fv, hf, hfp, vp, x0, left, right, mid, run)
+            evals += ev
+            if st == S_OK:
+                stk[n, :] = mid
+                sdepth[n] = d + 1
+                sdepth[n - 1] = d + 1
+                n += 1
+                continue
+        elif fix == FIX_SUPER:
+            ta = left[A_T]
+            h = (right[A_T] - ta) / rate
+            for k in range(1, rate):
+                st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, ta + k * h, mid, run)
+                evals += ev
+                if st == S_OK:
+                    _fill_span(gcol, run, left, mid, sigma, persp, d3, H)
+                    left[:] = mid
+        _fill_span(gcol, run, left, right, sigma, persp, d3, H)
+        left[:] = right
+        n -= 1
+    return evals
+
+
+@ngjit
+def _spline_top(kind, f, fu, fv, hf, hfp, vp, x0, a, b, out, run):
+    """Sample the surface at the extremum of the cubic spline between samples a and b
+    (eqs. 13-22, see correct.py); with VP_SPLINE_TOL > 0, repeat on the half that
+    still holds the sign change while |V.N| there exceeds the tolerance (end of
+    section 5.2). Returns (status, evaluations); the sample is left in ``out``."""
+    ta = a[A_T]
+    tb = b[A_T]
+    ya = a[A_Y]
+    yb = b[A_Y]
+    vna = a[A_VN]
+    ma = a[A_SLOPE]
+    mb = b[A_SLOPE]
+    tol = vp[VP_SPLINE_TOL]
+    iters = SPLINE_MAX_ITERS if tol > 0.0 else 1
+    evals = 0
+    st = S_OUTSIDE
+    for _ in range(iters):
+        tau, _ = hermite_extremum(ya, yb, ma, mb, tb - ta)
+        t2 = ta + tau * (tb - ta)
+        st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, t2, out, run)
+        evals += ev
+        if st != S_OK:
+            break
+        vn2 = out[A_VN]
+        m2 = out[A_SLOPE]
+        if tol <= 0.0 or abs(vn2) <= tol:
+            break
+        if vn2 * vna > 0.0:
+            ta = t2
+            ya = out[A_Y]
+            ma = m2
+        else:
+            tb = t2
+            yb = out[A_Y]
+            mb = m2
+    return st, evals
+
+
+@ngjit
 def _grid_range(t0, dt, ta, tb):
     """Indices k of the planes t0 + k dt strictly between ta < tb."""
     eps = 1e-6 * dt
@@ -199,7 +307,7 @@ def _grid_range(t0, dt, ta, tb):
 
 @ngjit
 def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, hrec, hstride,
-                 prev, cur, edge, tmp, run):
+                 prev, cur, edge, tmp, run, stk, sdepth, left, mid):
     """One front-to-back pass over t from ta to tb (sigma = +1 ascending, -1
     descending). Returns the number of evaluations of f."""
     H = gcol.shape[0]
@@ -251,7 +359,10 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, hrec, hs
             if found:
                 if run[RUN_OPEN] == 0.0:
                     run_start = edge[A_T]
-                _fill_span(gcol, run, prev, edge, sigma, persp, d3, H)
+                    _fill_span(gcol, run, prev, edge, sigma, persp, d3, H)
+                else:
+                    evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, edge, gcol, run,
+                                      sigma, persp, d3, H, stk, sdepth, left, mid)
                 prev[:] = edge
         if st == S_OK:
             if run[RUN_OPEN] == 0.0:
@@ -263,7 +374,11 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, hrec, hs
                     hrec[m, H_LO] = run[RUN_YMIN] if run[RUN_OPEN] != 0.0 else np.inf
                     hrec[m, H_HI] = run[RUN_YMAX] if run[RUN_OPEN] != 0.0 else -np.inf
                     hrec[m, H_TS] = run_start
-            _fill_span(gcol, run, prev, cur, sigma, persp, d3, H)
+            if run[RUN_OPEN] == 0.0:
+                _fill_span(gcol, run, prev, cur, sigma, persp, d3, H)
+            else:
+                evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, run,
+                                  sigma, persp, d3, H, stk, sdepth, left, mid)
             prev[:] = cur
         else:
             run[RUN_OPEN] = 0.0
@@ -285,22 +400,29 @@ def render_column(kind, f, fu, fv, hf, hfp, vp, col, gcol, hrec, hstride):
     edge = np.empty(A_SIZE)
     tmp = np.empty(A_SIZE)
     run = np.zeros(RUN_SIZE)
+    stk = np.empty((STACK_SIZE, A_SIZE))
+    sdepth = np.zeros(STACK_SIZE, dtype=np.int64)
+    left = np.empty(A_SIZE)
+    mid = np.empty(A_SIZE)
     evals = 0
     if vp[VP_ORTHO] != 0.0:
         lo, hi = _ortho_chord(vp, x0)
         if lo <= hi:
             evals += _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, lo, hi, 1.0,
-                                  gcol, hrec, hstride, prev, cur, edge, tmp, run)
+                                  gcol, hrec, hstride, prev, cur, edge, tmp, run,
+                                  stk, sdepth, left, mid)
         return evals
     t_lo = vp[VP_T0]
     t_hi = vp[VP_T1]
     t_view = -vp[VP_D3] * vp[VP_CA]      # the viewpoint's t, eq. (1)
     if t_hi > t_view:
         evals += _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, max(t_lo, t_view), t_hi,
-                              1.0, gcol, hrec, hstride, prev, cur, edge, tmp, run)
+                              1.0, gcol, hrec, hstride, prev, cur, edge, tmp, run,
+                                  stk, sdepth, left, mid)
     if t_lo < t_view:
         evals += _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, min(t_hi, t_view), t_lo,
-                              -1.0, gcol, hrec, hstride, prev, cur, edge, tmp, run)
+                              -1.0, gcol, hrec, hstride, prev, cur, edge, tmp, run,
+                                  stk, sdepth, left, mid)
     return evals
 
 

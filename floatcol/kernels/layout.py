@@ -29,7 +29,23 @@ VP_LZ = 24
 VP_FLO = 25       # min and max of f on the fitting grid (where perspective samples
 VP_FHI = 26       # search for the surface when Newton fails)
 VP_PAPER = 27     # 1.0: perspective samples at the paper's eq. (9) point, off Pi
-VP_SIZE = 28
+# Artifact corrections (Gordon section 5, App. A.2 Problem() / Problem_Correction())
+VP_FIX_RIDGE = 28  # what corrects a ridge: FIX_NONE, FIX_SPLINE, FIX_SUPER, FIX_ADAPTIVE
+VP_FIX_SHADE = 29  # what corrects an intensity jump or a bump: FIX_NONE/SUPER/ADAPTIVE
+VP_DETECT = 30    # bit mask of DETECT_* tests
+VP_JUMP = 31      # intensity-jump threshold (the paper: 1/16 of the maximal intensity)
+VP_RATE = 32      # supersampling rate (the paper: 16); adaptive: the finest subdivision
+VP_SPLINE_TOL = 33  # iterate the spline while |V.N| at its extremum exceeds this; 0: once
+VP_SIZE = 34
+
+FIX_NONE = 0
+FIX_SPLINE = 1
+FIX_SUPER = 2
+FIX_ADAPTIVE = 3
+
+DETECT_RIDGE = 1      # V.N_Pi changes sign between successive samples
+DETECT_JUMP = 2       # |I1 - I0| above VP_JUMP
+DETECT_BUMP = 4       # (L x N_Pi)0 . (L x N_Pi)1 < 0  (section 5.3)
 
 # Surface kinds
 SURF_FUNCTION = 0
@@ -47,6 +63,22 @@ G_I = 7           # lambert intensity interpolated between samples (iis)
 G_T = 8           # t of the seen point (relative to the centre)
 G_SIDE = 9        # +1 upper side, -1 lower side, 0 nothing
 G_SIZE = 10
+
+# Per-sample attribute vector (column.py, correct.py)
+A_Y = 0      # screen row from the bottom (float)
+A_Z = 1      # screen depth
+A_U = 2
+A_V = 3
+A_W = 4
+A_NX = 5
+A_NY = 6
+A_NZ = 7
+A_I = 8
+A_T = 9
+A_VN = 10    # V.N / |V| (correct.probe; filled only when corrections are on)
+A_BUMP = 11  # n_Pi . (L x N)
+A_SLOPE = 12  # dY/dt in pixels per unit of t along the curve in Pi
+A_SIZE = 13
 
 # Sample status
 S_OK = 0

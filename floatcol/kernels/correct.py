@@ -1,0 +1,154 @@
+"""Problem detection and the cubic spline of Gordon section 5 (App. A.2 Problem()).
+
+Everything here reads two successive samples of one column (attribute vectors, see
+layout.A_*) and the view; the column pass (column.py) decides what to sample next.
+
+The curve that a column plane Pi cuts from the surface is handled through its screen
+row Y(t) as a function of the sampling plane t. The view vector V from a sample toward
+the viewpoint lies in Pi, so V.N_Pi = V.N, and its sign is the sign of dY/dt: a ridge
+(L.N_Pi changing sign, App. A.2 test 1) is an extremum of Y between the samples, and
+the spline's top (eq. 22, tangent parallel to the view direction) is where dY/dt = 0.
+In orthographic projection Y = s cos(a) - t sin(a), so the Hermite cubic of Y is
+cos(a) times that of s (eqs. 13-17) minus a linear term, and dY/dt = 0 is exactly
+p'(t) = tan(a) of eq. (22). In perspective (the paper's last paragraph of 5.2) the
+same construction holds with N_Pi taken against Pi's normal (A, B, C) of eq. (8) and
+V pointing from each sample toward the viewpoint.
+"""
+import math
+
+from ._jit import ngjit
+from .layout import (
+    A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SLOPE, A_T, A_VN, A_Y, A_Z, DETECT_BUMP, DETECT_JUMP, DETECT_RIDGE,
+    VP_CA, VP_D1, VP_D3, VP_H, VP_JUMP, VP_LX, VP_LY, VP_LZ, VP_ORTHO, VP_SA, VP_SCALE,
+)
+
+#: A ridge is corrected only when its spline top may reach a new pixel row; the
+#: spline's error is allowed this many pixels.
+RIDGE_MARGIN_PX = 0.5
+
+
+@ngjit
+def probe(vp, x0, a):
+    """(V.N / |V|, bump scalar, dY/dt) of sample ``a`` on column plane x = x0.
+
+    V points from the sample toward the viewpoint (orthographic: (0, 0, -1)), N is the
+    unit upper-side normal. The bump scalar is n_Pi . (L x N) = n_Pi . (L x N_Pi)
+    (section 5.3; the part of N or L across Pi drops out), with L = V for the
+    headlight. dY/dt is the slope of the screen row, in pixels per unit of t, along
+    the curve inside Pi, whose tangent is n_Pi x N.
+    """
+    nx = a[A_NX]
+    ny = a[A_NY]
+    nz = a[A_NZ]
+    scale = vp[VP_SCALE]
+    y0 = (a[A_Y] - (vp[VP_H] - 1.0) * 0.5) / scale
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    if vp[VP_ORTHO] != 0.0:
+        vx = 0.0
+        vy = 0.0
+        vz = -1.0
+        px = 1.0                  # Pi: x = x0
+        pz = 0.0
+    else:
+        d1 = vp[VP_D1]
+        vx = -x0
+        vy = -y0
+        vz = -d1
+        px = d1                   # Pi through the viewpoint: d1 x - x0 z = x0 d3 (eq. 8)
+        pz = -x0
+    vlen = math.sqrt(vx * vx + vy * vy + vz * vz)
+    vn = (vx * nx + vy * ny + vz * nz) / vlen
+    if vp[VP_LX] != 0.0 or vp[VP_LY] != 0.0 or vp[VP_LZ] != 0.0:
+        lx = vp[VP_LX]
+        ly = vp[VP_LY]
+        lz = vp[VP_LZ]
+    else:
+        lx = vx
+        ly = vy
+        lz = vz
+    # n_Pi . (L x N) with n_Pi = (px, 0, pz)
+    bump = px * (ly * nz - lz * ny) + pz * (lx * ny - ly * nx)
+    # tangent T = n_Pi x N, and how fast t and the screen row change along it
+    tx = -pz * ny
+    ty = pz * nx - px * nz
+    tz = px * ny
+    dt = -ty * sa + tz * ca                       # t = -y sin(a) + z cos(a), eq. (1)
+    if vp[VP_ORTHO] != 0.0:
+        dy = ty
+    else:
+        q = a[A_Z] + vp[VP_D3]                     # y0 = y1 d1 / (z1 + d3), eq. (10)
+        y1 = y0 * q / vp[VP_D1]
+        dy = vp[VP_D1] * (ty * q - y1 * tz) / (q * q)
+    if dt == 0.0:
+        slope = math.copysign(1e30, dy)
+    else:
+        slope = dy / dt * scale
+    return vn, bump, slope
+
+
+@ngjit
+def hermite_extremum(ya, yb, ma, mb, h):
+    """Fraction tau in (0, 1) where the cubic through (0, ya), (1, yb) with slopes
+    ma, mb (per unit of t, the interval being h long) has zero slope: eqs. (13)-(17)
+    in normalised form, and eq. (22) solved with p'(tau) = 0. Returns (tau, p(tau))."""
+    m0 = ma * h
+    m1 = mb * h
+    a = 2.0 * (ya - yb) + m0 + m1          # eq. (17), tau in [0, 1]
+    b = 3.0 * (yb - ya) - 2.0 * m0 - m1
+    c = m0
+    # 3a tau^2 + 2b tau + c = 0  (eq. 22)
+    tau = 0.5
+    if abs(a) <= 1e-12 * (abs(b) + abs(c) + 1e-300):
+        if b != 0.0:
+            tau = -c / (2.0 * b)
+    else:
+        disc = b * b - 3.0 * a * c
+        if disc >= 0.0:
+            q = -(b + math.copysign(math.sqrt(disc), b))
+            r1 = q / (3.0 * a)
+            r2 = c / q if q != 0.0 else r1
+            if 0.0 <= r1 <= 1.0:
+                tau = r1
+            elif 0.0 <= r2 <= 1.0:
+                tau = r2
+    if not (tau >= 0.0 and tau <= 1.0):
+        tau = 0.5
+    y = ((a * tau + b) * tau + c) * tau + ya
+    return tau, y
+
+
+@ngjit
+def ridge_between(vp, x0, a, b, run_lo, run_hi):
+    """(Samples carry A_VN, A_BUMP, A_SLOPE from probe.) App. A.2 test 1: V.N changes sign between samples a and b, and the spline's
+    extremum may uncover a new pixel row above run_hi or below run_lo (a ridge
+    hidden behind nearer surface needs no correction)."""
+    if not a[A_VN] * b[A_VN] < 0.0:
+        return False
+    _, ye = hermite_extremum(a[A_Y], b[A_Y], a[A_SLOPE], b[A_SLOPE], b[A_T] - a[A_T])
+    top = max(ye, a[A_Y], b[A_Y]) + RIDGE_MARGIN_PX
+    bot = min(ye, a[A_Y], b[A_Y]) - RIDGE_MARGIN_PX
+    return math.floor(top) > math.floor(run_hi) or math.ceil(bot) < math.ceil(run_lo)
+
+
+@ngjit
+def shading_problem(vp, x0, a, b, detect, run_lo, run_hi):
+    """App. A.2 tests 2 and 3 on a span that paints at least one new row: the
+    intensity jumps by more than VP_JUMP, or the samples straddle a bump (section
+    5.3: (L x N_Pi)0 . (L x N_Pi)1 < 0 while L.N keeps its sign)."""
+    y = b[A_Y]
+    paints = (y > run_hi and math.floor(y) > math.floor(run_hi)) or \
+             (y < run_lo and math.ceil(y) < math.ceil(run_lo))
+    if not paints:
+        return False
+    if detect & DETECT_JUMP and abs(b[A_I] - a[A_I]) > vp[VP_JUMP]:
+        return True
+    if detect & DETECT_BUMP:
+        if a[A_VN] * b[A_VN] > 0.0 and a[A_BUMP] * b[A_BUMP] < 0.0:
+            return True
+    return False
+
+
+@ngjit
+def wants_ridge(detect):
+    return (detect & DETECT_RIDGE) != 0

@@ -110,7 +110,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            light=None, ambient=None, focal_length=None, pixel_step=1.0,
            placement="exact", specular=None, shininess=None,
            corrections=DEFAULT_CORRECTIONS, detect=None, jump_threshold=DEFAULT_JUMP,
-           supersample_rate=DEFAULT_RATE, spline_tolerance=None) -> Render:
+           supersample_rate=DEFAULT_RATE, spline_tolerance=None,
+           antialias=None) -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -147,6 +148,13 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         Default: ridge and intensity, plus bump with interpolation="intensity".
     spline_tolerance : iterate the spline (end of section 5.2) until |V.N| at its
         extremum is at most this; None: one step, as in the paper.
+    antialias : section 6.4. True: coverage-weighted blending along columns (the
+        floating interval's float ends give each silhouette pixel its coverage, and
+        where the surface reappears beyond an extremum the pixel blends both
+        surfaces); 2, 3 or 4: that plus as many sub-columns per pixel, averaged;
+        False: off. Default: True for shading="default", False for "lambert" and the
+        horizon. Only ``rgba`` is blended; ``intensity``, ``side``, ``depth`` and the
+        G-buffer describe the surface at each pixel centre.
     focal_length : perspective only, instead of d1/d2: matplotlib's focal length
         (the surface's bounding sphere fills a field of view of 2 atan(1/f)).
     center : world point (u, v, w) at the image centre. None: the middle of the
@@ -207,6 +215,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         background = (0, 0, 0, 255) if black else (255, 255, 255, 255)
     fixes = _corrections(corrections, detect, interpolation, jump_threshold, supersample_rate,
                          spline_tolerance)
+    aa_cov, sub_columns = _antialias(antialias, method, shading)
     t_setup = time.perf_counter()
 
     W, H = view.width, view.height
@@ -217,7 +226,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     gbuf = np.empty((W, H, G_SIZE), dtype=np.float32)
     hrec = np.empty((W, n_lines, H_SIZE), dtype=np.float64)
     evals = np.zeros(W, dtype=np.int64)
-    column_kernel(*surface.kernel_args(), vp, gbuf, hrec, hstride, evals)
+    vp[L.VP_AA] = 1.0 if aa_cov else 0.0
+    ebuf = np.empty((W, H, L.E_SIZE) if aa_cov else (1, 1, L.E_SIZE), dtype=np.float32)
+    column_kernel(*surface.kernel_args(), vp, gbuf, ebuf, hrec, hstride, evals)
     t_kernel = time.perf_counter()
     line_t = None
     w_limits = None
@@ -233,18 +244,57 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         depth = np.where(on, gbuf[:, ::-1, G_DEPTH].T, np.inf).astype(np.float32)
         rgba = color.line_rgba(side, background=background)
     else:
-        shade = np.empty((W, H), dtype=np.float32)
-        spec_img = np.empty((W, H), dtype=np.float32)
-        shade_kernel(gbuf, vp, INTERPOLATIONS[interpolation], amb, spec, shine, shade, spec_img)
         lut, lower_rgb = color.side_colors(shading, cmap, upper_color, lower_color)
         w_lo, w_hi = _height_limits(gbuf, vmin, vmax)
         w_limits = (w_lo, w_hi)
+        bg8 = color.to_rgba8(background)
+        shade_args = (INTERPOLATIONS[interpolation], amb, spec, shine)
+
+        def finish(gb, eb, vpx, intensity, side, depth, rgba):
+            shade = np.empty((W, H), dtype=np.float32)
+            spec_img = np.empty((W, H), dtype=np.float32)
+            es = (W, H) if aa_cov else (1, 1)
+            eshade = np.empty(es, dtype=np.float32)
+            espec = np.empty(es, dtype=np.float32)
+            shade_kernel(gb, eb, vpx, *shade_args, shade, spec_img, eshade, espec)
+            finish_kernel(gb, eb, aa_cov, shade, spec_img, eshade, espec, lut, w_lo, w_hi,
+                          lower_rgb, bg8, intensity, side, depth, rgba)
+
         intensity = np.empty((H, W), dtype=np.float32)
         side = np.empty((H, W), dtype=np.int8)
         depth = np.empty((H, W), dtype=np.float32)
         rgba = np.empty((H, W, 4), dtype=np.uint8)
-        finish_kernel(gbuf, shade, spec_img, lut, w_lo, w_hi, lower_rgb, color.to_rgba8(background),
-                      intensity, side, depth, rgba)
+        finish(gbuf, ebuf, vp, intensity, side, depth, rgba)
+        if sub_columns > 1:
+            # section 6.4 across columns: average sub-columns at even offsets inside
+            # each pixel (premultiplied); the G-buffer and the arrays other than rgba
+            # stay those of the pixel centres (offset 0).
+            offsets = (np.arange(sub_columns) + 0.5) / sub_columns - 0.5
+            acc = np.zeros((H, W, 4))
+            g2 = np.empty_like(gbuf)
+            e2 = np.empty_like(ebuf)
+            h2 = np.empty((W, 1, H_SIZE))
+            ev2 = np.zeros(W, dtype=np.int64)
+            scratch = (np.empty((H, W), np.float32), np.empty((H, W), np.int8),
+                       np.empty((H, W), np.float32), np.empty((H, W, 4), np.uint8))
+            for off in offsets:
+                if off == 0.0:
+                    part = rgba
+                else:
+                    vp2 = vp.copy()
+                    vp2[L.VP_XOFF] = off
+                    column_kernel(*surface.kernel_args(), vp2, g2, e2, h2, 0, ev2)
+                    evals += ev2
+                    finish(g2, e2, vp2, *scratch)
+                    part = scratch[3]
+                a = part[..., 3:4] / 255.0
+                acc[..., :3] += part[..., :3] * a
+                acc[..., 3:4] += a
+            a = acc[..., 3:4]
+            rgb = np.where(a > 0, acc[..., :3] / np.maximum(a, 1e-12), 0.0)
+            rgba = np.empty((H, W, 4), dtype=np.uint8)
+            rgba[..., :3] = np.clip(rgb + 0.5, 0, 255).astype(np.uint8)
+            rgba[..., 3] = np.clip(a[..., 0] / sub_columns * 255 + 0.5, 0, 255).astype(np.uint8)
     t_end = time.perf_counter()
     stats = {
         "samples": int(evals.sum()),
@@ -288,6 +338,19 @@ def _corrections(corrections, detect, interpolation, jump, rate, tol):
         raise ValueError(f"supersample_rate must be a whole number from 2 to 256, got {rate!r}")
     tol = 0.0 if tol is None else _fraction("spline_tolerance", tol)
     return float(fix_r), float(fix_s), float(mask), jump, float(rate), tol
+
+
+def _antialias(antialias, method, shading):
+    """(coverage blending along columns, sub-columns per pixel)."""
+    if antialias is None:
+        antialias = method == "column" and shading == "default"
+    if isinstance(antialias, (bool, np.bool_)):
+        return bool(antialias) and method == "column", 1
+    if isinstance(antialias, (int, np.integer)) and 2 <= antialias <= 4:
+        if method != "column":
+            raise ValueError("antialias with sub-columns applies to method='column' only")
+        return True, int(antialias)
+    raise ValueError(f"antialias must be True, False or 2, 3, 4 sub-columns, got {antialias!r}")
 
 
 def _height_limits(gbuf, vmin, vmax):

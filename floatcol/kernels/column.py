@@ -25,11 +25,12 @@ from numba import prange
 from ._jit import ngjit, ngjit_parallel
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
+    E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIDE, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIDE, G_T, G_U, G_V, G_W,
     FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1, VP_UA,
-    VP_UB, VP_VA, VP_VB, VP_WHI, VP_WLO,
+    VP_UB, VP_VA, VP_VB, VP_WHI, VP_WLO, VP_AA,
 )
 from .correct import hermite_extremum, probe, ridge_between, shading_problem, wants_ridge
 from .sample import column_x0, sample_point
@@ -132,8 +133,14 @@ def _ortho_chord(vp, x0):
 
 
 @ngjit
-def _fill_span(gcol, run, prev, cur, sigma, persp, d3, H):
-    """Paint the rows that the span prev -> cur newly uncovers (App. A.2 Interpolate)."""
+def _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
+    """Paint the rows that the span prev -> cur newly uncovers (App. A.2 Interpolate).
+
+    With ``aa`` (section 6.4) the floating interval's float ends also give each
+    pixel's coverage: ecol's E_COV0 for the surface at the pixel's centre, and an edge
+    surface for the part of a pixel that a span covers without its centre (where the
+    surface reappears beyond an extremum, or at a silhouette), blended by coverage
+    later."""
     y = cur[A_Y]
     if run[RUN_OPEN] == 0.0:
         run[RUN_OPEN] = 1.0
@@ -141,34 +148,67 @@ def _fill_span(gcol, run, prev, cur, sigma, persp, d3, H):
         run[RUN_YMAX] = y
         return
     if y > run[RUN_YMAX]:                      # above the column's max: upper side if ascending
+        lo_f = run[RUN_YMAX]
+        hi_f = y
+        cont = prev[A_Y] >= lo_f               # the same surface goes on from the max
+        j_cont = int(math.floor(lo_f + 0.5))
         j0 = int(math.floor(run[RUN_YMAX])) + 1
         j1 = int(math.floor(y))
         side = sigma
         run[RUN_YMAX] = y
     elif y < run[RUN_YMIN]:                    # below the min
+        lo_f = y
+        hi_f = run[RUN_YMIN]
+        cont = prev[A_Y] <= hi_f
+        j_cont = int(math.floor(hi_f + 0.5))
         j0 = int(math.ceil(y))
         j1 = int(math.ceil(run[RUN_YMIN])) - 1
         side = -sigma
         run[RUN_YMIN] = y
     else:
         return                          # hidden: inside the floating interval
-    j0 = max(j0, 0)
-    j1 = min(j1, H - 1)
-    if j0 > j1:
-        return
     yp = prev[A_Y]
     dy = y - yp
+    qp = 1.0
+    qc = 1.0
     if persp:
         qp = 1.0 / (prev[A_Z] + d3)
         qc = 1.0 / (cur[A_Z] + d3)
+    if aa:
+        # pixels the span covers in part without their centre: the two ends
+        for e in range(2):
+            jp = int(math.floor((lo_f if e == 0 else hi_f) + 0.5))
+            if (e == 1 and jp == int(math.floor(lo_f + 0.5))) or jp < 0 or jp >= H:
+                continue
+            if jp >= j0 and jp <= j1:
+                continue                # its centre is painted below
+            a = max(lo_f, jp - 0.5)
+            b = min(hi_f, jp + 0.5)
+            cov = b - a
+            if cov <= 0.0:
+                continue
+            if gcol[jp, G_SIDE] != 0.0 and cont and jp == j_cont:
+                ecol[jp, E_COV0] = min(ecol[jp, E_COV0] + cov, 1.0)
+                continue
+            room = 1.0 - (ecol[jp, E_COV0] if gcol[jp, G_SIDE] != 0.0 else 0.0)
+            if ecol[jp, E_COV] > 0.0:
+                ecol[jp, E_COV] = min(ecol[jp, E_COV] + cov, room)
+                continue
+            lw = _chord_weight(0.5 * (a + b), yp, dy, persp, qp, qc)
+            ecol[jp, E_NX] = prev[A_NX] + lw * (cur[A_NX] - prev[A_NX])
+            ecol[jp, E_NY] = prev[A_NY] + lw * (cur[A_NY] - prev[A_NY])
+            ecol[jp, E_NZ] = prev[A_NZ] + lw * (cur[A_NZ] - prev[A_NZ])
+            ecol[jp, E_W] = prev[A_W] + lw * (cur[A_W] - prev[A_W])
+            ecol[jp, E_I] = prev[A_I] + lw * (cur[A_I] - prev[A_I])
+            ecol[jp, E_DEPTH] = prev[A_Z] + lw * (cur[A_Z] - prev[A_Z])
+            ecol[jp, E_SIDE] = side
+            ecol[jp, E_COV] = min(cov, room)
+    j0 = max(j0, 0)
+    j1 = min(j1, H - 1)
     for j in range(j0, j1 + 1):
         if gcol[j, G_SIDE] != 0.0:
             continue                    # painted by an earlier, nearer run
-        ls = min(max((j - yp) / dy, 0.0), 1.0)
-        if persp:                       # perspective-correct weight along the chord
-            lw = ls * qc / ((1.0 - ls) * qp + ls * qc)
-        else:
-            lw = ls
+        lw = _chord_weight(j, yp, dy, persp, qp, qc)
         gcol[j, G_DEPTH] = prev[A_Z] + lw * (cur[A_Z] - prev[A_Z])
         gcol[j, G_U] = prev[A_U] + lw * (cur[A_U] - prev[A_U])
         gcol[j, G_V] = prev[A_V] + lw * (cur[A_V] - prev[A_V])
@@ -179,10 +219,22 @@ def _fill_span(gcol, run, prev, cur, sigma, persp, d3, H):
         gcol[j, G_I] = prev[A_I] + lw * (cur[A_I] - prev[A_I])
         gcol[j, G_T] = prev[A_T] + lw * (cur[A_T] - prev[A_T])
         gcol[j, G_SIDE] = side
+        if aa:
+            ecol[j, E_COV0] = max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0)
 
 
 @ngjit
-def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, run, sigma, persp, d3, H,
+def _chord_weight(yq, yp, dy, persp, qp, qc):
+    """Weight of the current sample at screen row yq on the chord prev -> cur,
+    perspective-correct in perspective."""
+    ls = min(max((yq - yp) / dy, 0.0), 1.0)
+    if persp:
+        return ls * qc / ((1.0 - ls) * qp + ls * qc)
+    return ls
+
+
+@ngjit
+def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
              stk, sdepth, left, mid):
     """Fill the span prev -> cur of an open run, correcting the problems that
     App. A.2's Problem() finds (Problem_Correction()): a ridge by the cubic spline's
@@ -194,12 +246,12 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, run, sigma, pers
     fix_r = int(vp[VP_FIX_RIDGE]) if wants_ridge(detect) else FIX_NONE
     fix_s = int(vp[VP_FIX_SHADE])
     if fix_r == FIX_NONE and fix_s == FIX_NONE:
-        _fill_span(gcol, run, prev, cur, sigma, persp, d3, H)
+        _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)
         return 0
     if not ((fix_r != FIX_NONE and ridge_between(vp, x0, prev, cur, run[RUN_YMIN], run[RUN_YMAX]))
             or (fix_s != FIX_NONE and shading_problem(vp, x0, prev, cur, detect, run[RUN_YMIN],
                                                       run[RUN_YMAX]))):
-        _fill_span(gcol, run, prev, cur, sigma, persp, d3, H)     # the common case
+        _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)     # the common case
         return 0
     rate = max(int(vp[VP_RATE]), 2)
     max_depth = min(int(math.ceil(math.log2(rate) - 1e-9)), STACK_SIZE - 2)
@@ -245,9 +297,9 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, run, sigma, pers
                 st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, ta + k * h, mid, run)
                 evals += ev
                 if st == S_OK:
-                    _fill_span(gcol, run, left, mid, sigma, persp, d3, H)
+                    _fill_span(gcol, ecol, run, left, mid, sigma, persp, d3, H, aa)
                     left[:] = mid
-        _fill_span(gcol, run, left, right, sigma, persp, d3, H)
+        _fill_span(gcol, ecol, run, left, right, sigma, persp, d3, H, aa)
         left[:] = right
         n -= 1
     return evals
@@ -306,12 +358,13 @@ def _grid_range(t0, dt, ta, tb):
 
 
 @ngjit
-def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, hrec, hstride,
+def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, hstride,
                  prev, cur, edge, tmp, run, stk, sdepth, left, mid):
     """One front-to-back pass over t from ta to tb (sigma = +1 ascending, -1
     descending). Returns the number of evaluations of f."""
     H = gcol.shape[0]
     persp = vp[VP_ORTHO] == 0.0
+    aa = vp[VP_AA] != 0.0
     d3 = vp[VP_D3]
     t0 = vp[VP_T0]
     dt = vp[VP_DT]
@@ -359,10 +412,10 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, hrec, hs
             if found:
                 if run[RUN_OPEN] == 0.0:
                     run_start = edge[A_T]
-                    _fill_span(gcol, run, prev, edge, sigma, persp, d3, H)
+                    _fill_span(gcol, ecol, run, prev, edge, sigma, persp, d3, H, aa)
                 else:
-                    evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, edge, gcol, run,
-                                      sigma, persp, d3, H, stk, sdepth, left, mid)
+                    evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, edge, gcol, ecol, run,
+                                      sigma, persp, d3, H, aa, stk, sdepth, left, mid)
                 prev[:] = edge
         if st == S_OK:
             if run[RUN_OPEN] == 0.0:
@@ -375,10 +428,10 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, hrec, hs
                     hrec[m, H_HI] = run[RUN_YMAX] if run[RUN_OPEN] != 0.0 else -np.inf
                     hrec[m, H_TS] = run_start
             if run[RUN_OPEN] == 0.0:
-                _fill_span(gcol, run, prev, cur, sigma, persp, d3, H)
+                _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)
             else:
-                evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, run,
-                                  sigma, persp, d3, H, stk, sdepth, left, mid)
+                evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
+                                  sigma, persp, d3, H, aa, stk, sdepth, left, mid)
             prev[:] = cur
         else:
             run[RUN_OPEN] = 0.0
@@ -388,12 +441,14 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, hrec, hs
 
 
 @ngjit
-def render_column(kind, f, fu, fv, hf, hfp, vp, col, gcol, hrec, hstride):
+def render_column(kind, f, fu, fv, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     """Render pixel column ``col`` into gcol (H, G_SIZE); returns evaluations of f."""
     gcol[:, :] = np.nan
     gcol[:, G_DEPTH] = np.inf
     gcol[:, G_SIDE] = 0.0
     hrec[:, :] = np.nan
+    if vp[VP_AA] != 0.0:
+        ecol[:, :] = 0.0
     x0 = column_x0(vp, col)
     prev = np.empty(A_SIZE)
     cur = np.empty(A_SIZE)
@@ -409,7 +464,7 @@ def render_column(kind, f, fu, fv, hf, hfp, vp, col, gcol, hrec, hstride):
         lo, hi = _ortho_chord(vp, x0)
         if lo <= hi:
             evals += _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, lo, hi, 1.0,
-                                  gcol, hrec, hstride, prev, cur, edge, tmp, run,
+                                  gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
                                   stk, sdepth, left, mid)
         return evals
     t_lo = vp[VP_T0]
@@ -417,20 +472,24 @@ def render_column(kind, f, fu, fv, hf, hfp, vp, col, gcol, hrec, hstride):
     t_view = -vp[VP_D3] * vp[VP_CA]      # the viewpoint's t, eq. (1)
     if t_hi > t_view:
         evals += _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, max(t_lo, t_view), t_hi,
-                              1.0, gcol, hrec, hstride, prev, cur, edge, tmp, run,
-                                  stk, sdepth, left, mid)
+                              1.0, gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
+                              stk, sdepth, left, mid)
     if t_lo < t_view:
         evals += _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, min(t_hi, t_view), t_lo,
-                              -1.0, gcol, hrec, hstride, prev, cur, edge, tmp, run,
-                                  stk, sdepth, left, mid)
+                              -1.0, gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
+                              stk, sdepth, left, mid)
     return evals
 
 
 @ngjit_parallel
-def column_kernel(kind, f, fu, fv, hf, hfp, vp, gbuf, hrec, hstride, evals):
-    """Render every column in parallel into gbuf (W, H, G_SIZE), cleared here;
-    hrec (W, n_lines, H_SIZE) receives horizon-line records when
-    hstride > 0. Each column writes only its own slices: no shared scratch."""
+def column_kernel(kind, f, fu, fv, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals):
+    """Render every column in parallel into gbuf (W, H, G_SIZE), cleared here; with
+    VP_AA, ebuf (W, H, E_SIZE) receives the coverages (else it may be (1, 1, E_SIZE)).
+    hrec (W, n_lines, H_SIZE) receives horizon-line records when hstride > 0. Each
+    column writes only its own slices: no shared scratch."""
     W = gbuf.shape[0]
+    n_e = ebuf.shape[0]
     for c in prange(W):
-        evals[c] = render_column(kind, f, fu, fv, hf, hfp, vp, c, gbuf[c], hrec[c], hstride)
+        ce = min(np.int64(c), n_e - 1)
+        evals[c] = render_column(kind, f, fu, fv, hf, hfp, vp, c, gbuf[c], ebuf[ce],
+                                 hrec[c], hstride)

@@ -69,8 +69,8 @@ def probe(vp, x0, a):
         lz = vz
     # n_Pi . (L x N) with n_Pi = (px, 0, pz)
     bump = px * (ly * nz - lz * ny) + pz * (lx * ny - ly * nx)
-    # tangent T = n_Pi x N, and how fast t and the screen row change along it
-    tx = -pz * ny
+    # tangent T = n_Pi x N (its x part is not needed), and how fast t and the
+    # screen row change along it
     ty = pz * nx - px * nz
     tz = px * ny
     dt = -ty * sa + tz * ca                       # t = -y sin(a) + z cos(a), eq. (1)

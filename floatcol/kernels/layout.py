@@ -36,7 +36,9 @@ VP_DETECT = 30    # bit mask of DETECT_* tests
 VP_JUMP = 31      # intensity-jump threshold (the paper: 1/16 of the maximal intensity)
 VP_RATE = 32      # supersampling rate (the paper: 16); adaptive: the finest subdivision
 VP_SPLINE_TOL = 33  # iterate the spline while |V.N| at its extremum exceeds this; 0: once
-VP_SIZE = 34
+VP_AA = 34        # 1.0: coverage antialiasing along columns (section 6.4), into ebuf
+VP_XOFF = 35      # sub-column offset in pixels (antialiasing across columns)
+VP_SIZE = 36
 
 FIX_NONE = 0
 FIX_SPLINE = 1
@@ -79,6 +81,20 @@ A_VN = 10    # V.N / |V| (correct.probe; filled only when corrections are on)
 A_BUMP = 11  # n_Pi . (L x N)
 A_SLOPE = 12  # dY/dt in pixels per unit of t along the curve in Pi
 A_SIZE = 13
+
+# Edge buffer ebuf (W, H, E_SIZE) float32 of the coverage antialiasing (section 6.4):
+# how much of each pixel the surface at its centre covers, and a second surface that
+# shares the pixel (the one reappearing above a ridge, or beside a silhouette).
+E_COV0 = 0        # coverage of the pixel by the G-buffer's surface (its centre's)
+E_NX = 1          # the edge surface: unit normal, w, intensity, side, depth, coverage
+E_NY = 2
+E_NZ = 3
+E_W = 4
+E_I = 5
+E_SIDE = 6
+E_DEPTH = 7
+E_COV = 8
+E_SIZE = 9
 
 # Sample status
 S_OK = 0

@@ -11,7 +11,7 @@ from .layout import (
     S_BEHIND, S_HOLE, S_OK, S_OUTSIDE, SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_H, VP_LX, VP_LY, VP_LZ, VP_ORTHO,
     VP_FHI, VP_FLO, VP_PAPER, VP_SA, VP_SB, VP_W,
-    VP_SCALE, VP_UA, VP_UB, VP_VA, VP_VB,
+    VP_SCALE, VP_UA, VP_UB, VP_VA, VP_VB, VP_XOFF,
 )
 
 # Relative slack of the domain test, so chord endpoints computed in floating
@@ -70,7 +70,7 @@ def in_domain(vp, u, v):
 @ngjit
 def column_x0(vp, col):
     """Screen x of pixel column ``col`` (DESIGN.md section 3)."""
-    return (col - (vp[VP_W] - 1.0) * 0.5) / vp[VP_SCALE]
+    return (col + vp[VP_XOFF] - (vp[VP_W] - 1.0) * 0.5) / vp[VP_SCALE]
 
 
 @ngjit

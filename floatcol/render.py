@@ -41,7 +41,8 @@ CORRECTIONS = {"none": (L.FIX_NONE, L.FIX_NONE),
                "spline+supersample": (L.FIX_SPLINE, L.FIX_SUPER),
                "spline+adaptive": (L.FIX_SPLINE, L.FIX_ADAPTIVE)}
 DEFAULT_CORRECTIONS = "spline+adaptive"
-DETECTORS = {"ridge": L.DETECT_RIDGE, "intensity": L.DETECT_JUMP, "bump": L.DETECT_BUMP}
+DETECTORS = {"ridge": L.DETECT_RIDGE, "intensity": L.DETECT_JUMP, "bump": L.DETECT_BUMP,
+             "wall": L.DETECT_WALL}
 DEFAULT_JUMP = 1.0 / 16.0       # the paper's threshold: 1/16 of the maximal intensity
 DEFAULT_RATE = 16               # the paper's supersampling rate
 
@@ -144,8 +145,10 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         persists, down to 1/``supersample_rate``), or "spline+supersample" /
         "spline+adaptive" (splines for ridges, the other for shading problems).
     detect : which problems to look for, any of "ridge" (V.N changes sign),
-        "intensity" (a jump above ``jump_threshold``) and "bump" (section 5.3).
-        Default: ridge and intensity, plus bump with interpolation="intensity".
+        "intensity" (a jump above ``jump_threshold``), "bump" (section 5.3) and
+        "wall" (a discontinuity of f, end of section 5: located by halving and shaded
+        as a vertical wall). Default: ridge, intensity and wall, plus bump with
+        interpolation="intensity". corrections="none" turns all of them off.
     spline_tolerance : iterate the spline (end of section 5.2) until |V.N| at its
         extremum is at most this; None: one step, as in the paper.
     antialias : section 6.4. True: coverage-weighted blending along columns (the
@@ -318,9 +321,11 @@ def _corrections(corrections, detect, interpolation, jump, rate, tol):
         raise ValueError(f"corrections must be one of {', '.join(map(repr, CORRECTIONS))}, "
                          f"got {corrections!r}")
     fix_r, fix_s = CORRECTIONS[corrections]
+    if corrections == "none":
+        detect = ()                   # the plain floating column of section 4
     if detect is None:
-        detect = ("ridge", "intensity") + (("bump",) if INTERPOLATIONS[interpolation]
-                                            == INTERP_INTENSITY else ())
+        detect = ("ridge", "intensity", "wall") + (("bump",) if INTERPOLATIONS[interpolation]
+                                                    == INTERP_INTENSITY else ())
     elif isinstance(detect, str):
         detect = (detect,)
     mask = 0

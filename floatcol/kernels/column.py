@@ -27,20 +27,28 @@ from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIDE, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIDE, G_T, G_U, G_V, G_W,
-    FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
+    DETECT_WALL, FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1, VP_UA,
     VP_UB, VP_VA, VP_VB, VP_WHI, VP_WLO, VP_AA,
 )
-from .correct import hermite_extremum, probe, ridge_between, shading_problem, wants_ridge
+from .correct import (
+    WALL_DEPTH, hermite_extremum, lambert_at, probe, ridge_between, shading_problem, wall_between,
+    wall_normal, wants_ridge,
+)
 from .sample import column_x0, sample_point
 
 
 EDGE_BISECTIONS = 16
 #: Spline iterations when VP_SPLINE_TOL > 0 (section 5.2's optional iteration)
 SPLINE_MAX_ITERS = 8
-#: Depth of the correction stack: adaptive subdivision down to 1/256 of a step
-STACK_SIZE = 12
+#: Depth of the correction stack (its last two rows are scratch for walls): adaptive
+#: subdivision down to 1/256 of a step, walls down to 2**-WALL_DEPTH
+STACK_SIZE = 24
+#: added to a stack entry's depth while a wall is being located
+WALL_MODE = 1000
+#: where the normal of a wall's far end is taken, in widths of the wall's bracket
+WALL_BEYOND = 64.0
 # Column state ``run``: is a run open, its floating interval, and the last s found
 # (at which t, with which ds/dt) to start the next perspective Newton iteration
 RUN_OPEN = 0
@@ -245,12 +253,14 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
     detect = int(vp[VP_DETECT])
     fix_r = int(vp[VP_FIX_RIDGE]) if wants_ridge(detect) else FIX_NONE
     fix_s = int(vp[VP_FIX_SHADE])
-    if fix_r == FIX_NONE and fix_s == FIX_NONE:
+    walls = (detect & DETECT_WALL) != 0
+    if fix_r == FIX_NONE and fix_s == FIX_NONE and not walls:
         _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)
         return 0
     if not ((fix_r != FIX_NONE and ridge_between(vp, x0, prev, cur, run[RUN_YMIN], run[RUN_YMAX]))
             or (fix_s != FIX_NONE and shading_problem(vp, x0, prev, cur, detect, run[RUN_YMIN],
-                                                      run[RUN_YMAX]))):
+                                                      run[RUN_YMAX]))
+            or (walls and wall_between(prev, cur, run[RUN_YMIN], run[RUN_YMAX], False))):
         _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)     # the common case
         return 0
     rate = max(int(vp[VP_RATE]), 2)
@@ -260,9 +270,53 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
     stk[0, :] = cur
     sdepth[0] = 0
     n = 1
+    w0 = stk[STACK_SIZE - 2]            # scratch: the wall's two ends
+    w1 = stk[STACK_SIZE - 1]
     while n > 0:
         right = stk[n - 1]
-        d = sdepth[n - 1]
+        searching = sdepth[n - 1] >= WALL_MODE     # inside a wall's bisection
+        d = sdepth[n - 1] - (WALL_MODE if searching else 0)
+        if walls and wall_between(left, right, run[RUN_YMIN], run[RUN_YMAX], searching):
+            # end of section 5: halve while the jump persists; then shade it as a wall
+            if (d if searching else 0) < WALL_DEPTH and n < STACK_SIZE - 2:
+                st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0,
+                                      0.5 * (left[A_T] + right[A_T]), mid, run)
+                evals += ev
+                if st == S_OK:
+                    dw = WALL_MODE + (d if searching else 0) + 1   # halvings of the wall's span
+                    stk[n, :] = mid
+                    sdepth[n] = dw
+                    sdepth[n - 1] = dw
+                    n += 1
+                    continue
+            else:
+                nx, ny, nz = wall_normal(kind, f, fu, fv, hf, hfp, vp, left, right)
+                lam = lambert_at(vp, x0, left, nx, ny, nz)
+                w0[:] = left
+                w1[:] = right
+                w0[A_NX] = nx
+                w0[A_NY] = ny
+                w0[A_NZ] = nz
+                w0[A_I] = lam
+                w1[A_NX] = nx
+                w1[A_NY] = ny
+                w1[A_NZ] = nz
+                w1[A_I] = lam
+                _fill_span(gcol, ecol, run, w0, w1, sigma, persp, d3, H, aa)
+                left[:] = right
+                n -= 1
+                # the wall's far end may sit on the jump, where difference quotients
+                # give f_u, f_v no meaning: take the normal a little beyond it
+                st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0,
+                                      right[A_T] + WALL_BEYOND * (right[A_T] - w0[A_T]), mid,
+                                      run)
+                evals += ev
+                if st == S_OK:
+                    left[A_NX] = mid[A_NX]
+                    left[A_NY] = mid[A_NY]
+                    left[A_NZ] = mid[A_NZ]
+                    left[A_I] = mid[A_I]
+                continue
         fix = FIX_NONE
         if fix_r != FIX_NONE and ridge_between(vp, x0, left, right, run[RUN_YMIN], run[RUN_YMAX]):
             fix = fix_r

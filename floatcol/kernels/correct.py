@@ -18,9 +18,21 @@ import math
 
 from ._jit import ngjit
 from .layout import (
-    A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SLOPE, A_T, A_VN, A_Y, A_Z, DETECT_BUMP, DETECT_JUMP, DETECT_RIDGE,
-    VP_CA, VP_D1, VP_D3, VP_H, VP_JUMP, VP_LX, VP_LY, VP_LZ, VP_ORTHO, VP_SA, VP_SCALE,
+    A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z, DETECT_BUMP,
+    DETECT_JUMP, DETECT_RIDGE, VP_CA, VP_CB, VP_D1, VP_D3, VP_H, VP_JUMP, VP_LX, VP_LY, VP_LZ,
+    VP_ORTHO, VP_SA, VP_SB, VP_SCALE,
 )
+from .sample import surface_eval
+
+#: A wall (end of section 5): a span whose screen rows jump by more than WALL_MIN_PX and
+#: by more than WALL_RATIO times what the slopes at its ends predict. The span is
+#: halved while that holds, down to 2**-WALL_DEPTH of it; what still jumps is a wall.
+WALL_MIN_PX = 1.5
+WALL_RATIO = 4.0
+WALL_DEPTH = 12
+WALL_SEARCH = 8.0      # the wall's direction: its jump is sought this many times the
+WALL_ASIDE = 2.0       # offset along a parallel line WALL_ASIDE pixels aside
+WALL_BISECT = 30
 
 #: A ridge is corrected only when its spline top may reach a new pixel row; the
 #: spline's error is allowed this many pixels.
@@ -152,3 +164,122 @@ def shading_problem(vp, x0, a, b, detect, run_lo, run_hi):
 @ngjit
 def wants_ridge(detect):
     return (detect & DETECT_RIDGE) != 0
+
+
+@ngjit
+def wall_between(a, b, run_lo, run_hi, searching):
+    """A discontinuity between samples a and b (end of section 5: "a big jump in the
+    y-values" where the normals do not explain it): the rows jump by more than
+    WALL_MIN_PX and WALL_RATIO times what the smaller end slope predicts, on a span
+    that paints new rows. While ``searching`` (halving a span found so) the jump alone
+    counts: samples that land on a discontinuity may carry any slope."""
+    dy = abs(b[A_Y] - a[A_Y])
+    if dy <= WALL_MIN_PX:
+        return False
+    y = b[A_Y]
+    if not ((y > run_hi and math.floor(y) > math.floor(run_hi))
+            or (y < run_lo and math.ceil(y) < math.ceil(run_lo))):
+        return False
+    if searching:
+        return True
+    # the smaller slope: a sample that lands on the jump itself may carry a huge one
+    pred = min(abs(a[A_SLOPE]), abs(b[A_SLOPE])) * abs(b[A_T] - a[A_T])
+    return dy > WALL_RATIO * pred
+
+
+@ngjit
+def _jump_side(kind, f, fu, fv, hf, hfp, u, v, wa, wb):
+    """+1 if f(u, v) is nearer wb than wa, -1 if nearer wa, 0 for a hole."""
+    w = surface_eval(kind, f, fu, fv, hf, hfp, u, v)[0]
+    if not math.isfinite(w):
+        return 0
+    return 1 if abs(w - wb) < abs(w - wa) else -1
+
+
+@ngjit
+def wall_normal(kind, f, fu, fv, hf, hfp, vp, a, b):
+    """Screen-coordinate unit normal of the wall between the tight bracket a, b.
+
+    The wall is vertical; its direction on the ground comes from the same jump found
+    on a parallel line WALL_ASIDE pixels aside (bisection of which height f is nearer). Its
+    normal faces the viewer's side. Falls back to facing the viewer straight along the
+    column when the jump is not found there (the wall ends)."""
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    # A point of the wall line: a and b lie on either side of it (in perspective far
+    # apart: inside Pi the ground point moves along r with the height, by dr/ds
+    # times the jump), so bisect between their ground points.
+    lo = 0.0
+    hi = 1.0
+    for _ in range(WALL_BISECT):
+        m = 0.5 * (lo + hi)
+        sm = _jump_side(kind, f, fu, fv, hf, hfp, a[A_U] + m * (b[A_U] - a[A_U]),
+                        a[A_V] + m * (b[A_V] - a[A_V]), a[A_W], b[A_W])
+        if sm == 0:
+            break
+        if sm < 0:
+            lo = m
+        else:
+            hi = m
+    m = 0.5 * (lo + hi)
+    pu = a[A_U] + m * (b[A_U] - a[A_U])
+    pv = a[A_V] + m * (b[A_V] - a[A_V])
+    if vp[VP_ORTHO] != 0.0:
+        delta = WALL_ASIDE / vp[VP_SCALE]
+    else:
+        delta = WALL_ASIDE * (a[A_Z] + vp[VP_D3]) / (vp[VP_D1] * vp[VP_SCALE])
+    sgn = 1.0 if b[A_T] > a[A_T] else -1.0
+    du = sb * sgn                     # ground direction from a to b (t, eq. 2)
+    dv = cb * sgn
+    eu = cb                           # ground direction of r
+    ev = -sb
+    lim = WALL_SEARCH * delta
+    nu = -du
+    nv = -dv
+    qu = pu + delta * eu
+    qv = pv + delta * ev
+    sa_ = _jump_side(kind, f, fu, fv, hf, hfp, qu - lim * du, qv - lim * dv, a[A_W], b[A_W])
+    sb_ = _jump_side(kind, f, fu, fv, hf, hfp, qu + lim * du, qv + lim * dv, a[A_W], b[A_W])
+    if sa_ == -1 and sb_ == 1:
+        lo = -lim
+        hi = lim
+        for _ in range(WALL_BISECT):
+            m = 0.5 * (lo + hi)
+            sm = _jump_side(kind, f, fu, fv, hf, hfp, qu + m * du, qv + m * dv, a[A_W], b[A_W])
+            if sm == 0:
+                break
+            if sm < 0:
+                lo = m
+            else:
+                hi = m
+        m = 0.5 * (lo + hi)
+        tu = delta * eu + m * du      # the wall's direction on the ground
+        tv = delta * ev + m * dv
+        tn = math.sqrt(tu * tu + tv * tv)
+        nu = tv / tn
+        nv = -tu / tn
+        if nu * du + nv * dv > 0.0:   # face the viewer's side (back along the column)
+            nu = -nu
+            nv = -nv
+    # world (nu, 0, nv) to screen coordinates, eqs. (1)-(2)
+    tc = nu * sb + nv * cb
+    return nu * cb - nv * sb, -tc * sa, tc * ca
+
+
+@ngjit
+def lambert_at(vp, x0, a, nx, ny, nz):
+    """|L.N| of unit normal N at sample a's place (eq. 12, or the directional light)."""
+    if vp[VP_LX] != 0.0 or vp[VP_LY] != 0.0 or vp[VP_LZ] != 0.0:
+        lx = vp[VP_LX]
+        ly = vp[VP_LY]
+        lz = vp[VP_LZ]
+    elif vp[VP_ORTHO] != 0.0:
+        return min(abs(nz), 1.0)
+    else:
+        y0 = (a[A_Y] - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]
+        lx = -x0
+        ly = -y0
+        lz = -vp[VP_D1]
+    return min(abs(lx * nx + ly * ny + lz * nz) / math.sqrt(lx * lx + ly * ly + lz * lz), 1.0)

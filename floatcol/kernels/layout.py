@@ -48,6 +48,7 @@ FIX_ADAPTIVE = 3
 DETECT_RIDGE = 1      # V.N_Pi changes sign between successive samples
 DETECT_JUMP = 2       # |I1 - I0| above VP_JUMP
 DETECT_BUMP = 4       # (L x N_Pi)0 . (L x N_Pi)1 < 0  (section 5.3)
+DETECT_WALL = 8       # a discontinuity: a screen-y jump the slopes cannot explain (end of 5)
 
 # Surface kinds
 SURF_FUNCTION = 0

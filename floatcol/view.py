@@ -40,6 +40,7 @@ class View:
     light: tuple = (0.0, 0.0, 0.0)   # toward a directional light; zeros = headlight
     f_range: tuple = (0.0, 0.0)       # min and max of f on the fitting grid
     placement: str = "exact"          # perspective: "exact" on Pi, or "paper" (eq. 9)
+    q_near: float = 0.0               # perspective: nearest depth z + d3 (step is set there)
 
     @property
     def alpha(self):
@@ -78,6 +79,7 @@ class View:
         vp[L.VP_LX], vp[L.VP_LY], vp[L.VP_LZ] = self.light
         vp[L.VP_FLO], vp[L.VP_FHI] = self.f_range
         vp[L.VP_PAPER] = 1.0 if self.placement == "paper" else 0.0
+        vp[L.VP_QNEAR] = self.q_near
         return vp
 
     def to_screen(self, u, v, w):
@@ -229,12 +231,12 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
     else:
         scale = _number("scale", scale, positive=True)
 
+    nearest = 0.0 if ortho else max(float((z + proto.d3).min()), d1)
     if step is None:
         px = _number("pixel_step", pixel_step, positive=True)
         if ortho:
             step = px / scale
         else:
-            nearest = max(float((z + proto.d3).min()), d1)
             step = px * nearest / (d1 * scale)
     else:
         step = _number("step", step, positive=True)
@@ -252,7 +254,7 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
         light = tuple(lv / np.linalg.norm(lv))
     return View(width, height, elev, azim, ortho, float(d1), float(d2), float(scale),
                 tuple(float(c) for c in center), ((float(ua), float(ub)), (float(va), float(vb))),
-                t_range, float(step), w_range, light, (wmin_all, wmax_all), placement)
+                t_range, float(step), w_range, light, (wmin_all, wmax_all), placement, nearest)
 
 
 def _robust_range(grid):

@@ -74,10 +74,13 @@ def bilinear_surface(z, u_rng, v_rng):
 
 
 def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1=None, d2=None,
-            scale=None, steps=1500, bisections=40, w_bound=None, center=(0.0, 0.0, 0.0)):
+            scale=None, steps=1500, bisections=40, w_bound=None, center=(0.0, 0.0, 0.0),
+            wall_normal=None):
     """Ray-cast the surface given as numpy (f, f_u, f_v). scale and, in perspective,
     d1 and d2 must be given (take them from the render being checked); ``center`` is
-    the world point (u, v, w) at the screen origin."""
+    the world point (u, v, w) at the screen origin. ``wall_normal(u, v) -> (n_u, n_v)``
+    shades hits on a discontinuity of f (where f still jumps across the final
+    bisection bracket) as a vertical wall with that ground normal."""
     f, fu, fv = funcs
     W, H = size
     a, b = -np.radians(elev), np.radians(azim)
@@ -147,6 +150,15 @@ def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1
     p = org + dirn * np.where(found, lam, 0.0)
     u, w, v, t = world(*p)
     nu, nw, nv = -fu(u, v), np.ones_like(u), -fv(u, v)
+    if wall_normal is not None:
+        ua, _, va, _ = world(*(org + dirn * np.where(found, l_a, 0.0)))
+        ub, _, vb, _ = world(*(org + dirn * np.where(found, l_b, 0.0)))
+        with np.errstate(invalid="ignore"):
+            on_wall = found & (np.abs(f(ua, va) - f(ub, vb)) > 1e-6)
+        wn_u, wn_v = wall_normal(u, v)
+        nu = np.where(on_wall, wn_u, nu)
+        nw = np.where(on_wall, 0.0, nw)
+        nv = np.where(on_wall, wn_v, nv)
     if ortho:
         lx, ly, lz = -dirn
     else:

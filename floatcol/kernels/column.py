@@ -30,7 +30,7 @@ from .layout import (
     DETECT_WALL, FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1, VP_UA,
-    VP_UB, VP_VA, VP_VB, VP_WHI, VP_WLO, VP_AA,
+    VP_UB, VP_VA, VP_VB, VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR,
 )
 from .correct import (
     WALL_DEPTH, hermite_extremum, lambert_at, probe, ridge_between, shading_problem, wall_between,
@@ -42,6 +42,14 @@ from .sample import column_x0, sample_point
 EDGE_BISECTIONS = 16
 #: Spline iterations when VP_SPLINE_TOL > 0 (section 5.2's optional iteration)
 SPLINE_MAX_ITERS = 8
+#: Locally adaptive sampling (section 6.3): the step may grow this much with distance
+ADAPT_MAX_GROWTH = 16.0
+#: ... and the normal should turn about ADAPT_TURN (radians) from one plane to the
+#: next: the step shrinks to ADAPT_MIN_STEP or grows to ADAPT_MAX_STEP times its size
+ADAPT_TURN = 0.1
+ADAPT_ROWS = 2.0      # pixel rows between successive planes, at most (when coarsening)
+ADAPT_MIN_STEP = 0.25
+ADAPT_MAX_STEP = 4.0
 #: Depth of the correction stack (its last two rows are scratch for walls): adaptive
 #: subdivision down to 1/256 of a step, walls down to 2**-WALL_DEPTH
 STACK_SIZE = 24
@@ -432,16 +440,15 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
     run_start = 0.0
     prev_st = -1
     prev_t = 0.0
-    for i in range(n):
-        if i == 0:
-            t = ta
-            k = -1
-        elif i == n - 1:
-            t = tb
-            k = -1
-        else:
-            k = ka + (i - 1) if sigma > 0 else kb - (i - 1)
-            t = t0 + k * dt
+    # section 6.3: locally adaptive planes (not for line drawings, whose lines are
+    # every hstride-th plane of the grid)
+    adaptive = vp[VP_ADAPT] != 0.0 and hstride == 0 and hi > lo
+    q_near = vp[VP_QNEAR]
+    coarse = 1.0
+    i = 0
+    t = ta
+    k = -1
+    while True:
         st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, t, cur, run)
         evals += ev
         if prev_st >= 0 and (prev_st == S_OK) != (st == S_OK):
@@ -484,6 +491,16 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
             if run[RUN_OPEN] == 0.0:
                 _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)
             else:
+                if adaptive:
+                    # refine where the normal turns fast, coarsen where it does not
+                    turn = math.sqrt((cur[A_NX] - prev[A_NX]) ** 2 + (cur[A_NY] - prev[A_NY]) ** 2
+                                     + (cur[A_NZ] - prev[A_NZ]) ** 2)
+                    ratio = ADAPT_TURN / turn if turn > 0.0 else 2.0
+                    dy = abs(cur[A_Y] - prev[A_Y])      # ... and spans stay short on screen
+                    if dy > 0.0:
+                        ratio = min(ratio, ADAPT_ROWS / dy)
+                    coarse = min(max(coarse * min(max(ratio, 0.5), 2.0), ADAPT_MIN_STEP),
+                                 ADAPT_MAX_STEP)
                 evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
                                   sigma, persp, d3, H, aa, stk, sdepth, left, mid)
             prev[:] = cur
@@ -491,6 +508,29 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
             run[RUN_OPEN] = 0.0
         prev_st = st
         prev_t = t
+        # the next plane
+        if adaptive:
+            if t == tb:
+                break
+            h = dt
+            if st == S_OK:
+                if persp:       # about a pixel on screen: the step grows with distance
+                    h *= min(max((cur[A_Z] + d3) / q_near, 1.0), ADAPT_MAX_GROWTH)
+                h *= coarse
+            else:
+                coarse = 1.0
+            t_next = t + sigma * h
+            t = tb if sigma * (t_next - tb) >= 0.0 else t_next
+        else:
+            i += 1
+            if i >= n:
+                break
+            if i == n - 1:
+                t = tb
+                k = -1
+            else:
+                k = ka + (i - 1) if sigma > 0 else kb - (i - 1)
+                t = t0 + k * dt
     return evals
 
 

@@ -16,6 +16,8 @@ V pointing from each sample toward the viewpoint.
 """
 import math
 
+import numpy as np
+
 from ._jit import ngjit
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z, DETECT_BUMP,
@@ -30,8 +32,8 @@ from .sample import surface_eval
 WALL_MIN_PX = 1.5
 WALL_RATIO = 4.0
 WALL_DEPTH = 12
-WALL_SEARCH = 8.0      # the wall's direction: its jump is sought this many times the
-WALL_ASIDE = 2.0       # offset along a parallel line WALL_ASIDE pixels aside
+WALL_SEARCH = 16.0     # the wall's direction: its jump is sought up to this many times
+WALL_ASIDE = 2.0       # the offset along a parallel line WALL_ASIDE pixels aside
 WALL_BISECT = 30
 
 #: A ridge is corrected only when its spline top may reach a new pixel row; the
@@ -188,12 +190,31 @@ def wall_between(a, b, run_lo, run_hi, searching):
 
 
 @ngjit
-def _jump_side(kind, f, fu, fv, hf, hfp, u, v, wa, wb):
-    """+1 if f(u, v) is nearer wb than wa, -1 if nearer wa, 0 for a hole."""
-    w = surface_eval(kind, f, fu, fv, hf, hfp, u, v)[0]
-    if not math.isfinite(w):
-        return 0
-    return 1 if abs(w - wb) < abs(w - wa) else -1
+def _f_at(kind, f, fu, fv, hf, hfp, u, v):
+    return surface_eval(kind, f, fu, fv, hf, hfp, u, v)[0]
+
+
+@ngjit
+def _locate_jump(kind, f, fu, fv, hf, hfp, u0, v0, u1, v1):
+    """Bisect the segment (u0, v0) -> (u1, v1) for the jump of f: keep the half whose
+    ends differ more. Returns (fraction along the segment, the jump left across the
+    final bracket); NaN where f has a hole there."""
+    lo = 0.0
+    hi = 1.0
+    f_lo = _f_at(kind, f, fu, fv, hf, hfp, u0, v0)
+    f_hi = _f_at(kind, f, fu, fv, hf, hfp, u1, v1)
+    for _ in range(WALL_BISECT):
+        m = 0.5 * (lo + hi)
+        fm = _f_at(kind, f, fu, fv, hf, hfp, u0 + m * (u1 - u0), v0 + m * (v1 - v0))
+        if not (math.isfinite(fm) and math.isfinite(f_lo) and math.isfinite(f_hi)):
+            return np.nan, 0.0
+        if abs(fm - f_lo) >= abs(f_hi - fm):
+            hi = m
+            f_hi = fm
+        else:
+            lo = m
+            f_lo = fm
+    return 0.5 * (lo + hi), abs(f_hi - f_lo)
 
 
 @ngjit
@@ -201,29 +222,20 @@ def wall_normal(kind, f, fu, fv, hf, hfp, vp, a, b):
     """Screen-coordinate unit normal of the wall between the tight bracket a, b.
 
     The wall is vertical; its direction on the ground comes from the same jump found
-    on a parallel line WALL_ASIDE pixels aside (bisection of which height f is nearer). Its
-    normal faces the viewer's side. Falls back to facing the viewer straight along the
-    column when the jump is not found there (the wall ends)."""
+    on a parallel line WALL_ASIDE pixels aside. Its normal faces the viewer's side.
+    Falls back to facing the viewer straight along the column when the jump is not
+    found there (the wall ends)."""
     ca = vp[VP_CA]
     sa = vp[VP_SA]
     cb = vp[VP_CB]
     sb = vp[VP_SB]
+    jump = abs(b[A_W] - a[A_W])
     # A point of the wall line: a and b lie on either side of it (in perspective far
     # apart: inside Pi the ground point moves along r with the height, by dr/ds
-    # times the jump), so bisect between their ground points.
-    lo = 0.0
-    hi = 1.0
-    for _ in range(WALL_BISECT):
-        m = 0.5 * (lo + hi)
-        sm = _jump_side(kind, f, fu, fv, hf, hfp, a[A_U] + m * (b[A_U] - a[A_U]),
-                        a[A_V] + m * (b[A_V] - a[A_V]), a[A_W], b[A_W])
-        if sm == 0:
-            break
-        if sm < 0:
-            lo = m
-        else:
-            hi = m
-    m = 0.5 * (lo + hi)
+    # times the jump).
+    m, _ = _locate_jump(kind, f, fu, fv, hf, hfp, a[A_U], a[A_V], b[A_U], b[A_V])
+    if not math.isfinite(m):
+        m = 0.0
     pu = a[A_U] + m * (b[A_U] - a[A_U])
     pv = a[A_V] + m * (b[A_V] - a[A_V])
     if vp[VP_ORTHO] != 0.0:
@@ -235,28 +247,26 @@ def wall_normal(kind, f, fu, fv, hf, hfp, vp, a, b):
     dv = cb * sgn
     eu = cb                           # ground direction of r
     ev = -sb
-    lim = WALL_SEARCH * delta
     nu = -du
     nv = -dv
-    qu = pu + delta * eu
-    qv = pv + delta * ev
-    sa_ = _jump_side(kind, f, fu, fv, hf, hfp, qu - lim * du, qv - lim * dv, a[A_W], b[A_W])
-    sb_ = _jump_side(kind, f, fu, fv, hf, hfp, qu + lim * du, qv + lim * dv, a[A_W], b[A_W])
-    if sa_ == -1 and sb_ == 1:
-        lo = -lim
-        hi = lim
-        for _ in range(WALL_BISECT):
-            m = 0.5 * (lo + hi)
-            sm = _jump_side(kind, f, fu, fv, hf, hfp, qu + m * du, qv + m * dv, a[A_W], b[A_W])
-            if sm == 0:
-                break
-            if sm < 0:
-                lo = m
-            else:
-                hi = m
-        m = 0.5 * (lo + hi)
-        tu = delta * eu + m * du      # the wall's direction on the ground
-        tv = delta * ev + m * dv
+    # windows of growing width along the column's direction: a narrow one first,
+    # where the smooth part of f varies less than the jump
+    lim = delta
+    found = False
+    along = 0.0
+    while lim <= WALL_SEARCH * delta * 1.0001:
+        qu = pu + delta * eu - lim * du
+        qv = pv + delta * ev - lim * dv
+        m2, left_over = _locate_jump(kind, f, fu, fv, hf, hfp, qu, qv, qu + 2.0 * lim * du,
+                                     qv + 2.0 * lim * dv)
+        if math.isfinite(m2) and left_over > 0.5 * jump:
+            along = (2.0 * m2 - 1.0) * lim
+            found = True
+            break
+        lim *= 2.0
+    if found:
+        tu = delta * eu + along * du      # the wall's direction on the ground
+        tv = delta * ev + along * dv
         tn = math.sqrt(tu * tu + tv * tv)
         nu = tv / tn
         nv = -tu / tn

@@ -38,7 +38,9 @@ VP_RATE = 32      # supersampling rate (the paper: 16); adaptive: the finest sub
 VP_SPLINE_TOL = 33  # iterate the spline while |V.N| at its extremum exceeds this; 0: once
 VP_AA = 34        # 1.0: coverage antialiasing along columns (section 6.4), into ebuf
 VP_XOFF = 35      # sub-column offset in pixels (antialiasing across columns)
-VP_SIZE = 36
+VP_ADAPT = 36     # 1.0: locally adaptive planes (section 6.3)
+VP_QNEAR = 37     # perspective: the nearest depth z + d3, where the step is a pixel
+VP_SIZE = 38
 
 FIX_NONE = 0
 FIX_SPLINE = 1

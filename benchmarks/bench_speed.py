@@ -3,8 +3,9 @@
 floatcol at 1920x1080 and 1024x768, default quality (corrections, antialiasing), in
 both projections; matplotlib ``plot_surface`` of a 400x400 mesh saved to PNG at
 1024x768; PyVista off-screen (optional: ``pip install -e .[bench]``) of the same mesh
-at 1024x768 and 1920x1080, screenshot included. Every tool is warmed up first (Numba
-compilation, VTK context); times are medians.
+at 1024x768 and 1920x1080, screenshot included (VTK renders with whatever OpenGL the
+machine has: on a machine without a GPU, Mesa's software llvmpipe). Every tool is
+warmed up first (Numba compilation, VTK context); times are medians.
 
     python benchmarks/bench_speed.py
 """
@@ -71,6 +72,7 @@ def pyvista_ms(size):
 
     def once():
         pl.camera.azimuth += 1.0                    # a new view, as floatcol's
+        pl.render()                                 # (screenshot alone may reuse the last frame)
         pl.screenshot(return_img=True)
     ms = _median_ms(once, 10)
     # a new surface each time (a new expression): mesh upload included

@@ -203,3 +203,31 @@ def test_default_render_uses_the_corrections():
 def test_bad_correction_options(kw, match):
     with pytest.raises(ValueError, match=match):
         fc.render("u", size=(8, 8), **kw)
+
+
+def _rough_grid():
+    rng = np.random.default_rng(7)
+    z = rng.normal(size=(24, 24))
+    for _ in range(3):
+        z = (z + np.roll(z, 1, 0) + np.roll(z, -1, 0) + np.roll(z, 1, 1) + np.roll(z, -1, 1)) / 5
+    return z * 2.0
+
+
+def test_height_field_spans_are_cut_at_cell_edges():
+    """A bilinear height field's normal jumps at every cell edge (a crease); samples on
+    the edges keep interpolation within one patch and put creases seen edge-on at
+    their true top. Measured against the ray caster (bilinear f, 160x120, elev 40):
+    26.28 dB / 99.880 % uncorrected, 39.98 dB / 99.995 % by default (ortho)."""
+    from reference import bilinear_surface, raycast
+    z = _rough_grid()
+    hf = fc.HeightField(z, u=(-1, 1), v=(-1, 1))
+    out = {}
+    for corr in ("none", "spline+adaptive"):
+        r = fc.render(hf, size=(160, 120), elev=40, azim=30, shading="lambert", corrections=corr)
+        vw = r.view
+        ref = raycast(bilinear_surface(z, (-1, 1), (-1, 1)), (-1, 1), (-1, 1), (160, 120), 40, 30,
+                      "orthographic", scale=vw.scale, center=vw.center)
+        out[corr] = (psnr(r.intensity, ref.intensity), (r.side == ref.side).mean())
+    assert out["spline+adaptive"][0] >= 37.0
+    assert out["spline+adaptive"][0] >= out["none"][0] + 10.0
+    assert out["spline+adaptive"][1] >= 0.9995

@@ -27,7 +27,7 @@ from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIDE, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIDE, G_T, G_U, G_V, G_W,
-    DETECT_WALL, FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
+    DETECT_WALL, FIX_ADAPTIVE, FIX_NONE, SURF_HEIGHTFIELD, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1, VP_UA,
     VP_UB, VP_VA, VP_VB, VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR,
@@ -44,6 +44,8 @@ EDGE_BISECTIONS = 16
 SPLINE_MAX_ITERS = 8
 #: Locally adaptive sampling (section 6.3): the step may grow this much with distance
 ADAPT_MAX_GROWTH = 16.0
+#: A height field's span is cut at no more than this many cell edges
+HF_MAX_CROSSINGS = 64
 #: ... and the normal should turn about ADAPT_TURN (radians) from one plane to the
 #: next: the step shrinks to ADAPT_MIN_STEP or grows to ADAPT_MAX_STEP times its size
 ADAPT_TURN = 0.1
@@ -247,6 +249,51 @@ def _chord_weight(yq, yp, dy, persp, qp, qc):
     if persp:
         return ls * qc / ((1.0 - ls) * qp + ls * qc)
     return ls
+
+
+@ngjit
+def _span(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
+          stk, sdepth, left, mid, xs):
+    """_segment, but a height field's span is first cut where the column crosses the
+    grid's cell edges: a bilinear surface's normal jumps there (a crease), so a sample
+    on the edge keeps interpolation from mixing two patches, and a crease seen
+    edge-on gets its top exactly. ``prev`` ends as the last sample used."""
+    if kind != SURF_HEIGHTFIELD or vp[VP_DETECT] == 0.0:
+        return _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
+                        persp, d3, H, aa, stk, sdepth, left, mid)
+    nv, nu = hf.shape
+    au = (prev[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)   # grid coordinates
+    bu = (cur[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)
+    av = (prev[A_V] - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
+    bv = (cur[A_V] - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
+    ta = prev[A_T]
+    tb = cur[A_T]
+    evals = 0
+    # the next grid line (index) in each direction, and its fraction along the span
+    iu = math.floor(au) + 1.0 if bu > au else math.ceil(au) - 1.0
+    iv = math.floor(av) + 1.0 if bv > av else math.ceil(av) - 1.0
+    for _ in range(HF_MAX_CROSSINGS):
+        lu = (iu - au) / (bu - au) if bu != au else 2.0
+        lv = (iv - av) / (bv - av) if bv != av else 2.0
+        lam = min(lu, lv)
+        if not (lam > 1e-9 and lam < 1.0 - 1e-9):
+            break
+        if lu <= lv:
+            iu += 1.0 if bu > au else -1.0
+        else:
+            iv += 1.0 if bv > av else -1.0
+        # (in perspective the ground path bends a little between samples, so the
+        # sample lands near the edge, not on it: secant steps onto it measured no
+        # better against the ray caster, for 12 % more samples)
+        st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, ta + lam * (tb - ta), xs, run)
+        evals += ev
+        if st == S_OK:
+            evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, xs, gcol, ecol, run, sigma,
+                              persp, d3, H, aa, stk, sdepth, left, mid)
+            prev[:] = xs
+    evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
+                      persp, d3, H, aa, stk, sdepth, left, mid)
+    return evals
 
 
 @ngjit
@@ -475,8 +522,8 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                     run_start = edge[A_T]
                     _fill_span(gcol, ecol, run, prev, edge, sigma, persp, d3, H, aa)
                 else:
-                    evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, edge, gcol, ecol, run,
-                                      sigma, persp, d3, H, aa, stk, sdepth, left, mid)
+                    evals += _span(kind, f, fu, fv, hf, hfp, vp, x0, prev, edge, gcol, ecol, run,
+                                   sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)
                 prev[:] = edge
         if st == S_OK:
             if run[RUN_OPEN] == 0.0:
@@ -501,8 +548,8 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                         ratio = min(ratio, ADAPT_ROWS / dy)
                     coarse = min(max(coarse * min(max(ratio, 0.5), 2.0), ADAPT_MIN_STEP),
                                  ADAPT_MAX_STEP)
-                evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
-                                  sigma, persp, d3, H, aa, stk, sdepth, left, mid)
+                evals += _span(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
+                               sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)
             prev[:] = cur
         else:
             run[RUN_OPEN] = 0.0

@@ -5,7 +5,8 @@ Axes' true pixel size each time the figure is drawn, so a resized window or
 ``savefig(dpi=300)`` gets a sharp picture of that size, never a resampled one. With
 ``interactive=True`` a mouse drag turns the view (elev/azim, as Axes3D does) and the
 scroll wheel zooms; while the button is held the picture is drawn with sampling planes
-``DRAG_PIXEL_STEP`` pixels apart, and at full quality on release.
+``DRAG_PIXEL_STEP`` pixels apart and without corrections or antialiasing, and at full
+quality on release.
 """
 from __future__ import annotations
 

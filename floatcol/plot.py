@@ -236,7 +236,12 @@ class SurfacePlot(_ScalarMappable):
             elif self.light is not None:
                 kw["light"] = self.light
         if self.pixel_step is not None and kw.get("step") is None:
+            # a drag preview: coarser planes, no corrections or antialiasing (the
+            # picture is drawn again at full quality on release)
             kw["pixel_step"] = self.pixel_step
+            if kw.get("method", "column") == "column":
+                kw["corrections"] = "none"
+                kw["antialias"] = False
         if self.zoom != 1.0 and kw.get("scale") is None:
             fit = render_view(self.surface, kw)
             kw["scale"] = fit.scale * self.zoom

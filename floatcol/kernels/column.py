@@ -338,11 +338,8 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
                                       0.5 * (left[A_T] + right[A_T]), mid, run)
                 evals += ev
                 if st == S_OK:
-                    dw = WALL_MODE + (d if searching else 0) + 1   # halvings of the wall's span
-                    stk[n, :] = mid
-                    sdepth[n] = dw
-                    sdepth[n - 1] = dw
-                    n += 1
+                    # depth: halvings of the wall's span
+                    n = _push(stk, sdepth, n, mid, WALL_MODE + (d if searching else 0) + 1)
                     continue
             else:
                 nx, ny, nz = wall_normal(kind, f, fu, fv, hf, hfp, vp, left, right)
@@ -380,24 +377,16 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
         if fix == FIX_NONE and fix_s != FIX_NONE and \
                 shading_problem(vp, x0, left, right, detect, run[RUN_YMIN], run[RUN_YMAX]):
             fix = fix_s
-        if fix == FIX_ADAPTIVE and d < max_depth:
-            st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0,
-                                  0.5 * (left[A_T] + right[A_T]), mid, run)
+        if fix == FIX_SPLINE or (fix == FIX_ADAPTIVE and d < max_depth):
+            # one more sample inside the span: the spline's top, or the middle
+            if fix == FIX_SPLINE:
+                st, ev = _spline_top(kind, f, fu, fv, hf, hfp, vp, x0, left, right, mid, run)
+            else:
+                st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0,
+                                      0.5 * (left[A_T] + right[A_T]), mid, run)
             evals += ev
             if st == S_OK:
-                stk[n, :] = mid
-                sdepth[n] = d + 1
-                sdepth[n - 1] = d + 1
-                n += 1
-                continue
-        elif fix == FIX_SPLINE:
-            st, ev = _spline_top(kind, f, fu, fv, hf, hfp, vp, x0, left, right, mid, run)
-            evals += ev
-            if st == S_OK:
-                stk[n, :] = mid
-                sdepth[n] = d + 1
-                sdepth[n - 1] = d + 1
-                n += 1
+                n = _push(stk, sdepth, n, mid, d + 1)
                 continue
         elif fix == FIX_SUPER:
             ta = left[A_T]
@@ -412,6 +401,15 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
         left[:] = right
         n -= 1
     return evals
+
+
+@ngjit
+def _push(stk, sdepth, n, mid, depth):
+    """Split the span (left, stk[n-1]) at sample ``mid``: both halves get ``depth``."""
+    stk[n, :] = mid
+    sdepth[n] = depth
+    sdepth[n - 1] = depth
+    return n + 1
 
 
 @ngjit

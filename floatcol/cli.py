@@ -68,6 +68,15 @@ def _surface_options(p, default_size="800x600"):
     p.add_argument("--shading", default="default", choices=["default", "lambert"])
     p.add_argument("--interpolation", default="normal", choices=["normal", "intensity"],
                    help="normal (nis, per pixel) or intensity (iis, Gouraud)")
+    p.add_argument("--corrections", default=None,
+                   choices=["none", "spline", "supersample", "adaptive", "spline+supersample",
+                            "spline+adaptive"],
+                   help="the paper's artifact corrections (default spline+adaptive)")
+    p.add_argument("--antialias", default=None, choices=["on", "off", "2", "3", "4"],
+                   help="on: coverage along columns; 2-4: also that many sub-columns "
+                        "(default on, off with --shading lambert)")
+    p.add_argument("--sampling", default=None, choices=["uniform", "adaptive"],
+                   help="adaptive: planes grow with distance and where the normal turns slowly")
     p.add_argument("--lines", type=int, default=None, help="horizon: number of lines (default 160)")
     p.add_argument("--cmap", default=None, help="matplotlib colormap of the upper side (default viridis)")
     p.add_argument("--color", default=None, help="one colour for the upper side instead of a colormap")
@@ -178,7 +187,10 @@ def _options(args):
     opts = dict(size=args.size, elev=args.elev, azim=args.azim, proj_type=args.proj,
                 method=args.method, shading=args.shading, interpolation=args.interpolation,
                 dpi=args.dpi)
-    for name in ("focal_length", "cmap", "color", "vmin", "vmax", "lines"):
+    if args.antialias is not None:
+        opts["antialias"] = {"on": True, "off": False, "2": 2, "3": 3, "4": 4}[args.antialias]
+    for name in ("focal_length", "cmap", "color", "vmin", "vmax", "lines", "corrections",
+                 "sampling"):
         value = getattr(args, name)
         if value is not None:
             opts[name] = value

@@ -51,6 +51,22 @@ def test_render_matches_plot_surface(capsys, monkeypatch, tmp_path):
     assert np.array_equal(got, want)
 
 
+@pytest.mark.parametrize("flags,opts", [
+    (("--corrections", "none", "--antialias", "off"), dict(corrections="none", antialias=False)),
+    (("--antialias", "3", "--sampling", "adaptive"), dict(antialias=3, sampling="adaptive")),
+])
+def test_fidelity_flags_match_plot_surface(capsys, monkeypatch, tmp_path, flags, opts):
+    import floatcol as fc
+    code, _, _ = run_here(capsys, monkeypatch, tmp_path, "render", "3*sin(x*cos(y))",
+                          "--x=-5:5", "--y=-5:5", "--size", "64x48", *flags, "-o", "s.png")
+    assert code == 0
+    want = fc.plot_surface("3*sin(x*cos(y))", ("x", -5, 5), ("y", -5, 5), size=(64, 48), **opts)
+    default = fc.plot_surface("3*sin(x*cos(y))", ("x", -5, 5), ("y", -5, 5), size=(64, 48))
+    got = np.asarray(Image.open(tmp_path / "s.png"))
+    assert np.array_equal(got, want.rgba)
+    assert not np.array_equal(got, default.rgba)
+
+
 @pytest.mark.parametrize("ext,magic", [(".jpg", b"\xff\xd8\xff"), (".pdf", b"%PDF"),
                                        (".svg", b"<?xml")])
 def test_render_other_formats(capsys, monkeypatch, tmp_path, ext, magic):

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import color
+from .kernels.antialias import subcolumn_kernel
 from .kernels.column import H_SIZE, column_kernel
 from .kernels.horizon import horizon_kernel
 from .kernels import layout as L
@@ -261,50 +262,37 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         bg8 = color.to_rgba8(background)
         shade_args = (INTERPOLATIONS[interpolation], amb, spec, shine)
 
-        def finish(gb, eb, vpx, intensity, side, depth, rgba):
-            shade = np.empty((W, H), dtype=np.float32)
-            spec_img = np.empty((W, H), dtype=np.float32)
-            es = (W, H) if aa_cov else (1, 1)
-            eshade = np.empty(es, dtype=np.float32)
-            espec = np.empty(es, dtype=np.float32)
-            shade_kernel(gb, eb, vpx, *shade_args, shade, spec_img, eshade, espec)
-            finish_kernel(gb, eb, aa_cov, shade, spec_img, eshade, espec, lut, w_lo, w_hi,
-                          lower_rgb, bg8, intensity, side, depth, rgba)
-
+        shade = np.empty((W, H), dtype=np.float32)
+        spec_img = np.empty((W, H), dtype=np.float32)
+        es = (W, H) if aa_cov else (1, 1)
+        eshade = np.empty(es, dtype=np.float32)
+        espec = np.empty(es, dtype=np.float32)
+        shade_kernel(gbuf, ebuf, vp, *shade_args, shade, spec_img, eshade, espec)
         intensity = np.empty((H, W), dtype=np.float32)
         side = np.empty((H, W), dtype=np.int8)
         depth = np.empty((H, W), dtype=np.float32)
         rgba = np.empty((H, W, 4), dtype=np.uint8)
-        finish(gbuf, ebuf, vp, intensity, side, depth, rgba)
+        finish_kernel(gbuf, ebuf, aa_cov, shade, spec_img, eshade, espec, lut, w_lo, w_hi,
+                      lower_rgb, bg8, intensity, side, depth, rgba)
         if sub_columns > 1:
-            # section 6.4 across columns: average sub-columns at even offsets inside
-            # each pixel (premultiplied); the G-buffer and the arrays other than rgba
-            # stay those of the pixel centres (offset 0).
+            # section 6.4 across columns: sub-columns at even offsets inside each pixel,
+            # averaged (premultiplied), one column of scratch per thread; the
+            # G-buffer and the arrays other than rgba stay those of the pixel centres
             offsets = (np.arange(sub_columns) + 0.5) / sub_columns - 0.5
             acc = np.zeros((H, W, 4))
-            g2 = np.empty_like(gbuf)
-            e2 = np.empty_like(ebuf)
-            h2 = np.empty((W, 1, H_SIZE))
-            ev2 = np.zeros(W, dtype=np.int64)
-            scratch = (np.empty((H, W), np.float32), np.empty((H, W), np.int8),
-                       np.empty((H, W), np.float32), np.empty((H, W, 4), np.uint8))
-            for off in offsets:
-                if off == 0.0:
-                    part = rgba
-                else:
-                    vp2 = vp.copy()
-                    vp2[L.VP_XOFF] = off
-                    column_kernel(*surface.kernel_args(), vp2, g2, e2, h2, 0, ev2)
-                    evals += ev2
-                    finish(g2, e2, vp2, *scratch)
-                    part = scratch[3]
-                a = part[..., 3:4] / 255.0
-                acc[..., :3] += part[..., :3] * a
+            if np.any(offsets == 0.0):           # the centre is the pass above
+                a = rgba[..., 3:4] / 255.0
+                acc[..., :3] += rgba[..., :3] / 255.0 * a
                 acc[..., 3:4] += a
+                offsets = offsets[offsets != 0.0]
+            ev2 = np.zeros(W, dtype=np.int64)
+            subcolumn_kernel(*surface.kernel_args(), vp, offsets, *shade_args, lut, w_lo,
+                             w_hi, lower_rgb, bg8, acc, ev2)
+            evals += ev2
             a = acc[..., 3:4]
             rgb = np.where(a > 0, acc[..., :3] / np.maximum(a, 1e-12), 0.0)
             rgba = np.empty((H, W, 4), dtype=np.uint8)
-            rgba[..., :3] = np.clip(rgb + 0.5, 0, 255).astype(np.uint8)
+            rgba[..., :3] = np.clip(rgb * 255 + 0.5, 0, 255).astype(np.uint8)
             rgba[..., 3] = np.clip(a[..., 0] / sub_columns * 255 + 0.5, 0, 255).astype(np.uint8)
     t_end = time.perf_counter()
     stats = {

@@ -10,7 +10,9 @@ import floatcol as fc
 
 CASES = [dict(projection="orthographic", method="column"),
          dict(projection="perspective", method="column"),
-         dict(projection="perspective", method="horizon", elev=60)]
+         dict(projection="perspective", method="horizon", elev=60),
+         dict(projection="perspective", antialias=3, sampling="adaptive"),
+         dict(projection="orthographic", antialias=2, interpolation="intensity")]
 SCRIPT = """
 import sys, numpy as np, numba, floatcol as fc
 assert numba.get_num_threads() == 1

@@ -134,18 +134,56 @@ def _side_rgb(side, w, lut, w_lo, span, lower_rgb):
     return lower_rgb[0], lower_rgb[1], lower_rgb[2]
 
 
+@ngjit
+def pixel_rgba(gpx, epx, aa, lam, sp, e_lam, e_sp, lut, w_lo, span, lower_rgb, background):
+    """One pixel's colour (r, g, b, alpha) in [0, 1], straight alpha.
+
+    The upper side takes its colour from ``lut`` indexed by w over [w_lo, w_lo + span]
+    (a one-row lut is a flat colour), the lower side ``lower_rgb``; both multiplied by
+    the shade ``lam``, plus the white specular term ``sp``. With ``aa`` (section 6.4)
+    the colour is the coverage-weighted mean of the surface at the pixel's centre
+    (gpx), the edge surface (epx, shaded e_lam, e_sp) and the background (uint8 RGBA).
+    """
+    s = gpx[G_SIDE]
+    cov0 = 0.0
+    r = 0.0
+    g = 0.0
+    b = 0.0
+    if s != 0.0:
+        cov0 = epx[E_COV0] if aa else 1.0
+        r, g, b = _side_rgb(s, gpx[G_W], lut, w_lo, span, lower_rgb)
+        r = min(r * lam + sp, 1.0)
+        g = min(g * lam + sp, 1.0)
+        b = min(b * lam + sp, 1.0)
+    cov1 = 0.0
+    if aa and epx[E_COV] > 0.0:
+        cov1 = min(epx[E_COV], 1.0 - cov0)
+        er, eg, eb = _side_rgb(epx[E_SIDE], epx[E_W], lut, w_lo, span, lower_rgb)
+        r = r * cov0 + min(er * e_lam + e_sp, 1.0) * cov1
+        g = g * cov0 + min(eg * e_lam + e_sp, 1.0) * cov1
+        b = b * cov0 + min(eb * e_lam + e_sp, 1.0) * cov1
+    else:
+        r *= cov0
+        g *= cov0
+        b *= cov0
+    # straight alpha over the background: the covered part is opaque surface
+    bga = background[3] / 255.0
+    cov = cov0 + cov1
+    a = cov + (1.0 - cov) * bga
+    if a <= 0.0:
+        return background[0] / 255.0, background[1] / 255.0, background[2] / 255.0, 0.0
+    rest = (1.0 - cov) * bga
+    return (min((r + rest * background[0] / 255.0) / a, 1.0),
+            min((g + rest * background[1] / 255.0) / a, 1.0),
+            min((b + rest * background[2] / 255.0) / a, 1.0), a)
+
+
 @ngjit_parallel
 def finish_kernel(gbuf, ebuf, aa, shade, spec, eshade, espec, lut, w_lo, w_hi, lower_rgb,
                   background, intensity, side, depth, rgba):
-    """Assemble the public arrays, top row first: intensity, side, depth and rgba.
-
-    The upper side takes its colour from ``lut`` indexed by w over [w_lo, w_hi]
-    (a one-row lut is a flat colour), the lower side ``lower_rgb``; both are
-    multiplied by the shade, plus the white specular term ``spec``. Background
-    pixels get ``background`` (uint8 RGBA). With ``aa`` (section 6.4) a pixel's colour
-    is the coverage-weighted mean of the surface at its centre, the edge surface of
-    ebuf and the background; intensity, side and depth stay those of the centre.
-    """
+    """Assemble the public arrays, top row first: intensity, side, depth and rgba
+    (pixel_rgba; with ``aa`` only rgba is blended, intensity, side and depth stay
+    those of the pixel's centre)."""
     W = gbuf.shape[0]
     H = gbuf.shape[1]
     span = w_hi - w_lo if w_hi > w_lo else 1.0
@@ -155,54 +193,17 @@ def finish_kernel(gbuf, ebuf, aa, shade, spec, eshade, espec, lut, w_lo, w_hi, l
             s = gbuf[c, j, G_SIDE]
             side[i, c] = np.int8(s)
             depth[i, c] = gbuf[c, j, G_DEPTH]
-            lam = shade[c, j]
-            intensity[i, c] = lam
-            cov0 = 0.0
-            r = 0.0
-            g = 0.0
-            b = 0.0
-            if s != 0.0:
-                cov0 = ebuf[c, j, E_COV0] if aa else 1.0
-                r, g, b = _side_rgb(s, gbuf[c, j, G_W], lut, w_lo, span, lower_rgb)
-                sp = spec[c, j]
-                r = min(r * lam + sp, 1.0)
-                g = min(g * lam + sp, 1.0)
-                b = min(b * lam + sp, 1.0)
-            if not aa:
-                if s == 0.0:
-                    for k in range(4):
-                        rgba[i, c, k] = background[k]
-                    continue
-                rgba[i, c, 0] = np.uint8(r * 255.0 + 0.5)
-                rgba[i, c, 1] = np.uint8(g * 255.0 + 0.5)
-                rgba[i, c, 2] = np.uint8(b * 255.0 + 0.5)
-                rgba[i, c, 3] = 255
-                continue
-            cov1 = ebuf[c, j, E_COV]
-            if cov1 > 0.0:
-                e_lam = eshade[c, j]
-                er, eg, eb = _side_rgb(ebuf[c, j, E_SIDE], ebuf[c, j, E_W], lut, w_lo, span,
-                                       lower_rgb)
-                esp = espec[c, j]
-                cov1 = min(cov1, 1.0 - cov0)
-                r = r * cov0 + min(er * e_lam + esp, 1.0) * cov1
-                g = g * cov0 + min(eg * e_lam + esp, 1.0) * cov1
-                b = b * cov0 + min(eb * e_lam + esp, 1.0) * cov1
-            else:
-                cov1 = 0.0
-                r *= cov0
-                g *= cov0
-                b *= cov0
-            # straight alpha over the background: the covered part is opaque surface
-            bga = background[3] / 255.0
-            cov = cov0 + cov1
-            a = cov + (1.0 - cov) * bga
-            if a <= 0.0:
+            intensity[i, c] = shade[c, j]
+            if not aa and s == 0.0:
                 for k in range(4):
                     rgba[i, c, k] = background[k]
                 continue
-            rest = (1.0 - cov) * bga
-            rgba[i, c, 0] = np.uint8(min((r + rest * background[0] / 255.0) / a, 1.0) * 255.0 + 0.5)
-            rgba[i, c, 1] = np.uint8(min((g + rest * background[1] / 255.0) / a, 1.0) * 255.0 + 0.5)
-            rgba[i, c, 2] = np.uint8(min((b + rest * background[2] / 255.0) / a, 1.0) * 255.0 + 0.5)
+            ce = np.int64(c) if aa else np.int64(0)      # ebuf may be (1, 1, E_SIZE)
+            je = np.int64(j) if aa else np.int64(0)
+            r, g, b, a = pixel_rgba(gbuf[c, j], ebuf[ce, je], aa, shade[c, j], spec[c, j],
+                                    eshade[ce, je], espec[ce, je], lut, w_lo, span, lower_rgb,
+                                    background)
+            rgba[i, c, 0] = np.uint8(r * 255.0 + 0.5)
+            rgba[i, c, 1] = np.uint8(g * 255.0 + 0.5)
+            rgba[i, c, 2] = np.uint8(b * 255.0 + 0.5)
             rgba[i, c, 3] = np.uint8(a * 255.0 + 0.5)

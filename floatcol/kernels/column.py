@@ -27,14 +27,15 @@ from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIDE, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIDE, G_T, G_U, G_V, G_W,
-    DETECT_WALL, FIX_ADAPTIVE, FIX_NONE, SURF_HEIGHTFIELD, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
+    DETECT_RIDGE, DETECT_WALL, FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
+    SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1, VP_UA,
     VP_UB, VP_VA, VP_VB, VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR,
 )
 from .correct import (
     WALL_DEPTH, hermite_extremum, lambert_at, probe, ridge_between, shading_problem, wall_between,
-    wall_normal, wants_ridge,
+    wall_normal,
 )
 from .sample import column_x0, sample_point
 
@@ -306,12 +307,9 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
     halving the span while the problem persists, down to 1/VP_RATE of it. Returns the
     number of evaluations of f."""
     detect = int(vp[VP_DETECT])
-    fix_r = int(vp[VP_FIX_RIDGE]) if wants_ridge(detect) else FIX_NONE
+    fix_r = int(vp[VP_FIX_RIDGE]) if detect & DETECT_RIDGE else FIX_NONE
     fix_s = int(vp[VP_FIX_SHADE])
     walls = (detect & DETECT_WALL) != 0
-    if fix_r == FIX_NONE and fix_s == FIX_NONE and not walls:
-        _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)
-        return 0
     if not ((fix_r != FIX_NONE and ridge_between(vp, x0, prev, cur, run[RUN_YMIN], run[RUN_YMAX]))
             or (fix_s != FIX_NONE and shading_problem(vp, x0, prev, cur, detect, run[RUN_YMIN],
                                                       run[RUN_YMAX]))
@@ -333,27 +331,21 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
         d = sdepth[n - 1] - (WALL_MODE if searching else 0)
         if walls and wall_between(left, right, run[RUN_YMIN], run[RUN_YMAX], searching):
             # end of section 5: halve while the jump persists; then shade it as a wall
-            if (d if searching else 0) < WALL_DEPTH and n < STACK_SIZE - 2:
+            halvings = d if searching else 0
+            if halvings < WALL_DEPTH and n < STACK_SIZE - 2:
                 st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0,
                                       0.5 * (left[A_T] + right[A_T]), mid, run)
                 evals += ev
                 if st == S_OK:
-                    # depth: halvings of the wall's span
-                    n = _push(stk, sdepth, n, mid, WALL_MODE + (d if searching else 0) + 1)
+                    n = _push(stk, sdepth, n, mid, WALL_MODE + halvings + 1)
                     continue
             else:
                 nx, ny, nz = wall_normal(kind, f, fu, fv, hf, hfp, vp, left, right)
                 lam = lambert_at(vp, x0, left, nx, ny, nz)
                 w0[:] = left
                 w1[:] = right
-                w0[A_NX] = nx
-                w0[A_NY] = ny
-                w0[A_NZ] = nz
-                w0[A_I] = lam
-                w1[A_NX] = nx
-                w1[A_NY] = ny
-                w1[A_NZ] = nz
-                w1[A_I] = lam
+                _set_normal(w0, nx, ny, nz, lam)
+                _set_normal(w1, nx, ny, nz, lam)
                 _fill_span(gcol, ecol, run, w0, w1, sigma, persp, d3, H, aa)
                 left[:] = right
                 n -= 1
@@ -364,10 +356,7 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
                                       run)
                 evals += ev
                 if st == S_OK:
-                    left[A_NX] = mid[A_NX]
-                    left[A_NY] = mid[A_NY]
-                    left[A_NZ] = mid[A_NZ]
-                    left[A_I] = mid[A_I]
+                    _set_normal(left, mid[A_NX], mid[A_NY], mid[A_NZ], mid[A_I])
                 continue
         fix = FIX_NONE
         if fix_r != FIX_NONE and ridge_between(vp, x0, left, right, run[RUN_YMIN], run[RUN_YMAX]):
@@ -401,6 +390,15 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
         left[:] = right
         n -= 1
     return evals
+
+
+@ngjit
+def _set_normal(a, nx, ny, nz, lam):
+    """Give sample ``a`` the normal (nx, ny, nz) and the intensity lam."""
+    a[A_NX] = nx
+    a[A_NY] = ny
+    a[A_NZ] = nz
+    a[A_I] = lam
 
 
 @ngjit

@@ -21,10 +21,10 @@ import numpy as np
 from ._jit import ngjit
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z, DETECT_BUMP,
-    DETECT_JUMP, DETECT_RIDGE, VP_CA, VP_CB, VP_D1, VP_D3, VP_H, VP_JUMP, VP_LX, VP_LY, VP_LZ,
+    DETECT_JUMP, VP_CA, VP_CB, VP_D1, VP_D3, VP_H, VP_JUMP, VP_LX, VP_LY, VP_LZ,
     VP_ORTHO, VP_SA, VP_SB, VP_SCALE,
 )
-from .sample import surface_eval
+from .sample import lambert, surface_eval
 
 #: A wall (end of section 5): a span whose screen rows jump by more than WALL_MIN_PX and
 #: by more than WALL_RATIO times what the slopes at its ends predict. The span is
@@ -164,11 +164,6 @@ def shading_problem(vp, x0, a, b, detect, run_lo, run_hi):
 
 
 @ngjit
-def wants_ridge(detect):
-    return (detect & DETECT_RIDGE) != 0
-
-
-@ngjit
 def wall_between(a, b, run_lo, run_hi, searching):
     """A discontinuity between samples a and b (end of section 5: "a big jump in the
     y-values" where the normals do not explain it): the rows jump by more than
@@ -280,16 +275,9 @@ def wall_normal(kind, f, fu, fv, hf, hfp, vp, a, b):
 
 @ngjit
 def lambert_at(vp, x0, a, nx, ny, nz):
-    """|L.N| of unit normal N at sample a's place (eq. 12, or the directional light)."""
-    if vp[VP_LX] != 0.0 or vp[VP_LY] != 0.0 or vp[VP_LZ] != 0.0:
-        lx = vp[VP_LX]
-        ly = vp[VP_LY]
-        lz = vp[VP_LZ]
-    elif vp[VP_ORTHO] != 0.0:
-        return min(abs(nz), 1.0)
-    else:
-        y0 = (a[A_Y] - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]
-        lx = -x0
-        ly = -y0
-        lz = -vp[VP_D1]
-    return min(abs(lx * nx + ly * ny + lz * nz) / math.sqrt(lx * lx + ly * ly + lz * lz), 1.0)
+    """|L.N| of unit normal N at sample a's place (eq. 12, or the directional light);
+    the view direction there is -(x0, y0, d1), as in probe."""
+    if vp[VP_ORTHO] != 0.0:
+        return lambert(vp, 0.0, 0.0, -1.0, nx, ny, nz)
+    y0 = (a[A_Y] - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]
+    return lambert(vp, -x0, -y0, -vp[VP_D1], nx, ny, nz)

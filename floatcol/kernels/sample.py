@@ -180,16 +180,23 @@ def sample_point(kind, f, fu, fv, hf, hfp, vp, x0, t, s_guess):
     ny /= nn
     nz /= nn
     # eq. (12): light at the viewpoint; orthographic: toward the viewer (0, 0, -1)
+    if ortho:
+        lam = lambert(vp, 0.0, 0.0, -1.0, nx, ny, nz)
+    else:
+        lam = lambert(vp, -r, -y1, -(d3 + z1), nx, ny, nz)
+    return S_OK, evals, ypix, z1, u, v, w, nx, ny, nz, lam
+
+
+@ngjit
+def lambert(vp, vx, vy, vz, nx, ny, nz):
+    """|L.N| in [0, 1] for the unit normal N (eq. 12): L is vp's directional light
+    (a unit vector), or the direction (vx, vy, vz) toward the viewpoint when that is
+    zero (the headlight)."""
     if vp[VP_LX] != 0.0 or vp[VP_LY] != 0.0 or vp[VP_LZ] != 0.0:
         lam = abs(vp[VP_LX] * nx + vp[VP_LY] * ny + vp[VP_LZ] * nz)
-    elif ortho:
-        lam = abs(nz)
     else:
-        lx = -r
-        ly = -y1
-        lz = -(d3 + z1)
-        lam = abs(lx * nx + ly * ny + lz * nz) / math.sqrt(lx * lx + ly * ly + lz * lz)
-    return S_OK, evals, ypix, z1, u, v, w, nx, ny, nz, min(lam, 1.0)
+        lam = abs(vx * nx + vy * ny + vz * nz) / math.sqrt(vx * vx + vy * vy + vz * vz)
+    return min(lam, 1.0)
 
 
 @ngjit

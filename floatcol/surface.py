@@ -1,8 +1,8 @@
 """Surfaces: what the kernels sample.
 
-A Surface carries f, f_u and f_v as compiled Numba cfuncs (DESIGN.md section 4), so a
-new expression costs a few tens of milliseconds and never recompiles a kernel, or a
-height grid read as a bilinear function (the paper's "digital height field").
+A Surface carries f, and f fused with f_u and f_v in one function, as compiled Numba
+cfuncs (DESIGN.md section 4), so a new expression costs a few tens of milliseconds
+and never recompiles a kernel; or a height grid read as a bilinear function (the paper's "digital height field").
 """
 from __future__ import annotations
 
@@ -12,9 +12,10 @@ import logging
 import math
 import numbers
 
+import numba
 import numpy as np
 
-from .kernels._jit import compile_surface_fn
+from .kernels._jit import compile_grad_fn, compile_surface_fn
 from .kernels.layout import SURF_FUNCTION, SURF_HEIGHTFIELD
 from .kernels.sample import eval_grid
 
@@ -32,11 +33,10 @@ class Surface:
 
     kind = SURF_FUNCTION
 
-    def __init__(self, f, fu, fv, *, expr=None, variables=DEFAULT_VARS,
+    def __init__(self, f, fg, *, expr=None, variables=DEFAULT_VARS,
                  derivatives="symbolic", time=None):
-        self.f = f
-        self.fu = fu
-        self.fv = fv
+        self.f = f          # cfunc w = f(u, v, t)
+        self.fg = fg        # cfunc w = fg(u, v, t, p), p <- (f_u, f_v)
         self.expr = expr
         self.variables = tuple(variables)
         self.derivatives = derivatives
@@ -57,8 +57,8 @@ class Surface:
     default_domain = None
 
     def kernel_args(self):
-        """(kind, f, fu, fv, hf, hfp): what every kernel takes to sample the surface."""
-        return self.kind, self.f, self.fu, self.fv, self.hf, self.hfp
+        """(kind, f, fg, hf, hfp): what every kernel takes to sample the surface."""
+        return self.kind, self.f, self.fg, self.hf, self.hfp
 
     def evaluate(self, u, v, derivatives=False):
         """w = f(u, v) on arrays (NaN at holes); with derivatives, (w, f_u, f_v)."""
@@ -97,7 +97,7 @@ class HeightField(Surface):
         nv, nu = z.shape
         u = check_range("u", (0.0, nu - 1.0) if u is None else u)
         v = check_range("v", (0.0, nv - 1.0) if v is None else v)
-        super().__init__(_zero_fn(), _zero_fn(), _zero_fn(), variables=DEFAULT_VARS,
+        super().__init__(*_zero_fns(), variables=DEFAULT_VARS,
                          derivatives="bilinear")
         self.hf = np.ascontiguousarray(z)
         self.hfp = np.array([u[0], u[1], v[0], v[1]], dtype=np.float64)
@@ -244,8 +244,11 @@ def _parse_error_message(text, exc):
 
 # ---------------------------------------------------------------- compilation
 
+#: Inner functions of the compiled surfaces: 1/0 is an infinity (a hole), never an
+#: exception (which a cfunc could only swallow).
+_njit = numba.njit(error_model="numpy")
+
 def _numba_namespace():
-    import numba
 
     @numba.njit(cache=False)
     def dirac_delta(x, *args):
@@ -261,66 +264,115 @@ def _compiled_expression(e, names, time=None):
     su, sv = (sp.Symbol(n) for n in names)
     st = sp.Symbol(time) if time is not None else sp.Dummy("t")
     f_py, f = _compile_scalar(e, su, sv, st)
-    parts = []
+    fg = None
     how = "symbolic"
-    for sym, axis in ((su, 0), (sv, 1)):
-        d = sp.diff(e, sym)
-        compiled = None
-        if not d.has(sp.Derivative, sp.Subs):
-            try:
-                compiled = _compile_scalar(d, su, sv, st)[1]
-            except ValueError:
-                compiled = None
-        if compiled is None:
-            how = "central differences"
-            compiled = _central_difference(f_py, axis)
-        parts.append(compiled)
-    return Surface(f, parts[0], parts[1], expr=e, variables=names, derivatives=how,
-                   time=time)
+    derivs = [sp.diff(e, su), sp.diff(e, sv)]
+    if not any(d.has(sp.Derivative, sp.Subs) for d in derivs):
+        try:
+            fg = _compile_fused(e, derivs, su, sv, st)
+        except ValueError:
+            fg = None
+    if fg is None:
+        how = "central differences"
+        fg = _central_difference(f_py)
+    return Surface(f, fg, expr=e, variables=names, derivatives=how, time=time)
+
+
+def _is_complex(e):
+    import sympy as sp
+    return bool(e.has(sp.I)) or any(n.is_real is False for n in e.atoms(sp.Number))
+
+
+def _compile_error(e, exc):
+    first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+    return ValueError(f"cannot compile {e} for the renderer: {first}")
 
 
 def _compile_scalar(e, su, sv, st):
     """(njit-able python function, cfunc) for a scalar sympy expression."""
-    import numba
     import sympy as sp
-    is_complex = bool(e.has(sp.I)) or any(
-        n.is_real is False for n in e.atoms(sp.Number))
     try:
-        if is_complex:
-            g = numba.njit(sp.lambdify((su, sv, st), e, modules="cmath"))
+        if _is_complex(e):
+            g = _njit(sp.lambdify((su, sv, st), e, modules="cmath"))
 
             def py(u, v, t):
-                z = g(u, v, t) + 0j
-                if abs(z.imag) <= 1e-12 * (1.0 + abs(z.real)):
-                    return z.real
-                return math.nan          # a complex value is a hole
+                try:
+                    return _real_part(g(u, v, t) + 0j)
+                except Exception:        # e.g. 0.0 ** -2: a hole
+                    return math.nan
         else:
-            py = sp.lambdify((su, sv, st), e, modules=[_numba_namespace(), "math"])
+            g = _njit(sp.lambdify((su, sv, st), e, modules=[_numba_namespace(), "math"]))
+
+            def py(u, v, t):
+                try:
+                    return g(u, v, t)
+                except Exception:        # e.g. 0.0 ** -2, which raises even in Numba's
+                    return math.nan      # numpy error model: a hole
         log.debug("compiling %s", e)
         return py, compile_surface_fn(py)
     except Exception as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise ValueError(f"cannot compile {e} for the renderer: {first}") from None
+        raise _compile_error(e, exc) from None
 
 
-def _central_difference(py, axis):
-    import numba
-    fj = numba.njit(py)
-    if axis == 0:
-        def d(u, v, t):
-            h = 6e-6 * max(1.0, abs(u))
-            return (fj(u + h, v, t) - fj(u - h, v, t)) / (2.0 * h)
-    else:
-        def d(u, v, t):
-            h = 6e-6 * max(1.0, abs(v))
-            return (fj(u, v + h, t) - fj(u, v - h, t)) / (2.0 * h)
-    return compile_surface_fn(d)
+def _compile_fused(e, derivs, su, sv, st):
+    """The fused cfunc w = fg(u, v, t, p), p <- (f_u, f_v): f and both partials in
+    one function, their common subexpressions computed once (sympy's cse)."""
+    import sympy as sp
+    triple = (e, derivs[0], derivs[1])
+    try:
+        if any(_is_complex(x) for x in triple):
+            g = _njit(sp.lambdify((su, sv, st), triple, modules="cmath", cse=True))
+
+            def fused(u, v, t, p):
+                try:
+                    w, wu, wv = g(u, v, t)
+                except Exception:
+                    return math.nan
+                p[0] = _real_part(wu + 0j)
+                p[1] = _real_part(wv + 0j)
+                return _real_part(w + 0j)
+        else:
+            g = _njit(sp.lambdify((su, sv, st), triple,
+                                  modules=[_numba_namespace(), "math"], cse=True))
+
+            def fused(u, v, t, p):
+                try:
+                    w, wu, wv = g(u, v, t)
+                except Exception:
+                    return math.nan
+                p[0] = wu
+                p[1] = wv
+                return w
+        return compile_grad_fn(fused)
+    except Exception as exc:
+        raise _compile_error(e, exc) from None
+
+
+@_njit
+def _real_part(z):
+    """The real part of a value that is real up to rounding; NaN (a hole) if not."""
+    if abs(z.imag) <= 1e-12 * (1.0 + abs(z.real)):
+        return z.real
+    return math.nan
+
+
+def _central_difference(py):
+    """The fused function by central differences of f (when sympy cannot
+    differentiate the expression, and for plain callables; py never raises)."""
+    fj = _njit(py)
+
+    def fused(u, v, t, p):
+        hu = 6e-6 * max(1.0, abs(u))
+        hv = 6e-6 * max(1.0, abs(v))
+        p[0] = (fj(u + hu, v, t) - fj(u - hu, v, t)) / (2.0 * hu)
+        p[1] = (fj(u, v + hv, t) - fj(u, v - hv, t)) / (2.0 * hv)
+        return fj(u, v, t)
+    return compile_grad_fn(fused)
 
 
 def _callable_surface(fn, names):
     import inspect
 
-    import numba
     py = getattr(fn, "py_func", None) or getattr(fn, "_pyfunc", None) or fn
     try:
         params = inspect.signature(py).parameters.values()
@@ -331,22 +383,30 @@ def _callable_surface(fn, names):
     if len(required) > 2:
         raise ValueError(f"the callable {getattr(py, '__name__', py)!r} must take two arguments (u, v)")
     try:
-        fj = numba.njit(py)
+        fj = _njit(py)
 
         def py3(u, v, t):
-            return fj(u, v)
+            try:
+                return fj(u, v)
+            except Exception:            # e.g. 1/0 in the user's code: a hole
+                return math.nan
         f = compile_surface_fn(py3)
     except Exception as exc:
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         raise ValueError(
             f"cannot compile the callable {getattr(py, '__name__', py)!r} with Numba ({first}); "
             "write it with scalar math (the math module) or pass a sympy expression") from None
-    return Surface(f, _central_difference(py3, 0), _central_difference(py3, 1),
-                   variables=names, derivatives="central differences")
+    return Surface(f, _central_difference(py3), variables=names, derivatives="central differences")
 
 
 @functools.lru_cache(maxsize=1)
-def _zero_fn():
+def _zero_fns():
+    """f = 0 and its fused gradient (placeholders: a height field reads its grid)."""
     def zero(u, v, t):
         return 0.0
-    return compile_surface_fn(zero)
+
+    def zero_grad(u, v, t, p):
+        p[0] = 0.0
+        p[1] = 0.0
+        return 0.0
+    return compile_surface_fn(zero), compile_grad_fn(zero_grad)

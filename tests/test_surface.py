@@ -19,6 +19,33 @@ def test_symbolic_partials_are_exact():
     assert s.derivatives == "symbolic"
 
 
+def test_fused_partials_share_subexpressions_and_match_sympy():
+    # f, f_u and f_v come from one compiled function (common subexpressions once);
+    # each must still equal sympy's own value of the expression and its derivatives
+    u_, v_ = sp.symbols("u v")
+    e = sp.exp(-(u_ ** 2 + v_ ** 2) / 3) * sp.cos(u_ * v_) + sp.log(2 + sp.sin(u_)) * v_ ** 3
+    s = fc.as_surface(e)
+    for pu, pv in ((0.3, 1.1), (-1.7, 0.4), (2.2, -2.9)):
+        w, wu, wv = (float(x) for x in s.evaluate(pu, pv, derivatives=True))
+        at = {u_: pu, v_: pv}
+        assert math.isclose(w, float(e.subs(at)), rel_tol=1e-13, abs_tol=1e-15)
+        assert math.isclose(wu, float(sp.diff(e, u_).subs(at)), rel_tol=1e-12, abs_tol=1e-14)
+        assert math.isclose(wv, float(sp.diff(e, v_).subs(at)), rel_tol=1e-12, abs_tol=1e-14)
+
+
+def test_poles_are_holes_not_exceptions():
+    # 0.0 ** -2 raises ZeroDivisionError inside Numba even with the numpy error model;
+    # a compiled function must turn that into a hole (NaN), never a swallowed exception
+    # with a garbage value
+    for expr in ("1/(u - v)**2", "(u - v)**(-3) + u"):
+        w, wu, wv = fc.as_surface(expr).evaluate(np.array([1.0, 2.0]), np.array([1.0, 0.0]),
+                                                 derivatives=True)
+        assert np.isnan(w[0]) and np.isfinite(w[1])
+    w = fc.as_surface(lambda u, v: 1 / (u - v)).evaluate(np.array([1.0, 2.0]),
+                                                         np.array([1.0, 0.0]))
+    assert np.isnan(w[0]) and w[1] == 0.5
+
+
 def test_sympy_objects_and_other_variable_names():
     x, y = sp.symbols("x y", real=True)
     s = fc.as_surface(sp.exp(-x ** 2) * y, vars=(x, y))

@@ -1,12 +1,20 @@
 """The one place where Numba decorator options are spelled."""
 import numba
 from numba import types
+from numba.core import cgutils
+from numba.extending import intrinsic
 
 #: Signature of every user function the kernels call: w = f(u, v, t), t the surface's
 #: parameter (the time of a time-varying surface; ignored by most functions).
 SURFACE_SIG = types.float64(types.float64, types.float64, types.float64)
 #: First-class function type of such a function (DESIGN.md section 4).
 SurfaceFn = types.FunctionType(SURFACE_SIG)
+#: The fused value-and-gradient function: w = fg(u, v, t, p) also writes f_u to p[0]
+#: and f_v to p[1]. One call shares the common subexpressions of f, f_u and f_v
+#: (sympy's cse): 3 sin(u cos v) needs 4 trigonometric calls instead of 7.
+GRAD_SIG = types.float64(types.float64, types.float64, types.float64,
+                         types.CPointer(types.float64))
+GradFn = types.FunctionType(GRAD_SIG)
 
 #: Small helpers inlined into kernels.
 ngjit = numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -20,3 +28,17 @@ def compile_surface_fn(pyfunc):
     ``error_model="numpy"`` makes 1/0 an infinity (a hole), never an exception.
     """
     return numba.cfunc(SURFACE_SIG, error_model="numpy", nopython=True)(pyfunc)
+
+
+def compile_grad_fn(pyfunc):
+    """Compile ``(u, v, t, p) -> w`` (writing f_u, f_v to p[0], p[1]) to a cfunc."""
+    return numba.cfunc(GRAD_SIG, error_model="numpy", nopython=True)(pyfunc)
+
+
+@intrinsic
+def stack_pair(typingctx):
+    """Two float64 on the calling function's stack, as a pointer: where a fused
+    gradient function writes f_u and f_v (no heap allocation, no reference count)."""
+    def codegen(context, builder, signature, args):
+        return cgutils.alloca_once(builder, context.get_value_type(types.float64), size=2)
+    return types.CPointer(types.float64)(), codegen

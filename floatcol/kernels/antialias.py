@@ -20,7 +20,7 @@ from .shade import _light, pixel_rgba
 
 
 @ngjit_parallel
-def subcolumn_kernel(kind, f, fu, fv, hf, hfp, vp, offsets, interp, ambient, specular,
+def subcolumn_kernel(kind, f, fg, hf, hfp, vp, offsets, interp, ambient, specular,
                      shininess, lut, w_lo, w_hi, lower_rgb, background, acc, evals):
     """For every pixel column c and every offset o (in pixels), render the column at
     c + o with coverage antialiasing, colour it (pixel_rgba) and add the colour,
@@ -36,7 +36,7 @@ def subcolumn_kernel(kind, f, fu, fv, hf, hfp, vp, offsets, interp, ambient, spe
         ev = 0
         for k in range(offsets.shape[0]):
             col = c + offsets[k]
-            ev += render_column(kind, f, fu, fv, hf, hfp, vp, col, gcol, ecol, hrec, 0)
+            ev += render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, 0)
             x0 = column_x0(vp, col)
             for j in range(H):
                 px = gcol[j]

@@ -79,12 +79,12 @@ H_SIZE = 4
 
 
 @ngjit
-def _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, t, out, run):
+def _sample_into(kind, f, fg, hf, hfp, vp, x0, t, out, run):
     if vp[VP_ORTHO] == 0.0 and not _may_meet_domain(vp, x0, t):
         return S_OUTSIDE, 0
     # Newton start: the last solution extrapolated along t
     guess = run[RUN_GUESS] + run[RUN_SLOPE] * (t - run[RUN_GUESS_T])
-    st, ev, y, z, u, v, w, nx, ny, nz, lam = sample_point(kind, f, fu, fv, hf, hfp, vp, x0, t,
+    st, ev, y, z, u, v, w, nx, ny, nz, lam = sample_point(kind, f, fg, hf, hfp, vp, x0, t,
                                                           guess)
     if st == S_OK:
         s = w - vp[VP_CW]
@@ -253,14 +253,14 @@ def _chord_weight(yq, yp, dy, persp, qp, qc):
 
 
 @ngjit
-def _span(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
+def _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
           stk, sdepth, left, mid, xs):
     """_segment, but a height field's span is first cut where the column crosses the
     grid's cell edges: a bilinear surface's normal jumps there (a crease), so a sample
     on the edge keeps interpolation from mixing two patches, and a crease seen
     edge-on gets its top exactly. ``prev`` ends as the last sample used."""
     if kind != SURF_HEIGHTFIELD or vp[VP_DETECT] == 0.0:
-        return _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
+        return _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
                         persp, d3, H, aa, stk, sdepth, left, mid)
     nv, nu = hf.shape
     au = (prev[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)   # grid coordinates
@@ -286,19 +286,19 @@ def _span(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, p
         # (in perspective the ground path bends a little between samples, so the
         # sample lands near the edge, not on it: secant steps onto it measured no
         # better against the ray caster, for 12 % more samples)
-        st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, ta + lam * (tb - ta), xs, run)
+        st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, ta + lam * (tb - ta), xs, run)
         evals += ev
         if st == S_OK:
-            evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, xs, gcol, ecol, run, sigma,
+            evals += _segment(kind, f, fg, hf, hfp, vp, x0, prev, xs, gcol, ecol, run, sigma,
                               persp, d3, H, aa, stk, sdepth, left, mid)
             prev[:] = xs
-    evals += _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
+    evals += _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
                       persp, d3, H, aa, stk, sdepth, left, mid)
     return evals
 
 
 @ngjit
-def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
+def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
              stk, sdepth, left, mid):
     """Fill the span prev -> cur of an open run, correcting the problems that
     App. A.2's Problem() finds (Problem_Correction()): a ridge by the cubic spline's
@@ -333,14 +333,14 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
             # end of section 5: halve while the jump persists; then shade it as a wall
             halvings = d if searching else 0
             if halvings < WALL_DEPTH and n < STACK_SIZE - 2:
-                st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0,
+                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0,
                                       0.5 * (left[A_T] + right[A_T]), mid, run)
                 evals += ev
                 if st == S_OK:
                     n = _push(stk, sdepth, n, mid, WALL_MODE + halvings + 1)
                     continue
             else:
-                nx, ny, nz = wall_normal(kind, f, fu, fv, hf, hfp, vp, left, right)
+                nx, ny, nz = wall_normal(kind, f, fg, hf, hfp, vp, left, right)
                 lam = lambert_at(vp, x0, left, nx, ny, nz)
                 w0[:] = left
                 w1[:] = right
@@ -351,7 +351,7 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
                 n -= 1
                 # the wall's far end may sit on the jump, where difference quotients
                 # give f_u, f_v no meaning: take the normal a little beyond it
-                st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0,
+                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0,
                                       right[A_T] + WALL_BEYOND * (right[A_T] - w0[A_T]), mid,
                                       run)
                 evals += ev
@@ -369,9 +369,9 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
         if fix == FIX_SPLINE or (fix == FIX_ADAPTIVE and d < max_depth):
             # one more sample inside the span: the spline's top, or the middle
             if fix == FIX_SPLINE:
-                st, ev = _spline_top(kind, f, fu, fv, hf, hfp, vp, x0, left, right, mid, run)
+                st, ev = _spline_top(kind, f, fg, hf, hfp, vp, x0, left, right, mid, run)
             else:
-                st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0,
+                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0,
                                       0.5 * (left[A_T] + right[A_T]), mid, run)
             evals += ev
             if st == S_OK:
@@ -381,7 +381,7 @@ def _segment(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
             ta = left[A_T]
             h = (right[A_T] - ta) / rate
             for k in range(1, rate):
-                st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, ta + k * h, mid, run)
+                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, ta + k * h, mid, run)
                 evals += ev
                 if st == S_OK:
                     _fill_span(gcol, ecol, run, left, mid, sigma, persp, d3, H, aa)
@@ -411,7 +411,7 @@ def _push(stk, sdepth, n, mid, depth):
 
 
 @ngjit
-def _spline_top(kind, f, fu, fv, hf, hfp, vp, x0, a, b, out, run):
+def _spline_top(kind, f, fg, hf, hfp, vp, x0, a, b, out, run):
     """Sample the surface at the extremum of the cubic spline between samples a and b
     (eqs. 13-22, see correct.py); with VP_SPLINE_TOL > 0, repeat on the half that
     still holds the sign change while |V.N| there exceeds the tolerance (end of
@@ -430,7 +430,7 @@ def _spline_top(kind, f, fu, fv, hf, hfp, vp, x0, a, b, out, run):
     for _ in range(iters):
         tau, _ = hermite_extremum(ya, yb, ma, mb, tb - ta)
         t2 = ta + tau * (tb - ta)
-        st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, t2, out, run)
+        st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, t2, out, run)
         evals += ev
         if st != S_OK:
             break
@@ -463,7 +463,7 @@ def _grid_range(t0, dt, ta, tb):
 
 
 @ngjit
-def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, hstride,
+def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, hstride,
                  prev, cur, edge, tmp, run, stk, sdepth, left, mid):
     """One front-to-back pass over t from ta to tb (sigma = +1 ascending, -1
     descending). Returns the number of evaluations of f."""
@@ -492,7 +492,7 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
     t = ta
     k = -1
     while True:
-        st, ev = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, t, cur, run)
+        st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, t, cur, run)
         evals += ev
         if prev_st >= 0 and (prev_st == S_OK) != (st == S_OK):
             # A run starts or ends between prev_t and t: bisect for its edge.
@@ -505,7 +505,7 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
             found = False
             for _ in range(EDGE_BISECTIONS):
                 tm = 0.5 * (t_ok + t_bad)
-                st_m, ev_m = _sample_into(kind, f, fu, fv, hf, hfp, vp, x0, tm, tmp, run)
+                st_m, ev_m = _sample_into(kind, f, fg, hf, hfp, vp, x0, tm, tmp, run)
                 evals += ev_m
                 if st_m == S_OK:
                     t_ok = tm
@@ -518,7 +518,7 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                     run_start = edge[A_T]
                     _fill_span(gcol, ecol, run, prev, edge, sigma, persp, d3, H, aa)
                 else:
-                    evals += _span(kind, f, fu, fv, hf, hfp, vp, x0, prev, edge, gcol, ecol, run,
+                    evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, edge, gcol, ecol, run,
                                    sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)
                 prev[:] = edge
         if st == S_OK:
@@ -544,7 +544,7 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                         ratio = min(ratio, ADAPT_ROWS / dy)
                     coarse = min(max(coarse * min(max(ratio, 0.5), 2.0), ADAPT_MIN_STEP),
                                  ADAPT_MAX_STEP)
-                evals += _span(kind, f, fu, fv, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
+                evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
                                sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)
             prev[:] = cur
         else:
@@ -578,7 +578,7 @@ def _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
 
 
 @ngjit
-def render_column(kind, f, fu, fv, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
+def render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     """Render pixel column ``col`` into gcol (H, G_SIZE); returns evaluations of f."""
     gcol[:, :] = np.nan
     gcol[:, G_DEPTH] = np.inf
@@ -600,7 +600,7 @@ def render_column(kind, f, fu, fv, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     if vp[VP_ORTHO] != 0.0:
         lo, hi = _ortho_chord(vp, x0)
         if lo <= hi:
-            evals += _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, lo, hi, 1.0,
+            evals += _column_pass(kind, f, fg, hf, hfp, vp, x0, lo, hi, 1.0,
                                   gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
                                   stk, sdepth, left, mid)
         return evals
@@ -608,18 +608,18 @@ def render_column(kind, f, fu, fv, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     t_hi = vp[VP_T1]
     t_view = -vp[VP_D3] * vp[VP_CA]      # the viewpoint's t, eq. (1)
     if t_hi > t_view:
-        evals += _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, max(t_lo, t_view), t_hi,
+        evals += _column_pass(kind, f, fg, hf, hfp, vp, x0, max(t_lo, t_view), t_hi,
                               1.0, gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
                               stk, sdepth, left, mid)
     if t_lo < t_view:
-        evals += _column_pass(kind, f, fu, fv, hf, hfp, vp, x0, min(t_hi, t_view), t_lo,
+        evals += _column_pass(kind, f, fg, hf, hfp, vp, x0, min(t_hi, t_view), t_lo,
                               -1.0, gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
                               stk, sdepth, left, mid)
     return evals
 
 
 @ngjit_parallel
-def column_kernel(kind, f, fu, fv, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals):
+def column_kernel(kind, f, fg, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals):
     """Render every column in parallel into gbuf (W, H, G_SIZE), cleared here; with
     VP_AA, ebuf (W, H, E_SIZE) receives the coverages (else it may be (1, 1, E_SIZE)).
     hrec (W, n_lines, H_SIZE) receives horizon-line records when hstride > 0. Each
@@ -628,5 +628,5 @@ def column_kernel(kind, f, fu, fv, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals
     n_e = ebuf.shape[0]
     for c in prange(W):
         ce = min(np.int64(c), n_e - 1)
-        evals[c] = render_column(kind, f, fu, fv, hf, hfp, vp, c, gbuf[c], ebuf[ce],
+        evals[c] = render_column(kind, f, fg, hf, hfp, vp, c, gbuf[c], ebuf[ce],
                                  hrec[c], hstride)

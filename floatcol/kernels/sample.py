@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ._jit import ngjit
+from ._jit import ngjit, stack_pair
 from .layout import (
     S_BEHIND, S_HOLE, S_OK, S_OUTSIDE, SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_H, VP_LX, VP_LY, VP_LZ, VP_ORTHO,
@@ -47,16 +47,26 @@ def heightfield_eval(hf, hfp, u, v):
 
 
 @ngjit
-def surface_eval(kind, f, fu, fv, hf, hfp, u, v):
-    """w = f(u, v) and its partials; NaN w means a hole. A function surface's
-    parameter t (the time of an animation) is hfp[0]."""
+def surface_eval(kind, f, fg, hf, hfp, u, v):
+    """w = f(u, v) and its partials, from one call of the fused function fg; NaN w
+    means a hole. A function surface's parameter t (the time of an animation) is
+    hfp[0]."""
     if kind == SURF_HEIGHTFIELD:
         return heightfield_eval(hf, hfp, u, v)
-    t = hfp[0]
-    w = f(u, v, t)
+    p = stack_pair()
+    w = fg(u, v, hfp[0], p)
     if not math.isfinite(w):
         return np.nan, np.nan, np.nan
-    return w, fu(u, v, t), fv(u, v, t)
+    return w, p[0], p[1]
+
+
+@ngjit
+def surface_value(kind, f, hf, hfp, u, v):
+    """w = f(u, v) alone (NaN at a hole), where no partials are needed."""
+    if kind == SURF_HEIGHTFIELD:
+        return heightfield_eval(hf, hfp, u, v)[0]
+    w = f(u, v, hfp[0])
+    return w if math.isfinite(w) else np.nan
 
 
 @ngjit
@@ -74,7 +84,7 @@ def column_x0(vp, col):
 
 
 @ngjit
-def sample_point(kind, f, fu, fv, hf, hfp, vp, x0, t, s_guess):
+def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
     """Surface point on column plane x = x0 and sampling plane t.
 
     Returns (status, evaluations, ypix, z, u, v, w, nx, ny, nz, intensity):
@@ -100,7 +110,7 @@ def sample_point(kind, f, fu, fv, hf, hfp, vp, x0, t, s_guess):
         v = cv - r * sb + t * cb
         if not in_domain(vp, u, v):
             return S_OUTSIDE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
-        w, wu, wv = surface_eval(kind, f, fu, fv, hf, hfp, u, v)
+        w, wu, wv = surface_eval(kind, f, fg, hf, hfp, u, v)
         evals += 1
         if not math.isfinite(w):
             return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -128,7 +138,7 @@ def sample_point(kind, f, fu, fv, hf, hfp, vp, x0, t, s_guess):
             r = r0 + k * s
             u = cu + r * cb + t * sb             # eq. (2)
             v = cv - r * sb + t * cb
-            w, wu, wv = surface_eval(kind, f, fu, fv, hf, hfp, u, v)
+            w, wu, wv = surface_eval(kind, f, fg, hf, hfp, u, v)
             evals += 1
             if not math.isfinite(w):
                 break
@@ -143,14 +153,14 @@ def sample_point(kind, f, fu, fv, hf, hfp, vp, x0, t, s_guess):
         if not paper and (not math.isfinite(w) or abs(k * g) * vp[VP_SCALE] > 1e-3):
             # Newton left the surface (a hole, or a steep rim where f_u, f_v blow
             # up): bracket a root of g(s) = f - cw - s over the range of w instead.
-            s_b, n_b = _bracketed_s(kind, f, fu, fv, hf, hfp, vp, r0, k, t, s)
+            s_b, n_b = _bracketed_s(kind, f, fg, hf, hfp, vp, r0, k, t, s)
             evals += n_b
             if not math.isfinite(s_b):
                 return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
             r = r0 + k * s_b
             u = cu + r * cb + t * sb
             v = cv - r * sb + t * cb
-            w, wu, wv = surface_eval(kind, f, fu, fv, hf, hfp, u, v)
+            w, wu, wv = surface_eval(kind, f, fg, hf, hfp, u, v)
             evals += 1
             if not math.isfinite(w):
                 return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -200,27 +210,27 @@ def lambert(vp, vx, vy, vz, nx, ny, nz):
 
 
 @ngjit
-def eval_grid(kind, f, fu, fv, hf, hfp, u, v, out):
+def eval_grid(kind, f, fg, hf, hfp, u, v, out):
     """out[i] = (w, f_u, f_v) at (u[i], v[i]); NaN rows where the surface has a hole."""
     for i in range(u.shape[0]):
-        w, wu, wv = surface_eval(kind, f, fu, fv, hf, hfp, u[i], v[i])
+        w, wu, wv = surface_eval(kind, f, fg, hf, hfp, u[i], v[i])
         out[i, 0] = w
         out[i, 1] = wu
         out[i, 2] = wv
 
 
 @ngjit
-def _g_at(kind, f, fu, fv, hf, hfp, vp, r0, k, t, s):
+def _g_at(kind, f, fg, hf, hfp, vp, r0, k, t, s):
     """g(s) = f(u(s), v(s)) - cw - s on the line of plane t inside Pi (NaN: a hole)."""
     r = r0 + k * s
     u = vp[VP_CU] + r * vp[VP_CB] + t * vp[VP_SB]
     v = vp[VP_CV] - r * vp[VP_SB] + t * vp[VP_CB]
-    w = surface_eval(kind, f, fu, fv, hf, hfp, u, v)[0]
+    w = surface_value(kind, f, hf, hfp, u, v)
     return w - vp[VP_CW] - s
 
 
 @ngjit
-def _bracketed_s(kind, f, fu, fv, hf, hfp, vp, r0, k, t, s_near):
+def _bracketed_s(kind, f, fg, hf, hfp, vp, r0, k, t, s_near):
     """The root of g nearest ``s_near``, found by scanning s over the range of f on
     the fitting grid (with a quarter of it to spare on each side), about one point
     per SCAN_PIXELS of the segment's length on screen, then bisecting. NaN when g
@@ -237,11 +247,11 @@ def _bracketed_s(kind, f, fu, fv, hf, hfp, vp, r0, k, t, s_near):
     best_b = np.nan
     ga_best = np.nan
     prev_s = s_lo
-    prev_g = _g_at(kind, f, fu, fv, hf, hfp, vp, r0, k, t, s_lo)
+    prev_g = _g_at(kind, f, fg, hf, hfp, vp, r0, k, t, s_lo)
     evals += 1
     for i in range(1, n):
         cur_s = s_lo + i * ds
-        cur_g = _g_at(kind, f, fu, fv, hf, hfp, vp, r0, k, t, cur_s)
+        cur_g = _g_at(kind, f, fg, hf, hfp, vp, r0, k, t, cur_s)
         evals += 1
         if math.isfinite(prev_g) and math.isfinite(cur_g) and (prev_g >= 0.0) != (cur_g >= 0.0):
             mid = 0.5 * (prev_s + cur_s)
@@ -259,7 +269,7 @@ def _bracketed_s(kind, f, fu, fv, hf, hfp, vp, r0, k, t, s_near):
     tol = 1e-4 / (vp[VP_SCALE] * max(abs(k), 1e-12))
     for _ in range(BISECT_ITERS):
         m = 0.5 * (a + b)
-        gm = _g_at(kind, f, fu, fv, hf, hfp, vp, r0, k, t, m)
+        gm = _g_at(kind, f, fg, hf, hfp, vp, r0, k, t, m)
         evals += 1
         if not math.isfinite(gm):
             # a hole inside the bracket: keep the half next to the finite end a

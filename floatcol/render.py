@@ -15,7 +15,7 @@ from .kernels.horizon import horizon_kernel
 from .kernels import layout as L
 from .kernels.layout import G_DEPTH, G_NX, G_NZ, G_SIZE, G_U, G_V, G_W
 from .kernels.shade import (
-    INTERP_INTENSITY, INTERP_NORMAL, finish_kernel, shade_kernel, upper_w_range)
+    INTERP_INTENSITY, INTERP_NORMAL, finish_kernel, upper_w_range)
 from .output import png_bytes, save_image
 from .surface import Surface, as_surface, check_range
 from .view import View, _number, build_view
@@ -262,18 +262,12 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         bg8 = color.to_rgba8(background)
         shade_args = (INTERPOLATIONS[interpolation], amb, spec, shine)
 
-        shade = np.empty((W, H), dtype=np.float32)
-        spec_img = np.empty((W, H), dtype=np.float32)
-        es = (W, H) if aa_cov else (1, 1)
-        eshade = np.empty(es, dtype=np.float32)
-        espec = np.empty(es, dtype=np.float32)
-        shade_kernel(gbuf, ebuf, vp, *shade_args, shade, spec_img, eshade, espec)
         intensity = np.empty((H, W), dtype=np.float32)
         side = np.empty((H, W), dtype=np.int8)
         depth = np.empty((H, W), dtype=np.float32)
         rgba = np.empty((H, W, 4), dtype=np.uint8)
-        finish_kernel(gbuf, ebuf, aa_cov, shade, spec_img, eshade, espec, lut, w_lo, w_hi,
-                      lower_rgb, bg8, intensity, side, depth, rgba)
+        finish_kernel(gbuf, ebuf, vp, *shade_args, lut, w_lo, w_hi, lower_rgb, bg8, intensity,
+                      side, depth, rgba)
         if sub_columns > 1:
             # section 6.4 across columns: sub-columns at even offsets inside each pixel,
             # averaged (premultiplied), one column of scratch per thread; the

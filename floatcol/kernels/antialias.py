@@ -11,48 +11,34 @@ from numba import prange
 
 from ._jit import ngjit_parallel
 from .column import H_SIZE, render_column
-from .layout import (
-    E_COV, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIZE, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIDE,
-    G_SIZE,
-)
+from .layout import E_SIZE, G_SIZE
 from .sample import column_x0
-from .shade import _light, pixel_rgba
+from .shade import shade_pixel
 
 
 @ngjit_parallel
 def subcolumn_kernel(kind, f, fg, hf, hfp, vp, offsets, interp, ambient, specular,
                      shininess, lut, w_lo, w_hi, lower_rgb, background, acc, evals):
     """For every pixel column c and every offset o (in pixels), render the column at
-    c + o with coverage antialiasing, colour it (pixel_rgba) and add the colour,
+    c + o with coverage antialiasing, colour it (shade_pixel) and add the colour,
     premultiplied by its alpha, and the alpha into acc (H, W, 4) float64, top row first.
     evals[c] receives the evaluations of f. Each thread has its own one-column scratch."""
     H = acc.shape[0]
     W = acc.shape[1]
     span = w_hi - w_lo if w_hi > w_lo else 1.0
     for c in prange(W):
-        gcol = np.empty((H, G_SIZE), dtype=np.float32)
-        ecol = np.empty((H, E_SIZE), dtype=np.float32)
+        gcol = np.empty((1, H, G_SIZE), dtype=np.float32)
+        ecol = np.empty((1, H, E_SIZE), dtype=np.float32)
         hrec = np.empty((1, H_SIZE))
         ev = 0
         for k in range(offsets.shape[0]):
             col = c + offsets[k]
-            ev += render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, 0)
+            ev += render_column(kind, f, fg, hf, hfp, vp, col, gcol[0], ecol[0], hrec, 0)
             x0 = column_x0(vp, col)
             for j in range(H):
-                px = gcol[j]
-                ex = ecol[j]
-                lam = 0.0
-                sp = 0.0
-                e_lam = 0.0
-                e_sp = 0.0
-                if px[G_SIDE] != 0.0:
-                    lam, sp = _light(vp, x0, j, px[G_DEPTH], px[G_NX], px[G_NY], px[G_NZ],
-                                     px[G_I], interp, ambient, specular, shininess)
-                if ex[E_COV] > 0.0:
-                    e_lam, e_sp = _light(vp, x0, j, ex[E_DEPTH], ex[E_NX], ex[E_NY], ex[E_NZ],
-                                         ex[E_I], interp, ambient, specular, shininess)
-                r, g, b, a = pixel_rgba(px, ex, True, lam, sp, e_lam, e_sp, lut, w_lo, span,
-                                        lower_rgb, background)
+                _, r, g, b, a = shade_pixel(gcol, ecol, 0, j, True, vp, x0, interp, ambient,
+                                            specular, shininess, lut, w_lo, span, lower_rgb,
+                                            background)
                 i = H - 1 - j
                 acc[i, c, 0] += r * a
                 acc[i, c, 1] += g * a

@@ -22,7 +22,7 @@ import math
 import numpy as np
 from numba import prange
 
-from ._jit import ngjit, ngjit_parallel
+from ._jit import ngjit, ngjit_inline, ngjit_parallel
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIDE, E_W,
@@ -80,6 +80,15 @@ H_SIZE = 4
 
 @ngjit
 def _sample_into(kind, f, fg, hf, hfp, vp, x0, t, out, run):
+    """_sample_at as a call (where sampling is rare: corrections, edges)."""
+    return _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run)
+
+
+@ngjit_inline
+def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run):
+    """Sample plane t of column x0 into ``out`` (the A_* attributes); ``run`` keeps
+    the Newton start. Returns (status, evaluations of f). Inlined in the column's
+    main loop."""
     if vp[VP_ORTHO] == 0.0 and not _may_meet_domain(vp, x0, t):
         return S_OUTSIDE, 0
     # Newton start: the last solution extrapolated along t
@@ -105,6 +114,13 @@ def _sample_into(kind, f, fg, hf, hfp, vp, x0, t, out, run):
         if vp[VP_DETECT] != 0.0:
             out[A_VN], out[A_BUMP], out[A_SLOPE] = probe(vp, x0, out)
     return st, ev
+
+
+@ngjit_inline
+def _copy(dst, src):
+    """dst[:] = src for two A_SIZE sample vectors (no slice views)."""
+    for k in range(A_SIZE):
+        dst[k] = src[k]
 
 
 @ngjit
@@ -153,6 +169,12 @@ def _ortho_chord(vp, x0):
 
 @ngjit
 def _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
+    """_fill as a call (outside the column's main loop)."""
+    _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)
+
+
+@ngjit_inline
+def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
     """Paint the rows that the span prev -> cur newly uncovers (App. A.2 Interpolate).
 
     With ``aa`` (section 6.4) the floating interval's float ends also give each
@@ -242,7 +264,7 @@ def _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
             ecol[j, E_COV0] = max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0)
 
 
-@ngjit
+@ngjit_inline
 def _chord_weight(yq, yp, dy, persp, qp, qc):
     """Weight of the current sample at screen row yq on the chord prev -> cur,
     perspective-correct in perspective."""
@@ -297,6 +319,21 @@ def _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp
     return evals
 
 
+@ngjit_inline
+def _problem(vp, x0, prev, cur, run):
+    """Does the span prev -> cur need a correction (App. A.2's Problem())?"""
+    detect = int(vp[VP_DETECT])
+    if detect == 0:
+        return False
+    fix_r = int(vp[VP_FIX_RIDGE]) if detect & DETECT_RIDGE else FIX_NONE
+    fix_s = int(vp[VP_FIX_SHADE])
+    return ((fix_r != FIX_NONE and ridge_between(vp, x0, prev, cur, run[RUN_YMIN], run[RUN_YMAX]))
+            or (fix_s != FIX_NONE and shading_problem(vp, x0, prev, cur, detect, run[RUN_YMIN],
+                                                      run[RUN_YMAX]))
+            or ((detect & DETECT_WALL) != 0
+                and wall_between(prev, cur, run[RUN_YMIN], run[RUN_YMAX], False)))
+
+
 @ngjit
 def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
              stk, sdepth, left, mid):
@@ -306,16 +343,13 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
     jump or a bump by supersampling at VP_RATE times the frequency, or adaptively:
     halving the span while the problem persists, down to 1/VP_RATE of it. Returns the
     number of evaluations of f."""
+    if not _problem(vp, x0, prev, cur, run):
+        _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)     # the common case
+        return 0
     detect = int(vp[VP_DETECT])
     fix_r = int(vp[VP_FIX_RIDGE]) if detect & DETECT_RIDGE else FIX_NONE
     fix_s = int(vp[VP_FIX_SHADE])
     walls = (detect & DETECT_WALL) != 0
-    if not ((fix_r != FIX_NONE and ridge_between(vp, x0, prev, cur, run[RUN_YMIN], run[RUN_YMAX]))
-            or (fix_s != FIX_NONE and shading_problem(vp, x0, prev, cur, detect, run[RUN_YMIN],
-                                                      run[RUN_YMAX]))
-            or (walls and wall_between(prev, cur, run[RUN_YMIN], run[RUN_YMAX], False))):
-        _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)     # the common case
-        return 0
     rate = max(int(vp[VP_RATE]), 2)
     max_depth = min(int(math.ceil(math.log2(rate) - 1e-9)), STACK_SIZE - 2)
     evals = 0
@@ -392,7 +426,7 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
     return evals
 
 
-@ngjit
+@ngjit_inline
 def _set_normal(a, nx, ny, nz, lam):
     """Give sample ``a`` the normal (nx, ny, nz) and the intensity lam."""
     a[A_NX] = nx
@@ -492,7 +526,7 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
     t = ta
     k = -1
     while True:
-        st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, t, cur, run)
+        st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run)
         evals += ev
         if prev_st >= 0 and (prev_st == S_OK) != (st == S_OK):
             # A run starts or ends between prev_t and t: bisect for its edge.
@@ -544,9 +578,12 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
                         ratio = min(ratio, ADAPT_ROWS / dy)
                     coarse = min(max(coarse * min(max(ratio, 0.5), 2.0), ADAPT_MIN_STEP),
                                  ADAPT_MAX_STEP)
-                evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
-                               sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)
-            prev[:] = cur
+                if kind != SURF_HEIGHTFIELD and not _problem(vp, x0, prev, cur, run):
+                    _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)  # the common case
+                else:
+                    evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
+                                   sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)
+            _copy(prev, cur)
         else:
             run[RUN_OPEN] = 0.0
         prev_st = st

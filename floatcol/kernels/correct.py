@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from ._jit import ngjit
+from ._jit import ngjit, ngjit_inline
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z, DETECT_BUMP,
     DETECT_JUMP, VP_CA, VP_CB, VP_D1, VP_D3, VP_H, VP_JUMP, VP_LX, VP_LY, VP_LZ,
@@ -41,7 +41,7 @@ WALL_BISECT = 30
 RIDGE_MARGIN_PX = 0.5
 
 
-@ngjit
+@ngjit_inline
 def probe(vp, x0, a):
     """(V.N / |V|, bump scalar, dY/dt) of sample ``a`` on column plane x = x0.
 
@@ -101,7 +101,7 @@ def probe(vp, x0, a):
     return vn, bump, slope
 
 
-@ngjit
+@ngjit_inline
 def hermite_extremum(ya, yb, ma, mb, h):
     """Fraction tau in (0, 1) where the cubic through (0, ya), (1, yb) with slopes
     ma, mb (per unit of t, the interval being h long) has zero slope: eqs. (13)-(17)
@@ -132,7 +132,7 @@ def hermite_extremum(ya, yb, ma, mb, h):
     return tau, y
 
 
-@ngjit
+@ngjit_inline
 def ridge_between(vp, x0, a, b, run_lo, run_hi):
     """(Samples carry A_VN, A_BUMP, A_SLOPE from probe.) App. A.2 test 1: V.N changes sign between samples a and b, and the spline's
     extremum may uncover a new pixel row above run_hi or below run_lo (a ridge
@@ -145,7 +145,7 @@ def ridge_between(vp, x0, a, b, run_lo, run_hi):
     return math.floor(top) > math.floor(run_hi) or math.ceil(bot) < math.ceil(run_lo)
 
 
-@ngjit
+@ngjit_inline
 def shading_problem(vp, x0, a, b, detect, run_lo, run_hi):
     """App. A.2 tests 2 and 3 on a span that paints at least one new row: the
     intensity jumps by more than VP_JUMP, or the samples straddle a bump (section
@@ -163,7 +163,7 @@ def shading_problem(vp, x0, a, b, detect, run_lo, run_hi):
     return False
 
 
-@ngjit
+@ngjit_inline
 def wall_between(a, b, run_lo, run_hi, searching):
     """A discontinuity between samples a and b (end of section 5: "a big jump in the
     y-values" where the normals do not explain it): the rows jump by more than
@@ -184,7 +184,7 @@ def wall_between(a, b, run_lo, run_hi, searching):
     return dy > WALL_RATIO * pred
 
 
-@ngjit
+@ngjit_inline
 def _f_at(kind, f, fg, hf, hfp, u, v):
     return surface_value(kind, f, hf, hfp, u, v)
 
@@ -273,7 +273,7 @@ def wall_normal(kind, f, fg, hf, hfp, vp, a, b):
     return nu * cb - nv * sb, -tc * sa, tc * ca
 
 
-@ngjit
+@ngjit_inline
 def lambert_at(vp, x0, a, nx, ny, nz):
     """|L.N| of unit normal N at sample a's place (eq. 12, or the directional light);
     the view direction there is -(x0, y0, d1), as in probe."""

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ._jit import ngjit, stack_pair
+from ._jit import ngjit, ngjit_inline, stack_pair
 from .layout import (
     S_BEHIND, S_HOLE, S_OK, S_OUTSIDE, SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_H, VP_LX, VP_LY, VP_LZ, VP_ORTHO,
@@ -24,7 +24,7 @@ SCAN_PIXELS = 4.0
 BISECT_ITERS = 40
 
 
-@ngjit
+@ngjit_inline
 def heightfield_eval(hf, hfp, u, v):
     """Bilinear height and its exact piecewise partials (the paper's section 2)."""
     nv, nu = hf.shape
@@ -46,7 +46,7 @@ def heightfield_eval(hf, hfp, u, v):
     return w, wu, wv
 
 
-@ngjit
+@ngjit_inline
 def surface_eval(kind, f, fg, hf, hfp, u, v):
     """w = f(u, v) and its partials, from one call of the fused function fg; NaN w
     means a hole. A function surface's parameter t (the time of an animation) is
@@ -60,7 +60,7 @@ def surface_eval(kind, f, fg, hf, hfp, u, v):
     return w, p[0], p[1]
 
 
-@ngjit
+@ngjit_inline
 def surface_value(kind, f, hf, hfp, u, v):
     """w = f(u, v) alone (NaN at a hole), where no partials are needed."""
     if kind == SURF_HEIGHTFIELD:
@@ -69,7 +69,7 @@ def surface_value(kind, f, hf, hfp, u, v):
     return w if math.isfinite(w) else np.nan
 
 
-@ngjit
+@ngjit_inline
 def in_domain(vp, u, v):
     eu = DOMAIN_EPS * (vp[VP_UB] - vp[VP_UA])
     ev = DOMAIN_EPS * (vp[VP_VB] - vp[VP_VA])
@@ -77,13 +77,13 @@ def in_domain(vp, u, v):
             and v >= vp[VP_VA] - ev and v <= vp[VP_VB] + ev)
 
 
-@ngjit
+@ngjit_inline
 def column_x0(vp, col):
     """Screen x of pixel column ``col`` (DESIGN.md section 3)."""
     return (col + vp[VP_XOFF] - (vp[VP_W] - 1.0) * 0.5) / vp[VP_SCALE]
 
 
-@ngjit
+@ngjit_inline
 def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
     """Surface point on column plane x = x0 and sampling plane t.
 
@@ -197,7 +197,7 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
     return S_OK, evals, ypix, z1, u, v, w, nx, ny, nz, lam
 
 
-@ngjit
+@ngjit_inline
 def lambert(vp, vx, vy, vz, nx, ny, nz):
     """|L.N| in [0, 1] for the unit normal N (eq. 12): L is vp's directional light
     (a unit vector), or the direction (vx, vy, vz) toward the viewpoint when that is

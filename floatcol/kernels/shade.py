@@ -4,7 +4,7 @@ import math
 import numpy as np
 from numba import prange
 
-from ._jit import ngjit, ngjit_parallel
+from ._jit import ngjit_inline, ngjit_parallel
 from .layout import (
     E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIDE, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIDE, G_W, VP_AA, VP_D1, VP_D3, VP_H, VP_LX, VP_LY,
@@ -15,7 +15,7 @@ INTERP_INTENSITY = 0   # the paper's iis (Gouraud): lit at the samples, interpol
 INTERP_NORMAL = 1      # nis: the normal is interpolated and lit at each pixel
 
 
-@ngjit
+@ngjit_inline
 def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shininess):
     """(I, specular) of one pixel: I = ambient + (1 - ambient) |L.N| / (|L| |N|), and
     Phong's specular * max(R.V, 0)^shininess (the paper has none), with V toward the
@@ -75,39 +75,6 @@ def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shi
 
 
 @ngjit_parallel
-def shade_kernel(gbuf, ebuf, vp, interp, ambient, specular, shininess, out, spec_out,
-                 eout, espec_out):
-    """out (W, H) float32: the intensity of the surface at each pixel centre (see
-    _light), NaN where nothing is seen; spec_out its specular term. With VP_AA the
-    edge surfaces of ebuf are lit too, into eout / espec_out (else those may be
-    (1, 1) and are not touched). Both interpolations use the per-pixel normal for the
-    specular term."""
-    W = gbuf.shape[0]
-    H = gbuf.shape[1]
-    aa = vp[VP_AA] != 0.0
-    for c in prange(W):
-        x0 = (c + vp[VP_XOFF] - (vp[VP_W] - 1.0) * 0.5) / vp[VP_SCALE]
-        for j in range(H):
-            px = gbuf[c, j]
-            if px[G_SIDE] == 0.0:
-                out[c, j] = np.nan
-                spec_out[c, j] = 0.0
-            else:
-                out[c, j], spec_out[c, j] = _light(
-                    vp, x0, j, px[G_DEPTH], px[G_NX], px[G_NY], px[G_NZ], px[G_I],
-                    interp, ambient, specular, shininess)
-            if aa:
-                ex = ebuf[c, j]
-                if ex[E_COV] > 0.0:
-                    eout[c, j], espec_out[c, j] = _light(
-                        vp, x0, j, ex[E_DEPTH], ex[E_NX], ex[E_NY], ex[E_NZ], ex[E_I],
-                        interp, ambient, specular, shininess)
-                else:
-                    eout[c, j] = 0.0
-                    espec_out[c, j] = 0.0
-
-
-@ngjit_parallel
 def upper_w_range(gbuf, lo, hi):
     """Per column: min and max of w over pixels where the upper side is seen."""
     W = gbuf.shape[0]
@@ -124,7 +91,7 @@ def upper_w_range(gbuf, lo, hi):
         hi[c] = b
 
 
-@ngjit
+@ngjit_inline
 def _side_rgb(side, w, lut, w_lo, span, lower_rgb):
     if side > 0.0:
         n_lut = lut.shape[0]
@@ -134,31 +101,33 @@ def _side_rgb(side, w, lut, w_lo, span, lower_rgb):
     return lower_rgb[0], lower_rgb[1], lower_rgb[2]
 
 
-@ngjit
-def pixel_rgba(gpx, epx, aa, lam, sp, e_lam, e_sp, lut, w_lo, span, lower_rgb, background):
+@ngjit_inline
+def pixel_rgba(s, w, cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp, lut, w_lo, span, lower_rgb,
+               background):
     """One pixel's colour (r, g, b, alpha) in [0, 1], straight alpha.
 
-    The upper side takes its colour from ``lut`` indexed by w over [w_lo, w_lo + span]
-    (a one-row lut is a flat colour), the lower side ``lower_rgb``; both multiplied by
-    the shade ``lam``, plus the white specular term ``sp``. With ``aa`` (section 6.4)
-    the colour is the coverage-weighted mean of the surface at the pixel's centre
-    (gpx), the edge surface (epx, shaded e_lam, e_sp) and the background (uint8 RGBA).
+    The surface at the pixel's centre has side s (0: none), height w, coverage cov0
+    (1 without antialiasing), shade lam and specular term sp; the edge surface of
+    section 6.4 (coverage e_cov, 0: none) likewise. The upper side takes its colour
+    from ``lut`` indexed by w over [w_lo, w_lo + span] (a one-row lut is a flat
+    colour), the lower side ``lower_rgb``; both multiplied by the shade, plus the
+    white specular term. The colour is the coverage-weighted mean of the two surfaces
+    and the background (uint8 RGBA).
     """
-    s = gpx[G_SIDE]
-    cov0 = 0.0
     r = 0.0
     g = 0.0
     b = 0.0
     if s != 0.0:
-        cov0 = epx[E_COV0] if aa else 1.0
-        r, g, b = _side_rgb(s, gpx[G_W], lut, w_lo, span, lower_rgb)
+        r, g, b = _side_rgb(s, w, lut, w_lo, span, lower_rgb)
         r = min(r * lam + sp, 1.0)
         g = min(g * lam + sp, 1.0)
         b = min(b * lam + sp, 1.0)
+    else:
+        cov0 = 0.0
     cov1 = 0.0
-    if aa and epx[E_COV] > 0.0:
-        cov1 = min(epx[E_COV], 1.0 - cov0)
-        er, eg, eb = _side_rgb(epx[E_SIDE], epx[E_W], lut, w_lo, span, lower_rgb)
+    if e_cov > 0.0:
+        cov1 = min(e_cov, 1.0 - cov0)
+        er, eg, eb = _side_rgb(e_side, e_w, lut, w_lo, span, lower_rgb)
         r = r * cov0 + min(er * e_lam + e_sp, 1.0) * cov1
         g = g * cov0 + min(eg * e_lam + e_sp, 1.0) * cov1
         b = b * cov0 + min(eb * e_lam + e_sp, 1.0) * cov1
@@ -178,32 +147,71 @@ def pixel_rgba(gpx, epx, aa, lam, sp, e_lam, e_sp, lut, w_lo, span, lower_rgb, b
             min((b + rest * background[2] / 255.0) / a, 1.0), a)
 
 
+@ngjit_inline
+def shade_pixel(gbuf, ebuf, c, j, aa, vp, x0, interp, ambient, specular, shininess, lut, w_lo,
+                span, lower_rgb, background):
+    """Light (_light) and colour (pixel_rgba) pixel (c, j) of the G-buffer gbuf and,
+    with ``aa``, of the edge buffer ebuf. Returns (intensity at the centre, NaN where
+    no surface; r, g, b, alpha)."""
+    s = gbuf[c, j, G_SIDE]
+    lam = np.nan
+    sp = 0.0
+    if s != 0.0:
+        lam, sp = _light(vp, x0, j, gbuf[c, j, G_DEPTH], gbuf[c, j, G_NX], gbuf[c, j, G_NY],
+                         gbuf[c, j, G_NZ], gbuf[c, j, G_I], interp, ambient, specular,
+                         shininess)
+    cov0 = 1.0
+    e_cov = 0.0
+    e_side = 0.0
+    e_w = 0.0
+    e_lam = 0.0
+    e_sp = 0.0
+    if aa:
+        cov0 = ebuf[c, j, E_COV0]
+        e_cov = ebuf[c, j, E_COV]
+        if e_cov > 0.0:
+            e_side = ebuf[c, j, E_SIDE]
+            e_w = ebuf[c, j, E_W]
+            e_lam, e_sp = _light(vp, x0, j, ebuf[c, j, E_DEPTH], ebuf[c, j, E_NX],
+                                 ebuf[c, j, E_NY], ebuf[c, j, E_NZ], ebuf[c, j, E_I], interp,
+                                 ambient, specular, shininess)
+    r, g, b, a = pixel_rgba(s, gbuf[c, j, G_W], cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp,
+                            lut, w_lo, span, lower_rgb, background)
+    return lam, r, g, b, a
+
+
+#: columns per block of the finishing pass: the G-buffer is read column by column
+#: while the picture (row-major) is written a block's width at a time
+FINISH_BLOCK = 16
+
+
 @ngjit_parallel
-def finish_kernel(gbuf, ebuf, aa, shade, spec, eshade, espec, lut, w_lo, w_hi, lower_rgb,
-                  background, intensity, side, depth, rgba):
-    """Assemble the public arrays, top row first: intensity, side, depth and rgba
-    (pixel_rgba; with ``aa`` only rgba is blended, intensity, side and depth stay
-    those of the pixel's centre)."""
+def finish_kernel(gbuf, ebuf, vp, interp, ambient, specular, shininess, lut, w_lo, w_hi,
+                  lower_rgb, background, intensity, side, depth, rgba):
+    """Light, colour and assemble the public arrays, top row first, in one pass:
+    intensity (ambient + diffuse at the pixel's centre, NaN where nothing is seen),
+    side, depth and rgba (shade_pixel). With VP_AA, ebuf (W, H, E_SIZE) holds the
+    coverages and only rgba is blended; intensity, side and depth stay those of the
+    pixel's centre. Else ebuf may be (1, 1, E_SIZE) and is not read."""
     W = gbuf.shape[0]
     H = gbuf.shape[1]
+    aa = vp[VP_AA] != 0.0
     span = w_hi - w_lo if w_hi > w_lo else 1.0
-    for c in prange(W):
+    n_blocks = (W + FINISH_BLOCK - 1) // FINISH_BLOCK
+    for blk in prange(n_blocks):
+        c0 = blk * FINISH_BLOCK
+        c1 = min(c0 + FINISH_BLOCK, W)
         for j in range(H):
             i = H - 1 - j
-            s = gbuf[c, j, G_SIDE]
-            side[i, c] = np.int8(s)
-            depth[i, c] = gbuf[c, j, G_DEPTH]
-            intensity[i, c] = shade[c, j]
-            if not aa and s == 0.0:
-                for k in range(4):
-                    rgba[i, c, k] = background[k]
-                continue
-            ce = np.int64(c) if aa else np.int64(0)      # ebuf may be (1, 1, E_SIZE)
-            je = np.int64(j) if aa else np.int64(0)
-            r, g, b, a = pixel_rgba(gbuf[c, j], ebuf[ce, je], aa, shade[c, j], spec[c, j],
-                                    eshade[ce, je], espec[ce, je], lut, w_lo, span, lower_rgb,
-                                    background)
-            rgba[i, c, 0] = np.uint8(r * 255.0 + 0.5)
-            rgba[i, c, 1] = np.uint8(g * 255.0 + 0.5)
-            rgba[i, c, 2] = np.uint8(b * 255.0 + 0.5)
-            rgba[i, c, 3] = np.uint8(a * 255.0 + 0.5)
+            for c in range(c0, c1):
+                x0 = (c + vp[VP_XOFF] - (vp[VP_W] - 1.0) * 0.5) / vp[VP_SCALE]
+                lam, r, g, b, a = shade_pixel(gbuf, ebuf, c, j, aa, vp, x0, interp, ambient,
+                                              specular, shininess, lut, w_lo, span, lower_rgb,
+                                              background)
+                side[i, c] = np.int8(gbuf[c, j, G_SIDE])
+                depth[i, c] = gbuf[c, j, G_DEPTH]
+                intensity[i, c] = lam
+                rgba[i, c, 0] = np.uint8(r * 255.0 + 0.5)
+                rgba[i, c, 1] = np.uint8(g * 255.0 + 0.5)
+                rgba[i, c, 2] = np.uint8(b * 255.0 + 0.5)
+                rgba[i, c, 3] = np.uint8(a * 255.0 + 0.5)

@@ -101,7 +101,7 @@ def probe(vp, x0, a):
     return vn, bump, slope
 
 
-@ngjit_inline
+@ngjit
 def hermite_extremum(ya, yb, ma, mb, h):
     """Fraction tau in (0, 1) where the cubic through (0, ya), (1, yb) with slopes
     ma, mb (per unit of t, the interval being h long) has zero slope: eqs. (13)-(17)
@@ -184,7 +184,7 @@ def wall_between(a, b, run_lo, run_hi, searching):
     return dy > WALL_RATIO * pred
 
 
-@ngjit_inline
+@ngjit
 def _f_at(kind, f, fg, hf, hfp, u, v):
     return surface_value(kind, f, hf, hfp, u, v)
 
@@ -273,7 +273,7 @@ def wall_normal(kind, f, fg, hf, hfp, vp, a, b):
     return nu * cb - nv * sb, -tc * sa, tc * ca
 
 
-@ngjit_inline
+@ngjit
 def lambert_at(vp, x0, a, nx, ny, nz):
     """|L.N| of unit normal N at sample a's place (eq. 12, or the directional light);
     the view direction there is -(x0, y0, d1), as in probe."""

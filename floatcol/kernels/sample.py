@@ -24,7 +24,7 @@ SCAN_PIXELS = 4.0
 BISECT_ITERS = 40
 
 
-@ngjit_inline
+@ngjit
 def heightfield_eval(hf, hfp, u, v):
     """Bilinear height and its exact piecewise partials (the paper's section 2)."""
     nv, nu = hf.shape

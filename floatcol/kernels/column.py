@@ -22,7 +22,7 @@ import math
 import numpy as np
 from numba import prange
 
-from ._jit import ngjit, ngjit_inline, ngjit_parallel
+from ._jit import ngjit, ngjit_inline, ngjit_parallel, unmanaged
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIDE, E_W,
@@ -624,15 +624,43 @@ def render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     if vp[VP_AA] != 0.0:
         ecol[:, :] = 0.0
     x0 = column_x0(vp, col)
-    prev = np.empty(A_SIZE)
-    cur = np.empty(A_SIZE)
-    edge = np.empty(A_SIZE)
-    tmp = np.empty(A_SIZE)
-    run = np.zeros(RUN_SIZE)
-    stk = np.empty((STACK_SIZE, A_SIZE))
+    # the column's scratch; below, every array goes on as a view without owner
+    # (_jit.unmanaged), so the sample loop does no reference counting; the caller
+    # holds the arguments, and ``scr`` and ``sdepth`` are used again at the end
+    scr = np.empty((SCR_STK + STACK_SIZE, A_SIZE))
+    scr[SCR_RUN, :] = 0.0
     sdepth = np.zeros(STACK_SIZE, dtype=np.int64)
-    left = np.empty(A_SIZE)
-    mid = np.empty(A_SIZE)
+    evals = _column_passes(kind, f, fg, unmanaged(hf), unmanaged(hfp), unmanaged(vp), x0,
+                           unmanaged(gcol), unmanaged(ecol), unmanaged(hrec), hstride,
+                           unmanaged(scr), unmanaged(sdepth))
+    scr[0, 0] = 0.0
+    sdepth[0] = 0
+    return evals
+
+
+# rows of render_column's scratch
+SCR_PREV = 0
+SCR_CUR = 1
+SCR_EDGE = 2
+SCR_TMP = 3
+SCR_RUN = 4
+SCR_LEFT = 5
+SCR_MID = 6
+SCR_STK = 7
+
+
+@ngjit
+def _column_passes(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr, sdepth):
+    """The passes of one column (render_column): ascending t in orthographic; in
+    perspective from the viewpoint's t outward, both ways."""
+    prev = scr[SCR_PREV]
+    cur = scr[SCR_CUR]
+    edge = scr[SCR_EDGE]
+    tmp = scr[SCR_TMP]
+    run = scr[SCR_RUN, :RUN_SIZE]
+    left = scr[SCR_LEFT]
+    mid = scr[SCR_MID]
+    stk = scr[SCR_STK:]
     evals = 0
     if vp[VP_ORTHO] != 0.0:
         lo, hi = _ortho_chord(vp, x0)

@@ -87,8 +87,23 @@ def pyvista_ms(size):
     return ms, ms_fresh
 
 
+def eval_ns():
+    """ns per sample for f, f_u and f_v of EXPR together (one fused compiled function,
+    sympy cse), on one thread, through the kernels' own evaluation path."""
+    from floatcol.kernels.sample import eval_grid
+    s = fc.as_surface(EXPR)
+    n = 500_000
+    rng = np.random.default_rng(1)
+    u = rng.uniform(-5, 5, n)
+    v = rng.uniform(-5, 5, n)
+    out = np.empty((n, 3))
+    eval_grid(*s.kernel_args(), u[:10], v[:10], out[:10])
+    return _median_ms(lambda: eval_grid(*s.kernel_args(), u, v, out), 5) * 1e6 / n
+
+
 def main():
     print(f"{os.cpu_count()} cpus, {numba.get_num_threads()} numba threads")
+    print(f"f, f_u, f_v of {EXPR}: {eval_ns():.0f} ns per sample (one thread)")
     fc.render(EXPR, size=(64, 48), **DOM)
     fc.render(EXPR, size=(64, 48), projection="perspective", **DOM)
     print("\n| tool | size | projection | samples | median ms | fps |")

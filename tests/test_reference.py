@@ -25,6 +25,10 @@ CASES = [
     (RIPPLES, (-3, 3), (-3, 3), 25, 40, "orthographic", 0.9999, 69.0),            # 100 %, 73.22
     (RIPPLES, (-3, 3), (-3, 3), -20, 40, "perspective", 0.9999, 68.0),            # 100 %, 72.19
     ("sin(u)*cos(v)", (-4, 4), (-4, 4), 60, 10, "perspective", 0.9999, 70.0),     # 100 %, 81.85
+    # the fidelity table's ripples: a sliver of surface between two planes whose points
+    # both lie outside the domain (measured 50.14 dB / 99.995 % before column passes
+    # looked between such planes; 2026-11-23)
+    (RIPPLES, (-3, 3), (-3, 3), 25, 40, "perspective", 0.99999, 70.0),            # 100 %, 74.36
 ]
 
 

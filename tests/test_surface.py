@@ -102,6 +102,27 @@ def test_heightfield_render_matches_ray_caster():
     assert psnr(r.intensity, ref.intensity) > 25
 
 
+def test_heightfield_perspective_edges_match_ray_caster():
+    # The fidelity table's height field in perspective. Where a sample's Newton step
+    # leaves the grid, the root bracket scans s; a root just inside the grid's edge
+    # lies between a NaN scan point and a finite one, so the finite part's end is
+    # located and stands in for the NaN point. Measured (2026-11-23): 99.990 %,
+    # 39.23 dB; before, 99.807 % and 33.81 dB (37 pixels of thin edge slivers missed).
+    rng = np.random.default_rng(7)
+    z = rng.normal(size=(24, 24))
+    for _ in range(3):
+        z = (z + np.roll(z, 1, 0) + np.roll(z, -1, 0) + np.roll(z, 1, 1) + np.roll(z, -1, 1)) / 5
+    z *= 2.0
+    hf = fc.HeightField(z, u=(-1, 1), v=(-1, 1))
+    r = fc.render(hf, size=(160, 120), elev=40, azim=30, projection="perspective",
+                  shading="lambert")
+    vw = r.view
+    ref = raycast(bilinear_surface(z, (-1, 1), (-1, 1)), (-1, 1), (-1, 1), (160, 120), 40, 30,
+                  "perspective", vw.d1, vw.d2, vw.scale, center=vw.center)
+    assert (r.side == ref.side).mean() > 0.9997
+    assert psnr(r.intensity, ref.intensity) > 37.5
+
+
 def test_heightfield_holes():
     z = np.ones((10, 10))
     z[3:6, 3:6] = np.nan

@@ -37,7 +37,7 @@ from .correct import (
     WALL_DEPTH, hermite_extremum, lambert_at, probe, ridge_between, shading_problem, wall_between,
     wall_normal,
 )
-from .sample import column_x0, sample_point
+from .sample import column_x0, in_domain, sample_point
 
 
 EDGE_BISECTIONS = 16
@@ -95,6 +95,11 @@ def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run):
     guess = run[RUN_GUESS] + run[RUN_SLOPE] * (t - run[RUN_GUESS_T])
     st, ev, y, z, u, v, w, nx, ny, nz, lam = sample_point(kind, f, fg, hf, hfp, vp, x0, t,
                                                           guess)
+    if st != S_OK:
+        if ev > 0:                  # where the failed point lies (_column_pass's slivers)
+            out[A_U] = u
+            out[A_V] = v
+        return st, ev
     if st == S_OK:
         s = w - vp[VP_CW]
         dt = t - run[RUN_GUESS_T]
@@ -525,9 +530,43 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
     i = 0
     t = ta
     k = -1
+    # perspective: the failed sample before (where its point lies), and a plane put
+    # in between two failed samples, after which the pass resumes at t_resume
+    bad_u = 0.0
+    bad_v = 0.0
+    bad_valid = False
+    resume = False
+    t_resume = 0.0
+    k_resume = -1
     while True:
         st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run)
         evals += ev
+        if persp and st != S_OK and not resume:
+            # A sliver: the surface's curve in Pi may enter the domain and leave it
+            # between two planes whose points both lie outside (near a corner, or a
+            # spiky edge seen from its side). If the segment between the two points
+            # crosses the domain, look once in its middle; if the surface is there,
+            # it becomes a plane of its own, with its edges bisected as usual.
+            if bad_valid and ev > 0 and prev_st >= 0 and prev_st != S_OK and \
+                    not (in_domain(vp, bad_u, bad_v) and in_domain(vp, cur[A_U], cur[A_V])):
+                c_lo, c_hi = _clip_line(vp, bad_u, cur[A_U] - bad_u, bad_v, cur[A_V] - bad_v,
+                                        0.0, 1.0)
+                if c_lo < c_hi:
+                    tm = prev_t + 0.5 * (c_lo + c_hi) * (t - prev_t)
+                    st_m, ev_m = _sample_into(kind, f, fg, hf, hfp, vp, x0, tm, tmp, run)
+                    evals += ev_m
+                    if st_m == S_OK:
+                        resume = True
+                        t_resume = t
+                        k_resume = k
+                        t = tm
+                        k = -1
+                        continue
+            bad_valid = ev > 0
+            bad_u = cur[A_U]
+            bad_v = cur[A_V]
+        else:
+            bad_valid = False
         if prev_st >= 0 and (prev_st == S_OK) != (st == S_OK):
             # A run starts or ends between prev_t and t: bisect for its edge.
             if st == S_OK:
@@ -589,6 +628,11 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
         prev_st = st
         prev_t = t
         # the next plane
+        if resume:                      # back to the plane after the sliver
+            resume = False
+            t = t_resume
+            k = k_resume
+            continue
         if adaptive:
             if t == tb:
                 break

@@ -22,6 +22,7 @@ SCAN_MIN = 3          # fallback scan of s when Newton fails (holes, steep rims)
 SCAN_MAX = 24         # about one point per SCAN_PIXELS of the searched segment
 SCAN_PIXELS = 4.0
 BISECT_ITERS = 40
+EDGE_BISECT = 12      # where the scan crosses the edge of the finite part of f
 
 
 @ngjit
@@ -253,12 +254,38 @@ def _bracketed_s(kind, f, fg, hf, hfp, vp, r0, k, t, s_near):
         cur_s = s_lo + i * ds
         cur_g = _g_at(kind, f, fg, hf, hfp, vp, r0, k, t, cur_s)
         evals += 1
-        if math.isfinite(prev_g) and math.isfinite(cur_g) and (prev_g >= 0.0) != (cur_g >= 0.0):
-            mid = 0.5 * (prev_s + cur_s)
+        # the pair to test for a sign change; where f is finite at one end only (the
+        # domain's edge, or a hole's), the finite part's end, located by bisection,
+        # stands in for the other: a root just inside an edge is found too
+        pa = prev_s
+        pga = prev_g
+        pb = cur_s
+        pgb = cur_g
+        if math.isfinite(prev_g) != math.isfinite(cur_g):
+            fin_s = prev_s if math.isfinite(prev_g) else cur_s
+            fin_g = prev_g if math.isfinite(prev_g) else cur_g
+            nan_s = cur_s if math.isfinite(prev_g) else prev_s
+            for _ in range(EDGE_BISECT):
+                m = 0.5 * (fin_s + nan_s)
+                gm = _g_at(kind, f, fg, hf, hfp, vp, r0, k, t, m)
+                evals += 1
+                if math.isfinite(gm):
+                    fin_s = m
+                    fin_g = gm
+                else:
+                    nan_s = m
+            if math.isfinite(prev_g):
+                pb = fin_s
+                pgb = fin_g
+            else:
+                pa = fin_s
+                pga = fin_g
+        if math.isfinite(pga) and math.isfinite(pgb) and (pga >= 0.0) != (pgb >= 0.0):
+            mid = 0.5 * (pa + pb)
             if not math.isfinite(best_a) or abs(mid - s_near) < abs(0.5 * (best_a + best_b) - s_near):
-                best_a = prev_s
-                best_b = cur_s
-                ga_best = prev_g
+                best_a = pa
+                best_b = pb
+                ga_best = pga
         prev_s = cur_s
         prev_g = cur_g
     if not math.isfinite(best_a):

@@ -2,7 +2,8 @@
 
 A Surface carries f, and f fused with f_u and f_v in one function, as compiled Numba
 cfuncs (DESIGN.md section 4), so a new expression costs a few tens of milliseconds
-and never recompiles a kernel; or a height grid read as a bilinear function (the paper's "digital height field").
+and never recompiles a kernel; or a height grid read as a bilinear function (the
+paper's "digital height field").
 """
 from __future__ import annotations
 
@@ -248,8 +249,8 @@ def _parse_error_message(text, exc):
 #: exception (which a cfunc could only swallow).
 _njit = numba.njit(error_model="numpy")
 
-def _numba_namespace():
 
+def _numba_namespace():
     @numba.njit(cache=False)
     def dirac_delta(x, *args):
         return 0.0

@@ -22,7 +22,7 @@ SCAN_MIN = 3          # fallback scan of s when Newton fails (holes, steep rims)
 SCAN_MAX = 24         # about one point per SCAN_PIXELS of the searched segment
 SCAN_PIXELS = 4.0
 BISECT_ITERS = 40
-EDGE_BISECT = 12      # where the scan crosses the edge of the finite part of f
+EDGE_BISECT = 6      # where the scan crosses the edge of the finite part of f
 
 
 @ngjit

@@ -100,24 +100,23 @@ def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run):
             out[A_U] = u
             out[A_V] = v
         return st, ev
-    if st == S_OK:
-        s = w - vp[VP_CW]
-        dt = t - run[RUN_GUESS_T]
-        run[RUN_SLOPE] = (s - run[RUN_GUESS]) / dt if dt != 0.0 else 0.0
-        run[RUN_GUESS] = s
-        run[RUN_GUESS_T] = t
-        out[A_Y] = y
-        out[A_Z] = z
-        out[A_U] = u
-        out[A_V] = v
-        out[A_W] = w
-        out[A_NX] = nx
-        out[A_NY] = ny
-        out[A_NZ] = nz
-        out[A_I] = lam
-        out[A_T] = t
-        if vp[VP_DETECT] != 0.0:
-            out[A_VN], out[A_BUMP], out[A_SLOPE] = probe(vp, x0, out)
+    s = w - vp[VP_CW]
+    dt = t - run[RUN_GUESS_T]
+    run[RUN_SLOPE] = (s - run[RUN_GUESS]) / dt if dt != 0.0 else 0.0
+    run[RUN_GUESS] = s
+    run[RUN_GUESS_T] = t
+    out[A_Y] = y
+    out[A_Z] = z
+    out[A_U] = u
+    out[A_V] = v
+    out[A_W] = w
+    out[A_NX] = nx
+    out[A_NY] = ny
+    out[A_NZ] = nz
+    out[A_I] = lam
+    out[A_T] = t
+    if vp[VP_DETECT] != 0.0:
+        out[A_VN], out[A_BUMP], out[A_SLOPE] = probe(vp, x0, out)
     return st, ev
 
 
@@ -379,7 +378,7 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
                     n = _push(stk, sdepth, n, mid, WALL_MODE + halvings + 1)
                     continue
             else:
-                nx, ny, nz = wall_normal(kind, f, fg, hf, hfp, vp, left, right)
+                nx, ny, nz = wall_normal(kind, f, hf, hfp, vp, left, right)
                 lam = lambert_at(vp, x0, left, nx, ny, nz)
                 w0[:] = left
                 w1[:] = right
@@ -658,6 +657,17 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
     return evals
 
 
+# rows of render_column's scratch
+SCR_PREV = 0
+SCR_CUR = 1
+SCR_EDGE = 2
+SCR_TMP = 3
+SCR_RUN = 4
+SCR_LEFT = 5
+SCR_MID = 6
+SCR_STK = 7
+
+
 @ngjit
 def render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     """Render pixel column ``col`` into gcol (H, G_SIZE); returns evaluations of f."""
@@ -680,17 +690,6 @@ def render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     scr[0, 0] = 0.0
     sdepth[0] = 0
     return evals
-
-
-# rows of render_column's scratch
-SCR_PREV = 0
-SCR_CUR = 1
-SCR_EDGE = 2
-SCR_TMP = 3
-SCR_RUN = 4
-SCR_LEFT = 5
-SCR_MID = 6
-SCR_STK = 7
 
 
 @ngjit

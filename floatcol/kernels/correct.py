@@ -185,22 +185,17 @@ def wall_between(a, b, run_lo, run_hi, searching):
 
 
 @ngjit
-def _f_at(kind, f, fg, hf, hfp, u, v):
-    return surface_value(kind, f, hf, hfp, u, v)
-
-
-@ngjit
-def _locate_jump(kind, f, fg, hf, hfp, u0, v0, u1, v1):
+def _locate_jump(kind, f, hf, hfp, u0, v0, u1, v1):
     """Bisect the segment (u0, v0) -> (u1, v1) for the jump of f: keep the half whose
     ends differ more. Returns (fraction along the segment, the jump left across the
     final bracket); NaN where f has a hole there."""
     lo = 0.0
     hi = 1.0
-    f_lo = _f_at(kind, f, fg, hf, hfp, u0, v0)
-    f_hi = _f_at(kind, f, fg, hf, hfp, u1, v1)
+    f_lo = surface_value(kind, f, hf, hfp, u0, v0)
+    f_hi = surface_value(kind, f, hf, hfp, u1, v1)
     for _ in range(WALL_BISECT):
         m = 0.5 * (lo + hi)
-        fm = _f_at(kind, f, fg, hf, hfp, u0 + m * (u1 - u0), v0 + m * (v1 - v0))
+        fm = surface_value(kind, f, hf, hfp, u0 + m * (u1 - u0), v0 + m * (v1 - v0))
         if not (math.isfinite(fm) and math.isfinite(f_lo) and math.isfinite(f_hi)):
             return np.nan, 0.0
         if abs(fm - f_lo) >= abs(f_hi - fm):
@@ -213,7 +208,7 @@ def _locate_jump(kind, f, fg, hf, hfp, u0, v0, u1, v1):
 
 
 @ngjit
-def wall_normal(kind, f, fg, hf, hfp, vp, a, b):
+def wall_normal(kind, f, hf, hfp, vp, a, b):
     """Screen-coordinate unit normal of the wall between the tight bracket a, b.
 
     The wall is vertical; its direction on the ground comes from the same jump found
@@ -228,7 +223,7 @@ def wall_normal(kind, f, fg, hf, hfp, vp, a, b):
     # A point of the wall line: a and b lie on either side of it (in perspective far
     # apart: inside Pi the ground point moves along r with the height, by dr/ds
     # times the jump).
-    m, _ = _locate_jump(kind, f, fg, hf, hfp, a[A_U], a[A_V], b[A_U], b[A_V])
+    m, _ = _locate_jump(kind, f, hf, hfp, a[A_U], a[A_V], b[A_U], b[A_V])
     if not math.isfinite(m):
         m = 0.0
     pu = a[A_U] + m * (b[A_U] - a[A_U])
@@ -252,7 +247,7 @@ def wall_normal(kind, f, fg, hf, hfp, vp, a, b):
     while lim <= WALL_SEARCH * delta * 1.0001:
         qu = pu + delta * eu - lim * du
         qv = pv + delta * ev - lim * dv
-        m2, left_over = _locate_jump(kind, f, fg, hf, hfp, qu, qv, qu + 2.0 * lim * du,
+        m2, left_over = _locate_jump(kind, f, hf, hfp, qu, qv, qu + 2.0 * lim * du,
                                      qv + 2.0 * lim * dv)
         if math.isfinite(m2) and left_over > 0.5 * jump:
             along = (2.0 * m2 - 1.0) * lim

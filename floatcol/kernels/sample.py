@@ -48,7 +48,7 @@ def heightfield_eval(hf, hfp, u, v):
 
 
 @ngjit_inline
-def surface_eval(kind, f, fg, hf, hfp, u, v):
+def surface_eval(kind, fg, hf, hfp, u, v):
     """w = f(u, v) and its partials, from one call of the fused function fg; NaN w
     means a hole. A function surface's parameter t (the time of an animation) is
     hfp[0]."""
@@ -111,7 +111,7 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
         v = cv - r * sb + t * cb
         if not in_domain(vp, u, v):
             return S_OUTSIDE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
-        w, wu, wv = surface_eval(kind, f, fg, hf, hfp, u, v)
+        w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
         evals += 1
         if not math.isfinite(w):
             return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -139,7 +139,7 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
             r = r0 + k * s
             u = cu + r * cb + t * sb             # eq. (2)
             v = cv - r * sb + t * cb
-            w, wu, wv = surface_eval(kind, f, fg, hf, hfp, u, v)
+            w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
             evals += 1
             if not math.isfinite(w):
                 break
@@ -154,14 +154,14 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
         if not paper and (not math.isfinite(w) or abs(k * g) * vp[VP_SCALE] > 1e-3):
             # Newton left the surface (a hole, or a steep rim where f_u, f_v blow
             # up): bracket a root of g(s) = f - cw - s over the range of w instead.
-            s_b, n_b = _bracketed_s(kind, f, fg, hf, hfp, vp, r0, k, t, s)
+            s_b, n_b = _bracketed_s(kind, f, hf, hfp, vp, r0, k, t, s)
             evals += n_b
             if not math.isfinite(s_b):
                 return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
             r = r0 + k * s_b
             u = cu + r * cb + t * sb
             v = cv - r * sb + t * cb
-            w, wu, wv = surface_eval(kind, f, fg, hf, hfp, u, v)
+            w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
             evals += 1
             if not math.isfinite(w):
                 return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -214,14 +214,14 @@ def lambert(vp, vx, vy, vz, nx, ny, nz):
 def eval_grid(kind, f, fg, hf, hfp, u, v, out):
     """out[i] = (w, f_u, f_v) at (u[i], v[i]); NaN rows where the surface has a hole."""
     for i in range(u.shape[0]):
-        w, wu, wv = surface_eval(kind, f, fg, hf, hfp, u[i], v[i])
+        w, wu, wv = surface_eval(kind, fg, hf, hfp, u[i], v[i])
         out[i, 0] = w
         out[i, 1] = wu
         out[i, 2] = wv
 
 
 @ngjit
-def _g_at(kind, f, fg, hf, hfp, vp, r0, k, t, s):
+def _g_at(kind, f, hf, hfp, vp, r0, k, t, s):
     """g(s) = f(u(s), v(s)) - cw - s on the line of plane t inside Pi (NaN: a hole)."""
     r = r0 + k * s
     u = vp[VP_CU] + r * vp[VP_CB] + t * vp[VP_SB]
@@ -231,7 +231,7 @@ def _g_at(kind, f, fg, hf, hfp, vp, r0, k, t, s):
 
 
 @ngjit
-def _bracketed_s(kind, f, fg, hf, hfp, vp, r0, k, t, s_near):
+def _bracketed_s(kind, f, hf, hfp, vp, r0, k, t, s_near):
     """The root of g nearest ``s_near``, found by scanning s over the range of f on
     the fitting grid (with a quarter of it to spare on each side), about one point
     per SCAN_PIXELS of the segment's length on screen, then bisecting. NaN when g
@@ -248,11 +248,11 @@ def _bracketed_s(kind, f, fg, hf, hfp, vp, r0, k, t, s_near):
     best_b = np.nan
     ga_best = np.nan
     prev_s = s_lo
-    prev_g = _g_at(kind, f, fg, hf, hfp, vp, r0, k, t, s_lo)
+    prev_g = _g_at(kind, f, hf, hfp, vp, r0, k, t, s_lo)
     evals += 1
     for i in range(1, n):
         cur_s = s_lo + i * ds
-        cur_g = _g_at(kind, f, fg, hf, hfp, vp, r0, k, t, cur_s)
+        cur_g = _g_at(kind, f, hf, hfp, vp, r0, k, t, cur_s)
         evals += 1
         # the pair to test for a sign change; where f is finite at one end only (the
         # domain's edge, or a hole's), the finite part's end, located by bisection,
@@ -261,20 +261,19 @@ def _bracketed_s(kind, f, fg, hf, hfp, vp, r0, k, t, s_near):
         pga = prev_g
         pb = cur_s
         pgb = cur_g
-        if math.isfinite(prev_g) != math.isfinite(cur_g):
-            fin_s = prev_s if math.isfinite(prev_g) else cur_s
-            fin_g = prev_g if math.isfinite(prev_g) else cur_g
-            nan_s = cur_s if math.isfinite(prev_g) else prev_s
+        prev_fin = math.isfinite(prev_g)
+        if prev_fin != math.isfinite(cur_g):
+            fin_s, fin_g, nan_s = (prev_s, prev_g, cur_s) if prev_fin else (cur_s, cur_g, prev_s)
             for _ in range(EDGE_BISECT):
                 m = 0.5 * (fin_s + nan_s)
-                gm = _g_at(kind, f, fg, hf, hfp, vp, r0, k, t, m)
+                gm = _g_at(kind, f, hf, hfp, vp, r0, k, t, m)
                 evals += 1
                 if math.isfinite(gm):
                     fin_s = m
                     fin_g = gm
                 else:
                     nan_s = m
-            if math.isfinite(prev_g):
+            if prev_fin:
                 pb = fin_s
                 pgb = fin_g
             else:
@@ -296,7 +295,7 @@ def _bracketed_s(kind, f, fg, hf, hfp, vp, r0, k, t, s_near):
     tol = 1e-4 / (vp[VP_SCALE] * max(abs(k), 1e-12))
     for _ in range(BISECT_ITERS):
         m = 0.5 * (a + b)
-        gm = _g_at(kind, f, fg, hf, hfp, vp, r0, k, t, m)
+        gm = _g_at(kind, f, hf, hfp, vp, r0, k, t, m)
         evals += 1
         if not math.isfinite(gm):
             # a hole inside the bracket: keep the half next to the finite end a

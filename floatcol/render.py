@@ -239,7 +239,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     hrec = np.empty((W, n_lines, H_SIZE), dtype=np.float64)
     evals = np.zeros(W, dtype=np.int64)
     vp[L.VP_AA] = 1.0 if aa_cov else 0.0
-    ebuf = np.empty((W, H, L.E_SIZE) if aa_cov else (1, 1, L.E_SIZE), dtype=np.float32)
+    ebuf = np.empty((W, L.E_SIZE, H) if aa_cov else (1, L.E_SIZE, 1), dtype=np.float32)
     column_kernel(*surface.kernel_args(), vp, gbuf, ebuf, hrec, hstride, evals)
     t_kernel = time.perf_counter()
     line_t = None

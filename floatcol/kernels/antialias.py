@@ -28,7 +28,7 @@ def subcolumn_kernel(kind, f, fg, hf, hfp, vp, offsets, interp, ambient, specula
     span = w_hi - w_lo if w_hi > w_lo else 1.0
     for c in prange(W):
         gcol = np.empty((1, H, G_SIZE), dtype=np.float32)
-        ecol = np.empty((1, H, E_SIZE), dtype=np.float32)
+        ecol = np.empty((1, E_SIZE, H), dtype=np.float32)
         hrec = np.empty((1, H_SIZE))
         ev = 0
         for k in range(offsets.shape[0]):

@@ -233,21 +233,21 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
             if cov <= 0.0:
                 continue
             if gcol[jp, G_SIDE] != 0.0 and cont and jp == j_cont:
-                ecol[jp, E_COV0] = min(ecol[jp, E_COV0] + cov, 1.0)
+                ecol[E_COV0, jp] = min(ecol[E_COV0, jp] + cov, 1.0)
                 continue
-            room = 1.0 - (ecol[jp, E_COV0] if gcol[jp, G_SIDE] != 0.0 else 0.0)
-            if ecol[jp, E_COV] > 0.0:
-                ecol[jp, E_COV] = min(ecol[jp, E_COV] + cov, room)
+            room = 1.0 - (ecol[E_COV0, jp] if gcol[jp, G_SIDE] != 0.0 else 0.0)
+            if ecol[E_COV, jp] > 0.0:
+                ecol[E_COV, jp] = min(ecol[E_COV, jp] + cov, room)
                 continue
             lw = _chord_weight(0.5 * (a + b), yp, dy, persp, qp, qc)
-            ecol[jp, E_NX] = prev[A_NX] + lw * (cur[A_NX] - prev[A_NX])
-            ecol[jp, E_NY] = prev[A_NY] + lw * (cur[A_NY] - prev[A_NY])
-            ecol[jp, E_NZ] = prev[A_NZ] + lw * (cur[A_NZ] - prev[A_NZ])
-            ecol[jp, E_W] = prev[A_W] + lw * (cur[A_W] - prev[A_W])
-            ecol[jp, E_I] = prev[A_I] + lw * (cur[A_I] - prev[A_I])
-            ecol[jp, E_DEPTH] = prev[A_Z] + lw * (cur[A_Z] - prev[A_Z])
-            ecol[jp, E_SIDE] = side
-            ecol[jp, E_COV] = min(cov, room)
+            ecol[E_NX, jp] = prev[A_NX] + lw * (cur[A_NX] - prev[A_NX])
+            ecol[E_NY, jp] = prev[A_NY] + lw * (cur[A_NY] - prev[A_NY])
+            ecol[E_NZ, jp] = prev[A_NZ] + lw * (cur[A_NZ] - prev[A_NZ])
+            ecol[E_W, jp] = prev[A_W] + lw * (cur[A_W] - prev[A_W])
+            ecol[E_I, jp] = prev[A_I] + lw * (cur[A_I] - prev[A_I])
+            ecol[E_DEPTH, jp] = prev[A_Z] + lw * (cur[A_Z] - prev[A_Z])
+            ecol[E_SIDE, jp] = side
+            ecol[E_COV, jp] = min(cov, room)
     j0 = max(j0, 0)
     j1 = min(j1, H - 1)
     for j in range(j0, j1 + 1):
@@ -265,7 +265,7 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
         gcol[j, G_T] = prev[A_T] + lw * (cur[A_T] - prev[A_T])
         gcol[j, G_SIDE] = side
         if aa:
-            ecol[j, E_COV0] = max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0)
+            ecol[E_COV0, j] = max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0)
 
 
 @ngjit_inline
@@ -676,7 +676,8 @@ def render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     gcol[:, G_SIDE] = 0.0
     hrec[:, :] = np.nan
     if vp[VP_AA] != 0.0:
-        ecol[:, :] = 0.0
+        ecol[E_COV0, :] = 0.0
+        ecol[E_COV, :] = 0.0
     x0 = column_x0(vp, col)
     # the column's scratch; below, every array goes on as a view without owner
     # (_jit.unmanaged), so the sample loop does no reference counting; the caller
@@ -729,7 +730,7 @@ def _column_passes(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
 @ngjit_parallel
 def column_kernel(kind, f, fg, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals):
     """Render every column in parallel into gbuf (W, H, G_SIZE), cleared here; with
-    VP_AA, ebuf (W, H, E_SIZE) receives the coverages (else it may be (1, 1, E_SIZE)).
+    VP_AA, ebuf (W, E_SIZE, H) receives the coverages (else it may be (1, E_SIZE, 1)).
     hrec (W, n_lines, H_SIZE) receives horizon-line records when hstride > 0. Each
     column writes only its own slices: no shared scratch."""
     W = gbuf.shape[0]

@@ -85,18 +85,21 @@ A_BUMP = 11  # n_Pi . (L x N)
 A_SLOPE = 12  # dY/dt in pixels per unit of t along the curve in Pi
 A_SIZE = 13
 
-# Edge buffer ebuf (W, H, E_SIZE) float32 of the coverage antialiasing (section 6.4):
+# Edge buffer ebuf (W, E_SIZE, H) float32 of the coverage antialiasing (section 6.4):
 # how much of each pixel the surface at its centre covers, and a second surface that
 # shares the pixel (the one reappearing above a ridge, or beside a silhouette).
+# Channel-major per column: a column clears only its two coverage rows; the edge
+# surface's rows are written and read only where E_COV > 0 (a few pixels), so most of
+# their memory is never touched.
 E_COV0 = 0        # coverage of the pixel by the G-buffer's surface (its centre's)
-E_NX = 1          # the edge surface: unit normal, w, intensity, side, depth, coverage
-E_NY = 2
-E_NZ = 3
-E_W = 4
-E_I = 5
-E_SIDE = 6
-E_DEPTH = 7
-E_COV = 8
+E_COV = 1         # coverage by the edge surface (0: none); the edge surface's
+E_NX = 2          # unit normal, w, intensity, side and depth
+E_NY = 3
+E_NZ = 4
+E_W = 5
+E_I = 6
+E_SIDE = 7
+E_DEPTH = 8
 E_SIZE = 9
 
 # Sample status

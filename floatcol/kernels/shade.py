@@ -16,28 +16,44 @@ INTERP_NORMAL = 1      # nis: the normal is interpolated and lit at each pixel
 
 
 @ngjit_inline
+def _power(x, e):
+    """x ** e for x > 0: by squaring when e is a whole number up to 1024 (the
+    default shininess 30 takes 8 multiplications instead of a call of pow)."""
+    if e == math.floor(e) and 0.0 <= e <= 1024.0:
+        n = int(e)
+        r = 1.0
+        while n > 0:
+            if n & 1:
+                r *= x
+            x *= x
+            n >>= 1
+        return r
+    return x ** e
+
+
+@ngjit_inline
 def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shininess):
     """(I, specular) of one pixel: I = ambient + (1 - ambient) |L.N| / (|L| |N|), and
     Phong's specular * max(R.V, 0)^shininess (the paper has none), with V toward the
     viewpoint, N turned toward the viewer (the side that is seen) and R the
     reflection of L about N; zero where the light is behind the seen side. The light
-    is vp's directional light, or the viewpoint when that is zero (eq. 12)."""
+    is vp's directional light (a unit vector), or the viewpoint when that is zero
+    (eq. 12)."""
     if vp[VP_ORTHO] != 0.0:
         vx = 0.0
         vy = 0.0
         vz = -1.0
     else:
-        d1 = vp[VP_D1]
-        d3 = vp[VP_D3]
         y0 = (j - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]
-        m = (depth + d3) / d1
+        e = depth + vp[VP_D3]
+        m = e / vp[VP_D1]
         vx = -x0 * m
         vy = -y0 * m
-        vz = -(depth + d3)
-        vn = math.sqrt(vx * vx + vy * vy + vz * vz)
-        vx /= vn
-        vy /= vn
-        vz /= vn
+        vz = -e
+        q = 1.0 / math.sqrt(vx * vx + vy * vy + vz * vz)
+        vx *= q
+        vy *= q
+        vz *= q
     if vp[VP_LX] == 0.0 and vp[VP_LY] == 0.0 and vp[VP_LZ] == 0.0:
         lx = vx
         ly = vy
@@ -46,31 +62,21 @@ def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shi
         lx = vp[VP_LX]
         ly = vp[VP_LY]
         lz = vp[VP_LZ]
-    nn = math.sqrt(nx * nx + ny * ny + nz * nz)
-    if interp == INTERP_INTENSITY:
-        lam = lam_iis
-    else:
-        ll = math.sqrt(lx * lx + ly * ly + lz * lz)
-        lam = abs(lx * nx + ly * ny + lz * nz) / (ll * nn) if nn > 0.0 else 0.0
+    nn2 = nx * nx + ny * ny + nz * nz
+    q = 1.0 / math.sqrt(nn2) if nn2 > 0.0 else 0.0
+    nl = (lx * nx + ly * ny + lz * nz) * q        # N.L / |N|, L a unit vector
+    lam = lam_iis if interp == INTERP_INTENSITY else abs(nl)
     inten = ambient + (1.0 - ambient) * min(lam, 1.0)
     sp = 0.0
-    if specular > 0.0 and nn > 0.0:
-        nx /= nn
-        ny /= nn
-        nz /= nn
-        if nx * vx + ny * vy + nz * vz < 0.0:        # the seen side's normal
-            nx = -nx
-            ny = -ny
-            nz = -nz
-        ll = math.sqrt(lx * lx + ly * ly + lz * lz)
-        nl = (nx * lx + ny * ly + nz * lz) / ll
+    if specular > 0.0 and nn2 > 0.0:
+        nv = (nx * vx + ny * vy + nz * vz) * q
+        if nv < 0.0:                              # the seen side's normal
+            nv = -nv
+            nl = -nl
         if nl > 0.0:
-            rx = 2.0 * nl * nx - lx / ll
-            ry = 2.0 * nl * ny - ly / ll
-            rz = 2.0 * nl * nz - lz / ll
-            rv = rx * vx + ry * vy + rz * vz
+            rv = 2.0 * nl * nv - (lx * vx + ly * vy + lz * vz)   # R.V, R = 2 (N.L) N - L
             if rv > 0.0:
-                sp = specular * rv ** shininess
+                sp = specular * _power(rv, shininess)
     return inten, sp
 
 
@@ -167,13 +173,13 @@ def shade_pixel(gbuf, ebuf, c, j, aa, vp, x0, interp, ambient, specular, shinine
     e_lam = 0.0
     e_sp = 0.0
     if aa:
-        cov0 = ebuf[c, j, E_COV0]
-        e_cov = ebuf[c, j, E_COV]
+        cov0 = ebuf[c, E_COV0, j]
+        e_cov = ebuf[c, E_COV, j]
         if e_cov > 0.0:
-            e_side = ebuf[c, j, E_SIDE]
-            e_w = ebuf[c, j, E_W]
-            e_lam, e_sp = _light(vp, x0, j, ebuf[c, j, E_DEPTH], ebuf[c, j, E_NX],
-                                 ebuf[c, j, E_NY], ebuf[c, j, E_NZ], ebuf[c, j, E_I], interp,
+            e_side = ebuf[c, E_SIDE, j]
+            e_w = ebuf[c, E_W, j]
+            e_lam, e_sp = _light(vp, x0, j, ebuf[c, E_DEPTH, j], ebuf[c, E_NX, j],
+                                 ebuf[c, E_NY, j], ebuf[c, E_NZ, j], ebuf[c, E_I, j], interp,
                                  ambient, specular, shininess)
     r, g, b, a = pixel_rgba(s, gbuf[c, j, G_W], cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp,
                             lut, w_lo, span, lower_rgb, background)
@@ -190,13 +196,14 @@ def finish_kernel(gbuf, ebuf, vp, interp, ambient, specular, shininess, lut, w_l
                   lower_rgb, background, intensity, side, depth, rgba):
     """Light, colour and assemble the public arrays, top row first, in one pass:
     intensity (ambient + diffuse at the pixel's centre, NaN where nothing is seen),
-    side, depth and rgba (shade_pixel). With VP_AA, ebuf (W, H, E_SIZE) holds the
+    side, depth and rgba (shade_pixel). With VP_AA, ebuf (W, E_SIZE, H) holds the
     coverages and only rgba is blended; intensity, side and depth stay those of the
-    pixel's centre. Else ebuf may be (1, 1, E_SIZE) and is not read."""
+    pixel's centre. Else ebuf may be (1, E_SIZE, 1) and is not read."""
     W = gbuf.shape[0]
     H = gbuf.shape[1]
     aa = vp[VP_AA] != 0.0
     span = w_hi - w_lo if w_hi > w_lo else 1.0
+    n_lut = lut.shape[0]
     n_blocks = (W + FINISH_BLOCK - 1) // FINISH_BLOCK
     for blk in prange(n_blocks):
         c0 = blk * FINISH_BLOCK
@@ -204,12 +211,46 @@ def finish_kernel(gbuf, ebuf, vp, interp, ambient, specular, shininess, lut, w_l
         for j in range(H):
             i = H - 1 - j
             for c in range(c0, c1):
+                s = gbuf[c, j, G_SIDE]
+                side[i, c] = np.int8(s)
+                depth[i, c] = gbuf[c, j, G_DEPTH]
+                cov0 = 1.0
+                e_cov = 0.0
+                if aa:
+                    cov0 = ebuf[c, E_COV0, j]
+                    e_cov = ebuf[c, E_COV, j]
+                if e_cov <= 0.0 and (s == 0.0 or cov0 >= 1.0):
+                    # the common pixels, as shade_pixel colours them: the background,
+                    # or a surface covering the whole pixel
+                    if s == 0.0:
+                        intensity[i, c] = np.nan
+                        for k in range(4):
+                            rgba[i, c, k] = background[k]
+                        continue
+                    x0 = (c + vp[VP_XOFF] - (vp[VP_W] - 1.0) * 0.5) / vp[VP_SCALE]
+                    lam, sp = _light(vp, x0, j, gbuf[c, j, G_DEPTH], gbuf[c, j, G_NX],
+                                     gbuf[c, j, G_NY], gbuf[c, j, G_NZ], gbuf[c, j, G_I],
+                                     interp, ambient, specular, shininess)
+                    if s > 0.0:
+                        x = (gbuf[c, j, G_W] - w_lo) / span * (n_lut - 1)
+                        idx = int(min(max(x, 0.0), n_lut - 1.0)) if x == x else 0
+                        r = lut[idx, 0]
+                        g = lut[idx, 1]
+                        b = lut[idx, 2]
+                    else:
+                        r = lower_rgb[0]
+                        g = lower_rgb[1]
+                        b = lower_rgb[2]
+                    intensity[i, c] = lam
+                    rgba[i, c, 0] = np.uint8(min(r * lam + sp, 1.0) * 255.0 + 0.5)
+                    rgba[i, c, 1] = np.uint8(min(g * lam + sp, 1.0) * 255.0 + 0.5)
+                    rgba[i, c, 2] = np.uint8(min(b * lam + sp, 1.0) * 255.0 + 0.5)
+                    rgba[i, c, 3] = np.uint8(255)
+                    continue
                 x0 = (c + vp[VP_XOFF] - (vp[VP_W] - 1.0) * 0.5) / vp[VP_SCALE]
                 lam, r, g, b, a = shade_pixel(gbuf, ebuf, c, j, aa, vp, x0, interp, ambient,
                                               specular, shininess, lut, w_lo, span, lower_rgb,
                                               background)
-                side[i, c] = np.int8(gbuf[c, j, G_SIDE])
-                depth[i, c] = gbuf[c, j, G_DEPTH]
                 intensity[i, c] = lam
                 rgba[i, c, 0] = np.uint8(r * 255.0 + 0.5)
                 rgba[i, c, 1] = np.uint8(g * 255.0 + 0.5)

@@ -22,7 +22,7 @@ import math
 import numpy as np
 from numba import prange
 
-from ._jit import ngjit, ngjit_inline, ngjit_parallel, unmanaged
+from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel, unmanaged
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIDE, E_W,
@@ -78,7 +78,7 @@ H_TS = 3
 H_SIZE = 4
 
 
-@ngjit
+@ngjit_nrt_free
 def _sample_into(kind, f, fg, hf, hfp, vp, x0, t, out, run):
     """_sample_at as a call (where sampling is rare: corrections, edges)."""
     return _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run)
@@ -127,7 +127,7 @@ def _copy(dst, src):
         dst[k] = src[k]
 
 
-@ngjit
+@ngjit_nrt_free
 def _clip_line(vp, u0, du, v0, dv, lo, hi):
     """Clip [lo, hi] to the parameters lam with (u0 + lam du, v0 + lam dv) inside the
     domain rectangle. Returns (lo, hi); lo > hi when the line misses it."""
@@ -143,7 +143,7 @@ def _clip_line(vp, u0, du, v0, dv, lo, hi):
     return lo, hi
 
 
-@ngjit
+@ngjit_nrt_free
 def _may_meet_domain(vp, x0, t):
     """Perspective pre-check: can the column plane's point at t lie in the domain,
     given the estimated range of w? Saves Newton solves far outside."""
@@ -162,7 +162,7 @@ def _may_meet_domain(vp, x0, t):
     return lo <= hi + 1e-9 * (1.0 + abs(hi))
 
 
-@ngjit
+@ngjit_nrt_free
 def _ortho_chord(vp, x0):
     """t-interval of the orthographic column line r = x0 inside the domain."""
     cb = vp[VP_CB]
@@ -171,7 +171,7 @@ def _ortho_chord(vp, x0):
     return _clip_line(vp, vp[VP_CU] + x0 * cb, sb, vp[VP_CV] - x0 * sb, cb, -np.inf, np.inf)
 
 
-@ngjit
+@ngjit_nrt_free
 def _fill_span(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
     """_fill as a call (outside the column's main loop)."""
     _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)
@@ -278,7 +278,7 @@ def _chord_weight(yq, yp, dy, persp, qp, qc):
     return ls
 
 
-@ngjit
+@ngjit_nrt_free
 def _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
           stk, sdepth, left, mid, xs):
     """_segment, but a height field's span is first cut where the column crosses the
@@ -317,7 +317,7 @@ def _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp
         if st == S_OK:
             evals += _segment(kind, f, fg, hf, hfp, vp, x0, prev, xs, gcol, ecol, run, sigma,
                               persp, d3, H, aa, stk, sdepth, left, mid)
-            prev[:] = xs
+            _copy(prev, xs)
     evals += _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
                       persp, d3, H, aa, stk, sdepth, left, mid)
     return evals
@@ -338,7 +338,7 @@ def _problem(vp, x0, prev, cur, run):
                 and wall_between(prev, cur, run[RUN_YMIN], run[RUN_YMAX], False)))
 
 
-@ngjit
+@ngjit_nrt_free
 def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
              stk, sdepth, left, mid):
     """Fill the span prev -> cur of an open run, correcting the problems that
@@ -357,8 +357,8 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
     rate = max(int(vp[VP_RATE]), 2)
     max_depth = min(int(math.ceil(math.log2(rate) - 1e-9)), STACK_SIZE - 2)
     evals = 0
-    left[:] = prev
-    stk[0, :] = cur
+    _copy(left, prev)
+    _copy(stk[0], cur)
     sdepth[0] = 0
     n = 1
     w0 = stk[STACK_SIZE - 2]            # scratch: the wall's two ends
@@ -380,12 +380,12 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
             else:
                 nx, ny, nz = wall_normal(kind, f, hf, hfp, vp, left, right)
                 lam = lambert_at(vp, x0, left, nx, ny, nz)
-                w0[:] = left
-                w1[:] = right
+                _copy(w0, left)
+                _copy(w1, right)
                 _set_normal(w0, nx, ny, nz, lam)
                 _set_normal(w1, nx, ny, nz, lam)
                 _fill_span(gcol, ecol, run, w0, w1, sigma, persp, d3, H, aa)
-                left[:] = right
+                _copy(left, right)
                 n -= 1
                 # the wall's far end may sit on the jump, where difference quotients
                 # give f_u, f_v no meaning: take the normal a little beyond it
@@ -423,9 +423,9 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
                 evals += ev
                 if st == S_OK:
                     _fill_span(gcol, ecol, run, left, mid, sigma, persp, d3, H, aa)
-                    left[:] = mid
+                    _copy(left, mid)
         _fill_span(gcol, ecol, run, left, right, sigma, persp, d3, H, aa)
-        left[:] = right
+        _copy(left, right)
         n -= 1
     return evals
 
@@ -439,16 +439,16 @@ def _set_normal(a, nx, ny, nz, lam):
     a[A_I] = lam
 
 
-@ngjit
+@ngjit_nrt_free
 def _push(stk, sdepth, n, mid, depth):
     """Split the span (left, stk[n-1]) at sample ``mid``: both halves get ``depth``."""
-    stk[n, :] = mid
+    _copy(stk[n], mid)
     sdepth[n] = depth
     sdepth[n - 1] = depth
     return n + 1
 
 
-@ngjit
+@ngjit_nrt_free
 def _spline_top(kind, f, fg, hf, hfp, vp, x0, a, b, out, run):
     """Sample the surface at the extremum of the cubic spline between samples a and b
     (eqs. 13-22, see correct.py); with VP_SPLINE_TOL > 0, repeat on the half that
@@ -487,7 +487,7 @@ def _spline_top(kind, f, fg, hf, hfp, vp, x0, a, b, out, run):
     return st, evals
 
 
-@ngjit
+@ngjit_nrt_free
 def _grid_range(t0, dt, ta, tb):
     """Indices k of the planes t0 + k dt strictly between ta < tb."""
     eps = 1e-6 * dt
@@ -500,7 +500,7 @@ def _grid_range(t0, dt, ta, tb):
     return ka, kb
 
 
-@ngjit
+@ngjit_nrt_free
 def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, hstride,
                  prev, cur, edge, tmp, run, stk, sdepth, left, mid):
     """One front-to-back pass over t from ta to tb (sigma = +1 ascending, -1
@@ -581,7 +581,7 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
                 evals += ev_m
                 if st_m == S_OK:
                     t_ok = tm
-                    edge[:] = tmp
+                    _copy(edge, tmp)
                     found = True
                 else:
                     t_bad = tm
@@ -592,7 +592,7 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
                 else:
                     evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, edge, gcol, ecol, run,
                                    sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)
-                prev[:] = edge
+                _copy(prev, edge)
         if st == S_OK:
             if run[RUN_OPEN] == 0.0:
                 run_start = t
@@ -693,7 +693,7 @@ def render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     return evals
 
 
-@ngjit
+@ngjit_nrt_free
 def _column_passes(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr, sdepth):
     """The passes of one column (render_column): ascending t in orthographic; in
     perspective from the viewpoint's t outward, both ways."""

@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from ._jit import ngjit, ngjit_inline
+from ._jit import ngjit_inline, ngjit_nrt_free
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z, DETECT_BUMP,
     DETECT_JUMP, VP_CA, VP_CB, VP_D1, VP_D3, VP_H, VP_JUMP, VP_LX, VP_LY, VP_LZ,
@@ -55,9 +55,18 @@ def probe(vp, x0, a):
     ny = a[A_NY]
     nz = a[A_NZ]
     scale = vp[VP_SCALE]
-    y0 = (a[A_Y] - (vp[VP_H] - 1.0) * 0.5) / scale
     ca = vp[VP_CA]
     sa = vp[VP_SA]
+    if vp[VP_ORTHO] != 0.0:
+        # the same with V = (0, 0, -1) and n_Pi = (1, 0, 0) (no root, no division but
+        # the slope's: this runs for every sample)
+        if vp[VP_LX] != 0.0 or vp[VP_LY] != 0.0 or vp[VP_LZ] != 0.0:
+            bump = vp[VP_LY] * nz - vp[VP_LZ] * ny
+        else:
+            bump = ny
+        dt = nz * sa + ny * ca
+        return -nz, bump, (-nz / dt * scale if dt != 0.0 else math.copysign(1e30, -nz))
+    y0 = (a[A_Y] - (vp[VP_H] - 1.0) * 0.5) / scale
     if vp[VP_ORTHO] != 0.0:
         vx = 0.0
         vy = 0.0
@@ -101,7 +110,7 @@ def probe(vp, x0, a):
     return vn, bump, slope
 
 
-@ngjit
+@ngjit_nrt_free
 def hermite_extremum(ya, yb, ma, mb, h):
     """Fraction tau in (0, 1) where the cubic through (0, ya), (1, yb) with slopes
     ma, mb (per unit of t, the interval being h long) has zero slope: eqs. (13)-(17)
@@ -184,7 +193,7 @@ def wall_between(a, b, run_lo, run_hi, searching):
     return dy > WALL_RATIO * pred
 
 
-@ngjit
+@ngjit_nrt_free
 def _locate_jump(kind, f, hf, hfp, u0, v0, u1, v1):
     """Bisect the segment (u0, v0) -> (u1, v1) for the jump of f: keep the half whose
     ends differ more. Returns (fraction along the segment, the jump left across the
@@ -207,7 +216,7 @@ def _locate_jump(kind, f, hf, hfp, u0, v0, u1, v1):
     return 0.5 * (lo + hi), abs(f_hi - f_lo)
 
 
-@ngjit
+@ngjit_nrt_free
 def wall_normal(kind, f, hf, hfp, vp, a, b):
     """Screen-coordinate unit normal of the wall between the tight bracket a, b.
 
@@ -268,7 +277,7 @@ def wall_normal(kind, f, hf, hfp, vp, a, b):
     return nu * cb - nv * sb, -tc * sa, tc * ca
 
 
-@ngjit
+@ngjit_nrt_free
 def lambert_at(vp, x0, a, nx, ny, nz):
     """|L.N| of unit normal N at sample a's place (eq. 12, or the directional light);
     the view direction there is -(x0, y0, d1), as in probe."""

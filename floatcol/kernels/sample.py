@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ._jit import ngjit, ngjit_inline, stack_pair
+from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, stack_pair
 from .layout import (
     S_BEHIND, S_HOLE, S_OK, S_OUTSIDE, SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_H, VP_LX, VP_LY, VP_LZ, VP_ORTHO,
@@ -25,7 +25,7 @@ BISECT_ITERS = 40
 EDGE_BISECT = 6      # where the scan crosses the edge of the finite part of f
 
 
-@ngjit
+@ngjit_nrt_free
 def heightfield_eval(hf, hfp, u, v):
     """Bilinear height and its exact piecewise partials (the paper's section 2)."""
     nv, nu = hf.shape
@@ -220,7 +220,7 @@ def eval_grid(kind, f, fg, hf, hfp, u, v, out):
         out[i, 2] = wv
 
 
-@ngjit
+@ngjit_nrt_free
 def _g_at(kind, f, hf, hfp, vp, r0, k, t, s):
     """g(s) = f(u(s), v(s)) - cw - s on the line of plane t inside Pi (NaN: a hole)."""
     r = r0 + k * s
@@ -230,7 +230,7 @@ def _g_at(kind, f, hf, hfp, vp, r0, k, t, s):
     return w - vp[VP_CW] - s
 
 
-@ngjit
+@ngjit_nrt_free
 def _bracketed_s(kind, f, hf, hfp, vp, r0, k, t, s_near):
     """The root of g nearest ``s_near``, found by scanning s over the range of f on
     the fitting grid (with a quarter of it to spare on each side), about one point

@@ -25,8 +25,8 @@ ngjit_inline = numba.njit(cache=True, nogil=True, error_model="numpy", inline="a
 #: The column's loop and what it calls, none of which allocates: compiled without
 #: Numba's reference counting (its runtime, NRT), so passing an array or inlining a
 #: helper that takes one costs no call of NRT_incref/NRT_decref. Those calls were
-#: still about a fifth of the column loop with views without owner (``unmanaged``),
-#: where each is a null test behind a call. Allocating here is a compile error.
+#: about a fifth of the column loop even where the arrays were views without owner
+#: (each call then a null test). Allocating here is a compile error.
 ngjit_nrt_free = numba.njit(cache=True, nogil=True, error_model="numpy", _nrt=False)
 #: Kernels: ``prange`` over pixel columns.
 ngjit_parallel = numba.njit(cache=True, nogil=True, parallel=True, error_model="numpy")
@@ -52,26 +52,3 @@ def stack_pair(typingctx):
     def codegen(context, builder, signature, args):
         return cgutils.alloca_once(builder, context.get_value_type(types.float64), size=2)
     return types.CPointer(types.float64)(), codegen
-
-
-@intrinsic
-def unmanaged(typingctx, arr):
-    """The same array without its reference-counted owner (meminfo NULL).
-
-    Numba increments and decrements an array's reference count (atomically) wherever
-    it passes an array to a function that it does not fully inline, and Numba's own
-    inlining still leaves most of those pairs in branching code: in the column loop
-    that was about half of the time. On a view without owner those operations are a
-    null test. The caller must keep the original array alive while the view is in
-    use: kernels make these views of their arguments and of scratch they hold."""
-    if not isinstance(arr, types.Array):
-        return None
-
-    def codegen(context, builder, signature, args):
-        src = context.make_array(signature.args[0])(context, builder, value=args[0])
-        dst = context.make_array(signature.return_type)(context, builder)
-        for name in ("parent", "nitems", "itemsize", "data", "shape", "strides"):
-            setattr(dst, name, getattr(src, name))
-        dst.meminfo = cgutils.get_null_value(dst.meminfo.type)
-        return dst._getvalue()
-    return arr(arr), codegen

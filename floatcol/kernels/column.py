@@ -22,7 +22,7 @@ import math
 import numpy as np
 from numba import prange
 
-from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel, unmanaged
+from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIDE, E_W,
@@ -679,18 +679,12 @@ def render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
         ecol[E_COV0, :] = 0.0
         ecol[E_COV, :] = 0.0
     x0 = column_x0(vp, col)
-    # the column's scratch; below, every array goes on as a view without owner
-    # (_jit.unmanaged), so the sample loop does no reference counting; the caller
-    # holds the arguments, and ``scr`` and ``sdepth`` are used again at the end
+    # the column's scratch; the passes below run without reference counting
+    # (_jit.ngjit_nrt_free)
     scr = np.empty((SCR_STK + STACK_SIZE, A_SIZE))
     scr[SCR_RUN, :] = 0.0
     sdepth = np.zeros(STACK_SIZE, dtype=np.int64)
-    evals = _column_passes(kind, f, fg, unmanaged(hf), unmanaged(hfp), unmanaged(vp), x0,
-                           unmanaged(gcol), unmanaged(ecol), unmanaged(hrec), hstride,
-                           unmanaged(scr), unmanaged(sdepth))
-    scr[0, 0] = 0.0
-    sdepth[0] = 0
-    return evals
+    return _column_passes(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr, sdepth)
 
 
 @ngjit_nrt_free

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import color
+from . import _pool, color
 from .kernels.antialias import subcolumn_kernel
 from .kernels.column import H_SIZE, column_kernel
 from .kernels.horizon import horizon_kernel
@@ -235,11 +235,11 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         vp[L.VP_ADAPT] = 1.0 if sampling == "adaptive" else 0.0
         (vp[L.VP_FIX_RIDGE], vp[L.VP_FIX_SHADE], vp[L.VP_DETECT], vp[L.VP_JUMP], vp[L.VP_RATE],
          vp[L.VP_SPLINE_TOL]) = fixes
-    gbuf = np.empty((W, H, G_SIZE), dtype=np.float32)
+    gbuf = _pool.empty((W, H, G_SIZE), np.float32)
     hrec = np.empty((W, n_lines, H_SIZE), dtype=np.float64)
     evals = np.zeros(W, dtype=np.int64)
     vp[L.VP_AA] = 1.0 if aa_cov else 0.0
-    ebuf = np.empty((W, L.E_SIZE, H) if aa_cov else (1, L.E_SIZE, 1), dtype=np.float32)
+    ebuf = _pool.empty((W, L.E_SIZE, H) if aa_cov else (1, L.E_SIZE, 1), np.float32)
     column_kernel(*surface.kernel_args(), vp, gbuf, ebuf, hrec, hstride, evals)
     t_kernel = time.perf_counter()
     line_t = None
@@ -262,10 +262,10 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         bg8 = color.to_rgba8(background)
         shade_args = (INTERPOLATIONS[interpolation], amb, spec, shine)
 
-        intensity = np.empty((H, W), dtype=np.float32)
-        side = np.empty((H, W), dtype=np.int8)
-        depth = np.empty((H, W), dtype=np.float32)
-        rgba = np.empty((H, W, 4), dtype=np.uint8)
+        intensity = _pool.empty((H, W), np.float32)
+        side = _pool.empty((H, W), np.int8)
+        depth = _pool.empty((H, W), np.float32)
+        rgba = _pool.empty((H, W, 4), np.uint8)
         finish_kernel(gbuf, ebuf, vp, *shade_args, lut, w_lo, w_hi, lower_rgb, bg8, intensity,
                       side, depth, rgba)
         if sub_columns > 1:

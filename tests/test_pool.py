@@ -1,0 +1,84 @@
+"""The buffer pool (floatcol/_pool.py): a render reuses a buffer of an earlier one only
+when nothing refers to it any more; results that are still held never change."""
+import threading
+
+import numpy as np
+import pytest
+
+import floatcol as fc
+from floatcol import _pool
+
+E1 = "3*sin(u*cos(v))"
+E2 = "u*v/5"
+KW = dict(u=(-5, 5), v=(-5, 5), size=(320, 240))
+
+
+@pytest.fixture
+def small_pool(monkeypatch):
+    """Pool the buffers of 320x240 renders too (normally only those over 32 MiB)."""
+    monkeypatch.setattr(_pool, "MIN_BYTES", 1 << 16)
+    _pool.clear()
+    yield
+    _pool.clear()
+
+
+def _arrays(r):
+    return {"rgba": r.rgba, "intensity": r.intensity, "side": r.side, "depth": r.depth,
+            "gbuffer": r.gbuffer}
+
+
+def test_held_results_are_never_overwritten(small_pool):
+    r1 = fc.render(E1, **KW)
+    before = {k: a.copy() for k, a in _arrays(r1).items()}
+    r2 = fc.render(E2, **KW)
+    r3 = fc.render(E1, elev=-40, **KW)
+    for k, a in _arrays(r1).items():
+        assert np.array_equal(a, before[k], equal_nan=True), k
+        assert not np.shares_memory(a, _arrays(r2)[k]), k
+        assert not np.shares_memory(a, _arrays(r3)[k]), k
+    # and the later renders are right: the same as without the pool
+    for r, expr, kw in ((r2, E2, {}), (r3, E1, {"elev": -40})):
+        _pool.clear()
+        fresh = fc.render(expr, **kw, **KW)
+        for k, a in _arrays(fresh).items():
+            assert np.array_equal(a, _arrays(r)[k], equal_nan=True), k
+
+
+def test_a_view_keeps_its_buffer(small_pool):
+    r1 = fc.render(E1, **KW)
+    u = r1.u                        # a view of the G-buffer
+    u_before = u.copy()
+    del r1
+    fc.render(E2, **KW)
+    assert np.array_equal(u, u_before, equal_nan=True)
+
+
+def test_released_buffers_are_reused(small_pool):
+    r1 = fc.render(E1, **KW)
+    address = r1.gbuffer.ctypes.data
+    del r1
+    r2 = fc.render(E2, **KW)
+    assert r2.gbuffer.ctypes.data == address
+    assert _pool.pooled_bytes() > 0
+    _pool.clear()
+    assert _pool.pooled_bytes() == 0
+
+
+def test_concurrent_renders_of_one_size(small_pool):
+    """Renders in several Python threads (the kernels release the GIL) each get their
+    own buffers: every picture equals the one rendered alone."""
+    exprs = [E1, E2, "sin(u)+cos(v)", "exp(-(u*u+v*v)/8)*3"]
+    alone = [fc.render(e, **KW).rgba.copy() for e in exprs]
+    got = [None] * len(exprs)
+
+    def work(i):
+        for _ in range(3):
+            got[i] = fc.render(exprs[i], **KW).rgba
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(len(exprs))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for i in range(len(exprs)):
+        assert np.array_equal(got[i], alone[i]), exprs[i]

@@ -15,7 +15,7 @@ from .kernels.horizon import horizon_kernel
 from .kernels import layout as L
 from .kernels.layout import G_DEPTH, G_NX, G_NZ, G_SIZE, G_U, G_V, G_W
 from .kernels.shade import (
-    INTERP_INTENSITY, INTERP_NORMAL, finish_kernel, upper_w_range)
+    INTERP_INTENSITY, INTERP_NORMAL, finish_kernel)
 from .output import png_bytes, save_image
 from .surface import Surface, as_surface, check_range
 from .view import View, _number, build_view
@@ -240,7 +240,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     evals = np.zeros(W, dtype=np.int64)
     vp[L.VP_AA] = 1.0 if aa_cov else 0.0
     ebuf = _pool.empty((W, L.E_SIZE, H) if aa_cov else (1, L.E_SIZE, 1), np.float32)
-    column_kernel(*surface.kernel_args(), vp, gbuf, ebuf, hrec, hstride, evals)
+    wrange = np.empty((W, 2))
+    column_kernel(*surface.kernel_args(), vp, gbuf, ebuf, hrec, hstride, evals, wrange)
     t_kernel = time.perf_counter()
     line_t = None
     w_limits = None
@@ -257,7 +258,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         rgba = color.line_rgba(side, background=background)
     else:
         lut, lower_rgb = color.side_colors(shading, cmap, upper_color, lower_color)
-        w_lo, w_hi = _height_limits(gbuf, vmin, vmax)
+        w_lo, w_hi = _height_limits(wrange, vmin, vmax)
         w_limits = (w_lo, w_hi)
         bg8 = color.to_rgba8(background)
         shade_args = (INTERPOLATIONS[interpolation], amb, spec, shine)
@@ -348,13 +349,11 @@ def _antialias(antialias, method, shading):
     raise ValueError(f"antialias must be True, False or 2, 3, 4 sub-columns, got {antialias!r}")
 
 
-def _height_limits(gbuf, vmin, vmax):
-    """The colormap's height range: vmin/vmax, else that of the seen upper side."""
+def _height_limits(wrange, vmin, vmax):
+    """The colormap's height range: vmin/vmax, else that of the seen upper side
+    (wrange: column_kernel's per-column range)."""
     if vmin is None or vmax is None:
-        lo = np.empty(gbuf.shape[0])
-        hi = np.empty(gbuf.shape[0])
-        upper_w_range(gbuf, lo, hi)
-        lo_s, hi_s = float(lo.min()), float(hi.max())
+        lo_s, hi_s = float(wrange[:, 0].min()), float(wrange[:, 1].max())
         if not lo_s <= hi_s:
             lo_s, hi_s = 0.0, 1.0
     w_lo = lo_s if vmin is None else float(vmin)

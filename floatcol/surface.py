@@ -168,14 +168,23 @@ def _is_sympy(obj):
     return isinstance(obj, sympy.Basic)
 
 
+@functools.lru_cache(maxsize=256)
+def _parse_text(text, names):
+    """sympy's parse of a formula (cached: sympy expressions are immutable, and the
+    parse took a millisecond of every render of a string)."""
+    import sympy as sp
+    from sympy.parsing.sympy_parser import (
+        convert_xor, implicit_multiplication, parse_expr, standard_transformations)
+    return parse_expr(text, local_dict={n: sp.Symbol(n) for n in names},
+                      transformations=standard_transformations + (convert_xor,
+                                                                  implicit_multiplication))
+
+
 def sympify_expression(expr, names=()):
     """The sympy expression of a string / number / sympy object, with ``names`` read as
     plain sympy Symbols; its free symbols are not checked. ValueError says what to fix."""
     import sympy as sp
-    from sympy.parsing.sympy_parser import (
-        convert_xor, implicit_multiplication, parse_expr, standard_transformations)
 
-    syms = {n: sp.Symbol(n) for n in names}
     if isinstance(expr, str):
         text = expr.strip()
         if not text:
@@ -183,8 +192,7 @@ def sympify_expression(expr, names=()):
             raise ValueError("the expression is empty: give a formula in "
                              f"{a} and {b}, e.g. '3*sin({a}*cos({b}))'")
         try:
-            e = parse_expr(text, local_dict=dict(syms),
-                           transformations=standard_transformations + (convert_xor, implicit_multiplication))
+            e = _parse_text(text, tuple(names))
         except Exception as exc:  # sympy raises SyntaxError, TokenError, TypeError, ...
             raise ValueError(_parse_error_message(text, exc)) from None
     elif isinstance(expr, numbers.Number) and not isinstance(expr, bool):

@@ -213,7 +213,7 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
     else:
         return                          # hidden: inside the floating interval
     yp = prev[A_Y]
-    dy = y - yp
+    inv_dy = 1.0 / (y - yp)
     qp = 1.0
     qc = 1.0
     if persp:
@@ -239,7 +239,7 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
             if ecol[E_COV, jp] > 0.0:
                 ecol[E_COV, jp] = min(ecol[E_COV, jp] + cov, room)
                 continue
-            lw = _chord_weight(0.5 * (a + b), yp, dy, persp, qp, qc)
+            lw = _chord_weight(0.5 * (a + b), yp, inv_dy, persp, qp, qc)
             ecol[E_NX, jp] = prev[A_NX] + lw * (cur[A_NX] - prev[A_NX])
             ecol[E_NY, jp] = prev[A_NY] + lw * (cur[A_NY] - prev[A_NY])
             ecol[E_NZ, jp] = prev[A_NZ] + lw * (cur[A_NZ] - prev[A_NZ])
@@ -253,7 +253,7 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
     for j in range(j0, j1 + 1):
         if gcol[j, G_SIDE] != 0.0:
             continue                    # painted by an earlier, nearer run
-        lw = _chord_weight(j, yp, dy, persp, qp, qc)
+        lw = _chord_weight(j, yp, inv_dy, persp, qp, qc)
         gcol[j, G_DEPTH] = prev[A_Z] + lw * (cur[A_Z] - prev[A_Z])
         gcol[j, G_U] = prev[A_U] + lw * (cur[A_U] - prev[A_U])
         gcol[j, G_V] = prev[A_V] + lw * (cur[A_V] - prev[A_V])
@@ -269,10 +269,10 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
 
 
 @ngjit_inline
-def _chord_weight(yq, yp, dy, persp, qp, qc):
-    """Weight of the current sample at screen row yq on the chord prev -> cur,
-    perspective-correct in perspective."""
-    ls = min(max((yq - yp) / dy, 0.0), 1.0)
+def _chord_weight(yq, yp, inv_dy, persp, qp, qc):
+    """Weight of the current sample at screen row yq on the chord prev -> cur (inv_dy:
+    1 / its rise in rows), perspective-correct in perspective."""
+    ls = min(max((yq - yp) * inv_dy, 0.0), 1.0)
     if persp:
         return ls * qc / ((1.0 - ls) * qp + ls * qc)
     return ls
@@ -722,14 +722,26 @@ def _column_passes(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
 
 
 @ngjit_parallel
-def column_kernel(kind, f, fg, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals):
+def column_kernel(kind, f, fg, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals, wrange):
     """Render every column in parallel into gbuf (W, H, G_SIZE), cleared here; with
     VP_AA, ebuf (W, E_SIZE, H) receives the coverages (else it may be (1, E_SIZE, 1)).
-    hrec (W, n_lines, H_SIZE) receives horizon-line records when hstride > 0. Each
-    column writes only its own slices: no shared scratch."""
+    hrec (W, n_lines, H_SIZE) receives horizon-line records when hstride > 0; evals
+    (W,) the evaluations of f, and wrange (W, 2) the lowest and highest w where the
+    upper side is seen (inf, -inf where it is not), read while the column is in the
+    cache. Each column writes only its own slices: no shared scratch."""
     W = gbuf.shape[0]
+    H = gbuf.shape[1]
     n_e = ebuf.shape[0]
     for c in prange(W):
         ce = min(np.int64(c), n_e - 1)
         evals[c] = render_column(kind, f, fg, hf, hfp, vp, c, gbuf[c], ebuf[ce],
                                  hrec[c], hstride)
+        lo = np.inf
+        hi = -np.inf
+        for j in range(H):
+            if gbuf[c, j, G_SIDE] > 0.0:
+                w = gbuf[c, j, G_W]
+                lo = min(lo, w)
+                hi = max(hi, w)
+        wrange[c, 0] = lo
+        wrange[c, 1] = hi

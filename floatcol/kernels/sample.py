@@ -186,10 +186,10 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
     nx = -wu * cb + wv * sb
     ny = wu * sa * sb + ca + wv * sa * cb
     nz = -wu * ca * sb + sa - wv * ca * cb
-    nn = math.sqrt(nx * nx + ny * ny + nz * nz)
-    nx /= nn
-    ny /= nn
-    nz /= nn
+    q = 1.0 / math.sqrt(nx * nx + ny * ny + nz * nz)
+    nx *= q
+    ny *= q
+    nz *= q
     # eq. (12): light at the viewpoint; orthographic: toward the viewer (0, 0, -1)
     if ortho:
         lam = lambert(vp, 0.0, 0.0, -1.0, nx, ny, nz)

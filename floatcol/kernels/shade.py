@@ -80,23 +80,6 @@ def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shi
     return inten, sp
 
 
-@ngjit_parallel
-def upper_w_range(gbuf, lo, hi):
-    """Per column: min and max of w over pixels where the upper side is seen."""
-    W = gbuf.shape[0]
-    H = gbuf.shape[1]
-    for c in prange(W):
-        a = np.inf
-        b = -np.inf
-        for j in range(H):
-            if gbuf[c, j, G_SIDE] > 0.0:
-                w = gbuf[c, j, G_W]
-                a = min(a, w)
-                b = max(b, w)
-        lo[c] = a
-        hi[c] = b
-
-
 @ngjit_inline
 def _side_rgb(side, w, lut, w_lo, span, lower_rgb):
     if side > 0.0:

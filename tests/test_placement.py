@@ -36,3 +36,18 @@ def test_placement_is_irrelevant_in_orthographic():
 def test_placement_must_be_known():
     with pytest.raises(ValueError, match="placement"):
         fc.render("u", size=(8, 8), placement="approx")
+
+
+def test_newton_start_keeps_the_surfaces_branch():
+    """The perspective Newton iteration starts on the parabola through the last three
+    solutions (fewer evaluations) only where it stays near the line through the last
+    two: the saddle's curve in Pi has a second root, which a start that strays finds.
+    Measured (160x120, lambert): 86.96 dB, 100 % agreement; a start from a line through
+    the planes' solutions alone, without the corrections' samples, found the other
+    root: 43.70 dB, 99.995 %."""
+    expr, dom = "u**2 - v**2", (-2, 2)
+    r = fc.render(expr, u=dom, v=dom, size=(160, 120), elev=35, azim=-30, shading="lambert",
+                  projection="perspective")
+    ref = reference_for(r, expr, dom, dom, 35, -30, "perspective")
+    assert (r.side == ref.side).mean() == 1.0
+    assert psnr(np.nan_to_num(r.intensity), np.nan_to_num(ref.intensity)) >= 80.0

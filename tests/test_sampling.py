@@ -20,11 +20,13 @@ def test_adaptive_planes_spare_samples_far_away_and_keep_the_picture():
     assert psnr(ada.intensity, ref.intensity) >= 47.0
     assert (ada.side == ref.side).mean() >= 0.9995
     # the saving grows with the resolution: measured 0.83 of the samples at 160x120,
-    # 0.42 at 640x480 (0.37 at 800x600)
+    # 0.42 at 640x480 (0.37 at 800x600); since the perspective Newton iteration starts
+    # on a parabola (2026-11-23), which spares more evaluations between evenly spaced
+    # planes, 0.54 at 640x480 (173677 of 322140 evaluations)
     big = dict(FLY, size=(640, 480))
     n_uni = fc.render(TERRAIN, sampling="uniform", **big).stats["samples"]
     n_ada = fc.render(TERRAIN, sampling="adaptive", **big).stats["samples"]
-    assert n_ada <= 0.5 * n_uni
+    assert n_ada <= 0.6 * n_uni
 
 
 def test_adaptive_planes_refine_where_the_normal_turns_fast():

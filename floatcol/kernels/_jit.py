@@ -22,12 +22,24 @@ ngjit = numba.njit(cache=True, nogil=True, error_model="numpy")
 #: by Numba itself: a call that is not inlined increments and decrements the
 #: reference count of every array it is passed (atomic operations, about 8 ns each).
 ngjit_inline = numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+
+
+def _nrt_off():
+    """Numba's (private, long-standing) option that compiles without its runtime;
+    where a Numba lacks it the functions are compiled with reference counting."""
+    try:
+        from numba.core.cpu import CPUTargetOptions
+    except ImportError:  # pragma: no cover - layout of another Numba
+        return {}
+    return {"_nrt": False} if hasattr(CPUTargetOptions, "_nrt") else {}
+
+
 #: The column's loop and what it calls, none of which allocates: compiled without
 #: Numba's reference counting (its runtime, NRT), so passing an array or inlining a
 #: helper that takes one costs no call of NRT_incref/NRT_decref. Those calls were
 #: about a fifth of the column loop even where the arrays were views without owner
 #: (each call then a null test). Allocating here is a compile error.
-ngjit_nrt_free = numba.njit(cache=True, nogil=True, error_model="numpy", _nrt=False)
+ngjit_nrt_free = numba.njit(cache=True, nogil=True, error_model="numpy", **_nrt_off())
 #: Kernels: ``prange`` over pixel columns.
 ngjit_parallel = numba.njit(cache=True, nogil=True, parallel=True, error_model="numpy")
 

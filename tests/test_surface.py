@@ -46,6 +46,28 @@ def test_poles_are_holes_not_exceptions():
     assert np.isnan(w[0]) and w[1] == 0.5
 
 
+def test_a_formula_compiles_without_a_try_block():
+    """A real formula's compiled functions cannot raise, so they need no try block
+    (which doubled Numba's compile time): x ** -n is printed 1 / x ** n, and the fused
+    function is lambdify's own source with the partials written to p (one function for
+    Numba to compile, not g and a wrapper)."""
+    import inspect
+
+    from floatcol.surface import _fused_function, _lambdify_real
+    u, v, t = sp.symbols("u v t")
+    src = inspect.getsource(_lambdify_real((u, v, t), (u - v) ** -3 + u ** -2))
+    assert "**(-" not in src and "**-" not in src
+    e = 3 * sp.sin(u * sp.cos(v))
+    fused = _fused_function(_lambdify_real((u, v, t), (e, e.diff(u), e.diff(v)), cse=True))
+    assert fused.__name__ == "_fc_fused"
+    p = np.zeros(2)
+    w = fused(1.5, 0.5, 0.0, p)
+    assert math.isclose(w, 3 * math.sin(1.5 * math.cos(0.5)), rel_tol=1e-15)
+    assert math.isclose(p[0], 3 * math.cos(0.5) * math.cos(1.5 * math.cos(0.5)), rel_tol=1e-14)
+    assert math.isclose(p[1], -3 * 1.5 * math.sin(0.5) * math.cos(1.5 * math.cos(0.5)),
+                        rel_tol=1e-14)
+
+
 def test_sympy_objects_and_other_variable_names():
     x, y = sp.symbols("x y", real=True)
     s = fc.as_surface(sp.exp(-x ** 2) * y, vars=(x, y))

@@ -92,12 +92,13 @@ H_SIZE = 4
 
 @ngjit_inline
 def _newton_start(run, t):
-    """Where the perspective Newton iteration for plane t starts: (the line through the
-    last two solutions, the parabola through the last three solutions of the pass's
-    own planes where it stays close to that line, else NaN). The line is Gordon's
-    neighbour start; the parabola is closer where the curve in Pi bends smoothly
-    (between the pass's planes, where corrections sample, it interpolates). NaN:
-    no parabola; before any solution the line is NaN too (Gordon's point s = 0)."""
+    """Where the perspective Newton iteration for plane t may start: returns (line,
+    parabola). The line goes through the last two solutions of any samples (Gordon's
+    neighbour start, extrapolated); the parabola through the last three solutions of
+    the pass's own planes, NaN where it bends away from the line by more than
+    QUAD_START_MAX times the line's step (or while there are fewer than three). Between
+    two planes, where corrections sample, the parabola interpolates. Before any
+    solution both are NaN: Newton starts at Gordon's point s = 0."""
     if run[RUN_GUESS_T] == 0.0 and run[RUN_GUESS] == 0.0 and run[RUN_SLOPE] == 0.0:
         return np.nan, np.nan
     s0 = run[RUN_GUESS]
@@ -125,9 +126,9 @@ def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, main):
     """Sample plane t of column x0 into ``out`` (the A_* attributes). Returns (status,
     evaluations of f). Inlined in the column's main loop. In perspective the Newton
     iteration starts from ``run``'s last solutions (_newton_start): every sample's
-    enters the line, only those of the pass's own planes (``main``) the parabola (the
-    samples of corrections, edges and slivers go back and forth in t between two
-    planes, where the parabola through the newest planes interpolates)."""
+    solution updates the line, only those of the pass's own planes (``main``) the
+    parabola (the samples of corrections, edges and slivers go back and forth in t
+    between two planes)."""
     if vp[VP_ORTHO] == 0.0 and not _may_meet_domain(vp, x0, t):
         return S_OUTSIDE, 0
     lin = np.nan

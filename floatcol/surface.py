@@ -1,7 +1,7 @@
 """Surfaces: what the kernels sample.
 
 A Surface carries f, and f fused with f_u and f_v in one function, as compiled Numba
-cfuncs (DESIGN.md section 4), so a new expression costs a few tens of milliseconds
+cfuncs (DESIGN.md section 4), so a new expression costs about a tenth of a second
 and never recompiles a kernel; or a height grid read as a bilinear function (the
 paper's "digital height field").
 """

@@ -8,8 +8,9 @@ from ._jit import ngjit_inline, ngjit_parallel
 from .layout import (
     E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIDE, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIDE, G_W, VP_AA, VP_D1, VP_D3, VP_H, VP_LX, VP_LY,
-    VP_LZ, VP_ORTHO, VP_SCALE, VP_W, VP_XOFF,
+    VP_LZ, VP_ORTHO, VP_SCALE,
 )
+from .sample import column_x0
 
 INTERP_INTENSITY = 0   # the paper's iis (Gouraud): lit at the samples, interpolated
 INTERP_NORMAL = 1      # nis: the normal is interpolated and lit at each pixel
@@ -186,7 +187,6 @@ def finish_kernel(gbuf, ebuf, vp, interp, ambient, specular, shininess, lut, w_l
     H = gbuf.shape[1]
     aa = vp[VP_AA] != 0.0
     span = w_hi - w_lo if w_hi > w_lo else 1.0
-    n_lut = lut.shape[0]
     n_blocks = (W + FINISH_BLOCK - 1) // FINISH_BLOCK
     for blk in prange(n_blocks):
         c0 = blk * FINISH_BLOCK
@@ -202,35 +202,25 @@ def finish_kernel(gbuf, ebuf, vp, interp, ambient, specular, shininess, lut, w_l
                 if aa:
                     cov0 = ebuf[c, E_COV0, j]
                     e_cov = ebuf[c, E_COV, j]
-                if e_cov <= 0.0 and (s == 0.0 or cov0 >= 1.0):
-                    # the common pixels, as shade_pixel colours them: the background,
-                    # or a surface covering the whole pixel
-                    if s == 0.0:
-                        intensity[i, c] = np.nan
-                        for k in range(4):
-                            rgba[i, c, k] = background[k]
-                        continue
-                    x0 = (c + vp[VP_XOFF] - (vp[VP_W] - 1.0) * 0.5) / vp[VP_SCALE]
+                if e_cov <= 0.0 and s == 0.0:          # the background
+                    intensity[i, c] = np.nan
+                    for k in range(4):
+                        rgba[i, c, k] = background[k]
+                    continue
+                x0 = column_x0(vp, c)
+                if e_cov <= 0.0 and cov0 >= 1.0:
+                    # a surface covering the whole pixel: shade_pixel's colour, without
+                    # the blend
                     lam, sp = _light(vp, x0, j, gbuf[c, j, G_DEPTH], gbuf[c, j, G_NX],
                                      gbuf[c, j, G_NY], gbuf[c, j, G_NZ], gbuf[c, j, G_I],
                                      interp, ambient, specular, shininess)
-                    if s > 0.0:
-                        x = (gbuf[c, j, G_W] - w_lo) / span * (n_lut - 1)
-                        idx = int(min(max(x, 0.0), n_lut - 1.0)) if x == x else 0
-                        r = lut[idx, 0]
-                        g = lut[idx, 1]
-                        b = lut[idx, 2]
-                    else:
-                        r = lower_rgb[0]
-                        g = lower_rgb[1]
-                        b = lower_rgb[2]
+                    r, g, b = _side_rgb(s, gbuf[c, j, G_W], lut, w_lo, span, lower_rgb)
                     intensity[i, c] = lam
                     rgba[i, c, 0] = np.uint8(min(r * lam + sp, 1.0) * 255.0 + 0.5)
                     rgba[i, c, 1] = np.uint8(min(g * lam + sp, 1.0) * 255.0 + 0.5)
                     rgba[i, c, 2] = np.uint8(min(b * lam + sp, 1.0) * 255.0 + 0.5)
                     rgba[i, c, 3] = np.uint8(255)
                     continue
-                x0 = (c + vp[VP_XOFF] - (vp[VP_W] - 1.0) * 0.5) / vp[VP_SCALE]
                 lam, r, g, b, a = shade_pixel(gbuf, ebuf, c, j, aa, vp, x0, interp, ambient,
                                               specular, shininess, lut, w_lo, span, lower_rgb,
                                               background)

@@ -64,12 +64,27 @@ class Render:
     depth: np.ndarray
     stats: dict
     view: View = field(repr=False)
-    gbuffer: np.ndarray = field(repr=False)   # (W, H, G_SIZE), rows from the bottom
+    #: the column pass's tiled G-buffer (kernels/layout.py), set only where a surface
+    #: is seen (``gbuffer`` is the cleaned copy)
+    _gbuf: np.ndarray = field(repr=False)
     #: method="horizon": t (relative to the centre) of the line at each line pixel
     line_t: np.ndarray = field(default=None, repr=False)
+    #: (H, W) bool, where a surface is seen, when ``side`` does not say it (horizon)
+    _seen: np.ndarray = field(default=None, repr=False)
+
+    def _mask(self):
+        return self.side != 0 if self._seen is None else self._seen
 
     def _channel(self, g):
-        return self.gbuffer[:, ::-1, g].T
+        return np.where(self._mask(), _untile(self._gbuf[..., g], self.side.shape[1])[::-1], np.float32(np.nan))
+
+    @property
+    def gbuffer(self):
+        """(W, H, G_SIZE) float32 G-buffer, rows from the bottom (floatcol.kernels.layout's
+        G_* channels), NaN where no surface is seen: a copy."""
+        g = np.where(self._mask()[::-1, :, None], _untile(self._gbuf, self.side.shape[1]),
+                     np.float32(np.nan))
+        return g.transpose(1, 0, 2)
 
     @property
     def u(self):
@@ -86,7 +101,8 @@ class Render:
     @property
     def normal(self):
         """(H, W, 3) unit upper-side normal in screen coordinates (NaN where none)."""
-        n = self.gbuffer[:, ::-1, G_NX:G_NZ + 1].transpose(1, 0, 2).astype(np.float64)
+        n = _untile(self._gbuf[..., G_NX:G_NZ + 1], self.side.shape[1])[::-1]
+        n = np.where(self._mask()[..., None], n, np.float32(np.nan)).astype(np.float64)
         with np.errstate(invalid="ignore", divide="ignore"):
             return n / np.linalg.norm(n, axis=2, keepdims=True)
 
@@ -235,26 +251,30 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         vp[L.VP_ADAPT] = 1.0 if sampling == "adaptive" else 0.0
         (vp[L.VP_FIX_RIDGE], vp[L.VP_FIX_SHADE], vp[L.VP_DETECT], vp[L.VP_JUMP], vp[L.VP_RATE],
          vp[L.VP_SPLINE_TOL]) = fixes
-    gbuf = _pool.empty((W, H, G_SIZE), np.float32)
+    n_tiles = -(-W // L.TILE)
+    gbuf = _pool.empty((n_tiles, H, L.TILE, G_SIZE), np.float32)
     hrec = np.empty((W, n_lines, H_SIZE), dtype=np.float64)
     evals = np.zeros(W, dtype=np.int64)
     vp[L.VP_AA] = 1.0 if aa_cov else 0.0
-    ebuf = _pool.empty((W, L.E_SIZE, H) if aa_cov else (1, L.E_SIZE, 1), np.float32)
+    ebuf = _pool.empty((n_tiles, L.E_SIZE, H, L.TILE), np.float32)
     wrange = np.empty((W, 2))
     column_kernel(*surface.kernel_args(), vp, gbuf, ebuf, hrec, hstride, evals, wrange)
     t_kernel = time.perf_counter()
     line_t = None
     w_limits = None
+    seen = None
 
     if method == "horizon":
         lines_img = np.zeros((W, H), dtype=np.int8)
         lt = np.full((W, H), np.nan, dtype=np.float32)
-        horizon_kernel(hrec, gbuf, vp, hstride, lines_img, lt)
+        horizon_kernel(hrec, gbuf, ebuf, vp, hstride, lines_img, lt)
         line_t = np.ascontiguousarray(lt[:, ::-1].T)
         side = np.ascontiguousarray(lines_img[:, ::-1].T)
         on = side != 0
         intensity = np.where(on, np.float32(1.0), np.float32(np.nan)).astype(np.float32)
-        depth = np.where(on, gbuf[:, ::-1, G_DEPTH].T, np.inf).astype(np.float32)
+        seen = _untile(ebuf[:, L.E_SEEN], W)[::-1] != 0
+        depth = np.where(on & seen, _untile(gbuf[..., G_DEPTH], W)[::-1],
+                         np.inf).astype(np.float32)
         rgba = color.line_rgba(side, background=background)
     else:
         lut, lower_rgb = color.side_colors(shading, cmap, upper_color, lower_color)
@@ -303,7 +323,15 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         "derivatives": surface.derivatives,
         "w_limits": w_limits,      # the colormap's height range (column method)
     }
-    return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t)
+    return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t, seen)
+
+
+def _untile(a, width=None):
+    """(n_tiles, H, TILE, ...) -> (H, W, ...): a tiled buffer (kernels/layout.py) as a
+    picture, rows as in the buffer; W = n_tiles * TILE unless ``width`` says."""
+    n, h, t = a.shape[:3]
+    flat = a.transpose(1, 0, 2, *range(3, a.ndim)).reshape(h, n * t, *a.shape[3:])
+    return flat[:, :width]
 
 
 def _corrections(corrections, detect, interpolation, jump, rate, tol):

@@ -27,16 +27,18 @@ def subcolumn_kernel(kind, f, fg, hf, hfp, vp, offsets, interp, ambient, specula
     W = acc.shape[1]
     span = w_hi - w_lo if w_hi > w_lo else 1.0
     for c in prange(W):
-        gcol = np.empty((1, H, G_SIZE), dtype=np.float32)
-        ecol = np.empty((1, E_SIZE, H), dtype=np.float32)
+        # one column in column_kernel's layouts (and array types: one compilation)
+        gcol = np.empty((1, H, 1, G_SIZE), dtype=np.float32)
+        ecol = np.empty((1, E_SIZE, H, 1), dtype=np.float32)
         hrec = np.empty((1, H_SIZE))
         ev = 0
         for k in range(offsets.shape[0]):
             col = c + offsets[k]
-            ev += render_column(kind, f, fg, hf, hfp, vp, col, gcol[0], ecol[0], hrec, 0)
+            ev += render_column(kind, f, fg, hf, hfp, vp, col, gcol[0, :, 0],
+                                ecol[0, :, :, 0], hrec, 0)
             x0 = column_x0(vp, col)
             for j in range(H):
-                _, r, g, b, a = shade_pixel(gcol, ecol, 0, j, True, vp, x0, interp, ambient,
+                _, r, g, b, a = shade_pixel(gcol, ecol, 0, 0, j, True, vp, x0, interp, ambient,
                                             specular, shininess, lut, w_lo, span, lower_rgb,
                                             background)
                 i = H - 1 - j

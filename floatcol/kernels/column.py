@@ -25,8 +25,8 @@ from numba import prange
 from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
-    E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIDE, E_W,
-    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIDE, G_T, G_U, G_V, G_W,
+    E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
+    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W,
     DETECT_RIDGE, DETECT_WALL, FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
     SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
@@ -289,10 +289,10 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
             cov = b - a
             if cov <= 0.0:
                 continue
-            if gcol[jp, G_SIDE] != 0.0 and cont and jp == j_cont:
+            if ecol[E_SEEN, jp] != 0.0 and cont and jp == j_cont:
                 ecol[E_COV0, jp] = min(ecol[E_COV0, jp] + cov, 1.0)
                 continue
-            room = 1.0 - (ecol[E_COV0, jp] if gcol[jp, G_SIDE] != 0.0 else 0.0)
+            room = 1.0 - (ecol[E_COV0, jp] if ecol[E_SEEN, jp] != 0.0 else 0.0)
             if ecol[E_COV, jp] > 0.0:
                 ecol[E_COV, jp] = min(ecol[E_COV, jp] + cov, room)
                 continue
@@ -308,7 +308,7 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
     j0 = max(j0, 0)
     j1 = min(j1, H - 1)
     for j in range(j0, j1 + 1):
-        if gcol[j, G_SIDE] != 0.0:
+        if ecol[E_SEEN, j] != 0.0:
             continue                    # painted by an earlier, nearer run
         lw = _chord_weight(j, yp, inv_dy, persp, qp, qc)
         gcol[j, G_DEPTH] = prev[A_Z] + lw * (cur[A_Z] - prev[A_Z])
@@ -320,7 +320,7 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
         gcol[j, G_NZ] = prev[A_NZ] + lw * (cur[A_NZ] - prev[A_NZ])
         gcol[j, G_I] = prev[A_I] + lw * (cur[A_I] - prev[A_I])
         gcol[j, G_T] = prev[A_T] + lw * (cur[A_T] - prev[A_T])
-        gcol[j, G_SIDE] = side
+        ecol[E_SEEN, j] = side
         if aa:
             ecol[E_COV0, j] = max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0)
 
@@ -727,10 +727,9 @@ SCR_STK = 7
 
 @ngjit
 def render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
-    """Render pixel column ``col`` into gcol (H, G_SIZE); returns evaluations of f."""
-    gcol[:, :] = np.nan
-    gcol[:, G_DEPTH] = np.inf
-    gcol[:, G_SIDE] = 0.0
+    """Render pixel column ``col`` into gcol (H, G_SIZE) and ecol (E_SIZE, H): gcol
+    only where ecol's E_SEEN row, cleared here, is not 0. Returns evaluations of f."""
+    ecol[E_SEEN, :] = 0.0
     hrec[:, :] = np.nan
     if vp[VP_AA] != 0.0:
         ecol[E_COV0, :] = 0.0
@@ -780,25 +779,32 @@ def _column_passes(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
 
 @ngjit_parallel
 def column_kernel(kind, f, fg, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals, wrange):
-    """Render every column in parallel into gbuf (W, H, G_SIZE), cleared here; with
-    VP_AA, ebuf (W, E_SIZE, H) receives the coverages (else it may be (1, E_SIZE, 1)).
-    hrec (W, n_lines, H_SIZE) receives horizon-line records when hstride > 0; evals
-    (W,) the evaluations of f, and wrange (W, 2) the lowest and highest w where the
-    upper side is seen (inf, -inf where it is not), read while the column is in the
-    cache. Each column writes only its own slices: no shared scratch."""
-    W = gbuf.shape[0]
+    """Render every column c into gbuf (n_tiles, H, TILE, G_SIZE) and ebuf (n_tiles,
+    E_SIZE, H, TILE) (layout.py: tiles of TILE columns, rows from the bottom), the
+    tiles in parallel. ebuf's E_SEEN plane says where the G-buffer is set (it is not
+    cleared), and with VP_AA its coverage planes the coverages. hrec (W, n_lines,
+    H_SIZE) receives horizon-line records when hstride > 0; evals (W,) the evaluations
+    of f, and wrange (W, 2) the lowest and highest w where the upper side is seen (inf,
+    -inf where it is not), read while the column is in the cache. A tile's columns
+    run on one thread, one after another, and write only their own tile: no shared
+    scratch."""
+    n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
-    n_e = ebuf.shape[0]
-    for c in prange(W):
-        ce = min(np.int64(c), n_e - 1)
-        evals[c] = render_column(kind, f, fg, hf, hfp, vp, c, gbuf[c], ebuf[ce],
-                                 hrec[c], hstride)
-        lo = np.inf
-        hi = -np.inf
-        for j in range(H):
-            if gbuf[c, j, G_SIDE] > 0.0:
-                w = gbuf[c, j, G_W]
-                lo = min(lo, w)
-                hi = max(hi, w)
-        wrange[c, 0] = lo
-        wrange[c, 1] = hi
+    T = gbuf.shape[2]
+    W = evals.shape[0]
+    for b in prange(n_tiles):
+        for lane in range(T):
+            c = b * T + lane
+            if c >= W:
+                break
+            evals[c] = render_column(kind, f, fg, hf, hfp, vp, c, gbuf[b, :, lane],
+                                     ebuf[b, :, :, lane], hrec[c], hstride)
+            lo = np.inf
+            hi = -np.inf
+            for j in range(H):
+                if ebuf[b, E_SEEN, j, lane] > 0.0:
+                    w = gbuf[b, j, lane, G_W]
+                    lo = min(lo, w)
+                    hi = max(hi, w)
+            wrange[c, 0] = lo
+            wrange[c, 1] = hi

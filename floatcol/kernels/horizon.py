@@ -16,11 +16,11 @@ from numba import prange
 
 from ._jit import ngjit, ngjit_parallel
 from .column import H_HI, H_LO, H_TS, H_Y
-from .layout import G_SIDE, G_T, VP_CA, VP_D3, VP_DT, VP_ORTHO, VP_T0
+from .layout import E_SEEN, G_T, VP_CA, VP_D3, VP_DT, VP_ORTHO, VP_T0
 
 
 @ngjit
-def _mark(lines, line_t, gcol, c, j, rec, sigma, exact_y, tk):
+def _mark(lines, line_t, gcol, ecol, c, j, rec, sigma, exact_y, tk):
     H = gcol.shape[0]
     if j < 0 or j >= H:
         return
@@ -31,15 +31,16 @@ def _mark(lines, line_t, gcol, c, j, rec, sigma, exact_y, tk):
         side = -sigma
     else:
         return                              # inside the floating interval: hidden
-    if gcol[j, G_SIDE] != 0.0 and sigma * (gcol[j, G_T] - rec[H_TS]) < -1e-12:
+    if ecol[E_SEEN, j] != 0.0 and sigma * (gcol[j, G_T] - rec[H_TS]) < -1e-12:
         return                              # covered by a nearer, earlier run
     lines[c, j] = side
     line_t[c, j] = tk
 
 
 @ngjit_parallel
-def horizon_kernel(hrec, gbuf, vp, hstride, lines, line_t):
-    """lines (W, H) int8 receives +1 / -1 (upper / lower side) on line pixels, and
+def horizon_kernel(hrec, gbuf, ebuf, vp, hstride, lines, line_t):
+    """gbuf and ebuf: the column pass's tiled buffers (layout.py).
+    lines (W, H) int8 receives +1 / -1 (upper / lower side) on line pixels, and
     line_t the t of the sampling plane each line pixel belongs to."""
     W = hrec.shape[0]
     nh = hrec.shape[1]
@@ -47,7 +48,9 @@ def horizon_kernel(hrec, gbuf, vp, hstride, lines, line_t):
     dt = vp[VP_DT]
     t_view = -math.inf if vp[VP_ORTHO] != 0.0 else -vp[VP_D3] * vp[VP_CA]
     for c in prange(W):
-        gcol = gbuf[c]
+        T = gbuf.shape[2]
+        gcol = gbuf[c // T, :, c % T]
+        ecol = ebuf[c // T, :, :, c % T]
         for k in range(nh):
             rec = hrec[c, k]
             yc = rec[H_Y]
@@ -56,7 +59,7 @@ def horizon_kernel(hrec, gbuf, vp, hstride, lines, line_t):
             tk = t0 + k * hstride * dt
             sigma = 1.0 if tk >= t_view else -1.0
             jc = int(math.floor(yc + 0.5))
-            _mark(lines, line_t, gcol, c, jc, rec, sigma, yc, tk)
+            _mark(lines, line_t, gcol, ecol, c, jc, rec, sigma, yc, tk)
             for nb in (c - 1, c + 1):
                 if nb < 0 or nb >= W:
                     continue
@@ -67,5 +70,5 @@ def horizon_kernel(hrec, gbuf, vp, hstride, lines, line_t):
                 step = 1 if jm > jc else -1
                 j = jc + step
                 while (j - jm) * step <= 0:
-                    _mark(lines, line_t, gcol, c, j, rec, sigma, float(j), tk)
+                    _mark(lines, line_t, gcol, ecol, c, j, rec, sigma, float(j), tk)
                     j += step

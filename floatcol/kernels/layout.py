@@ -56,7 +56,16 @@ DETECT_WALL = 8       # a discontinuity: a screen-y jump the slopes cannot expla
 SURF_FUNCTION = 0
 SURF_HEIGHTFIELD = 1
 
-# G-buffer channels, gbuf shape (W, H, G_SIZE) float32, rows counted from the BOTTOM
+# The column pass's buffers are tiled: tiles of TILE neighbouring columns, each tile's
+# rows in order, so that a column's pixels lie TILE pixels apart (one thread renders a
+# tile's columns one after another, through the same cache lines and pages) and the
+# finishing pass reads a tile's row as one run of memory.
+TILE = 4
+
+# G-buffer channels, gbuf shape (n_tiles, H, TILE, G_SIZE) float32, rows counted from
+# the BOTTOM: column c is gbuf[c // TILE, :, c % TILE]. Written only where a surface
+# is seen (ebuf's E_SEEN plane says where): it is never cleared, so a render moves
+# only the memory of the pixels it paints.
 G_DEPTH = 0       # screen z of the seen point (larger = farther)
 G_U = 1
 G_V = 2
@@ -66,8 +75,7 @@ G_NY = 5
 G_NZ = 6
 G_I = 7           # lambert intensity interpolated between samples (iis)
 G_T = 8           # t of the seen point (relative to the centre)
-G_SIDE = 9        # +1 upper side, -1 lower side, 0 nothing
-G_SIZE = 10
+G_SIZE = 9
 
 # Per-sample attribute vector (column.py, correct.py)
 A_Y = 0      # screen row from the bottom (float)
@@ -85,22 +93,25 @@ A_BUMP = 11  # n_Pi . (L x N)
 A_SLOPE = 12  # dY/dt in pixels per unit of t along the curve in Pi
 A_SIZE = 13
 
-# Edge buffer ebuf (W, E_SIZE, H) float32 of the coverage antialiasing (section 6.4):
-# how much of each pixel the surface at its centre covers, and a second surface that
-# shares the pixel (the one reappearing above a ridge, or beside a silhouette).
-# Channel-major per column: a column clears only its two coverage rows; the edge
+# Edge buffer ebuf (n_tiles, E_SIZE, H, TILE) float32, column c at
+# ebuf[c // TILE, :, :, c % TILE]: which side is seen at each pixel's centre (E_SEEN,
+# always), and for the coverage antialiasing (section 6.4) how much of each pixel the
+# surface at its centre covers, and a second surface that shares the pixel (the one
+# reappearing above a ridge, or beside a silhouette). Channel-major per tile: a column
+# clears only its E_SEEN row (and with antialiasing its two coverage rows); the edge
 # surface's rows are written and read only where E_COV > 0 (a few pixels), so most of
 # their memory is never touched.
-E_COV0 = 0        # coverage of the pixel by the G-buffer's surface (its centre's)
-E_COV = 1         # coverage by the edge surface (0: none); the edge surface's
-E_NX = 2          # unit normal, w, intensity, side and depth
-E_NY = 3
-E_NZ = 4
-E_W = 5
-E_I = 6
-E_SIDE = 7
-E_DEPTH = 8
-E_SIZE = 9
+E_SEEN = 0        # +1 upper side, -1 lower side at the centre; 0 nothing (no G-buffer)
+E_COV0 = 1        # coverage of the pixel by the G-buffer's surface (its centre's)
+E_COV = 2         # coverage by the edge surface (0: none); the edge surface's
+E_NX = 3          # unit normal, w, intensity, side and depth
+E_NY = 4
+E_NZ = 5
+E_W = 6
+E_I = 7
+E_SIDE = 8
+E_DEPTH = 9
+E_SIZE = 10
 
 # Sample status
 S_OK = 0

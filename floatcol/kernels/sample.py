@@ -18,6 +18,9 @@ from .layout import (
 # point still count as inside.
 DOMAIN_EPS = 1e-9
 NEWTON_ITERS = 12
+#: perspective: a sample is placed when it lies within this many pixels of its
+#: column's plane (ERRATA 2)
+NEWTON_TOL_PX = 1e-3
 SCAN_MIN = 3          # fallback scan of s when Newton fails (holes, steep rims):
 SCAN_MAX = 24         # about one point per SCAN_PIXELS of the searched segment
 SCAN_PIXELS = 4.0
@@ -144,14 +147,15 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
             if not math.isfinite(w):
                 break
             g = (w - cw) - s
-            # Done when the point (exactly on the surface) lies within 1e-3 pixel of Pi.
-            if abs(k * g) * vp[VP_SCALE] <= 1e-3 or k == 0.0:
+            # Done when the point (exactly on the surface) lies within NEWTON_TOL_PX
+            # pixel of Pi.
+            if abs(k * g) * vp[VP_SCALE] <= NEWTON_TOL_PX or k == 0.0:
                 break
             dg = k * (wu * cb - wv * sb) - 1.0
             if dg == 0.0 or not math.isfinite(dg):
                 break
             s = s - g / dg
-        if not paper and (not math.isfinite(w) or abs(k * g) * vp[VP_SCALE] > 1e-3):
+        if not paper and (not math.isfinite(w) or abs(k * g) * vp[VP_SCALE] > NEWTON_TOL_PX):
             # Newton left the surface (a hole, or a steep rim where f_u, f_v blow
             # up): bracket a root of g(s) = f - cw - s over the range of w instead.
             s_b, n_b = _bracketed_s(kind, f, hf, hfp, vp, r0, k, t, s)

@@ -6,8 +6,8 @@ from numba import prange
 
 from ._jit import ngjit_inline, ngjit_parallel
 from .layout import (
-    E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SIDE, E_W,
-    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIDE, G_W, VP_AA, VP_D1, VP_D3, VP_H, VP_LX, VP_LY,
+    E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
+    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_W, VP_AA, VP_D1, VP_D3, VP_H, VP_LX, VP_LY,
     VP_LZ, VP_ORTHO, VP_SCALE,
 )
 from .sample import column_x0
@@ -138,18 +138,21 @@ def pixel_rgba(s, w, cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp, lut, w_lo, 
 
 
 @ngjit_inline
-def shade_pixel(gbuf, ebuf, c, j, aa, vp, x0, interp, ambient, specular, shininess, lut, w_lo,
-                span, lower_rgb, background):
-    """Light (_light) and colour (pixel_rgba) pixel (c, j) of the G-buffer gbuf and,
-    with ``aa``, of the edge buffer ebuf. Returns (intensity at the centre, NaN where
-    no surface; r, g, b, alpha)."""
-    s = gbuf[c, j, G_SIDE]
+def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular, shininess,
+                lut, w_lo, span, lower_rgb, background):
+    """Light (_light) and colour (pixel_rgba) row j of the column in lane ``lane`` of
+    tile ``tile`` of the G-buffer gbuf and the edge buffer ebuf (layout.py; E_SEEN,
+    and with ``aa`` the coverages). Returns (intensity at the centre, NaN where no
+    surface; r, g, b, alpha)."""
+    g = gbuf[tile, j, lane]
+    s = ebuf[tile, E_SEEN, j, lane]
     lam = np.nan
     sp = 0.0
+    w = 0.0
     if s != 0.0:
-        lam, sp = _light(vp, x0, j, gbuf[c, j, G_DEPTH], gbuf[c, j, G_NX], gbuf[c, j, G_NY],
-                         gbuf[c, j, G_NZ], gbuf[c, j, G_I], interp, ambient, specular,
-                         shininess)
+        w = g[G_W]
+        lam, sp = _light(vp, x0, j, g[G_DEPTH], g[G_NX], g[G_NY], g[G_NZ], g[G_I], interp,
+                         ambient, specular, shininess)
     cov0 = 1.0
     e_cov = 0.0
     e_side = 0.0
@@ -157,22 +160,17 @@ def shade_pixel(gbuf, ebuf, c, j, aa, vp, x0, interp, ambient, specular, shinine
     e_lam = 0.0
     e_sp = 0.0
     if aa:
-        cov0 = ebuf[c, E_COV0, j]
-        e_cov = ebuf[c, E_COV, j]
+        e = ebuf[tile, :, j, lane]
+        cov0 = e[E_COV0]
+        e_cov = e[E_COV]
         if e_cov > 0.0:
-            e_side = ebuf[c, E_SIDE, j]
-            e_w = ebuf[c, E_W, j]
-            e_lam, e_sp = _light(vp, x0, j, ebuf[c, E_DEPTH, j], ebuf[c, E_NX, j],
-                                 ebuf[c, E_NY, j], ebuf[c, E_NZ, j], ebuf[c, E_I, j], interp,
-                                 ambient, specular, shininess)
-    r, g, b, a = pixel_rgba(s, gbuf[c, j, G_W], cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp,
-                            lut, w_lo, span, lower_rgb, background)
-    return lam, r, g, b, a
-
-
-#: columns per block of the finishing pass: the G-buffer is read column by column
-#: while the picture (row-major) is written a block's width at a time
-FINISH_BLOCK = 16
+            e_side = e[E_SIDE]
+            e_w = e[E_W]
+            e_lam, e_sp = _light(vp, x0, j, e[E_DEPTH], e[E_NX], e[E_NY], e[E_NZ], e[E_I],
+                                 interp, ambient, specular, shininess)
+    r, gr, bl, a = pixel_rgba(s, w, cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp,
+                              lut, w_lo, span, lower_rgb, background)
+    return lam, r, gr, bl, a
 
 
 @ngjit_parallel
@@ -180,52 +178,58 @@ def finish_kernel(gbuf, ebuf, vp, interp, ambient, specular, shininess, lut, w_l
                   lower_rgb, background, intensity, side, depth, rgba):
     """Light, colour and assemble the public arrays, top row first, in one pass:
     intensity (ambient + diffuse at the pixel's centre, NaN where nothing is seen),
-    side, depth and rgba (shade_pixel). With VP_AA, ebuf (W, E_SIZE, H) holds the
-    coverages and only rgba is blended; intensity, side and depth stay those of the
-    pixel's centre. Else ebuf may be (1, E_SIZE, 1) and is not read."""
-    W = gbuf.shape[0]
+    side, depth and rgba (shade_pixel), from the tiled G-buffer gbuf and edge buffer
+    ebuf (layout.py): a tile at a time, a row of the tile at a time, so that every
+    array is read and written in runs. With VP_AA, ebuf holds the coverages and only
+    rgba is blended; intensity, side and depth stay those of the pixel's centre. The
+    G-buffer is read only where ebuf's E_SEEN plane is not 0."""
+    n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
+    T = gbuf.shape[2]
+    W = side.shape[1]
     aa = vp[VP_AA] != 0.0
     span = w_hi - w_lo if w_hi > w_lo else 1.0
-    n_blocks = (W + FINISH_BLOCK - 1) // FINISH_BLOCK
-    for blk in prange(n_blocks):
-        c0 = blk * FINISH_BLOCK
-        c1 = min(c0 + FINISH_BLOCK, W)
+    for b in prange(n_tiles):
+        n_lanes = min(T, W - b * T)
         for j in range(H):
             i = H - 1 - j
-            for c in range(c0, c1):
-                s = gbuf[c, j, G_SIDE]
+            for lane in range(n_lanes):
+                c = b * T + lane
+                s = ebuf[b, E_SEEN, j, lane]
                 side[i, c] = np.int8(s)
-                depth[i, c] = gbuf[c, j, G_DEPTH]
                 cov0 = 1.0
                 e_cov = 0.0
                 if aa:
-                    cov0 = ebuf[c, E_COV0, j]
-                    e_cov = ebuf[c, E_COV, j]
+                    cov0 = ebuf[b, E_COV0, j, lane]
+                    e_cov = ebuf[b, E_COV, j, lane]
                 if e_cov <= 0.0 and s == 0.0:          # the background
+                    depth[i, c] = np.inf
                     intensity[i, c] = np.nan
                     for k in range(4):
                         rgba[i, c, k] = background[k]
                     continue
+                depth[i, c] = gbuf[b, j, lane, G_DEPTH] if s != 0.0 else np.inf
                 x0 = column_x0(vp, c)
                 if e_cov <= 0.0 and cov0 >= 1.0:
                     # a surface covering the whole pixel: shade_pixel's colour, without
                     # the blend
-                    lam, sp = _light(vp, x0, j, gbuf[c, j, G_DEPTH], gbuf[c, j, G_NX],
-                                     gbuf[c, j, G_NY], gbuf[c, j, G_NZ], gbuf[c, j, G_I],
-                                     interp, ambient, specular, shininess)
-                    r, g, b = _side_rgb(s, gbuf[c, j, G_W], lut, w_lo, span, lower_rgb)
+                    lam, sp = _light(vp, x0, j, gbuf[b, j, lane, G_DEPTH],
+                                     gbuf[b, j, lane, G_NX], gbuf[b, j, lane, G_NY],
+                                     gbuf[b, j, lane, G_NZ], gbuf[b, j, lane, G_I], interp,
+                                     ambient, specular, shininess)
+                    r, g, bl = _side_rgb(s, gbuf[b, j, lane, G_W], lut, w_lo, span,
+                                         lower_rgb)
                     intensity[i, c] = lam
                     rgba[i, c, 0] = np.uint8(min(r * lam + sp, 1.0) * 255.0 + 0.5)
                     rgba[i, c, 1] = np.uint8(min(g * lam + sp, 1.0) * 255.0 + 0.5)
-                    rgba[i, c, 2] = np.uint8(min(b * lam + sp, 1.0) * 255.0 + 0.5)
+                    rgba[i, c, 2] = np.uint8(min(bl * lam + sp, 1.0) * 255.0 + 0.5)
                     rgba[i, c, 3] = np.uint8(255)
                     continue
-                lam, r, g, b, a = shade_pixel(gbuf, ebuf, c, j, aa, vp, x0, interp, ambient,
-                                              specular, shininess, lut, w_lo, span, lower_rgb,
-                                              background)
+                lam, r, g, bl, a = shade_pixel(gbuf, ebuf, b, lane, j, aa, vp, x0, interp,
+                                               ambient, specular, shininess, lut, w_lo, span,
+                                               lower_rgb, background)
                 intensity[i, c] = lam
                 rgba[i, c, 0] = np.uint8(r * 255.0 + 0.5)
                 rgba[i, c, 1] = np.uint8(g * 255.0 + 0.5)
-                rgba[i, c, 2] = np.uint8(b * 255.0 + 0.5)
+                rgba[i, c, 2] = np.uint8(bl * 255.0 + 0.5)
                 rgba[i, c, 3] = np.uint8(a * 255.0 + 0.5)

@@ -86,3 +86,17 @@ def test_concurrent_renders_of_one_size(small_pool):
         t.join()
     for i in range(len(exprs)):
         assert np.array_equal(got[i], alone[i]), exprs[i]
+
+
+def test_no_stale_values_leak_through_the_accessors(small_pool):
+    """The G-buffer is written only where a surface is seen; a reused buffer holds an
+    earlier render's values elsewhere, which u, v, w, normal and gbuffer must hide."""
+    r1 = fc.render(E1, elev=60, **KW)            # covers much of the picture
+    del r1
+    r2 = fc.render("exp(-u*u-v*v)", u=(-1, 1), v=(-1, 1), size=KW["size"], scale=40)
+    none = r2.side == 0
+    assert 0.3 < none.mean() < 0.97
+    for a in (r2.u, r2.v, r2.w, r2.normal[..., 0]):
+        assert np.isnan(a[none]).all() and np.isfinite(a[~none]).all()
+    g = r2.gbuffer                                # (W, H, G_SIZE), rows from the bottom
+    assert np.array_equal(np.isnan(g[..., 0]).T[::-1], none)

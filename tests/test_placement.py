@@ -51,3 +51,21 @@ def test_newton_start_keeps_the_surfaces_branch():
     ref = reference_for(r, expr, dom, dom, 35, -30, "perspective")
     assert (r.side == ref.side).mean() == 1.0
     assert psnr(np.nan_to_num(r.intensity), np.nan_to_num(ref.intensity)) >= 80.0
+
+
+def test_samples_outside_the_domain_are_dropped_early():
+    """A perspective sample whose Newton iterates leave the domain (beyond its edges,
+    where the column plane's cut still meets the domain's prism) is dropped once the
+    next point lies outside by more than twice the step, instead of converging first.
+    Measured, 3 sin(u cos v) at 320x240: evaluations per sample of the paper's one-
+    evaluation placement 1.77 before, 1.50 after; the picture against the ray caster
+    at 160x120 unchanged (56.09 dB, 100 % agreement)."""
+    expr, dom = "3*sin(u*cos(v))", (-5, 5)
+    kw = dict(u=dom, v=dom, projection="perspective", shading="lambert")
+    exact = fc.render(expr, size=(320, 240), **kw).stats["samples"]
+    paper = fc.render(expr, size=(320, 240), placement="paper", **kw).stats["samples"]
+    assert exact / paper <= 1.6
+    r = fc.render(expr, size=(160, 120), **kw)
+    ref = reference_for(r, expr, dom, dom, 30, 30, "perspective")
+    assert (r.side == ref.side).mean() == 1.0
+    assert psnr(np.nan_to_num(r.intensity), np.nan_to_num(ref.intensity)) >= 55.0

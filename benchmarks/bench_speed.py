@@ -8,11 +8,23 @@ machine has: on a machine without a GPU, Mesa's software llvmpipe). Every tool i
 warmed up first (Numba compilation, VTK context); times are medians (floatcol's best
 too: a shared virtual machine's speed drifts, compare ratios within one run).
 
+Then fidelity, the other half of the comparison: the three tools' pictures of the
+same surface from the same orthographic camera, lit by the reference model (I =
+|L.N|, light at the viewer; floatcol shading="lambert"), against the ray caster
+(tests/reference.py) at 512x384: PSNR (background 0) and the share of pixels where
+surface/background agree. matplotlib's camera is read off its axes (its orthographic
+projection is an exact similarity of floatcol's: the fit's residual is printed) and
+the others take it; matplotlib's quads get the reference model's shade at their
+centres as facecolors (its own LightSource model differs), PyVista a headlight
+without ambient or specular, flat and smooth (Gouraud) shaded.
+
     python benchmarks/bench_speed.py
 """
 import io
+import math
 import os
 import statistics
+import sys
 import time
 
 import numba
@@ -106,6 +118,98 @@ def eval_ns():
     return _median_ms(lambda: eval_grid(*s.kernel_args(), u, v, out), 5) * 1e6 / n
 
 
+def fidelity(size=(512, 384), elev=30.0, azim=30.0):
+    """[(tool, PSNR dB, agreement)] of the three tools against the ray caster, one
+    orthographic camera (matplotlib's), the reference lighting model."""
+    import sympy
+    sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests"))
+    from reference import psnr, raycast
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from mpl_toolkits.mplot3d import proj3d
+
+    W, H = size
+    u, v = sympy.symbols("u v")
+    e = sympy.sympify(EXPR)
+    f, fu, fv = (sympy.lambdify((u, v), x, "numpy") for x in (e, e.diff(u), e.diff(v)))
+    a, b = -math.radians(elev), math.radians(azim)
+    ca, sa, cb, sb = math.cos(a), math.sin(a), math.cos(b), math.sin(b)
+    ex = np.array([cb, -sb, 0.0])                 # screen x, y, z in world (u, v, w)
+    ey = np.array([-sa * sb, -sa * cb, ca])
+    ez = np.array([ca * sb, ca * cb, sa])
+    U, V, Wm = _mesh()
+    cu, cv = (U[:-1, :-1] + U[1:, 1:]) / 2, (V[:-1, :-1] + V[1:, 1:]) / 2
+    n = np.stack([-fu(cu, cv), -fv(cu, cv), np.ones_like(cu)], -1)
+    shade = np.abs(n @ ez) / np.linalg.norm(n, axis=-1)
+    colors = np.zeros(U.shape + (4,))
+    colors[..., 3] = 1.0
+    colors[:-1, :-1, :3] = shade[..., None]
+
+    fig = plt.figure(figsize=(W / 100, H / 100), dpi=100, facecolor="black")
+    ax = fig.add_axes([0, 0, 1, 1], projection="3d")
+    ax.set_proj_type("ortho")
+    ax.set_axis_off()
+    ax.set_facecolor("black")
+    ax.view_init(elev, -90.0 - azim)              # plot.py: matplotlib's azimuth
+    ax.set_xlim(-5, 5)
+    ax.set_ylim(-5, 5)
+    ax.set_zlim(-3, 3)
+    ax.set_box_aspect((10, 10, 6))                # one scale on all three axes
+    ax.plot_surface(U, V, Wm, facecolors=colors, shade=False, rstride=1, cstride=1,
+                    linewidth=0, antialiased=False)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="rgba", dpi=100, facecolor="black")
+    mpl_img = np.frombuffer(buf.getvalue(), np.uint8).reshape(H, W, 4)[..., 0] / 255.0
+    # matplotlib's pixel of world points against floatcol's screen coordinates
+    pts = np.random.default_rng(0).uniform((-5, -5, -3), (5, 5, 3), (64, 3))
+    px, py, _ = proj3d.proj_transform(*pts.T, ax.get_proj())
+    disp = ax.transData.transform(np.column_stack([px, py]))
+    plt.close(fig)
+    A = np.column_stack([pts @ ex, pts @ ey, np.ones(len(pts))])
+    col_fit = np.linalg.lstsq(A, disp[:, 0] - 0.5, rcond=None)[0]
+    row_fit = np.linalg.lstsq(A, H - 0.5 - disp[:, 1], rcond=None)[0]
+    resid = max(np.abs(A @ col_fit - (disp[:, 0] - 0.5)).max(),
+                np.abs(A @ row_fit - (H - 0.5 - disp[:, 1])).max())
+    scale = col_fit[0]
+    center = ((W - 1) / 2 - col_fit[2]) / scale * ex + (row_fit[2] - (H - 1) / 2) / scale * ey
+    print(f"\nmatplotlib's camera: {scale:.3f} pixels per unit, fit residual {resid:.1e} pixel")
+
+    ref = raycast((f, fu, fv), (-5, 5), (-5, 5), size, elev, azim, "orthographic", None,
+                  None, scale, center=tuple(center))
+    rows = []
+
+    def row(name, inten, seen):
+        rows.append((name, psnr(np.nan_to_num(inten), ref.intensity),
+                     float((seen == (ref.side != 0)).mean())))
+
+    r = fc.render(EXPR, size=size, elev=elev, azim=azim, shading="lambert", scale=scale,
+                  center=tuple(center), **DOM)
+    row("floatcol (default quality, lambert)", r.intensity, r.side != 0)
+    row(f"matplotlib plot_surface {MESH}x{MESH}", mpl_img, mpl_img > 0)
+    try:
+        import pyvista as pv
+    except ImportError:
+        return rows
+    for smooth in (False, True):
+        pl = pv.Plotter(off_screen=True, window_size=list(size))
+        pl.background_color = "black"
+        pl.remove_all_lights()
+        pl.add_light(pv.Light(light_type="headlight"))
+        pl.add_mesh(pv.StructuredGrid(U, V, Wm), color="white", ambient=0.0, diffuse=1.0,
+                    specular=0.0, smooth_shading=smooth)
+        pl.enable_parallel_projection()
+        pl.camera.focal_point = tuple(center)
+        pl.camera.position = tuple(center - 50 * ez)
+        pl.camera.up = tuple(ey)
+        pl.camera.parallel_scale = H / (2 * scale)
+        pl.camera.clipping_range = (1, 100)
+        img = pl.screenshot(return_img=True)[..., 0] / 255.0
+        pl.close()
+        row(f"PyVista {MESH}x{MESH}, {'smooth' if smooth else 'flat'} shading", img, img > 0)
+    return rows
+
+
 def main():
     print(f"{os.cpu_count()} cpus, {numba.get_num_threads()} numba threads")
     print(f"f, f_u, f_v of {EXPR}: {eval_ns():.0f} ns per sample (one thread)")
@@ -144,6 +248,11 @@ def main():
         ms = ours[size, "perspective"]
         print(f"| PyVista new view / floatcol persp, {size[0]}x{size[1]} | {view_ms / ms:.2f}x |")
         print(f"| PyVista new mesh / floatcol persp, {size[0]}x{size[1]} | {fresh_ms / ms:.2f}x |")
+    rows = fidelity()
+    print("\n| tool, orthographic 512x384 against the ray caster | PSNR dB | agreement |")
+    print("|---|---|---|")
+    for name, db, agree in rows:
+        print(f"| {name} | {db:.2f} | {agree * 100:.3f} % |")
 
 
 if __name__ == "__main__":

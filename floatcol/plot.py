@@ -221,7 +221,11 @@ class SurfacePlot(_ScalarMappable):
         if self.focal_length is not None:
             kw["focal_length"] = self.focal_length
         if kw.get("method", "column") == "column":
-            kw.update(cmap=self.cmap, vmin=self.norm.vmin, vmax=self.norm.vmax)
+            kw["cmap"] = self.cmap
+            if type(self.norm) is _Normalize:
+                kw.update(vmin=self.norm.vmin, vmax=self.norm.vmax)
+            else:
+                kw["norm"] = self.norm            # LogNorm, PowerNorm, ...
             if self.upper_color is not None:
                 kw["upper_color"] = self.upper_color
         shading = kw.get("shading", "default")
@@ -252,9 +256,6 @@ class SurfacePlot(_ScalarMappable):
     def draw(self, size=None) -> Render:
         """Render at ``size`` (default: the plot's) and keep it as ``.render``."""
         r = render(self.surface, **self.render_kwargs(size or self.size))
-        if r.stats["method"] == "column" and type(self.norm) is not _Normalize \
-                and self.upper_color is None and r.stats.get("w_limits") is not None:
-            _recolor(r, self)                # a non-linear norm (LogNorm, ...)
         self.render = r
         return r
 
@@ -302,16 +303,6 @@ def render_view(surface, kw):
     return build_view(surface, domain, kw["size"], kw["elev"], kw["azim"],
                       kw.get("projection", "orthographic"), kw.get("d1"), kw.get("d2"),
                       None, kw.get("center"), None, None, kw.get("focal_length"))
-
-
-def _recolor(r, mappable):
-    """Colour the upper side through a general matplotlib norm (in place)."""
-    up = r.side > 0
-    if not up.any():
-        return
-    rgb = mappable.to_rgba(r.w[up], bytes=False)[:, :3]
-    lam = r.intensity[up][:, None]
-    r.rgba[up, :3] = np.clip(np.round(rgb * lam * 255.0), 0, 255).astype(np.uint8)
 
 
 def _rgb(c):

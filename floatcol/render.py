@@ -124,7 +124,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            projection="orthographic", d1=None, d2=None, scale=None, method="column",
            shading="default", *, interpolation="normal", step=None, lines=DEFAULT_LINES,
            vars=None, center=None, cmap="viridis", upper_color=None,
-           lower_color=color.DEFAULT_LOWER, vmin=None, vmax=None, background=None,
+           lower_color=color.DEFAULT_LOWER, vmin=None, vmax=None, norm=None, background=None,
            light=None, ambient=None, focal_length=None, pixel_step=1.0,
            placement="exact", specular=None, shininess=None,
            corrections=DEFAULT_CORRECTIONS, detect=None, jump_threshold=DEFAULT_JUMP,
@@ -147,6 +147,11 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     shading : "default" (ambient + diffuse key light, height colormap, two-coloured
         sides) or "lambert" (I = |L.N|/(|L||N|), light at the viewpoint, no ambient).
     interpolation : "normal" (nis, per-pixel lighting) or "intensity" (iis, Gouraud).
+    cmap, vmin, vmax : the upper side's colormap (a matplotlib name or Colormap) and the
+        heights at its ends (default: the range of w where the upper side is seen).
+    norm : instead of vmin/vmax, a matplotlib norm (LogNorm, PowerNorm, ...; any
+        monotonic w -> [0, 1] with an ``inverse``), unscaled ends scaled to the seen
+        range; the colormap's rows begin at norm.inverse(k / 255).
     step : distance between sampling planes; default ``pixel_step`` (1) pixels on screen
         (at the nearest point in perspective).
     specular, shininess : Phong highlights on top of the diffuse light (default
@@ -238,6 +243,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     if background is None:
         black = method == "column" and shading == "lambert"
         background = (0, 0, 0, 255) if black else (255, 255, 255, 255)
+    _check_norm(norm, vmin, vmax)
     fixes = _corrections(corrections, detect, interpolation, jump_threshold, supersample_rate,
                          spline_tolerance)
     aa_cov, sub_columns = _antialias(antialias, method, shading)
@@ -279,6 +285,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     else:
         lut, lower_rgb = color.side_colors(shading, cmap, upper_color, lower_color)
         w_lo, w_hi = _height_limits(wrange, vmin, vmax)
+        if norm is not None and lut.shape[0] > 1:
+            lut, w_lo, w_hi = _norm_lut(norm, lut, w_lo, w_hi)
         w_limits = (w_lo, w_hi)
         bg8 = color.to_rgba8(background)
         shade_args = (INTERPOLATIONS[interpolation], amb, spec, shine)
@@ -375,6 +383,32 @@ def _antialias(antialias, method, shading):
             raise ValueError("antialias with sub-columns applies to method='column' only")
         return True, int(antialias)
     raise ValueError(f"antialias must be True, False or 2, 3, 4 sub-columns, got {antialias!r}")
+
+
+def _check_norm(norm, vmin, vmax):
+    if norm is None:
+        return
+    if not (callable(norm) and callable(getattr(norm, "inverse", None))):
+        raise ValueError(f"norm must be a matplotlib norm (callable, with an inverse), got {norm!r}")
+    if vmin is not None or vmax is not None:
+        raise ValueError("give either norm or vmin/vmax, not both (as in matplotlib)")
+
+
+def _norm_lut(norm, lut, w_lo, w_hi):
+    """(lut (n, 4), w_lo, w_hi) for a non-linear norm: each row's colour and the height
+    where it begins, norm.inverse(k / (n - 1)) (shade._side_rgb). A norm without
+    ends gets the seen range's (as a matplotlib mappable's autoscale)."""
+    if getattr(norm, "vmin", 0.0) is None or getattr(norm, "vmax", 0.0) is None:
+        norm.autoscale_None(np.array([w_lo, w_hi]))
+    n = lut.shape[0]
+    try:
+        starts = np.asarray(norm.inverse(np.linspace(0.0, 1.0, n)), dtype=np.float64)
+    except (ValueError, TypeError, ZeroDivisionError) as e:
+        raise ValueError(f"norm {norm!r} cannot be inverted: {e}") from None
+    if starts.shape != (n,) or not np.isfinite(starts).all() or (np.diff(starts) < 0).any():
+        raise ValueError(f"norm {norm!r} must map heights to [0, 1] monotonically "
+                         "(its inverse gave non-finite or decreasing heights)")
+    return np.column_stack([lut[:, :3], starts]), float(starts[0]), float(starts[-1])
 
 
 def _height_limits(wrange, vmin, vmax):

@@ -3,6 +3,20 @@ import pytest
 
 import floatcol as fc
 
+class _Norm:
+    """A norm as matplotlib's: callable, with an inverse (here a bad one if asked)."""
+    vmin = vmax = 1.0
+
+    def __init__(self, decreasing=False):
+        self.decreasing = decreasing
+
+    def __call__(self, w):
+        return w
+
+    def inverse(self, x):
+        return -x if self.decreasing else x
+
+
 CASES = [
     (dict(expr="x*y"), "unknown symbols x, y"),
     (dict(expr="3*sin(u"), "could not parse expression '3*sin(u'"),
@@ -27,6 +41,9 @@ CASES = [
     (dict(expr="u", scale=-1), "scale must be positive"),
     (dict(expr="u", projection="perspective", d1=0), "d1 must be positive"),
     (dict(expr="u", step=0), "step must be positive"),
+    (dict(expr="u", norm=3), "norm must be a matplotlib norm"),
+    (dict(expr="u", norm=_Norm(), vmin=0), "either norm or vmin/vmax"),
+    (dict(expr="u", norm=_Norm(decreasing=True)), "monotonically"),
     (dict(expr="u", vars=("x", "x")), "two different variables"),
     (dict(expr="u", method="horizon", lines=0), "lines must be a positive whole number"),
     (dict(expr="u", cmap="no-such-map"), "unknown colormap 'no-such-map'"),

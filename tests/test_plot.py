@@ -153,6 +153,26 @@ def test_vmin_vmax_and_norm_set_the_colours():
     assert (lin.norm.vmin, lin.norm.vmax) == (1, 3)
 
 
+def test_a_nonlinear_norm_keeps_highlights_and_antialiasing():
+    """A LogNorm colours inside the kernel (each colormap row starts at
+    norm.inverse(k/255)), so the picture keeps what the linear colormap has: the
+    coverage of silhouette pixels (alpha over a transparent background, identical to
+    the linear norm's) and the specular highlights (an earlier recolouring of the
+    finished picture lost both)."""
+    from matplotlib.colors import LogNorm
+    kw = dict(size=SMALL, background=(0, 0, 0, 0), elev=25)
+    expr, rx, ry = "x*x + y*y + 1", ("x", -1, 1), ("y", -1, 1)
+    log = fc.plot_surface(expr, rx, ry, norm=LogNorm(1, 3), **kw).draw()
+    lin = fc.plot_surface(expr, rx, ry, vmin=1, vmax=3, **kw).draw()
+    dull = fc.plot_surface(expr, rx, ry, norm=LogNorm(1, 3), specular=0.0, **kw).draw()
+    alpha = log.rgba[..., 3]
+    assert np.array_equal(alpha, lin.rgba[..., 3])
+    assert ((alpha > 0) & (alpha < 255)).sum() > 50             # antialiased edges
+    # the highlight adds up to 29 levels here (measured); recolouring added nothing
+    assert (log.rgba[..., :3].astype(int) - dull.rgba[..., :3]).max() >= 15
+    assert log.stats["w_limits"] == pytest.approx((1, 3))
+
+
 def test_default_colour_range_is_f_over_the_domain():
     p = fc.plot_surface("x", ("x", -3, 5), ("y", 0, 1), size=SMALL)
     assert p.norm.vmin == pytest.approx(-3) and p.norm.vmax == pytest.approx(5)

@@ -83,10 +83,29 @@ def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shi
 
 @ngjit_inline
 def _side_rgb(side, w, lut, w_lo, span, lower_rgb):
+    """The colour of a side: the lower side's, or the upper side's from ``lut`` (n, 3)
+    indexed linearly by w over [w_lo, w_lo + span]; a lut (n, 4) carries in its last
+    column the ascending heights where its rows begin (a non-linear norm: row k from
+    norm.inverse(k / (n - 1))), found by bisection."""
     if side > 0.0:
         n_lut = lut.shape[0]
-        x = (w - w_lo) / span * (n_lut - 1)
-        idx = int(min(max(x, 0.0), n_lut - 1.0)) if x == x else 0
+        if lut.shape[1] > 3:
+            idx = 0
+            if w >= lut[0, 3]:                  # the last row starting at or below w
+                lo = 0
+                hi = n_lut - 1
+                if w >= lut[hi, 3]:
+                    lo = hi
+                while hi - lo > 1:
+                    mid = (lo + hi) // 2
+                    if lut[mid, 3] <= w:
+                        lo = mid
+                    else:
+                        hi = mid
+                idx = lo
+        else:
+            x = (w - w_lo) / span * (n_lut - 1)
+            idx = int(min(max(x, 0.0), n_lut - 1.0)) if x == x else 0
         return lut[idx, 0], lut[idx, 1], lut[idx, 2]
     return lower_rgb[0], lower_rgb[1], lower_rgb[2]
 

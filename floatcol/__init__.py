@@ -1,5 +1,6 @@
 """floatcol: shaded pictures of w = f(u, v) by Gordon's floating column algorithm."""
 from .animate import Animation, animate
+from .compose import composite, render_many
 from .plot import SurfacePlot, plot_surface
 from .render import Render, render
 from .surface import HeightField, Surface, as_surface
@@ -17,4 +18,5 @@ def __getattr__(name):
 
 
 __all__ = ["Animation", "HeightField", "Render", "Surface", "SurfacePlot", "SympyBackend",
-           "View", "__version__", "animate", "as_surface", "plot_surface", "render"]
+           "View", "__version__", "animate", "as_surface", "composite", "plot_surface", "render",
+           "render_many"]

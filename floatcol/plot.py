@@ -128,11 +128,13 @@ class SurfacePlot(_ScalarMappable):
     def __init__(self, surface, domain, *, size=DEFAULT_SIZE, elev=DEFAULT_ELEV,
                  azim=DEFAULT_AZIM, proj_type=DEFAULT_PROJ, focal_length=None, cmap=None,
                  norm=None, vmin=None, vmax=None, color=None, shade=True, lightsource=None,
-                 light=None, ambient=None, dpi=100, label="", render_options=None):
+                 light=None, ambient=None, dpi=100, label="", render_options=None, others=()):
         from .view import _number, check_size
 
         self.surface = surface
         self.domain = domain
+        #: more (surface, domain) pairs drawn into the same picture (render_many)
+        self.others = list(others)
         self.label = label
         self.size = check_size(size)
         self.dpi = _number("dpi", dpi, positive=True)
@@ -191,12 +193,17 @@ class SurfacePlot(_ScalarMappable):
     def _height_range(self):
         """The colormap's default range: f over the whole domain, as matplotlib takes
         the range of the mesh (not of what one view happens to show)."""
-        (ua, ub), (va, vb) = self.domain
-        gu, gv = np.meshgrid(np.linspace(ua, ub, 129), np.linspace(va, vb, 129))
-        w = self.surface.evaluate(gu, gv)
-        if not np.isfinite(w).any():
+        los, his = [], []
+        for surface, ((ua, ub), (va, vb)) in [(self.surface, self.domain), *self.others]:
+            gu, gv = np.meshgrid(np.linspace(ua, ub, 129), np.linspace(va, vb, 129))
+            w = surface.evaluate(gu, gv)
+            if np.isfinite(w).any():
+                lo, hi = _robust_range(np.where(np.isfinite(w), w, np.nan))
+                los.append(lo)
+                his.append(hi)
+        if not los:
             return 0.0, 1.0
-        lo, hi = _robust_range(np.where(np.isfinite(w), w, np.nan))
+        lo, hi = min(los), max(his)
         return (lo, hi) if hi > lo else (lo - 0.5, hi + 0.5)
 
     # -- camera -------------------------------------------------------------------
@@ -247,15 +254,35 @@ class SurfacePlot(_ScalarMappable):
                 kw["corrections"] = "none"
                 kw["antialias"] = False
         if self.zoom != 1.0 and kw.get("scale") is None:
-            fit = render_view(self.surface, kw)
-            kw["scale"] = fit.scale * self.zoom
-            kw["center"] = fit.center
+            if self.others:
+                from .compose import _joint_camera
+                fit = _joint_camera(self._items(), kw["size"], kw["elev"], kw["azim"],
+                                    kw["projection"], kw.get("d1"), kw.get("d2"), None,
+                                    kw.get("center"), kw.get("focal_length"))
+                kw.update(d1=fit["d1"], d2=fit["d2"])
+                kw["scale"], kw["center"] = fit["scale"] * self.zoom, fit["center"]
+            else:
+                fit = render_view(self.surface, kw)
+                kw["scale"] = fit.scale * self.zoom
+                kw["center"] = fit.center
         return kw
+
+    def _items(self):
+        return [(self.surface, self.domain), *self.others]
 
     # -- drawing ------------------------------------------------------------------
     def draw(self, size=None) -> Render:
         """Render at ``size`` (default: the plot's) and keep it as ``.render``."""
-        r = render(self.surface, **self.render_kwargs(size or self.size))
+        kw = self.render_kwargs(size or self.size)
+        if self.others:
+            from .compose import render_many
+            kw.pop("u")
+            kw.pop("v")
+            if kw.get("focal_length") is not None and kw.get("d1") is not None:
+                kw.pop("focal_length")            # zoomed: the camera is fixed already
+            r = render_many([(s, *d) for s, d in self._items()], **kw)
+        else:
+            r = render(self.surface, **kw)
         self.render = r
         return r
 
@@ -314,7 +341,9 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
 
     Parameters
     ----------
-    expr : sympy expression, string, callable, Surface or HeightField
+    expr : sympy expression, string, callable, Surface or HeightField; or a list of
+        them (several surfaces in one picture, hiding each other: render_many), an
+        item ``(expr, (x, a, b), (y, c, d))`` with ranges of its own.
     *ranges : (symbol, low, high), up to two, as sympy's ``plot3d``; a missing range
         is (-10, 10) (a HeightField's own extent for a HeightField).
     ax : a matplotlib Axes to draw into (re-rendered at its pixel size on every draw).
@@ -344,6 +373,35 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
         options["proj_type"] = options.pop("projection")
     if "upper_color" in options and "color" not in options:
         options["color"] = options.pop("upper_color")
+    if isinstance(expr, list):
+        # several surfaces in one picture: each an expression (the shared ranges) or
+        # (expr, (x, a, b), (y, c, d)) with its own
+        if not expr:
+            raise ValueError("expr is an empty list: give at least one expression")
+        items = [_surface_domain(e[0], e[1:]) if _has_ranges(e) else _surface_domain(e, ranges)
+                 for e in expr]
+    else:
+        items = [_surface_domain(expr, ranges)]
+    (surface, domain), others = items[0], items[1:]
+    own = {k: options.pop(k) for k in list(options) if k in _OWN_OPTIONS}
+    if ax is not None:
+        own.setdefault("size", _axes_pixels(ax))
+    plot = SurfacePlot(surface, domain, label=label, render_options=options, others=others,
+                       **own)
+    if ax is not None:
+        attach(plot, ax, interactive=interactive)
+    elif interactive:
+        raise ValueError("interactive=True needs a matplotlib Axes: pass ax=")
+    return plot
+
+
+def _has_ranges(e):
+    return isinstance(e, tuple) and len(e) in (2, 3) and all(
+        isinstance(r, (tuple, list)) and len(r) == 3 for r in e[1:])
+
+
+def _surface_domain(expr, ranges):
+    """(Surface, domain) of one expression and its sympy-style ranges."""
     names, bounds = parse_ranges(expr, ranges)
     if isinstance(expr, Surface):
         surface = expr
@@ -353,16 +411,7 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     domain = tuple(
         b if b is not None else (default[i] if default else DEFAULT_RANGE)
         for i, b in enumerate(bounds))
-    domain = tuple(check_range(surface.variables[i], d) for i, d in enumerate(domain))
-    own = {k: options.pop(k) for k in list(options) if k in _OWN_OPTIONS}
-    if ax is not None:
-        own.setdefault("size", _axes_pixels(ax))
-    plot = SurfacePlot(surface, domain, label=label, render_options=options, **own)
-    if ax is not None:
-        attach(plot, ax, interactive=interactive)
-    elif interactive:
-        raise ValueError("interactive=True needs a matplotlib Axes: pass ax=")
-    return plot
+    return surface, tuple(check_range(surface.variables[i], d) for i, d in enumerate(domain))
 
 
 def _axes_pixels(ax):

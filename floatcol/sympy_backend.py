@@ -1,7 +1,8 @@
 """A sympy plotting backend: ``plot3d(expr, (x, a, b), (y, c, d), backend=SympyBackend)``.
 
-sympy hands the backend its data series; each surface series z = f(x, y) is drawn by
-:func:`floatcol.plot_surface` into one matplotlib Axes. floatcol options (elev, azim,
+sympy hands the backend its data series; the surface series z = f(x, y) are drawn by
+:func:`floatcol.plot_surface` into one matplotlib Axes, several of them into one
+picture where they hide each other (``plot3d(f, g, ...)``). floatcol options (elev, azim,
 cmap, proj_type, method, ...) can be given to ``plot3d`` directly, as can sympy's
 ``title`` and ``size`` (inches, as for sympy's matplotlib backend).
 """
@@ -41,9 +42,6 @@ class SympyBackend(Plot):
                              "(plot3d); use sympy's default backend for other plots")
         if not surfaces:
             raise ValueError("nothing to draw: plot3d needs an expression")
-        if len(surfaces) > 1:
-            raise ValueError(f"floatcol draws one surface per picture; got {len(surfaces)} "
-                             "(call plot3d once per expression)")
         figsize = self.size if self.size else (8.0, 6.0)
         if self._want_window:
             import matplotlib.pyplot as plt
@@ -51,10 +49,13 @@ class SympyBackend(Plot):
         else:
             fig = Figure(figsize=figsize)
         ax = fig.add_axes((0.0, 0.0, 1.0, 0.93 if self.title else 1.0))
-        s = surfaces[0]
-        self.plots = [plot_surface(s.expr, (s.var_x, s.start_x, s.end_x),
-                                   (s.var_y, s.start_y, s.end_y), ax=ax,
-                                   label=str(s.expr), **self._fc_options)]
+        # several surfaces: one picture where they hide each other (render_many)
+        items = [(s.expr, (s.var_x, s.start_x, s.end_x), (s.var_y, s.start_y, s.end_y))
+                 for s in surfaces]
+        expr = items if len(items) > 1 else items[0][0]
+        self.plots = [plot_surface(expr, *(() if len(items) > 1 else items[0][1:]), ax=ax,
+                                   label=", ".join(str(s.expr) for s in surfaces),
+                                   **self._fc_options)]
         if self.title:
             fig.suptitle(str(self.title))
         self._fig = fig

@@ -213,3 +213,14 @@ def test_repr_png_is_the_picture():
     assert data[:8] == b"\x89PNG\r\n\x1a\n"
     assert np.array_equal(np.asarray(Image.open(io.BytesIO(data))), p.rgba)
     assert p.render.rgba.shape == (48, 64, 4)
+
+
+def test_a_list_draws_several_surfaces_with_one_colour_range():
+    p = fc.plot_surface(["x*y/3", ("x + y + 3", ("x", 0, 1), ("y", 0, 1))],
+                        ("x", -2, 2), ("y", -2, 2), size=SMALL)
+    assert p.others[0][1] == ((0.0, 1.0), (0.0, 1.0))
+    assert (p.norm.vmin, p.norm.vmax) == pytest.approx((-4 / 3, 5))   # over both
+    r = p.draw()
+    assert {0, 1} <= set(np.unique(r.stats["surface"]))
+    with pytest.raises(ValueError, match="empty list"):
+        fc.plot_surface([], ("x", -1, 1))

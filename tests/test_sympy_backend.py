@@ -45,3 +45,20 @@ def test_non_surface_plots_are_refused_clearly(tmp_path):
     with pytest.raises(ValueError, match="surfaces z = f"):
         p.save(tmp_path / "l.png")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_several_surfaces_share_one_picture(tmp_path):
+    """plot3d(f, g) draws both into one picture where they hide each other: each
+    surface is seen somewhere, and the saved figure is the composite's pixels."""
+    p = plot3d(x * y / 3, 2 * sp.exp(-x ** 2 - y ** 2) - sp.Rational(1, 2), (x, -2, 2),
+               (y, -2, 2), backend=fc.SympyBackend, show=False, size=(4, 3))
+    p.save(tmp_path / "two.png")
+    (surface_plot,) = p.plots
+    assert len(surface_plot.others) == 1
+    r = surface_plot.render
+    which = r.stats["surface"]
+    assert (which == 0).sum() > 2000 and (which == 1).sum() > 2000
+    im = np.asarray(Image.open(tmp_path / "two.png"))
+    seen = r.side != 0
+    assert (np.abs(im[..., :3].astype(int) - r.rgba[..., :3]).max(axis=2)[seen] <= 1).mean() > 0.999
+    p.close()

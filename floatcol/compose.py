@@ -84,7 +84,7 @@ def _joint_camera(items, size, elev, azim, projection, d1, d2, scale, center, fo
     """scale, center, d1, d2 that fit every surface (render()'s rules, on the union)."""
     views = [build_view(s, dom, size, elev, azim, projection, d1, d2, scale, "auto", None,
                         None, focal_length) for s, dom in items]
-    if center is None:
+    if center is None or (isinstance(center, str) and center == "auto"):
         # the middle of the union of the domains and of the ranges of f
         (u_lo, u_hi), (v_lo, v_hi), (w_lo, w_hi) = (
             (min(lo for lo, _ in spans), max(hi for _, hi in spans))
@@ -132,8 +132,9 @@ def composite(renders, background=(255, 255, 255, 255)) -> Render:
     shape = renders[0].rgba.shape
     if any(r.rgba.shape != shape for r in renders):
         raise ValueError("composite needs renders of one size")
-    bg8 = np.asarray(background, dtype=np.uint8) if not isinstance(background, str) and \
-        len(background) == 4 else color.to_rgba8(background)
+    if isinstance(background, np.ndarray):
+        background = tuple(int(x) for x in background)
+    bg8 = color.to_rgba8(background)
     depth = np.stack([r.depth for r in renders])                 # (n, H, W), inf: none
     order = np.argsort(depth, axis=0, kind="stable")             # nearest first
     rgba = np.stack([r.rgba for r in renders]).astype(np.float64) / 255.0

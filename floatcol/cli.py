@@ -14,6 +14,7 @@ EXAMPLES = """examples:
   floatcol render "3*sin(u*cos(v))" --u=-5:5 --v=-5:5 -o surface.png
   floatcol render "x**2 - y**2" --x=-2:2 --y=-2:2 --proj ortho --elev 40 -o saddle.pdf
   floatcol render "sin(x*y)" --method horizon --size 800x600 -o lines.png
+  floatcol render "x*y/3" "2*exp(-x^2-y^2) - 0.5" --x=-2:2 --y=-2:2 -o two.png
   floatcol animate "exp(-(x^2+y^2)/8)*cos(2*sqrt(x^2+y^2) - t)" --x=-6:6 --y=-6:6 --t 0:6.283 --frames 48 -o wave.gif
   floatcol gallery build -o site/gallery
 """
@@ -47,9 +48,13 @@ def _size(text):
     return w, h
 
 
-def _surface_options(p, default_size="800x600"):
+def _surface_options(p, default_size="800x600", many=False):
     """Options shared by render and animate; they mirror plot_surface's."""
-    p.add_argument("expr", help="the height as a formula, e.g. '3*sin(u*cos(v))' (^ is power)")
+    if many:
+        p.add_argument("expr", nargs="+", help="the height as a formula, e.g. '3*sin(u*cos(v))' "
+                       "(^ is power); several: one picture where they hide each other")
+    else:
+        p.add_argument("expr", help="the height as a formula, e.g. '3*sin(u*cos(v))' (^ is power)")
     p.add_argument("--u", "--x", dest="u", type=_range, default=None, metavar="LOW:HIGH",
                    help="range of the first variable (default -10:10)")
     p.add_argument("--v", "--y", dest="v", type=_range, default=None, metavar="LOW:HIGH",
@@ -97,7 +102,7 @@ def build_parser():
     sub = p.add_subparsers(dest="command", parser_class=_Parser, metavar="{render,animate,gallery}")
     r = sub.add_parser("render", help="render an expression to an image (png, jpg, pdf, svg)",
                        epilog=EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
-    _surface_options(r)
+    _surface_options(r, many=True)
     r.add_argument("-o", "--output", default="surface.png",
                    help="file to write: .png, .jpg, .pdf or .svg (default surface.png)")
     a = sub.add_parser("animate", help="render w = f(u, v, t) to a GIF or MP4",
@@ -178,7 +183,8 @@ def _ranges(args):
         if args.u is None and args.v is None:
             return ()
         from .plot import parse_ranges
-        names, _ = parse_ranges(args.expr, (), extra=(getattr(args, "time_var", None),))
+        expr = args.expr if isinstance(args.expr, str) else " + ".join(f"({e})" for e in args.expr)
+        names, _ = parse_ranges(expr, (), extra=(getattr(args, "time_var", None),))
     return tuple((n, *(r if r is not None else (-10.0, 10.0)))
                  for n, r in zip(names, (args.u, args.v)))
 
@@ -206,7 +212,8 @@ def _options(args):
 def _render(args):
     _check_output(args.output, RENDER_OUTPUTS)
     import floatcol as fc
-    plot = fc.plot_surface(args.expr, *_ranges(args), **_options(args))
+    expr = args.expr[0] if len(args.expr) == 1 else list(args.expr)
+    plot = fc.plot_surface(expr, *_ranges(args), **_options(args))
     plot.save(args.output)
     s = plot.render.stats
     print(f"wrote {args.output} ({args.size[0]}x{args.size[1]}, {s['samples']} samples, "

@@ -51,6 +51,18 @@ def test_render_matches_plot_surface(capsys, monkeypatch, tmp_path):
     assert np.array_equal(got, want)
 
 
+def test_several_expressions_make_one_picture(capsys, monkeypatch, tmp_path):
+    import floatcol as fc
+    code, out, _ = run_here(capsys, monkeypatch, tmp_path, "render", "x*y/3",
+                            "2*exp(-x^2-y^2) - 0.5", "--x=-2:2", "--y=-2:2", "--size", "64x48",
+                            "-o", "two.png")
+    assert code == 0 and out.startswith("wrote two.png")
+    want = fc.plot_surface(["x*y/3", "2*exp(-x**2-y**2) - 0.5"], ("x", -2, 2), ("y", -2, 2),
+                           size=(64, 48))
+    assert {0, 1} <= set(np.unique(want.draw().stats["surface"]))
+    assert np.array_equal(np.asarray(Image.open(tmp_path / "two.png")), want.rgba)
+
+
 @pytest.mark.parametrize("flags,opts", [
     (("--corrections", "none", "--antialias", "off"), dict(corrections="none", antialias=False)),
     (("--antialias", "3", "--sampling", "adaptive"), dict(antialias=3, sampling="adaptive")),

@@ -16,7 +16,8 @@ import time
 import numpy as np
 
 from . import color
-from .render import Render, _domain, render
+from .kernels.layout import G_DEPTH
+from .render import Render, _domain, _untile, render
 from .surface import as_surface
 from .view import _number, build_view
 
@@ -124,9 +125,11 @@ def _radius(view, center):
 
 def composite(renders, background=(255, 255, 255, 255)) -> Render:
     """Combine Renders of one camera (and size), each over a transparent background,
-    front to back by the depth at each pixel's centre (partial, centre-less coverage
-    behind), over ``background`` (an RGBA uint8 quadruple or colour). Returns a Render
-    as :func:`render_many` describes."""
+    front to back by the depth of the surface at each pixel's centre (partial,
+    centre-less coverage behind), over ``background`` (an RGBA uint8 quadruple or
+    colour). A surface hides what lies behind it even where it is transparent in its
+    own picture (between the lines of a line drawing). Returns a Render as
+    :func:`render_many` describes."""
     if not renders:
         raise ValueError("nothing to composite")
     shape = renders[0].rgba.shape
@@ -135,16 +138,24 @@ def composite(renders, background=(255, 255, 255, 255)) -> Render:
     if isinstance(background, np.ndarray):
         background = tuple(int(x) for x in background)
     bg8 = color.to_rgba8(background)
-    depth = np.stack([r.depth for r in renders])                 # (n, H, W), inf: none
+    # the depth of the surface at each pixel's centre (for a line drawing, the surface
+    # behind the lines too: it hides what lies behind it, lines or not)
+    W = shape[1]
+    seen_k = np.stack([r._mask() for r in renders])              # (n, H, W)
+    depth = np.stack([np.where(m, _untile(r._gbuf[..., G_DEPTH], W)[::-1], np.inf)
+                      for r, m in zip(renders, seen_k)])
     order = np.argsort(depth, axis=0, kind="stable")             # nearest first
     rgba = np.stack([r.rgba for r in renders]).astype(np.float64) / 255.0
     acc = np.zeros(shape[:2] + (3,))
     acc_a = np.zeros(shape[:2])
+    hidden = np.zeros(shape[:2])          # how much of the pixel nearer layers cover
     for k in range(len(renders)):
         layer = np.take_along_axis(rgba, order[k][None, ..., None], axis=0)[0]
-        a = layer[..., 3] * (1.0 - acc_a)
+        opaque = np.take_along_axis(seen_k, order[k][None], axis=0)[0]
+        a = layer[..., 3] * (1.0 - hidden)
         acc += layer[..., :3] * a[..., None]
         acc_a += a
+        hidden += (1.0 - hidden) * np.maximum(layer[..., 3], opaque)
     bg = bg8.astype(np.float64) / 255.0
     rest = (1.0 - acc_a) * bg[3]
     alpha = acc_a + rest
@@ -173,8 +184,7 @@ def composite(renders, background=(255, 255, 255, 255)) -> Render:
              "surfaces": len(renders), "surface": which,
              "method": renders[0].stats.get("method"),
              "w_limits": [r.stats.get("w_limits") for r in renders]}
-    return Render(out, intensity, side, depth_out, stats, renders[0].view, gbuf, None,
-                  seen if renders[0].line_t is not None else None)
+    return Render(out, intensity, side, depth_out, stats, renders[0].view, gbuf, None, seen)
 
 
 def _tile(mask, tile, n_tiles):

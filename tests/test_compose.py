@@ -60,3 +60,18 @@ def test_one_camera_fits_all_and_partial_edges_go_behind():
 def test_bad_input_says_what_to_fix(bad, needle):
     with pytest.raises(ValueError, match=needle):
         fc.render_many(bad, size=(40, 30))
+
+
+def test_a_line_drawing_hides_the_lines_behind_its_surface():
+    """In a composite line drawing a surface hides what lies behind it between its
+    own lines too: every line pixel belongs to the surface that is nearest there, as
+    the shaded renders of the same camera say. Measured: all of them; before the fix
+    the bump's hidden lines showed through the saddle (78.0 % agreed)."""
+    items = [(SADDLE, DOM, DOM), (BUMP, DOM, DOM)]
+    r = fc.render_many(items, size=(160, 120), method="horizon", lines=40)
+    shaded = [fc.render(e, u=u, v=v, size=(160, 120), scale=r.view.scale,
+                        center=r.view.center) for e, u, v in items]
+    nearest = np.argmin(np.stack([s.depth for s in shaded]), axis=0)
+    lines = r.side != 0
+    assert lines.sum() > 500
+    assert (r.stats["surface"][lines] == nearest[lines]).mean() >= 0.995

@@ -30,14 +30,14 @@ from .layout import (
     DETECT_RIDGE, DETECT_WALL, FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
     SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
-    VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1, VP_UA,
-    VP_UB, VP_VA, VP_VB, VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR,
+    VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1,
+    VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR,
 )
 from .correct import (
     WALL_DEPTH, hermite_extremum, lambert_at, probe, ridge_between, shading_problem, wall_between,
     wall_normal,
 )
-from .sample import column_x0, in_domain, sample_point
+from .sample import _clip_line, column_x0, in_domain, sample_point
 
 
 EDGE_BISECTIONS = 16
@@ -182,22 +182,6 @@ def _copy(dst, src):
     """dst[:] = src for two A_SIZE sample vectors (no slice views)."""
     for k in range(A_SIZE):
         dst[k] = src[k]
-
-
-@ngjit_nrt_free
-def _clip_line(vp, u0, du, v0, dv, lo, hi):
-    """Clip [lo, hi] to the parameters lam with (u0 + lam du, v0 + lam dv) inside the
-    domain rectangle. Returns (lo, hi); lo > hi when the line misses it."""
-    for base, slope, a, b in ((u0, du, vp[VP_UA], vp[VP_UB]), (v0, dv, vp[VP_VA], vp[VP_VB])):
-        if abs(slope) < 1e-15:
-            if base < a or base > b:
-                return 1.0, -1.0
-        else:
-            l1 = (a - base) / slope
-            l2 = (b - base) / slope
-            lo = max(lo, min(l1, l2))
-            hi = min(hi, max(l1, l2))
-    return lo, hi
 
 
 @ngjit_nrt_free

@@ -81,25 +81,29 @@ def in_domain(vp, u, v):
             and v >= vp[VP_VA] - ev and v <= vp[VP_VB] + ev)
 
 
-@ngjit_inline
-def _r_interval(vp, t):
-    """The r-interval of sampling plane t inside the domain rectangle (eq. 2: u = cu +
-    r cb + t sb, v = cv - r sb + t cb); ra > rb when the plane misses it."""
-    cb = vp[VP_CB]
-    sb = vp[VP_SB]
-    ra = -np.inf
-    rb = np.inf
-    for base, slope, a, b in ((vp[VP_CU] + t * sb, cb, vp[VP_UA], vp[VP_UB]),
-                              (vp[VP_CV] + t * vp[VP_CB], -sb, vp[VP_VA], vp[VP_VB])):
+@ngjit_nrt_free
+def _clip_line(vp, u0, du, v0, dv, lo, hi):
+    """Clip [lo, hi] to the parameters lam with (u0 + lam du, v0 + lam dv) inside the
+    domain rectangle. Returns (lo, hi); lo > hi when the line misses it."""
+    for base, slope, a, b in ((u0, du, vp[VP_UA], vp[VP_UB]), (v0, dv, vp[VP_VA], vp[VP_VB])):
         if abs(slope) < 1e-15:
             if base < a or base > b:
                 return 1.0, -1.0
         else:
             l1 = (a - base) / slope
             l2 = (b - base) / slope
-            ra = max(ra, min(l1, l2))
-            rb = min(rb, max(l1, l2))
-    return ra, rb
+            lo = max(lo, min(l1, l2))
+            hi = min(hi, max(l1, l2))
+    return lo, hi
+
+
+@ngjit_inline
+def _r_interval(vp, t):
+    """The r-interval of sampling plane t inside the domain rectangle (eq. 2: u = cu +
+    r cb + t sb, v = cv - r sb + t cb); ra > rb when the plane misses it."""
+    sb = vp[VP_SB]
+    cb = vp[VP_CB]
+    return _clip_line(vp, vp[VP_CU] + t * sb, cb, vp[VP_CV] + t * cb, -sb, -np.inf, np.inf)
 
 
 @ngjit_inline

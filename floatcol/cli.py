@@ -212,8 +212,7 @@ def _options(args):
 def _render(args):
     _check_output(args.output, RENDER_OUTPUTS)
     import floatcol as fc
-    expr = args.expr[0] if len(args.expr) == 1 else list(args.expr)
-    plot = fc.plot_surface(expr, *_ranges(args), **_options(args))
+    plot = fc.plot_surface(list(args.expr), *_ranges(args), **_options(args))
     plot.save(args.output)
     s = plot.render.stats
     print(f"wrote {args.output} ({args.size[0]}x{args.size[1]}, {s['samples']} samples, "

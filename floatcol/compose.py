@@ -17,9 +17,9 @@ import numpy as np
 
 from . import color
 from .kernels.layout import G_DEPTH
-from .render import Render, _domain, _untile, render
+from .render import Render, _domain, _untile, default_background, render
 from .surface import as_surface
-from .view import _number, build_view
+from .view import build_view, viewpoint_distances
 
 
 def render_many(surfaces, size=(400, 300), elev=30.0, azim=30.0, projection="orthographic",
@@ -49,10 +49,9 @@ def render_many(surfaces, size=(400, 300), elev=30.0, azim=30.0, projection="ort
     """
     t_start = time.perf_counter()
     items = _items(surfaces, vars)
-    shading = options.get("shading", "default")
     if background is None:
-        black = options.get("method", "column") == "column" and shading == "lambert"
-        background = (0, 0, 0, 255) if black else (255, 255, 255, 255)
+        background = default_background(options.get("method", "column"),
+                                        options.get("shading", "default"))
     bg8 = color.to_rgba8(background)
     cam = _joint_camera(items, size, elev, azim, projection, d1, d2, scale, center,
                         focal_length)
@@ -92,21 +91,11 @@ def _joint_camera(items, size, elev, azim, projection, d1, d2, scale, center, fo
             for spans in ([v.domain[0] for v in views], [v.domain[1] for v in views],
                           [v.f_range for v in views]))
         center = (0.5 * (u_lo + u_hi), 0.5 * (v_lo + v_hi), 0.5 * (w_lo + w_hi))
-    cam = {"center": center}
-    if views[0].orthographic:
-        cam["d1"], cam["d2"] = views[0].d1, views[0].d2
-    elif d1 is None and d2 is None:
+    cam = {"center": center, "d1": views[0].d1, "d2": views[0].d2}
+    if not views[0].orthographic and d1 is None and d2 is None:
         # render()'s rule on the joint radius: the same viewpoint for every surface
-        radius = max(_radius(v, center) for v in views)
-        if focal_length is not None:
-            d3 = radius * math.sqrt(1.0 + _number("focal_length", focal_length,
-                                                  positive=True) ** 2)
-            cam["d1"] = 0.9 * (d3 - radius)
-            cam["d2"] = d3 - cam["d1"]
-        else:
-            cam["d1"] = cam["d2"] = 2.0 * radius
-    else:
-        cam["d1"], cam["d2"] = views[0].d1, views[0].d2
+        cam["d1"], cam["d2"] = viewpoint_distances(max(_radius(v, center) for v in views),
+                                                   focal_length=focal_length)
     if scale is None:
         scale = min(build_view(s, dom, size, elev, azim, projection, cam["d1"], cam["d2"],
                                None, center).scale for s, dom in items)

@@ -259,7 +259,8 @@ class SurfacePlot(_ScalarMappable):
                 fit = _joint_camera(self._items(), kw["size"], kw["elev"], kw["azim"],
                                     kw["projection"], kw.get("d1"), kw.get("d2"), None,
                                     kw.get("center"), kw.get("focal_length"))
-                kw.update(d1=fit["d1"], d2=fit["d2"])
+                kw.update(d1=fit["d1"], d2=fit["d2"])     # the camera is fixed now
+                kw.pop("focal_length", None)
                 kw["scale"], kw["center"] = fit["scale"] * self.zoom, fit["center"]
             else:
                 fit = render_view(self.surface, kw)
@@ -278,8 +279,6 @@ class SurfacePlot(_ScalarMappable):
             from .compose import render_many
             kw.pop("u")
             kw.pop("v")
-            if kw.get("focal_length") is not None and kw.get("d1") is not None:
-                kw.pop("focal_length")            # zoomed: the camera is fixed already
             r = render_many([(s, *d) for s, d in self._items()], **kw)
         else:
             r = render(self.surface, **kw)

@@ -75,16 +75,19 @@ class Render:
     def _mask(self):
         return self.side != 0 if self._seen is None else self._seen
 
+    def _picture(self, channels):
+        """G-buffer channels as a picture, top row first (set only where _mask())."""
+        return _untile(self._gbuf[..., channels], self.side.shape[1])[::-1]
+
     def _channel(self, g):
-        return np.where(self._mask(), _untile(self._gbuf[..., g], self.side.shape[1])[::-1], np.float32(np.nan))
+        return np.where(self._mask(), self._picture(g), np.float32(np.nan))
 
     @property
     def gbuffer(self):
         """(W, H, G_SIZE) float32 G-buffer, rows from the bottom (floatcol.kernels.layout's
         G_* channels), NaN where no surface is seen: a copy."""
-        g = np.where(self._mask()[::-1, :, None], _untile(self._gbuf, self.side.shape[1]),
-                     np.float32(np.nan))
-        return g.transpose(1, 0, 2)
+        g = np.where(self._mask()[..., None], self._picture(slice(None)), np.float32(np.nan))
+        return g[::-1].transpose(1, 0, 2)
 
     @property
     def u(self):
@@ -101,7 +104,7 @@ class Render:
     @property
     def normal(self):
         """(H, W, 3) unit upper-side normal in screen coordinates (NaN where none)."""
-        n = _untile(self._gbuf[..., G_NX:G_NZ + 1], self.side.shape[1])[::-1]
+        n = self._picture(slice(G_NX, G_NZ + 1))
         n = np.where(self._mask()[..., None], n, np.float32(np.nan)).astype(np.float64)
         with np.errstate(invalid="ignore", divide="ignore"):
             return n / np.linalg.norm(n, axis=2, keepdims=True)
@@ -241,8 +244,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         hstride = max(1, int(math.ceil(spacing / view.step - 1e-9)))
         view = dataclasses.replace(view, step=spacing / hstride)
     if background is None:
-        black = method == "column" and shading == "lambert"
-        background = (0, 0, 0, 255) if black else (255, 255, 255, 255)
+        background = default_background(method, shading)
     _check_norm(norm, vmin, vmax)
     fixes = _corrections(corrections, detect, interpolation, jump_threshold, supersample_rate,
                          spline_tolerance)
@@ -332,6 +334,12 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         "w_limits": w_limits,      # the colormap's height range (column method)
     }
     return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t, seen)
+
+
+def default_background(method, shading):
+    """Black behind the reference model's shaded pictures, white otherwise."""
+    black = method == "column" and shading == "lambert"
+    return (0, 0, 0, 255) if black else (255, 255, 255, 255)
 
 
 def _untile(a, width=None):

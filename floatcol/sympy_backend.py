@@ -52,9 +52,7 @@ class SympyBackend(Plot):
         # several surfaces: one picture where they hide each other (render_many)
         items = [(s.expr, (s.var_x, s.start_x, s.end_x), (s.var_y, s.start_y, s.end_y))
                  for s in surfaces]
-        expr = items if len(items) > 1 else items[0][0]
-        self.plots = [plot_surface(expr, *(() if len(items) > 1 else items[0][1:]), ax=ax,
-                                   label=", ".join(str(s.expr) for s in surfaces),
+        self.plots = [plot_surface(items, ax=ax, label=", ".join(str(s.expr) for s in surfaces),
                                    **self._fc_options)]
         if self.title:
             fig.suptitle(str(self.title))

@@ -107,6 +107,21 @@ class View:
         return col, row
 
 
+def viewpoint_distances(radius, d1=None, d2=None, focal_length=None):
+    """Perspective (d1, d2) for a surface within ``radius`` of the centre: given, or
+    twice the radius each, or, with ``focal_length`` f (matplotlib's meaning), where a
+    sphere of that radius fills a field of view of 2 atan(1/f)."""
+    if focal_length is not None:
+        if d1 is not None or d2 is not None:
+            raise ValueError("give either focal_length or d1/d2, not both")
+        f = _number("focal_length", focal_length, positive=True)
+        d3 = radius * math.sqrt(1.0 + f * f)      # sphere of `radius` fills the view
+        d1 = 0.9 * (d3 - radius)                  # screen plane in front of it all
+        return d1, d3 - d1
+    return (2.0 * radius if d1 is None else _number("d1", d1, positive=True),
+            2.0 * radius if d2 is None else _number("d2", d2, positive=True))
+
+
 def _number(name, value, positive=False):
     try:
         x = float(value)
@@ -192,16 +207,8 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
     if ortho:
         d1 = 1.0 if d1 is None else _number("d1", d1, positive=True)
         d2 = 1.0 if d2 is None else _number("d2", d2, positive=True)
-    elif focal_length is not None:
-        if d1 is not None or d2 is not None:
-            raise ValueError("give either focal_length or d1/d2, not both")
-        f = _number("focal_length", focal_length, positive=True)
-        d3 = radius * math.sqrt(1.0 + f * f)      # sphere of `radius` fills the view
-        d1 = 0.9 * (d3 - radius)                  # screen plane in front of it all
-        d2 = d3 - d1
     else:
-        d1 = 2.0 * radius if d1 is None else _number("d1", d1, positive=True)
-        d2 = 2.0 * radius if d2 is None else _number("d2", d2, positive=True)
+        d1, d2 = viewpoint_distances(radius, d1, d2, focal_length)
 
     cb, sb = math.cos(math.radians(azim)), math.sin(math.radians(azim))
     corners_t = [(cu_ - center[0]) * sb + (cv_ - center[1]) * cb

@@ -86,23 +86,11 @@ def _side_rgb(side, w, lut, w_lo, span, lower_rgb):
     """The colour of a side: the lower side's, or the upper side's from ``lut`` (n, 3)
     indexed linearly by w over [w_lo, w_lo + span]; a lut (n, 4) carries in its last
     column the ascending heights where its rows begin (a non-linear norm: row k from
-    norm.inverse(k / (n - 1))), found by bisection."""
+    norm.inverse(k / (n - 1))), found by np.searchsorted."""
     if side > 0.0:
         n_lut = lut.shape[0]
-        if lut.shape[1] > 3:
-            idx = 0
-            if w >= lut[0, 3]:                  # the last row starting at or below w
-                lo = 0
-                hi = n_lut - 1
-                if w >= lut[hi, 3]:
-                    lo = hi
-                while hi - lo > 1:
-                    mid = (lo + hi) // 2
-                    if lut[mid, 3] <= w:
-                        lo = mid
-                    else:
-                        hi = mid
-                idx = lo
+        if lut.shape[1] > 3:                     # the last row starting at or below w
+            idx = max(np.searchsorted(lut[:, 3], w, side="right") - 1, 0) if w == w else 0
         else:
             x = (w - w_lo) / span * (n_lut - 1)
             idx = int(min(max(x, 0.0), n_lut - 1.0)) if x == x else 0

@@ -180,63 +180,82 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular
     return lam, r, gr, bl, a
 
 
+#: Rows of the picture per block of the finishing pass (finish_kernel)
+FINISH_ROWS = 16
+
+
 @ngjit_parallel
 def finish_kernel(gbuf, ebuf, vp, interp, ambient, specular, shininess, lut, w_lo, w_hi,
                   lower_rgb, background, intensity, side, depth, rgba):
     """Light, colour and assemble the public arrays, top row first, in one pass:
     intensity (ambient + diffuse at the pixel's centre, NaN where nothing is seen),
     side, depth and rgba (shade_pixel), from the tiled G-buffer gbuf and edge buffer
-    ebuf (layout.py): a tile at a time, a row of the tile at a time, so that every
-    array is read and written in runs. With VP_AA, ebuf holds the coverages and only
-    rgba is blended; intensity, side and depth stay those of the pixel's centre. The
-    G-buffer is read only where ebuf's E_SEEN plane is not 0."""
+    ebuf (layout.py). With VP_AA, ebuf holds the coverages and only rgba is blended;
+    intensity, side and depth stay those of the pixel's centre. The G-buffer is read
+    only where ebuf's E_SEEN plane is not 0.
+
+    The picture goes in blocks of FINISH_ROWS rows, in parallel: a block's rows are
+    first filled with the background in runs (most pixels are background), then the
+    tiles are read, each a run of FINISH_ROWS rows, and only the pixels that show a
+    surface are written again. Every store so lands in the few cache lines of the
+    block's rows; going down the tiles' columns instead (their own order) missed the
+    cache on every store (1920x1080: 20-25 % slower)."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]
     W = side.shape[1]
     aa = vp[VP_AA] != 0.0
     span = w_hi - w_lo if w_hi > w_lo else 1.0
-    for b in prange(n_tiles):
-        n_lanes = min(T, W - b * T)
-        for j in range(H):
+    n_blocks = -(-H // FINISH_ROWS)
+    for blk in prange(n_blocks):
+        j_lo = blk * FINISH_ROWS
+        j_hi = min(H, j_lo + FINISH_ROWS)
+        for j in range(j_lo, j_hi):
             i = H - 1 - j
-            for lane in range(n_lanes):
-                c = b * T + lane
-                s = ebuf[b, E_SEEN, j, lane]
-                side[i, c] = np.int8(s)
-                cov0 = 1.0
-                e_cov = 0.0
-                if aa:
-                    cov0 = ebuf[b, E_COV0, j, lane]
-                    e_cov = ebuf[b, E_COV, j, lane]
-                if e_cov <= 0.0 and s == 0.0:          # the background
-                    depth[i, c] = np.inf
-                    intensity[i, c] = np.nan
-                    for k in range(4):
-                        rgba[i, c, k] = background[k]
-                    continue
-                depth[i, c] = gbuf[b, j, lane, G_DEPTH] if s != 0.0 else np.inf
-                x0 = column_x0(vp, c)
-                if e_cov <= 0.0 and cov0 >= 1.0:
-                    # a surface covering the whole pixel: shade_pixel's colour, without
-                    # the blend
-                    lam, sp = _light(vp, x0, j, gbuf[b, j, lane, G_DEPTH],
-                                     gbuf[b, j, lane, G_NX], gbuf[b, j, lane, G_NY],
-                                     gbuf[b, j, lane, G_NZ], gbuf[b, j, lane, G_I], interp,
-                                     ambient, specular, shininess)
-                    r, g, bl = _side_rgb(s, gbuf[b, j, lane, G_W], lut, w_lo, span,
-                                         lower_rgb)
+            for c in range(W):
+                side[i, c] = 0
+                depth[i, c] = np.inf
+                intensity[i, c] = np.nan
+                for k in range(4):
+                    rgba[i, c, k] = background[k]
+        for b in range(n_tiles):
+            n_lanes = min(T, W - b * T)
+            for j in range(j_lo, j_hi):
+                i = H - 1 - j
+                for lane in range(n_lanes):
+                    s = ebuf[b, E_SEEN, j, lane]
+                    cov0 = 1.0
+                    e_cov = 0.0
+                    if aa:
+                        cov0 = ebuf[b, E_COV0, j, lane]
+                        e_cov = ebuf[b, E_COV, j, lane]
+                    if e_cov <= 0.0 and s == 0.0:          # the background
+                        continue
+                    c = b * T + lane
+                    side[i, c] = np.int8(s)
+                    if s != 0.0:
+                        depth[i, c] = gbuf[b, j, lane, G_DEPTH]
+                    x0 = column_x0(vp, c)
+                    if e_cov <= 0.0 and cov0 >= 1.0:
+                        # a surface covering the whole pixel: shade_pixel's colour,
+                        # without the blend
+                        lam, sp = _light(vp, x0, j, gbuf[b, j, lane, G_DEPTH],
+                                         gbuf[b, j, lane, G_NX], gbuf[b, j, lane, G_NY],
+                                         gbuf[b, j, lane, G_NZ], gbuf[b, j, lane, G_I], interp,
+                                         ambient, specular, shininess)
+                        r, g, bl = _side_rgb(s, gbuf[b, j, lane, G_W], lut, w_lo, span,
+                                             lower_rgb)
+                        intensity[i, c] = lam
+                        rgba[i, c, 0] = np.uint8(min(r * lam + sp, 1.0) * 255.0 + 0.5)
+                        rgba[i, c, 1] = np.uint8(min(g * lam + sp, 1.0) * 255.0 + 0.5)
+                        rgba[i, c, 2] = np.uint8(min(bl * lam + sp, 1.0) * 255.0 + 0.5)
+                        rgba[i, c, 3] = np.uint8(255)
+                        continue
+                    lam, r, g, bl, a = shade_pixel(gbuf, ebuf, b, lane, j, aa, vp, x0, interp,
+                                                   ambient, specular, shininess, lut, w_lo,
+                                                   span, lower_rgb, background)
                     intensity[i, c] = lam
-                    rgba[i, c, 0] = np.uint8(min(r * lam + sp, 1.0) * 255.0 + 0.5)
-                    rgba[i, c, 1] = np.uint8(min(g * lam + sp, 1.0) * 255.0 + 0.5)
-                    rgba[i, c, 2] = np.uint8(min(bl * lam + sp, 1.0) * 255.0 + 0.5)
-                    rgba[i, c, 3] = np.uint8(255)
-                    continue
-                lam, r, g, bl, a = shade_pixel(gbuf, ebuf, b, lane, j, aa, vp, x0, interp,
-                                               ambient, specular, shininess, lut, w_lo, span,
-                                               lower_rgb, background)
-                intensity[i, c] = lam
-                rgba[i, c, 0] = np.uint8(r * 255.0 + 0.5)
-                rgba[i, c, 1] = np.uint8(g * 255.0 + 0.5)
-                rgba[i, c, 2] = np.uint8(bl * 255.0 + 0.5)
-                rgba[i, c, 3] = np.uint8(a * 255.0 + 0.5)
+                    rgba[i, c, 0] = np.uint8(r * 255.0 + 0.5)
+                    rgba[i, c, 1] = np.uint8(g * 255.0 + 0.5)
+                    rgba[i, c, 2] = np.uint8(bl * 255.0 + 0.5)
+                    rgba[i, c, 3] = np.uint8(a * 255.0 + 0.5)

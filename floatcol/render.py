@@ -280,7 +280,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         side = np.ascontiguousarray(lines_img[:, ::-1].T)
         on = side != 0
         intensity = np.where(on, np.float32(1.0), np.float32(np.nan)).astype(np.float32)
-        seen = _untile(ebuf[:, L.E_SEEN], W)[::-1] != 0
+        e_seen = _untile(ebuf[:, L.E_SEEN], W)[::-1]
+        seen = (e_seen != 0) & (e_seen != L.E_FLAG)      # kernels/coverage.py
         depth = np.where(on & seen, _untile(gbuf[..., G_DEPTH], W)[::-1],
                          np.inf).astype(np.float32)
         rgba = color.line_rgba(side, background=background)

@@ -100,3 +100,32 @@ def test_no_stale_values_leak_through_the_accessors(small_pool):
         assert np.isnan(a[none]).all() and np.isfinite(a[~none]).all()
     g = r2.gbuffer                                # (W, H, G_SIZE), rows from the bottom
     assert np.array_equal(np.isnan(g[..., 0]).T[::-1], none)
+
+
+@pytest.mark.parametrize("kw", [dict(), dict(projection="perspective", elev=20),
+                                dict(antialias=3), dict(method="horizon", lines=12)])
+def test_buffers_full_of_garbage_change_nothing(monkeypatch, kw):
+    """Every buffer a render takes from the pool is written before it is read where it
+    matters: the edge buffer's coverage planes, kept only where a pixel is flagged
+    (kernels/coverage.py), and the G-buffer, written only where a surface is seen. A
+    pool that hands out buffers full of garbage (finite, NaN) must give the picture of
+    fresh memory, bit for bit."""
+    monkeypatch.setattr(_pool, "MIN_BYTES", 1 << 16)
+    _pool.clear()
+    args = dict(u=(-5, 5), v=(-5, 5), size=(160, 120), **kw)
+    clean = fc.render(E1, **args)
+    for junk in (0.37, np.nan, 9.0):
+        real_empty = np.empty
+
+        def dirty(shape, dtype, junk=junk):
+            a = real_empty(shape, dtype)
+            a[...] = junk if np.dtype(dtype).kind == "f" else 77
+            return a
+
+        monkeypatch.setattr(_pool, "empty", dirty)
+        r = fc.render(E1, **args)
+        for name in ("rgba", "intensity", "side", "depth"):
+            assert np.array_equal(getattr(r, name), getattr(clean, name), equal_nan=True), \
+                (junk, name)
+        assert np.array_equal(r.gbuffer, clean.gbuffer, equal_nan=True), junk
+    _pool.clear()

@@ -25,7 +25,7 @@ from numba import prange
 from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
-    E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
+    E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W,
     DETECT_RIDGE, DETECT_WALL, FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
     SURF_HEIGHTFIELD,
@@ -33,6 +33,7 @@ from .layout import (
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1,
     VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR,
 )
+from .coverage import coverages, keep_coverages, seen_side
 from .correct import (
     WALL_DEPTH, hermite_extremum, lambert_at, probe, ridge_between, shading_problem, wall_between,
     wall_normal,
@@ -273,13 +274,19 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
             cov = b - a
             if cov <= 0.0:
                 continue
-            if ecol[E_SEEN, jp] != 0.0 and cont and jp == j_cont:
-                ecol[E_COV0, jp] = min(ecol[E_COV0, jp] + cov, 1.0)
+            seen_p = seen_side(ecol[E_SEEN, jp]) != 0.0
+            cov0_p, ecov_p = coverages(ecol, jp)
+            if seen_p and cont and jp == j_cont:
+                c0 = min(cov0_p + cov, 1.0)
+                if c0 != cov0_p:
+                    keep_coverages(ecol, jp)
+                    ecol[E_COV0, jp] = c0
                 continue
-            room = 1.0 - (ecol[E_COV0, jp] if ecol[E_SEEN, jp] != 0.0 else 0.0)
-            if ecol[E_COV, jp] > 0.0:
-                ecol[E_COV, jp] = min(ecol[E_COV, jp] + cov, room)
+            room = 1.0 - (cov0_p if seen_p else 0.0)
+            if ecov_p > 0.0:
+                ecol[E_COV, jp] = min(ecov_p + cov, room)
                 continue
+            keep_coverages(ecol, jp)
             lw = _chord_weight(0.5 * (a + b), yp, inv_dy, persp, qp, qc)
             ecol[E_NX, jp] = prev[A_NX] + lw * (cur[A_NX] - prev[A_NX])
             ecol[E_NY, jp] = prev[A_NY] + lw * (cur[A_NY] - prev[A_NY])
@@ -292,7 +299,8 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
     j0 = max(j0, 0)
     j1 = min(j1, H - 1)
     for j in range(j0, j1 + 1):
-        if ecol[E_SEEN, j] != 0.0:
+        x = ecol[E_SEEN, j]
+        if seen_side(x) != 0.0:
             continue                    # painted by an earlier, nearer run
         lw = _chord_weight(j, yp, inv_dy, persp, qp, qc)
         gcol[j, G_DEPTH] = prev[A_Z] + lw * (cur[A_Z] - prev[A_Z])
@@ -304,9 +312,14 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
         gcol[j, G_NZ] = prev[A_NZ] + lw * (cur[A_NZ] - prev[A_NZ])
         gcol[j, G_I] = prev[A_I] + lw * (cur[A_I] - prev[A_I])
         gcol[j, G_T] = prev[A_T] + lw * (cur[A_T] - prev[A_T])
-        ecol[E_SEEN, j] = side
         if aa:
-            ecol[E_COV0, j] = max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0)
+            c0 = max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0)
+            if x != 0.0 or c0 != 1.0:   # covered in part, or shared with an edge surface
+                keep_coverages(ecol, j)
+                ecol[E_COV0, j] = c0
+                ecol[E_SEEN, j] = side + E_FLAG
+                continue
+        ecol[E_SEEN, j] = side
 
 
 @ngjit_inline
@@ -712,12 +725,10 @@ SCR_STK = 7
 @ngjit
 def render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     """Render pixel column ``col`` into gcol (H, G_SIZE) and ecol (E_SIZE, H): gcol
-    only where ecol's E_SEEN row, cleared here, is not 0. Returns evaluations of f."""
-    ecol[E_SEEN, :] = 0.0
+    only where ecol's E_SEEN row, cleared here, is not 0 (coverage.py). Returns
+    evaluations of f."""
+    ecol[E_SEEN, :] = 0.0               # (the coverage planes are kept lazily)
     hrec[:, :] = np.nan
-    if vp[VP_AA] != 0.0:
-        ecol[E_COV0, :] = 0.0
-        ecol[E_COV, :] = 0.0
     x0 = column_x0(vp, col)
     # the column's scratch; the passes below run without reference counting
     # (_jit.ngjit_nrt_free)
@@ -786,7 +797,7 @@ def column_kernel(kind, f, fg, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals, wr
             lo = np.inf
             hi = -np.inf
             for j in range(H):
-                if ebuf[b, E_SEEN, j, lane] > 0.0:
+                if seen_side(ebuf[b, E_SEEN, j, lane]) > 0.0:
                     w = gbuf[b, j, lane, G_W]
                     lo = min(lo, w)
                     hi = max(hi, w)

@@ -16,6 +16,7 @@ from numba import prange
 
 from ._jit import ngjit, ngjit_parallel
 from .column import H_HI, H_LO, H_TS, H_Y
+from .coverage import seen_side
 from .layout import E_SEEN, G_T, VP_CA, VP_D3, VP_DT, VP_ORTHO, VP_T0
 
 
@@ -31,7 +32,7 @@ def _mark(lines, line_t, gcol, ecol, c, j, rec, sigma, exact_y, tk):
         side = -sigma
     else:
         return                              # inside the floating interval: hidden
-    if ecol[E_SEEN, j] != 0.0 and sigma * (gcol[j, G_T] - rec[H_TS]) < -1e-12:
+    if seen_side(ecol[E_SEEN, j]) != 0.0 and sigma * (gcol[j, G_T] - rec[H_TS]) < -1e-12:
         return                              # covered by a nearer, earlier run
     lines[c, j] = side
     line_t[c, j] = tk

@@ -97,11 +97,14 @@ A_SIZE = 13
 # ebuf[c // TILE, :, :, c % TILE]: which side is seen at each pixel's centre (E_SEEN,
 # always), and for the coverage antialiasing (section 6.4) how much of each pixel the
 # surface at its centre covers, and a second surface that shares the pixel (the one
-# reappearing above a ridge, or beside a silhouette). Channel-major per tile: a column
-# clears only its E_SEEN row (and with antialiasing its two coverage rows); the edge
-# surface's rows are written and read only where E_COV > 0 (a few pixels), so most of
-# their memory is never touched.
-E_SEEN = 0        # +1 upper side, -1 lower side at the centre; 0 nothing (no G-buffer)
+# reappearing above a ridge, or beside a silhouette). Channel-major per tile. A column
+# clears only its E_SEEN row: the coverage planes hold a pixel's values only where
+# E_SEEN carries E_FLAG (a pixel that a surface covers in part, or that an edge surface
+# shares; kernels/coverage.py); elsewhere they are implied (E_COV0 1 where a surface is
+# seen, else 0; E_COV 0) and neither written nor read, so most of the buffer's memory
+# is never touched.
+E_SEEN = 0        # +1 upper side, -1 lower side at the centre; 0 nothing (no G-buffer);
+                  # + E_FLAG where the coverage planes hold the pixel's values
 E_COV0 = 1        # coverage of the pixel by the G-buffer's surface (its centre's)
 E_COV = 2         # coverage by the edge surface (0: none); the edge surface's
 E_NX = 3          # unit normal, w, intensity, side and depth
@@ -112,6 +115,7 @@ E_I = 7
 E_SIDE = 8
 E_DEPTH = 9
 E_SIZE = 10
+E_FLAG = 8.0      # added to E_SEEN where E_COV0 and E_COV are kept
 
 # Sample status
 S_OK = 0

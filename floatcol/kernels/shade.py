@@ -6,10 +6,11 @@ from numba import prange
 
 from ._jit import ngjit_inline, ngjit_parallel
 from .layout import (
-    E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
+    E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_W, VP_AA, VP_D1, VP_D3, VP_H, VP_LX, VP_LY,
     VP_LZ, VP_ORTHO, VP_SCALE,
 )
+from .coverage import seen_side
 from .sample import column_x0
 
 INTERP_INTENSITY = 0   # the paper's iis (Gouraud): lit at the samples, interpolated
@@ -149,10 +150,11 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular
                 lut, w_lo, span, lower_rgb, background):
     """Light (_light) and colour (pixel_rgba) row j of the column in lane ``lane`` of
     tile ``tile`` of the G-buffer gbuf and the edge buffer ebuf (layout.py; E_SEEN,
-    and with ``aa`` the coverages). Returns (intensity at the centre, NaN where no
+    and with ``aa`` the coverages, coverage.py). Returns (intensity at the centre, NaN where no
     surface; r, g, b, alpha)."""
     g = gbuf[tile, j, lane]
-    s = ebuf[tile, E_SEEN, j, lane]
+    x = ebuf[tile, E_SEEN, j, lane]
+    s = seen_side(x)
     lam = np.nan
     sp = 0.0
     w = 0.0
@@ -166,7 +168,9 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular
     e_w = 0.0
     e_lam = 0.0
     e_sp = 0.0
-    if aa:
+    if aa and x <= 0.5 * E_FLAG:
+        cov0 = 1.0 if s != 0.0 else 0.0          # coverages implied (coverage.py)
+    elif aa:
         e = ebuf[tile, :, j, lane]
         cov0 = e[E_COV0]
         e_cov = e[E_COV]
@@ -190,9 +194,10 @@ def finish_kernel(gbuf, ebuf, vp, interp, ambient, specular, shininess, lut, w_l
     """Light, colour and assemble the public arrays, top row first, in one pass:
     intensity (ambient + diffuse at the pixel's centre, NaN where nothing is seen),
     side, depth and rgba (shade_pixel), from the tiled G-buffer gbuf and edge buffer
-    ebuf (layout.py). With VP_AA, ebuf holds the coverages and only rgba is blended;
-    intensity, side and depth stay those of the pixel's centre. The G-buffer is read
-    only where ebuf's E_SEEN plane is not 0.
+    ebuf (layout.py). With VP_AA, ebuf holds the coverages (where E_SEEN is flagged,
+    coverage.py) and only rgba is blended; intensity, side and depth stay those of the
+    pixel's centre. The G-buffer is read only where ebuf's E_SEEN plane says a surface
+    is seen.
 
     The picture goes in blocks of FINISH_ROWS rows, in parallel: a block's rows are
     first filled with the background in runs (most pixels are background), then the
@@ -223,14 +228,18 @@ def finish_kernel(gbuf, ebuf, vp, interp, ambient, specular, shininess, lut, w_l
             for j in range(j_lo, j_hi):
                 i = H - 1 - j
                 for lane in range(n_lanes):
-                    s = ebuf[b, E_SEEN, j, lane]
+                    x = ebuf[b, E_SEEN, j, lane]
+                    if x == 0.0:                           # the background
+                        continue
+                    s = x
                     cov0 = 1.0
                     e_cov = 0.0
-                    if aa:
+                    if x > 0.5 * E_FLAG:                   # coverages kept (coverage.py)
+                        s = x - E_FLAG
                         cov0 = ebuf[b, E_COV0, j, lane]
                         e_cov = ebuf[b, E_COV, j, lane]
-                    if e_cov <= 0.0 and s == 0.0:          # the background
-                        continue
+                        if e_cov <= 0.0 and s == 0.0:
+                            continue
                     c = b * T + lane
                     side[i, c] = np.int8(s)
                     if s != 0.0:

@@ -4,8 +4,9 @@ A render at 1920x1080 writes about 180 MB of buffers (the G-buffer, the edge buf
 of the antialiasing, the four public arrays). Fresh memory costs the kernels the page
 faults and the zeroing of every page: about 12 ms of a 95 ms render on the
 development machine (buffers over 32 MiB; smaller ones glibc reuses itself).
-Interactive rotation, animations and benchmarks render the same size again and again, so :func:`empty` hands out a buffer of the same shape that
-nothing refers to any more (its reference count says so: a Render that is still held,
+Interactive rotation, animations and benchmarks render the same size again and
+again, so :func:`empty` hands out a buffer of the same shape that nothing refers to
+any more (its reference count says so: a Render that is still held,
 or any view of the buffer, keeps it out of reuse). Every buffer handed out is written
 in full by the kernels before it is read.
 

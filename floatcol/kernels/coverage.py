@@ -12,18 +12,30 @@ from .layout import E_COV, E_COV0, E_FLAG, E_SEEN
 
 
 @ngjit_inline
+def flagged(x):
+    """Do the coverage planes hold the values of the pixel whose E_SEEN value is x?"""
+    return x > 0.5 * E_FLAG
+
+
+@ngjit_inline
 def seen_side(x):
     """The side seen at a pixel's centre (+1, -1; 0 none) from its E_SEEN value x."""
-    return x - E_FLAG if x > 0.5 * E_FLAG else x
+    return x - E_FLAG if flagged(x) else x
+
+
+@ngjit_inline
+def implied_coverages(x):
+    """(E_COV0, E_COV) of a pixel that is not flagged: whole where a surface is seen."""
+    return (1.0 if x != 0.0 else 0.0), 0.0
 
 
 @ngjit_inline
 def coverages(ecol, j):
     """(E_COV0, E_COV) of row j of a column's edge buffer ecol (E_SIZE, H)."""
     x = ecol[E_SEEN, j]
-    if x > 0.5 * E_FLAG:
+    if flagged(x):
         return ecol[E_COV0, j], ecol[E_COV, j]
-    return (1.0 if x != 0.0 else 0.0), 0.0
+    return implied_coverages(x)
 
 
 @ngjit_inline
@@ -31,7 +43,6 @@ def keep_coverages(ecol, j):
     """Write row j's implied coverages into the planes and flag it (before one of
     them changes)."""
     x = ecol[E_SEEN, j]
-    if x <= 0.5 * E_FLAG:
-        ecol[E_COV0, j] = 1.0 if x != 0.0 else 0.0
-        ecol[E_COV, j] = 0.0
+    if not flagged(x):
+        ecol[E_COV0, j], ecol[E_COV, j] = implied_coverages(x)
         ecol[E_SEEN, j] = x + E_FLAG

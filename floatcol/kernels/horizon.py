@@ -48,8 +48,8 @@ def horizon_kernel(hrec, gbuf, ebuf, vp, hstride, lines, line_t):
     t0 = vp[VP_T0]
     dt = vp[VP_DT]
     t_view = -math.inf if vp[VP_ORTHO] != 0.0 else -vp[VP_D3] * vp[VP_CA]
+    T = gbuf.shape[2]
     for c in prange(W):
-        T = gbuf.shape[2]
         gcol = gbuf[c // T, :, c % T]
         ecol = ebuf[c // T, :, :, c % T]
         for k in range(nh):

@@ -6,11 +6,11 @@ from numba import prange
 
 from ._jit import ngjit_inline, ngjit_parallel
 from .layout import (
-    E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
+    E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_W, VP_AA, VP_D1, VP_D3, VP_H, VP_LX, VP_LY,
     VP_LZ, VP_ORTHO, VP_SCALE,
 )
-from .coverage import seen_side
+from .coverage import flagged, implied_coverages, seen_side
 from .sample import column_x0
 
 INTERP_INTENSITY = 0   # the paper's iis (Gouraud): lit at the samples, interpolated
@@ -150,8 +150,8 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular
                 lut, w_lo, span, lower_rgb, background):
     """Light (_light) and colour (pixel_rgba) row j of the column in lane ``lane`` of
     tile ``tile`` of the G-buffer gbuf and the edge buffer ebuf (layout.py; E_SEEN,
-    and with ``aa`` the coverages, coverage.py). Returns (intensity at the centre, NaN where no
-    surface; r, g, b, alpha)."""
+    and with ``aa`` the coverages, coverage.py). Returns (intensity at the centre, NaN
+    where no surface; r, g, b, alpha)."""
     g = gbuf[tile, j, lane]
     x = ebuf[tile, E_SEEN, j, lane]
     s = seen_side(x)
@@ -168,8 +168,8 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular
     e_w = 0.0
     e_lam = 0.0
     e_sp = 0.0
-    if aa and x <= 0.5 * E_FLAG:
-        cov0 = 1.0 if s != 0.0 else 0.0          # coverages implied (coverage.py)
+    if aa and not flagged(x):
+        cov0, e_cov = implied_coverages(x)
     elif aa:
         e = ebuf[tile, :, j, lane]
         cov0 = e[E_COV0]
@@ -231,11 +231,10 @@ def finish_kernel(gbuf, ebuf, vp, interp, ambient, specular, shininess, lut, w_l
                     x = ebuf[b, E_SEEN, j, lane]
                     if x == 0.0:                           # the background
                         continue
-                    s = x
+                    s = seen_side(x)
                     cov0 = 1.0
                     e_cov = 0.0
-                    if x > 0.5 * E_FLAG:                   # coverages kept (coverage.py)
-                        s = x - E_FLAG
+                    if flagged(x):                         # coverages kept (coverage.py)
                         cov0 = ebuf[b, E_COV0, j, lane]
                         e_cov = ebuf[b, E_COV, j, lane]
                         if e_cov <= 0.0 and s == 0.0:

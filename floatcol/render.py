@@ -26,6 +26,10 @@ INTERPOLATIONS = {"normal": INTERP_NORMAL, "nis": INTERP_NORMAL,
                   "intensity": INTERP_INTENSITY, "iis": INTERP_INTENSITY}
 DEFAULT_RANGE = (-10.0, 10.0)   # as sympy's plot3d
 DEFAULT_LINES = 160             # horizon lines, as in the paper's figures
+#: Orthographic pictures with at least this many samples evaluate f in batches of SIMD
+#: code (Surface.batch): about 58 ns less per sample, for a compile of about 0.1 s
+#: once per expression (1024x768 of 3 sin(u cos v): 380 000 samples)
+BATCH_MIN_SAMPLES = 200_000
 #: the key light of the default shading: from the upper left, toward the viewer
 DEFAULT_LIGHT = (-0.45, 0.55, -1.0)
 DEFAULT_AMBIENT = 0.25
@@ -266,7 +270,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     vp[L.VP_AA] = 1.0 if aa_cov else 0.0
     ebuf = _pool.empty((n_tiles, L.E_SIZE, H, L.TILE), np.float32)
     wrange = np.empty((W, 2))
-    column_kernel(*surface.kernel_args(), vp, gbuf, ebuf, hrec, hstride, evals, wrange)
+    fb = _batch_evaluator(surface, view, method, sampling)
+    vp[L.VP_BATCH] = 0.0 if fb is None else 1.0
+    column_kernel(*surface.kernel_args(fb), vp, gbuf, ebuf, hrec, hstride, evals, wrange)
     t_kernel = time.perf_counter()
     line_t = None
     w_limits = None
@@ -312,7 +318,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
                 acc[..., 3:4] += a
                 offsets = offsets[offsets != 0.0]
             ev2 = np.zeros(W, dtype=np.int64)
-            subcolumn_kernel(*surface.kernel_args(), vp, offsets, *shade_args, lut, w_lo,
+            subcolumn_kernel(*surface.kernel_args(fb), vp, offsets, *shade_args, lut, w_lo,
                              w_hi, lower_rgb, bg8, acc, ev2)
             evals += ev2
             a = acc[..., 3:4]
@@ -335,6 +341,21 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         "w_limits": w_limits,      # the colormap's height range (column method)
     }
     return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t, seen)
+
+
+def _batch_evaluator(surface, view, method, sampling):
+    """The surface's batch evaluator (Surface.batch, SIMD code) where the column
+    kernel can use it, on the uniform planes of an orthographic view, and where the
+    picture has at least BATCH_MIN_SAMPLES of them to repay its compile; else None."""
+    if not view.orthographic or (method == "column" and sampling != "uniform"):
+        return None
+    (ua, ub), (va, vb) = view.domain
+    # the lattice of columns (1 / scale apart) and planes (step apart) in the domain
+    samples = min((ub - ua) * (vb - va) * view.scale / view.step,
+                  float(view.width) * view.planes)
+    if samples < BATCH_MIN_SAMPLES:
+        return None
+    return surface.batch()
 
 
 def default_background(method, shading):

@@ -2,7 +2,8 @@
 
 A Surface carries f, and f fused with f_u and f_v in one function, as compiled Numba
 cfuncs (DESIGN.md section 4), so a new expression costs about a tenth of a second
-and never recompiles a kernel; or a height grid read as a bilinear function (the
+and never recompiles a kernel (big orthographic pictures add a batch evaluator of
+the three in SIMD code, compiled on first use: Surface.batch); or a height grid read as a bilinear function (the
 paper's "digital height field").
 """
 from __future__ import annotations
@@ -16,7 +17,7 @@ import numbers
 import numba
 import numpy as np
 
-from .kernels._jit import compile_grad_fn, compile_surface_fn
+from .kernels._jit import compile_batch_fn, compile_grad_fn, compile_surface_fn
 from .kernels.layout import SURF_FUNCTION, SURF_HEIGHTFIELD
 from .kernels.sample import eval_grid
 
@@ -35,9 +36,12 @@ class Surface:
     kind = SURF_FUNCTION
 
     def __init__(self, f, fg, *, expr=None, variables=DEFAULT_VARS,
-                 derivatives="symbolic", time=None):
+                 derivatives="symbolic", time=None, batch_source=None):
         self.f = f          # cfunc w = f(u, v, t)
         self.fg = fg        # cfunc w = fg(u, v, t, p), p <- (f_u, f_v)
+        # the batch evaluator (kernels/_jit.py BATCH_SIG), compiled on first use by
+        # batch(); a dict, so that the copies made by at() share it
+        self._batch = {"source": batch_source}
         self.expr = expr
         self.variables = tuple(variables)
         self.derivatives = derivatives
@@ -57,9 +61,22 @@ class Surface:
     #: Default domain when the caller gives none (None: the caller must choose).
     default_domain = None
 
-    def kernel_args(self):
-        """(kind, f, fg, hf, hfp): what every kernel takes to sample the surface."""
-        return self.kind, self.f, self.fg, self.hf, self.hfp
+    def batch(self):
+        """The batch evaluator of f, f_u and f_v (SIMD code, kernels/vmath.py), or None
+        where there is none (a height field, a callable, a complex expression, one
+        with functions that do not vectorise). Compiled on the first call, about a
+        tenth of a second once per expression; render() asks for it only where a
+        picture has enough samples to repay that (render.BATCH_MIN_SAMPLES)."""
+        if "fn" not in self._batch:
+            source = self._batch["source"]
+            self._batch["fn"] = _compile_batch(*source) if source is not None else None
+        return self._batch["fn"]
+
+    def kernel_args(self, fb=None):
+        """(kind, f, fg, fb, hf, hfp): what every kernel takes to sample the surface;
+        fb the batch evaluator ``batch()``, or (None) a stand-in that leaves every
+        point to fg (a kernel uses fb only where vp's VP_BATCH says so)."""
+        return self.kind, self.f, self.fg, _no_batch() if fb is None else fb, self.hf, self.hfp
 
     def evaluate(self, u, v, derivatives=False):
         """w = f(u, v) on arrays (NaN at holes); with derivatives, (w, f_u, f_v)."""
@@ -284,7 +301,11 @@ def _compiled_expression(e, names, time=None):
     if fg is None:
         how = "central differences"
         fg = _central_difference(f_py)
-    return Surface(f, fg, expr=e, variables=names, derivatives=how, time=time)
+    batch_source = None
+    if how == "symbolic" and _vectorises(e, derivs):
+        batch_source = (e, tuple(derivs), su, sv, st)
+    return Surface(f, fg, expr=e, variables=names, derivatives=how, time=time,
+                   batch_source=batch_source)
 
 
 def _is_complex(e):
@@ -297,7 +318,58 @@ def _compile_error(e, exc):
     return ValueError(f"cannot compile {e} for the renderer: {first}")
 
 
-def _lambdify_real(args, e, cse=False):
+def _vectorises(e, derivs):
+    """Do f and its partials use only what the batch evaluator compiles to SIMD code:
+    arithmetic, whole and half powers, abs, and the functions of
+    kernels/vmath.VECTOR_FUNCTIONS? (Anything else is a call of libm, which keeps the
+    loop scalar: no faster than the scalar fg, so not worth compiling.)"""
+    import sympy as sp
+    from .kernels.vmath import VECTOR_FUNCTIONS
+    allowed = {getattr(sp, name) for name in VECTOR_FUNCTIONS} | {sp.Abs}
+    for x in (e, *derivs):
+        if _is_complex(x):
+            return False
+        for fn in x.atoms(sp.Function):
+            if fn.func not in allowed:
+                return False
+        for p in x.atoms(sp.Pow):
+            if not (p.exp.is_Integer or p.exp in (sp.S.Half, -sp.S.Half)):
+                return False
+    return True
+
+
+def _compile_batch(e, derivs, su, sv, st):
+    """The batch evaluator (kernels/_jit.py BATCH_SIG) of f and its partials: sympy's
+    lambdify with vmath's sin, cos and exp, inlined into a loop over the points that
+    LLVM vectorises. None if it does not compile."""
+    from .kernels.vmath import VECTOR_FUNCTIONS
+    try:
+        g = numba.njit(error_model="numpy", inline="always")(
+            _lambdify_real((su, sv, st), (e, *derivs), cse=True, functions=VECTOR_FUNCTIONS))
+
+        def batch(u, v, t, out, n):
+            for i in range(n):
+                w, wu, wv = g(u[i], v[i], t)
+                out[i] = w
+                out[n + i] = wu
+                out[2 * n + i] = wv
+        log.debug("compiling the batch evaluator of %s", e)
+        return compile_batch_fn(batch)
+    except Exception as exc:               # pragma: no cover - the scalar fg remains
+        log.debug("no batch evaluator for %s: %s", e, exc)
+        return None
+
+
+@functools.lru_cache(maxsize=1)
+def _no_batch():
+    """The stand-in batch evaluator: NaN everywhere, which sends every point to fg."""
+    def none(u, v, t, out, n):
+        for i in range(3 * n):
+            out[i] = math.nan
+    return compile_batch_fn(none)
+
+
+def _lambdify_real(args, e, cse=False, functions=None):
     """sympy's lambdify for Numba, with a power printed so that it cannot raise.
 
     In Numba, ``0.0 ** -2`` raises ZeroDivisionError even in numpy's error model
@@ -316,6 +388,8 @@ def _lambdify_real(args, e, cse=False):
             return super()._print_Pow(expr, rational=rational)
 
     namespace = _numba_namespace()
+    if functions:
+        namespace.update(functions)
     printer = _Printer({"fully_qualified_modules": False, "inline": True,
                         "allow_unknown_functions": True,
                         "user_functions": {k: k for k in namespace}})
@@ -457,6 +531,7 @@ def _callable_surface(fn, names):
     return Surface(f, _central_difference(py3), variables=names, derivatives="central differences")
 
 
+@functools.lru_cache(maxsize=1)
 @functools.lru_cache(maxsize=1)
 def _zero_fns():
     """f = 0 and its fused gradient (placeholders: a height field reads its grid)."""

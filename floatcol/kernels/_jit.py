@@ -15,6 +15,13 @@ SurfaceFn = types.FunctionType(SURFACE_SIG)
 GRAD_SIG = types.float64(types.float64, types.float64, types.float64,
                          types.CPointer(types.float64))
 GradFn = types.FunctionType(GRAD_SIG)
+#: The batch evaluator: fb(u, v, t, out, n) writes w, f_u, f_v of the n points
+#: (u[i], v[i]) to out[i], out[n + i], out[2n + i]. Its loop is compiled to SIMD code
+#: (vmath.py); a point where any of the three is not finite must be evaluated again
+#: with the scalar fg (column.py does), which alone decides holes.
+BATCH_SIG = types.void(types.CPointer(types.float64), types.CPointer(types.float64),
+                       types.float64, types.CPointer(types.float64), types.int64)
+BatchFn = types.FunctionType(BATCH_SIG)
 
 #: Small helpers inlined into kernels.
 ngjit = numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -55,6 +62,20 @@ def compile_surface_fn(pyfunc):
 def compile_grad_fn(pyfunc):
     """Compile ``(u, v, t, p) -> w`` (writing f_u, f_v to p[0], p[1]) to a cfunc."""
     return numba.cfunc(GRAD_SIG, error_model="numpy", nopython=True)(pyfunc)
+
+
+def compile_batch_fn(pyfunc):
+    """Compile ``(u, v, t, out, n) -> None`` (BATCH_SIG) to a cfunc."""
+    return numba.cfunc(BATCH_SIG, error_model="numpy", nopython=True)(pyfunc)
+
+
+@intrinsic
+def array_ptr(typingctx, arr, offset):
+    """Pointer to element ``offset`` of the contiguous 1-D array arr (for a cfunc)."""
+    def codegen(context, builder, signature, args):
+        ary = context.make_array(signature.args[0])(context, builder, args[0])
+        return builder.gep(ary.data, [args[1]])
+    return types.CPointer(arr.dtype)(arr, offset), codegen
 
 
 @intrinsic

@@ -17,7 +17,7 @@ from .shade import shade_pixel
 
 
 @ngjit_parallel
-def subcolumn_kernel(kind, f, fg, hf, hfp, vp, offsets, interp, ambient, specular,
+def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, interp, ambient, specular,
                      shininess, lut, w_lo, w_hi, lower_rgb, background, acc, evals):
     """For every pixel column c and every offset o (in pixels), render the column at
     c + o with coverage antialiasing, colour it (shade_pixel) and add the colour,
@@ -34,7 +34,7 @@ def subcolumn_kernel(kind, f, fg, hf, hfp, vp, offsets, interp, ambient, specula
         ev = 0
         for k in range(offsets.shape[0]):
             col = c + offsets[k]
-            ev += render_column(kind, f, fg, hf, hfp, vp, col, gcol[0, :, 0],
+            ev += render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol[0, :, 0],
                                 ecol[0, :, :, 0], hrec, 0)
             x0 = column_x0(vp, col)
             for j in range(H):

@@ -22,7 +22,7 @@ import math
 import numpy as np
 from numba import prange
 
-from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
+from ._jit import array_ptr, ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
@@ -31,14 +31,14 @@ from .layout import (
     SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1,
-    VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR,
+    VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR, VP_BATCH,
 )
 from .coverage import coverages, keep_coverages, seen_side
 from .correct import (
     WALL_DEPTH, hermite_extremum, lambert_at, probe, ridge_between, shading_problem, wall_between,
     wall_normal,
 )
-from .sample import _clip_line, column_x0, in_domain, sample_point
+from .sample import _clip_line, column_x0, in_domain, sample_point, surface_eval
 
 
 EDGE_BISECTIONS = 16
@@ -89,6 +89,8 @@ H_LO = 1
 H_HI = 2
 H_TS = 3
 H_SIZE = 4
+#: Orthographic planes per call of the batch evaluator (_batch_planes)
+BATCH = 64
 
 
 @ngjit_inline
@@ -117,19 +119,21 @@ def _newton_start(run, t):
 
 
 @ngjit_nrt_free
-def _sample_into(kind, f, fg, hf, hfp, vp, x0, t, out, run):
+def _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run):
     """_sample_at as a call (where sampling is rare: corrections, edges)."""
-    return _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, False)
+    return _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run, False, False, 0.0, 0.0,
+                      0.0)
 
 
 @ngjit_inline
-def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, main):
+def _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run, main, given, gw, gwu, gwv):
     """Sample plane t of column x0 into ``out`` (the A_* attributes). Returns (status,
     evaluations of f). Inlined in the column's main loop. In perspective the Newton
     iteration starts from ``run``'s last solutions (_newton_start): every sample's
     solution updates the line, only those of the pass's own planes (``main``) the
     parabola (the samples of corrections, edges and slivers go back and forth in t
-    between two planes)."""
+    between two planes). Orthographic: with ``given``, f, f_u, f_v at the point are
+    (gw, gwu, gwv) (_batch_planes)."""
     if vp[VP_ORTHO] == 0.0 and not _may_meet_domain(vp, x0, t):
         return S_OUTSIDE, 0
     lin = np.nan
@@ -139,7 +143,8 @@ def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, main):
         if kind == SURF_HEIGHTFIELD:
             quad = np.nan           # bilinear patches: the curve bends at the creases only
     st, ev, y, z, u, v, w, nx, ny, nz, lam = sample_point(kind, f, fg, hf, hfp, vp, x0, t,
-                                                          quad if quad == quad else lin)
+                                                          quad if quad == quad else lin,
+                                                          given, gw, gwu, gwv)
     if st != S_OK:
         if ev > 0:                  # where the failed point lies (_column_pass's slivers)
             out[A_U] = u
@@ -333,14 +338,14 @@ def _chord_weight(yq, yp, inv_dy, persp, qp, qc):
 
 
 @ngjit_nrt_free
-def _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
+def _span(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
           stk, sdepth, left, mid, xs):
     """_segment, but a height field's span is first cut where the column crosses the
     grid's cell edges: a bilinear surface's normal jumps there (a crease), so a sample
     on the edge keeps interpolation from mixing two patches, and a crease seen
     edge-on gets its top exactly. ``prev`` ends as the last sample used."""
     if kind != SURF_HEIGHTFIELD or vp[VP_DETECT] == 0.0:
-        return _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
+        return _segment(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
                         persp, d3, H, aa, stk, sdepth, left, mid)
     nv, nu = hf.shape
     au = (prev[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)   # grid coordinates
@@ -366,13 +371,13 @@ def _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp
         # (in perspective the ground path bends a little between samples, so the
         # sample lands near the edge, not on it: secant steps onto it measured no
         # better against the ray caster, for 12 % more samples)
-        st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, ta + lam * (tb - ta), xs, run)
+        st, ev = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, ta + lam * (tb - ta), xs, run)
         evals += ev
         if st == S_OK:
-            evals += _segment(kind, f, fg, hf, hfp, vp, x0, prev, xs, gcol, ecol, run, sigma,
+            evals += _segment(kind, f, fg, fb, hf, hfp, vp, x0, prev, xs, gcol, ecol, run, sigma,
                               persp, d3, H, aa, stk, sdepth, left, mid)
             _copy(prev, xs)
-    evals += _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
+    evals += _segment(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
                       persp, d3, H, aa, stk, sdepth, left, mid)
     return evals
 
@@ -393,7 +398,7 @@ def _problem(vp, x0, prev, cur, run):
 
 
 @ngjit_nrt_free
-def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
+def _segment(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
              stk, sdepth, left, mid):
     """Fill the span prev -> cur of an open run, correcting the problems that
     App. A.2's Problem() finds (Problem_Correction()): a ridge by the cubic spline's
@@ -425,7 +430,7 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
             # end of section 5: halve while the jump persists; then shade it as a wall
             halvings = d if searching else 0
             if halvings < WALL_DEPTH and n < STACK_SIZE - 2:
-                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0,
+                st, ev = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0,
                                       0.5 * (left[A_T] + right[A_T]), mid, run)
                 evals += ev
                 if st == S_OK:
@@ -443,7 +448,7 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
                 n -= 1
                 # the wall's far end may sit on the jump, where difference quotients
                 # give f_u, f_v no meaning: take the normal a little beyond it
-                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0,
+                st, ev = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0,
                                       right[A_T] + WALL_BEYOND * (right[A_T] - w0[A_T]), mid,
                                       run)
                 evals += ev
@@ -461,9 +466,9 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
         if fix == FIX_SPLINE or (fix == FIX_ADAPTIVE and d < max_depth):
             # one more sample inside the span: the spline's top, or the middle
             if fix == FIX_SPLINE:
-                st, ev = _spline_top(kind, f, fg, hf, hfp, vp, x0, left, right, mid, run)
+                st, ev = _spline_top(kind, f, fg, fb, hf, hfp, vp, x0, left, right, mid, run)
             else:
-                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0,
+                st, ev = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0,
                                       0.5 * (left[A_T] + right[A_T]), mid, run)
             evals += ev
             if st == S_OK:
@@ -473,7 +478,7 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
             ta = left[A_T]
             h = (right[A_T] - ta) / rate
             for k in range(1, rate):
-                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, ta + k * h, mid, run)
+                st, ev = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, ta + k * h, mid, run)
                 evals += ev
                 if st == S_OK:
                     _fill_span(gcol, ecol, run, left, mid, sigma, persp, d3, H, aa)
@@ -503,7 +508,7 @@ def _push(stk, sdepth, n, mid, depth):
 
 
 @ngjit_nrt_free
-def _spline_top(kind, f, fg, hf, hfp, vp, x0, a, b, out, run):
+def _spline_top(kind, f, fg, fb, hf, hfp, vp, x0, a, b, out, run):
     """Sample the surface at the extremum of the cubic spline between samples a and b
     (eqs. 13-22, see correct.py); with VP_SPLINE_TOL > 0, repeat on the half that
     still holds the sign change while |V.N| there exceeds the tolerance (end of
@@ -522,7 +527,7 @@ def _spline_top(kind, f, fg, hf, hfp, vp, x0, a, b, out, run):
     for _ in range(iters):
         tau, _ = hermite_extremum(ya, yb, ma, mb, tb - ta)
         t2 = ta + tau * (tb - ta)
-        st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, t2, out, run)
+        st, ev = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, t2, out, run)
         evals += ev
         if st != S_OK:
             break
@@ -554,11 +559,49 @@ def _grid_range(t0, dt, ta, tb):
     return ka, kb
 
 
+@ngjit_inline
+def _plane_t(i, n, ta, tb, t0, ka, dt):
+    """t of an ascending pass's plane number i of n: ta, the grid's planes
+    t0 + k dt from k = ka on, tb (as _column_pass steps)."""
+    if i == 0:
+        return ta
+    if i == n - 1:
+        return tb
+    return t0 + (ka + (i - 1)) * dt
+
+
 @ngjit_nrt_free
-def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, hstride,
-                 prev, cur, edge, tmp, run, stk, sdepth, left, mid):
+def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0, ka, dt):
+    """Evaluate f, f_u, f_v at the points of an orthographic column's planes i_lo to
+    i_hi - 1 with one call of the batch evaluator fb (SIMD code) into bat: u, v at
+    bat[:BATCH], bat[BATCH:2 BATCH], then w, f_u, f_v of the m = i_hi - i_lo points at
+    bat[2 BATCH + (0, m, 2 m) + k]. A point where any of the three is not finite is
+    evaluated again by fg, which alone decides a hole (vmath's functions give NaN
+    where they cannot answer)."""
+    m = i_hi - i_lo
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    u0 = vp[VP_CU] + x0 * cb            # eq. (3), as sample_point computes it
+    v0 = vp[VP_CV] - x0 * sb
+    for k in range(m):
+        t = _plane_t(i_lo + k, n, ta, tb, t0, ka, dt)
+        bat[k] = u0 + t * sb
+        bat[BATCH + k] = v0 + t * cb
+    o = 2 * BATCH
+    fb(array_ptr(bat, 0), array_ptr(bat, BATCH), hfp[0], array_ptr(bat, o), m)
+    for k in range(m):
+        if not (math.isfinite(bat[o + k]) and math.isfinite(bat[o + m + k])
+                and math.isfinite(bat[o + 2 * m + k])):
+            bat[o + k], bat[o + m + k], bat[o + 2 * m + k] = surface_eval(
+                kind, fg, hf, hfp, bat[k], bat[BATCH + k])
+
+
+@ngjit_nrt_free
+def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, hstride,
+                 prev, cur, edge, tmp, run, stk, sdepth, left, mid, bat):
     """One front-to-back pass over t from ta to tb (sigma = +1 ascending, -1
-    descending). Returns the number of evaluations of f."""
+    descending). Returns the number of evaluations of f. Orthographic planes are
+    evaluated BATCH at a time into bat (_batch_planes) where vp's VP_BATCH says so."""
     H = gcol.shape[0]
     persp = vp[VP_ORTHO] == 0.0
     aa = vp[VP_AA] != 0.0
@@ -583,6 +626,11 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
     i = 0
     t = ta
     k = -1
+    # the orthographic planes evaluated ahead, BATCH at a time: planes b_lo to b_hi - 1
+    batched = (vp[VP_BATCH] != 0.0 and not persp and not adaptive and sigma > 0.0
+               and kind != SURF_HEIGHTFIELD)
+    b_lo = 0
+    b_hi = 0
     # perspective: the failed sample before (where its point lies), and a plane put
     # in between two failed samples, after which the pass resumes at t_resume
     bad_u = 0.0
@@ -592,7 +640,19 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
     t_resume = 0.0
     k_resume = -1
     while True:
-        st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True)
+        if batched:
+            if i >= b_hi:
+                b_lo = i
+                b_hi = min(n, i + BATCH)
+                _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, b_lo, b_hi, n, ta, tb, t0, ka,
+                              dt)
+            m = b_hi - b_lo
+            o = 2 * BATCH + (i - b_lo)
+            st, ev = _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, cur, run, True, True,
+                                bat[o], bat[o + m], bat[o + 2 * m])
+        else:
+            st, ev = _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, cur, run, True, False,
+                                0.0, 0.0, 0.0)
         evals += ev
         if persp and st != S_OK and not resume:
             # A sliver: the surface's curve in Pi may enter the domain and leave it
@@ -606,7 +666,7 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
                                         0.0, 1.0)
                 if c_lo < c_hi:
                     tm = prev_t + 0.5 * (c_lo + c_hi) * (t - prev_t)
-                    st_m, ev_m = _sample_into(kind, f, fg, hf, hfp, vp, x0, tm, tmp, run)
+                    st_m, ev_m = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, tm, tmp, run)
                     evals += ev_m
                     if st_m == S_OK:
                         resume = True
@@ -631,7 +691,7 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
             found = False
             for _ in range(EDGE_BISECTIONS):
                 tm = 0.5 * (t_ok + t_bad)
-                st_m, ev_m = _sample_into(kind, f, fg, hf, hfp, vp, x0, tm, tmp, run)
+                st_m, ev_m = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, tm, tmp, run)
                 evals += ev_m
                 if st_m == S_OK:
                     t_ok = tm
@@ -644,7 +704,7 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
                     run_start = edge[A_T]
                     _fill_span(gcol, ecol, run, prev, edge, sigma, persp, d3, H, aa)
                 else:
-                    evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, edge, gcol, ecol, run,
+                    evals += _span(kind, f, fg, fb, hf, hfp, vp, x0, prev, edge, gcol, ecol, run,
                                    sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)
                 _copy(prev, edge)
         if st == S_OK:
@@ -673,7 +733,7 @@ def _column_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, 
                 if kind != SURF_HEIGHTFIELD and not _problem(vp, x0, prev, cur, run):
                     _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)  # the common case
                 else:
-                    evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
+                    evals += _span(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
                                    sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)
             _copy(prev, cur)
         else:
@@ -723,7 +783,7 @@ SCR_STK = 7
 
 
 @ngjit
-def render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
+def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     """Render pixel column ``col`` into gcol (H, G_SIZE) and ecol (E_SIZE, H): gcol
     only where ecol's E_SEEN row, cleared here, is not 0 (coverage.py). Returns
     evaluations of f."""
@@ -735,11 +795,14 @@ def render_column(kind, f, fg, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     scr = np.empty((SCR_STK + STACK_SIZE, A_SIZE))
     scr[SCR_RUN, :] = 0.0
     sdepth = np.zeros(STACK_SIZE, dtype=np.int64)
-    return _column_passes(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr, sdepth)
+    bat = np.empty(5 * BATCH)
+    return _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
+                          sdepth, bat)
 
 
 @ngjit_nrt_free
-def _column_passes(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr, sdepth):
+def _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr, sdepth,
+                   bat):
     """The passes of one column (render_column): ascending t in orthographic; in
     perspective from the viewpoint's t outward, both ways."""
     prev = scr[SCR_PREV]
@@ -754,26 +817,26 @@ def _column_passes(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
     if vp[VP_ORTHO] != 0.0:
         lo, hi = _ortho_chord(vp, x0)
         if lo <= hi:
-            evals += _column_pass(kind, f, fg, hf, hfp, vp, x0, lo, hi, 1.0,
+            evals += _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, lo, hi, 1.0,
                                   gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
-                                  stk, sdepth, left, mid)
+                                  stk, sdepth, left, mid, bat)
         return evals
     t_lo = vp[VP_T0]
     t_hi = vp[VP_T1]
     t_view = -vp[VP_D3] * vp[VP_CA]      # the viewpoint's t, eq. (1)
     if t_hi > t_view:
-        evals += _column_pass(kind, f, fg, hf, hfp, vp, x0, max(t_lo, t_view), t_hi,
+        evals += _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, max(t_lo, t_view), t_hi,
                               1.0, gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
-                              stk, sdepth, left, mid)
+                              stk, sdepth, left, mid, bat)
     if t_lo < t_view:
-        evals += _column_pass(kind, f, fg, hf, hfp, vp, x0, min(t_hi, t_view), t_lo,
+        evals += _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, min(t_hi, t_view), t_lo,
                               -1.0, gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
-                              stk, sdepth, left, mid)
+                              stk, sdepth, left, mid, bat)
     return evals
 
 
 @ngjit_parallel
-def column_kernel(kind, f, fg, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals, wrange):
+def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals, wrange):
     """Render every column c into gbuf (n_tiles, H, TILE, G_SIZE) and ebuf (n_tiles,
     E_SIZE, H, TILE) (layout.py: tiles of TILE columns, rows from the bottom), the
     tiles in parallel. ebuf's E_SEEN plane says where the G-buffer is set (it is not
@@ -792,7 +855,7 @@ def column_kernel(kind, f, fg, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals, wr
             c = b * T + lane
             if c >= W:
                 break
-            evals[c] = render_column(kind, f, fg, hf, hfp, vp, c, gbuf[b, :, lane],
+            evals[c] = render_column(kind, f, fg, fb, hf, hfp, vp, c, gbuf[b, :, lane],
                                      ebuf[b, :, :, lane], hrec[c], hstride)
             lo = np.inf
             hi = -np.inf

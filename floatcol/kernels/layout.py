@@ -40,7 +40,8 @@ VP_AA = 34        # 1.0: coverage antialiasing along columns (section 6.4), into
 VP_XOFF = 35      # sub-column offset in pixels (antialiasing across columns)
 VP_ADAPT = 36     # 1.0: locally adaptive planes (section 6.3)
 VP_QNEAR = 37     # perspective: the nearest depth z + d3, where the step is a pixel
-VP_SIZE = 38
+VP_BATCH = 38     # 1.0: orthographic planes are evaluated in batches by fb (SIMD code)
+VP_SIZE = 39
 
 FIX_NONE = 0
 FIX_SPLINE = 1

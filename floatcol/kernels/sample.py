@@ -113,7 +113,8 @@ def column_x0(vp, col):
 
 
 @ngjit_inline
-def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
+def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess, given=False, gw=0.0, gwu=0.0,
+                 gwv=0.0):
     """Surface point on column plane x = x0 and sampling plane t.
 
     Returns (status, evaluations, ypix, z, u, v, w, nx, ny, nz, intensity):
@@ -121,6 +122,8 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
     (nx, ny, nz) the unit upper-side normal in screen coordinates, and intensity the
     lambert |L.N| with the light at the viewpoint. ``s_guess`` starts the
     perspective Newton iteration (the previous sample's s converges in 1-3 steps).
+    Orthographic only: with ``given``, (gw, gwu, gwv) are f, f_u, f_v at the point,
+    already evaluated (as surface_eval gives them: NaN all three at a hole).
     """
     ca = vp[VP_CA]
     sa = vp[VP_SA]
@@ -139,7 +142,12 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
         v = cv - r * sb + t * cb
         if not in_domain(vp, u, v):
             return S_OUTSIDE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
-        w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
+        if given:
+            w = gw
+            wu = gwu
+            wv = gwv
+        else:
+            w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
         evals += 1
         if not math.isfinite(w):
             return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -252,8 +260,9 @@ def lambert(vp, vx, vy, vz, nx, ny, nz):
 
 
 @ngjit
-def eval_grid(kind, f, fg, hf, hfp, u, v, out):
-    """out[i] = (w, f_u, f_v) at (u[i], v[i]); NaN rows where the surface has a hole."""
+def eval_grid(kind, f, fg, fb, hf, hfp, u, v, out):
+    """out[i] = (w, f_u, f_v) at (u[i], v[i]); NaN rows where the surface has a hole.
+    (fb, the batch evaluator, is not used: this serves small grids.)"""
     for i in range(u.shape[0]):
         w, wu, wv = surface_eval(kind, fg, hf, hfp, u[i], v[i])
         out[i, 0] = w

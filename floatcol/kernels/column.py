@@ -283,7 +283,9 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
             cov0_p, ecov_p = coverages(ecol, jp)
             if seen_p and cont and jp == j_cont:
                 c0 = min(cov0_p + cov, 1.0)
-                if c0 != cov0_p:
+                if c0 >= 1.0 and ecov_p <= 0.0:
+                    ecol[E_SEEN, jp] = seen_side(ecol[E_SEEN, jp])   # whole: unflagged
+                elif c0 != cov0_p:
                     keep_coverages(ecol, jp)
                     ecol[E_COV0, jp] = c0
                 continue
@@ -319,6 +321,17 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
         gcol[j, G_T] = prev[A_T] + lw * (cur[A_T] - prev[A_T])
         if aa:
             c0 = max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0)
+            if cont and j == j_cont and x != 0.0:
+                # The pixel at the interval's continuing end: its edge surface is the
+                # part this run's spans covered below (above) the centre. The same
+                # surface goes on through the centre, so the pixel is the centre's,
+                # as every pixel inside a run (the end pixel of a span was a blend of
+                # two points of one surface: 10 % of the pixels at 1920x1080)
+                c0 = min(c0 + ecol[E_COV, j], 1.0)
+                ecol[E_COV, j] = 0.0
+                if c0 >= 1.0:
+                    ecol[E_SEEN, j] = side
+                    continue
             if x != 0.0 or c0 != 1.0:   # covered in part, or shared with an edge surface
                 keep_coverages(ecol, j)
                 ecol[E_COV0, j] = c0

@@ -38,7 +38,9 @@ from .correct import (
     WALL_DEPTH, hermite_extremum, lambert_at, probe, ridge_between, shading_problem, wall_between,
     wall_normal,
 )
-from .sample import _clip_line, column_x0, in_domain, sample_point, surface_eval
+from .sample import (
+    _clip_line, column_x0, in_domain, ortho_point, sample_point, surface_eval,
+)
 
 
 EDGE_BISECTIONS = 16
@@ -89,8 +91,23 @@ H_LO = 1
 H_HI = 2
 H_TS = 3
 H_SIZE = 4
-#: Orthographic planes per call of the batch evaluator (_batch_planes)
+#: Orthographic planes per call of the batch evaluator (_batch_planes), and the rows
+#: of its scratch bat (BATCH values each): the point, f (then the partials, BAT_W + 1
+#: and + 2, m apart, as fb writes them), the partials again BATCH apart, the sample
 BATCH = 64
+BAT_U = 0
+BAT_V = 1
+BAT_W = 2
+BAT_WU = 5
+BAT_WV = 6
+BAT_ST = 7
+BAT_Y = 8
+BAT_Z = 9
+BAT_NX = 10
+BAT_NY = 11
+BAT_NZ = 12
+BAT_I = 13
+BAT_SIZE = 14
 
 
 @ngjit_inline
@@ -118,39 +135,10 @@ def _newton_start(run, t):
     return lin, np.nan
 
 
-@ngjit_nrt_free
-def _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run):
-    """_sample_at as a call (where sampling is rare: corrections, edges)."""
-    return _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run, False, False, 0.0, 0.0,
-                      0.0)
-
-
 @ngjit_inline
-def _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run, main, given, gw, gwu, gwv):
-    """Sample plane t of column x0 into ``out`` (the A_* attributes). Returns (status,
-    evaluations of f). Inlined in the column's main loop. In perspective the Newton
-    iteration starts from ``run``'s last solutions (_newton_start): every sample's
-    solution updates the line, only those of the pass's own planes (``main``) the
-    parabola (the samples of corrections, edges and slivers go back and forth in t
-    between two planes). Orthographic: with ``given``, f, f_u, f_v at the point are
-    (gw, gwu, gwv) (_batch_planes)."""
-    if vp[VP_ORTHO] == 0.0 and not _may_meet_domain(vp, x0, t):
-        return S_OUTSIDE, 0
-    lin = np.nan
-    quad = np.nan
-    if vp[VP_ORTHO] == 0.0:
-        lin, quad = _newton_start(run, t)
-        if kind == SURF_HEIGHTFIELD:
-            quad = np.nan           # bilinear patches: the curve bends at the creases only
-    st, ev, y, z, u, v, w, nx, ny, nz, lam = sample_point(kind, f, fg, hf, hfp, vp, x0, t,
-                                                          quad if quad == quad else lin,
-                                                          given, gw, gwu, gwv)
-    if st != S_OK:
-        if ev > 0:                  # where the failed point lies (_column_pass's slivers)
-            out[A_U] = u
-            out[A_V] = v
-        return st, ev
-    s = w - vp[VP_CW]
+def _keep_solution(run, s, t, main):
+    """Perspective: remember sample (t, s) for _newton_start: every sample's solution
+    updates the line, only those of the pass's own planes (``main``) the parabola."""
     dt = t - run[RUN_GUESS_T]
     run[RUN_SLOPE] = (s - run[RUN_GUESS]) / dt if dt != 0.0 else 0.0
     run[RUN_GUESS] = s
@@ -168,6 +156,53 @@ def _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run, main, given, gw, g
             run[RUN_MN] = 1.0
         run[RUN_MS] = s
         run[RUN_MT0] = t
+
+
+@ngjit_nrt_free
+def _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run):
+    """_sample_at as a call (where sampling is rare: corrections, edges)."""
+    return _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run, False, out, -1)
+
+
+@ngjit_inline
+def _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run, main, bat, kb):
+    """Sample plane t of column x0 into ``out`` (the A_* attributes). Returns (status,
+    evaluations of f). Inlined in the column's main loop. In perspective the Newton
+    iteration starts from ``run``'s last solutions (_newton_start): every sample's
+    solution updates the line, only those of the pass's own planes (``main``) the
+    parabola (the samples of corrections, edges and slivers go back and forth in t
+    between two planes). Orthographic planes sampled ahead by _batch_planes come as
+    number kb >= 0 of bat."""
+    if kb >= 0:
+        st = int(bat[BAT_ST * BATCH + kb])
+        ev = 0 if st == S_OUTSIDE else 1
+        u = bat[BAT_U * BATCH + kb]
+        v = bat[BAT_V * BATCH + kb]
+        y = bat[BAT_Y * BATCH + kb]
+        z = bat[BAT_Z * BATCH + kb]
+        w = bat[BAT_W * BATCH + kb]
+        nx = bat[BAT_NX * BATCH + kb]
+        ny = bat[BAT_NY * BATCH + kb]
+        nz = bat[BAT_NZ * BATCH + kb]
+        lam = bat[BAT_I * BATCH + kb]
+    else:
+        if vp[VP_ORTHO] == 0.0 and not _may_meet_domain(vp, x0, t):
+            return S_OUTSIDE, 0
+        lin = np.nan
+        quad = np.nan
+        if vp[VP_ORTHO] == 0.0:
+            lin, quad = _newton_start(run, t)
+            if kind == SURF_HEIGHTFIELD:
+                quad = np.nan       # bilinear patches: the curve bends at the creases only
+        st, ev, y, z, u, v, w, nx, ny, nz, lam = sample_point(kind, f, fg, hf, hfp, vp, x0, t,
+                                                              quad if quad == quad else lin)
+    if st != S_OK:
+        if ev > 0:                  # where the failed point lies (_column_pass's slivers)
+            out[A_U] = u
+            out[A_V] = v
+        return st, ev
+    if vp[VP_ORTHO] == 0.0:
+        _keep_solution(run, w - vp[VP_CW], t, main)
     out[A_Y] = y
     out[A_Z] = z
     out[A_U] = u
@@ -585,12 +620,15 @@ def _plane_t(i, n, ta, tb, t0, ka, dt):
 
 @ngjit_nrt_free
 def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0, ka, dt):
-    """Evaluate f, f_u, f_v at the points of an orthographic column's planes i_lo to
-    i_hi - 1 with one call of the batch evaluator fb (SIMD code) into bat: u, v at
-    bat[:BATCH], bat[BATCH:2 BATCH], then w, f_u, f_v of the m = i_hi - i_lo points at
-    bat[2 BATCH + (0, m, 2 m) + k]. A point where any of the three is not finite is
-    evaluated again by fg, which alone decides a hole (vmath's functions give NaN
-    where they cannot answer)."""
+    """Sample an orthographic column's planes i_lo to i_hi - 1 ahead into bat, BATCH
+    values per attribute (BAT_*): f, f_u, f_v with one call of the batch evaluator fb
+    (SIMD code), then each point's status, screen row and depth, unit normal and
+    intensity (sample.ortho_point), in loops whose iterations do not wait on one
+    another (in the column's loop, the normal's root and division were a fifth of
+    its time). fb writes the m = i_hi - i_lo values of f, f_u, f_v to bat from
+    BAT_W * BATCH on, m apart; a point where any of them is not finite is evaluated
+    again by fg, which alone decides a hole (vmath's functions give NaN where they
+    cannot answer)."""
     m = i_hi - i_lo
     cb = vp[VP_CB]
     sb = vp[VP_SB]
@@ -598,15 +636,36 @@ def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0,
     v0 = vp[VP_CV] - x0 * sb
     for k in range(m):
         t = _plane_t(i_lo + k, n, ta, tb, t0, ka, dt)
-        bat[k] = u0 + t * sb
-        bat[BATCH + k] = v0 + t * cb
-    o = 2 * BATCH
-    fb(array_ptr(bat, 0), array_ptr(bat, BATCH), hfp[0], array_ptr(bat, o), m)
+        bat[BAT_U * BATCH + k] = u0 + t * sb
+        bat[BAT_V * BATCH + k] = v0 + t * cb
+    o = BAT_W * BATCH
+    fb(array_ptr(bat, BAT_U * BATCH), array_ptr(bat, BAT_V * BATCH), hfp[0],
+       array_ptr(bat, o), m)
     for k in range(m):
         if not (math.isfinite(bat[o + k]) and math.isfinite(bat[o + m + k])
                 and math.isfinite(bat[o + 2 * m + k])):
             bat[o + k], bat[o + m + k], bat[o + 2 * m + k] = surface_eval(
-                kind, fg, hf, hfp, bat[k], bat[BATCH + k])
+                kind, fg, hf, hfp, bat[BAT_U * BATCH + k], bat[BAT_V * BATCH + k])
+    # the partials move to their own rows, before the point's rows overwrite them
+    for k in range(m):
+        bat[BAT_WU * BATCH + k] = bat[o + m + k]
+        bat[BAT_WV * BATCH + k] = bat[o + 2 * m + k]
+    for k in range(m):
+        t = _plane_t(i_lo + k, n, ta, tb, t0, ka, dt)
+        u = bat[BAT_U * BATCH + k]
+        v = bat[BAT_V * BATCH + k]
+        if in_domain(vp, u, v):
+            st, y, z, nx, ny, nz, lam = ortho_point(vp, t, bat[o + k], bat[BAT_WU * BATCH + k],
+                                                    bat[BAT_WV * BATCH + k])
+        else:
+            st, y, z, nx, ny, nz, lam = S_OUTSIDE, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        bat[BAT_ST * BATCH + k] = st
+        bat[BAT_Y * BATCH + k] = y
+        bat[BAT_Z * BATCH + k] = z
+        bat[BAT_NX * BATCH + k] = nx
+        bat[BAT_NY * BATCH + k] = ny
+        bat[BAT_NZ * BATCH + k] = nz
+        bat[BAT_I * BATCH + k] = lam
 
 
 @ngjit_nrt_free
@@ -659,13 +718,10 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                 b_hi = min(n, i + BATCH)
                 _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, b_lo, b_hi, n, ta, tb, t0, ka,
                               dt)
-            m = b_hi - b_lo
-            o = 2 * BATCH + (i - b_lo)
-            st, ev = _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, cur, run, True, True,
-                                bat[o], bat[o + m], bat[o + 2 * m])
+            st, ev = _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, cur, run, True, bat,
+                                i - b_lo)
         else:
-            st, ev = _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, cur, run, True, False,
-                                0.0, 0.0, 0.0)
+            st, ev = _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, cur, run, True, bat, -1)
         evals += ev
         if persp and st != S_OK and not resume:
             # A sliver: the surface's curve in Pi may enter the domain and leave it
@@ -808,7 +864,7 @@ def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     scr = np.empty((SCR_STK + STACK_SIZE, A_SIZE))
     scr[SCR_RUN, :] = 0.0
     sdepth = np.zeros(STACK_SIZE, dtype=np.int64)
-    bat = np.empty(5 * BATCH)
+    bat = np.empty(BAT_SIZE * BATCH)
     return _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
                           sdepth, bat)
 

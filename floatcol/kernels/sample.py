@@ -113,8 +113,7 @@ def column_x0(vp, col):
 
 
 @ngjit_inline
-def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess, given=False, gw=0.0, gwu=0.0,
-                 gwv=0.0):
+def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
     """Surface point on column plane x = x0 and sampling plane t.
 
     Returns (status, evaluations, ypix, z, u, v, w, nx, ny, nz, intensity):
@@ -122,8 +121,6 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess, given=False, gw=0.0, 
     (nx, ny, nz) the unit upper-side normal in screen coordinates, and intensity the
     lambert |L.N| with the light at the viewpoint. ``s_guess`` starts the
     perspective Newton iteration (the previous sample's s converges in 1-3 steps).
-    Orthographic only: with ``given``, (gw, gwu, gwv) are f, f_u, f_v at the point,
-    already evaluated (as surface_eval gives them: NaN all three at a hole).
     """
     ca = vp[VP_CA]
     sa = vp[VP_SA]
@@ -142,16 +139,11 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess, given=False, gw=0.0, 
         v = cv - r * sb + t * cb
         if not in_domain(vp, u, v):
             return S_OUTSIDE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
-        if given:
-            w = gw
-            wu = gwu
-            wv = gwv
-        else:
-            w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
-        evals += 1
-        if not math.isfinite(w):
-            return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
-        s = w - cw
+        w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
+        st, ypix, z1, nx, ny, nz, lam = ortho_point(vp, t, w, wu, wv)
+        if st != S_OK:
+            return st, 1, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
+        return S_OK, 1, ypix, z1, u, v, w, nx, ny, nz, lam
     else:
         # Exact placement on the column plane (ERRATA 2): Pi is r = x0 (z + d3) / d1
         # with z = s sin(a) + t cos(a); solve s = f(u(r(s), t), v(r(s), t)) by
@@ -224,12 +216,9 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess, given=False, gw=0.0, 
         return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
     y1 = s * ca - t * sa                         # eqs. (4), (10)
     z1 = s * sa + t * ca
-    if ortho:
-        y0 = y1
-    else:
-        if z1 + d3 <= d1:                        # z1 <= -d2: in front of the screen
-            return S_BEHIND, evals, 0.0, z1, u, v, w, 0.0, 0.0, 0.0, 0.0
-        y0 = y1 * d1 / (z1 + d3)
+    if z1 + d3 <= d1:                            # z1 <= -d2: in front of the screen
+        return S_BEHIND, evals, 0.0, z1, u, v, w, 0.0, 0.0, 0.0, 0.0
+    y0 = y1 * d1 / (z1 + d3)
     ypix = y0 * vp[VP_SCALE] + (vp[VP_H] - 1.0) * 0.5
     # eq. (11): the upper-side normal (-f_u, 1, -f_v) in screen coordinates
     nx = -wu * cb + wv * sb
@@ -239,12 +228,35 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess, given=False, gw=0.0, 
     nx *= q
     ny *= q
     nz *= q
-    # eq. (12): light at the viewpoint; orthographic: toward the viewer (0, 0, -1)
-    if ortho:
-        lam = lambert(vp, 0.0, 0.0, -1.0, nx, ny, nz)
-    else:
-        lam = lambert(vp, -r, -y1, -(d3 + z1), nx, ny, nz)
+    # eq. (12): light at the viewpoint (or vp's directional light)
+    lam = lambert(vp, -r, -y1, -(d3 + z1), nx, ny, nz)
     return S_OK, evals, ypix, z1, u, v, w, nx, ny, nz, lam
+
+
+@ngjit_inline
+def ortho_point(vp, t, w, wu, wv):
+    """An orthographic sample on plane t whose point (inside the domain) has f, f_u,
+    f_v = w, wu, wv: (status, ypix, z, nx, ny, nz, intensity) as sample_point."""
+    if not (math.isfinite(w) and math.isfinite(wu) and math.isfinite(wv)):
+        return S_HOLE, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    s = w - vp[VP_CW]
+    y1 = s * ca - t * sa                         # eq. (4)
+    z1 = s * sa + t * ca
+    ypix = y1 * vp[VP_SCALE] + (vp[VP_H] - 1.0) * 0.5
+    # eq. (11): the upper-side normal (-f_u, 1, -f_v) in screen coordinates
+    nx = -wu * cb + wv * sb
+    ny = wu * sa * sb + ca + wv * sa * cb
+    nz = -wu * ca * sb + sa - wv * ca * cb
+    q = 1.0 / math.sqrt(nx * nx + ny * ny + nz * nz)
+    nx *= q
+    ny *= q
+    nz *= q
+    # eq. (12): the light toward the viewer (0, 0, -1), or vp's directional light
+    return S_OK, ypix, z1, nx, ny, nz, lambert(vp, 0.0, 0.0, -1.0, nx, ny, nz)
 
 
 @ngjit_inline

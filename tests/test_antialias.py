@@ -51,10 +51,10 @@ CASES = [
     # measured PSNR (dB) of rgba against the 4x4 box-filtered ray caster, whole image /
     # partly covered pixels: off, coverage, 3 sub-columns
     # at 120x90
-    ("3*sin(u*cos(v))", 5, 30, 20, "orthographic"),   # 26.50/12.96, 29.61/15.96, 36.41/23.71
-    ("3*sin(u*cos(v))", 5, 30, 20, "perspective"),    # 27.17/12.74, 30.08/15.97, 36.71/24.40
+    ("3*sin(u*cos(v))", 5, 30, 20, "orthographic"),   # 26.63/12.97, 29.91/15.82, 37.01/23.57
+    ("3*sin(u*cos(v))", 5, 30, 20, "perspective"),    # 27.17/12.74, 30.20/15.89, 36.96/24.32
     ("2*exp(-(u**2+v**2))*cos(3*sqrt(u**2+v**2))", 3, 25, 40, "orthographic"),
-    #                                                  32.99/18.69, 37.68/32.39, 44.39/36.94
+    #                                                  32.99/18.69, 38.46/33.02, 46.72/37.96
 ]
 
 

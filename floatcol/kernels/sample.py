@@ -220,17 +220,24 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
         return S_BEHIND, evals, 0.0, z1, u, v, w, 0.0, 0.0, 0.0, 0.0
     y0 = y1 * d1 / (z1 + d3)
     ypix = y0 * vp[VP_SCALE] + (vp[VP_H] - 1.0) * 0.5
-    # eq. (11): the upper-side normal (-f_u, 1, -f_v) in screen coordinates
+    nx, ny, nz = unit_normal(vp, wu, wv)
+    # eq. (12): light at the viewpoint (or vp's directional light)
+    lam = lambert(vp, -r, -y1, -(d3 + z1), nx, ny, nz)
+    return S_OK, evals, ypix, z1, u, v, w, nx, ny, nz, lam
+
+
+@ngjit_inline
+def unit_normal(vp, wu, wv):
+    """Eq. (11): the unit upper-side normal (-f_u, 1, -f_v) in screen coordinates."""
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
     nx = -wu * cb + wv * sb
     ny = wu * sa * sb + ca + wv * sa * cb
     nz = -wu * ca * sb + sa - wv * ca * cb
     q = 1.0 / math.sqrt(nx * nx + ny * ny + nz * nz)
-    nx *= q
-    ny *= q
-    nz *= q
-    # eq. (12): light at the viewpoint (or vp's directional light)
-    lam = lambert(vp, -r, -y1, -(d3 + z1), nx, ny, nz)
-    return S_OK, evals, ypix, z1, u, v, w, nx, ny, nz, lam
+    return nx * q, ny * q, nz * q
 
 
 @ngjit_inline
@@ -241,20 +248,11 @@ def ortho_point(vp, t, w, wu, wv):
         return S_HOLE, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     ca = vp[VP_CA]
     sa = vp[VP_SA]
-    cb = vp[VP_CB]
-    sb = vp[VP_SB]
     s = w - vp[VP_CW]
     y1 = s * ca - t * sa                         # eq. (4)
     z1 = s * sa + t * ca
     ypix = y1 * vp[VP_SCALE] + (vp[VP_H] - 1.0) * 0.5
-    # eq. (11): the upper-side normal (-f_u, 1, -f_v) in screen coordinates
-    nx = -wu * cb + wv * sb
-    ny = wu * sa * sb + ca + wv * sa * cb
-    nz = -wu * ca * sb + sa - wv * ca * cb
-    q = 1.0 / math.sqrt(nx * nx + ny * ny + nz * nz)
-    nx *= q
-    ny *= q
-    nz *= q
+    nx, ny, nz = unit_normal(vp, wu, wv)
     # eq. (12): the light toward the viewer (0, 0, -1), or vp's directional light
     return S_OK, ypix, z1, nx, ny, nz, lambert(vp, 0.0, 0.0, -1.0, nx, ny, nz)
 

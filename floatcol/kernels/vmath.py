@@ -77,27 +77,27 @@ def _kernel_cos(z):
 
 
 @_vjit
-def vsin(x):
-    """sin(x); NaN where |x| >= VTRIG_MAX or x is not finite (evaluate again)."""
+def _sincos(x):
+    """(sin x, cos x) for |x| < VTRIG_MAX: the kernels at r, by x's quadrant."""
     q, r = _reduce(x)
     z = r * r
     s = _kernel_sin(r, z)
     c = _kernel_cos(z)
-    y = s if (q & 1) == 0 else c
-    y = -y if q >= 2 else y
-    return y if abs(x) < VTRIG_MAX else np.nan
+    sx = s if (q & 1) == 0 else c
+    cx = c if (q & 1) == 0 else s
+    return (-sx if q >= 2 else sx), (-cx if (q == 1 or q == 2) else cx)
+
+
+@_vjit
+def vsin(x):
+    """sin(x); NaN where |x| >= VTRIG_MAX or x is not finite (evaluate again)."""
+    return _sincos(x)[0] if abs(x) < VTRIG_MAX else np.nan
 
 
 @_vjit
 def vcos(x):
     """cos(x); NaN where |x| >= VTRIG_MAX or x is not finite (evaluate again)."""
-    q, r = _reduce(x)
-    z = r * r
-    s = _kernel_sin(r, z)
-    c = _kernel_cos(z)
-    y = c if (q & 1) == 0 else s
-    y = -y if (q == 1 or q == 2) else y
-    return y if abs(x) < VTRIG_MAX else np.nan
+    return _sincos(x)[1] if abs(x) < VTRIG_MAX else np.nan
 
 
 @_vjit

@@ -3,8 +3,8 @@
 A Surface carries f, and f fused with f_u and f_v in one function, as compiled Numba
 cfuncs (DESIGN.md section 4), so a new expression costs about a tenth of a second
 and never recompiles a kernel (big orthographic pictures add a batch evaluator of
-the three in SIMD code, compiled on first use: Surface.batch); or a height grid read as a bilinear function (the
-paper's "digital height field").
+the three in SIMD code, compiled on first use: Surface.batch); or a height grid read
+as a bilinear function (the paper's "digital height field").
 """
 from __future__ import annotations
 

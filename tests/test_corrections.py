@@ -24,7 +24,8 @@ def _setup(elev, projection, azim=90.0, size=(121, 121), scale=40.0):
     vp = r.view.params()
     vp[L.VP_DETECT] = ALL
     vp[L.VP_JUMP] = 1.0 / 16.0
-    return fc.as_surface(RIDGE).kernel_args(), vp, r
+    kind, f, fg, _, hf, hfp = fc.as_surface(RIDGE).kernel_args()
+    return (kind, f, fg, hf, hfp), vp, r
 
 
 def _sample(args, vp, t, x0=0.0):

@@ -92,22 +92,20 @@ H_HI = 2
 H_TS = 3
 H_SIZE = 4
 #: Orthographic planes per call of the batch evaluator (_batch_planes), and the rows
-#: of its scratch bat (BATCH values each): the point, f (then the partials, BAT_W + 1
-#: and + 2, m apart, as fb writes them), the partials again BATCH apart, the sample
+#: of its scratch bat (BATCH values each): the point; f, f_u, f_v (3 rows, which fb
+#: fills m apart for m planes); the sample's status, row, depth, normal, intensity
 BATCH = 64
 BAT_U = 0
 BAT_V = 1
 BAT_W = 2
-BAT_WU = 5
-BAT_WV = 6
-BAT_ST = 7
-BAT_Y = 8
-BAT_Z = 9
-BAT_NX = 10
-BAT_NY = 11
-BAT_NZ = 12
-BAT_I = 13
-BAT_SIZE = 14
+BAT_ST = 5
+BAT_Y = 6
+BAT_Z = 7
+BAT_NX = 8
+BAT_NY = 9
+BAT_NZ = 10
+BAT_I = 11
+BAT_SIZE = 12
 
 
 @ngjit_inline
@@ -159,13 +157,13 @@ def _keep_solution(run, s, t, main):
 
 
 @ngjit_nrt_free
-def _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run):
+def _sample_into(kind, f, fg, hf, hfp, vp, x0, t, out, run):
     """_sample_at as a call (where sampling is rare: corrections, edges)."""
-    return _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run, False, out, -1)
+    return _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, False, out, -1)
 
 
 @ngjit_inline
-def _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, out, run, main, bat, kb):
+def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, main, bat, kb):
     """Sample plane t of column x0 into ``out`` (the A_* attributes). Returns (status,
     evaluations of f). Inlined in the column's main loop. In perspective the Newton
     iteration starts from ``run``'s last solutions (_newton_start): every sample's
@@ -386,14 +384,14 @@ def _chord_weight(yq, yp, inv_dy, persp, qp, qc):
 
 
 @ngjit_nrt_free
-def _span(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
+def _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
           stk, sdepth, left, mid, xs):
     """_segment, but a height field's span is first cut where the column crosses the
     grid's cell edges: a bilinear surface's normal jumps there (a crease), so a sample
     on the edge keeps interpolation from mixing two patches, and a crease seen
     edge-on gets its top exactly. ``prev`` ends as the last sample used."""
     if kind != SURF_HEIGHTFIELD or vp[VP_DETECT] == 0.0:
-        return _segment(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
+        return _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
                         persp, d3, H, aa, stk, sdepth, left, mid)
     nv, nu = hf.shape
     au = (prev[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)   # grid coordinates
@@ -419,13 +417,13 @@ def _span(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, p
         # (in perspective the ground path bends a little between samples, so the
         # sample lands near the edge, not on it: secant steps onto it measured no
         # better against the ray caster, for 12 % more samples)
-        st, ev = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, ta + lam * (tb - ta), xs, run)
+        st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, ta + lam * (tb - ta), xs, run)
         evals += ev
         if st == S_OK:
-            evals += _segment(kind, f, fg, fb, hf, hfp, vp, x0, prev, xs, gcol, ecol, run, sigma,
+            evals += _segment(kind, f, fg, hf, hfp, vp, x0, prev, xs, gcol, ecol, run, sigma,
                               persp, d3, H, aa, stk, sdepth, left, mid)
             _copy(prev, xs)
-    evals += _segment(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
+    evals += _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
                       persp, d3, H, aa, stk, sdepth, left, mid)
     return evals
 
@@ -446,7 +444,7 @@ def _problem(vp, x0, prev, cur, run):
 
 
 @ngjit_nrt_free
-def _segment(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
+def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp, d3, H, aa,
              stk, sdepth, left, mid):
     """Fill the span prev -> cur of an open run, correcting the problems that
     App. A.2's Problem() finds (Problem_Correction()): a ridge by the cubic spline's
@@ -478,7 +476,7 @@ def _segment(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
             # end of section 5: halve while the jump persists; then shade it as a wall
             halvings = d if searching else 0
             if halvings < WALL_DEPTH and n < STACK_SIZE - 2:
-                st, ev = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0,
+                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0,
                                       0.5 * (left[A_T] + right[A_T]), mid, run)
                 evals += ev
                 if st == S_OK:
@@ -496,7 +494,7 @@ def _segment(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
                 n -= 1
                 # the wall's far end may sit on the jump, where difference quotients
                 # give f_u, f_v no meaning: take the normal a little beyond it
-                st, ev = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0,
+                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0,
                                       right[A_T] + WALL_BEYOND * (right[A_T] - w0[A_T]), mid,
                                       run)
                 evals += ev
@@ -514,9 +512,9 @@ def _segment(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
         if fix == FIX_SPLINE or (fix == FIX_ADAPTIVE and d < max_depth):
             # one more sample inside the span: the spline's top, or the middle
             if fix == FIX_SPLINE:
-                st, ev = _spline_top(kind, f, fg, fb, hf, hfp, vp, x0, left, right, mid, run)
+                st, ev = _spline_top(kind, f, fg, hf, hfp, vp, x0, left, right, mid, run)
             else:
-                st, ev = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0,
+                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0,
                                       0.5 * (left[A_T] + right[A_T]), mid, run)
             evals += ev
             if st == S_OK:
@@ -526,7 +524,7 @@ def _segment(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma
             ta = left[A_T]
             h = (right[A_T] - ta) / rate
             for k in range(1, rate):
-                st, ev = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, ta + k * h, mid, run)
+                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, ta + k * h, mid, run)
                 evals += ev
                 if st == S_OK:
                     _fill_span(gcol, ecol, run, left, mid, sigma, persp, d3, H, aa)
@@ -556,7 +554,7 @@ def _push(stk, sdepth, n, mid, depth):
 
 
 @ngjit_nrt_free
-def _spline_top(kind, f, fg, fb, hf, hfp, vp, x0, a, b, out, run):
+def _spline_top(kind, f, fg, hf, hfp, vp, x0, a, b, out, run):
     """Sample the surface at the extremum of the cubic spline between samples a and b
     (eqs. 13-22, see correct.py); with VP_SPLINE_TOL > 0, repeat on the half that
     still holds the sign change while |V.N| there exceeds the tolerance (end of
@@ -575,7 +573,7 @@ def _spline_top(kind, f, fg, fb, hf, hfp, vp, x0, a, b, out, run):
     for _ in range(iters):
         tau, _ = hermite_extremum(ya, yb, ma, mb, tb - ta)
         t2 = ta + tau * (tb - ta)
-        st, ev = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, t2, out, run)
+        st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, t2, out, run)
         evals += ev
         if st != S_OK:
             break
@@ -624,8 +622,7 @@ def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0,
     values per attribute (BAT_*): f, f_u, f_v with one call of the batch evaluator fb
     (SIMD code), then each point's status, screen row and depth, unit normal and
     intensity (sample.ortho_point), in loops whose iterations do not wait on one
-    another (in the column's loop, the normal's root and division were a fifth of
-    its time). fb writes the m = i_hi - i_lo values of f, f_u, f_v to bat from
+    another. fb writes the m = i_hi - i_lo values of f, f_u, f_v to bat from
     BAT_W * BATCH on, m apart; a point where any of them is not finite is evaluated
     again by fg, which alone decides a hole (vmath's functions give NaN where they
     cannot answer)."""
@@ -646,17 +643,13 @@ def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0,
                 and math.isfinite(bat[o + 2 * m + k])):
             bat[o + k], bat[o + m + k], bat[o + 2 * m + k] = surface_eval(
                 kind, fg, hf, hfp, bat[BAT_U * BATCH + k], bat[BAT_V * BATCH + k])
-    # the partials move to their own rows, before the point's rows overwrite them
-    for k in range(m):
-        bat[BAT_WU * BATCH + k] = bat[o + m + k]
-        bat[BAT_WV * BATCH + k] = bat[o + 2 * m + k]
     for k in range(m):
         t = _plane_t(i_lo + k, n, ta, tb, t0, ka, dt)
         u = bat[BAT_U * BATCH + k]
         v = bat[BAT_V * BATCH + k]
         if in_domain(vp, u, v):
-            st, y, z, nx, ny, nz, lam = ortho_point(vp, t, bat[o + k], bat[BAT_WU * BATCH + k],
-                                                    bat[BAT_WV * BATCH + k])
+            st, y, z, nx, ny, nz, lam = ortho_point(vp, t, bat[o + k], bat[o + m + k],
+                                                    bat[o + 2 * m + k])
         else:
             st, y, z, nx, ny, nz, lam = S_OUTSIDE, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
         bat[BAT_ST * BATCH + k] = st
@@ -718,10 +711,10 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                 b_hi = min(n, i + BATCH)
                 _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, b_lo, b_hi, n, ta, tb, t0, ka,
                               dt)
-            st, ev = _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, cur, run, True, bat,
+            st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True, bat,
                                 i - b_lo)
         else:
-            st, ev = _sample_at(kind, f, fg, fb, hf, hfp, vp, x0, t, cur, run, True, bat, -1)
+            st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True, bat, -1)
         evals += ev
         if persp and st != S_OK and not resume:
             # A sliver: the surface's curve in Pi may enter the domain and leave it
@@ -735,7 +728,7 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                                         0.0, 1.0)
                 if c_lo < c_hi:
                     tm = prev_t + 0.5 * (c_lo + c_hi) * (t - prev_t)
-                    st_m, ev_m = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, tm, tmp, run)
+                    st_m, ev_m = _sample_into(kind, f, fg, hf, hfp, vp, x0, tm, tmp, run)
                     evals += ev_m
                     if st_m == S_OK:
                         resume = True
@@ -760,7 +753,7 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
             found = False
             for _ in range(EDGE_BISECTIONS):
                 tm = 0.5 * (t_ok + t_bad)
-                st_m, ev_m = _sample_into(kind, f, fg, fb, hf, hfp, vp, x0, tm, tmp, run)
+                st_m, ev_m = _sample_into(kind, f, fg, hf, hfp, vp, x0, tm, tmp, run)
                 evals += ev_m
                 if st_m == S_OK:
                     t_ok = tm
@@ -773,7 +766,7 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                     run_start = edge[A_T]
                     _fill_span(gcol, ecol, run, prev, edge, sigma, persp, d3, H, aa)
                 else:
-                    evals += _span(kind, f, fg, fb, hf, hfp, vp, x0, prev, edge, gcol, ecol, run,
+                    evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, edge, gcol, ecol, run,
                                    sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)
                 _copy(prev, edge)
         if st == S_OK:
@@ -802,7 +795,7 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                 if kind != SURF_HEIGHTFIELD and not _problem(vp, x0, prev, cur, run):
                     _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)  # the common case
                 else:
-                    evals += _span(kind, f, fg, fb, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
+                    evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
                                    sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)
             _copy(prev, cur)
         else:

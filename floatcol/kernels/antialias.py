@@ -35,7 +35,7 @@ def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, interp, ambient, spe
         for k in range(offsets.shape[0]):
             col = c + offsets[k]
             ev += render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol[0, :, 0],
-                                ecol[0, :, :, 0], hrec, 0)
+                                ecol[0, :, :, 0], hrec, 0)[0]
             x0 = column_x0(vp, col)
             for j in range(H):
                 _, r, g, b, a = shade_pixel(gcol, ecol, 0, 0, j, True, vp, x0, interp, ambient,

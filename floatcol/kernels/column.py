@@ -78,7 +78,9 @@ RUN_MSLOPE1 = 9
 RUN_MT1 = 10
 RUN_MT2 = 11
 RUN_MN = 12        # how many of those three there are
-RUN_SIZE = 13
+RUN_WLO = 13       # the lowest and highest w painted with the upper side seen (the
+RUN_WHI = 14       # colormap's range), over all the column's passes
+RUN_SIZE = 15
 #: _newton_start keeps the parabola while its bend is at most this fraction of the
 #: line's step (measured on the fidelity suite in perspective: 0.25, 0.5, 1 and 4 give
 #: the same pictures; 1080p evaluations 1.36 M, 1.34 M, 1.31 M, 1.30 M; the line
@@ -338,6 +340,9 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
             ecol[E_COV, jp] = min(cov, room)
     j0 = max(j0, 0)
     j1 = min(j1, H - 1)
+    upper = side > 0.0
+    w_lo = run[RUN_WLO]
+    w_hi = run[RUN_WHI]
     for j in range(j0, j1 + 1):
         x = ecol[E_SEEN, j]
         if seen_side(x) != 0.0:
@@ -347,6 +352,9 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
         gcol[j, G_U] = prev[A_U] + lw * (cur[A_U] - prev[A_U])
         gcol[j, G_V] = prev[A_V] + lw * (cur[A_V] - prev[A_V])
         gcol[j, G_W] = prev[A_W] + lw * (cur[A_W] - prev[A_W])
+        if upper:                       # (the value stored, in the G-buffer's type)
+            w_lo = min(w_lo, gcol[j, G_W])
+            w_hi = max(w_hi, gcol[j, G_W])
         gcol[j, G_NX] = prev[A_NX] + lw * (cur[A_NX] - prev[A_NX])
         gcol[j, G_NY] = prev[A_NY] + lw * (cur[A_NY] - prev[A_NY])
         gcol[j, G_NZ] = prev[A_NZ] + lw * (cur[A_NZ] - prev[A_NZ])
@@ -371,6 +379,8 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
                 ecol[E_SEEN, j] = side + E_FLAG
                 continue
         ecol[E_SEEN, j] = side
+    run[RUN_WLO] = w_lo
+    run[RUN_WHI] = w_hi
 
 
 @ngjit_inline
@@ -842,24 +852,29 @@ SCR_RUN = 4
 SCR_LEFT = 5
 SCR_MID = 6
 SCR_STK = 7
+SCR_WIDTH = max(A_SIZE, RUN_SIZE)
 
 
 @ngjit
 def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     """Render pixel column ``col`` into gcol (H, G_SIZE) and ecol (E_SIZE, H): gcol
     only where ecol's E_SEEN row, cleared here, is not 0 (coverage.py). Returns
-    evaluations of f."""
+    (evaluations of f, the lowest and highest w where the upper side is seen: inf,
+    -inf where it is not)."""
     ecol[E_SEEN, :] = 0.0               # (the coverage planes are kept lazily)
     hrec[:, :] = np.nan
     x0 = column_x0(vp, col)
     # the column's scratch; the passes below run without reference counting
     # (_jit.ngjit_nrt_free)
-    scr = np.empty((SCR_STK + STACK_SIZE, A_SIZE))
+    scr = np.empty((SCR_STK + STACK_SIZE, SCR_WIDTH))
     scr[SCR_RUN, :] = 0.0
+    scr[SCR_RUN, RUN_WLO] = np.inf
+    scr[SCR_RUN, RUN_WHI] = -np.inf
     sdepth = np.zeros(STACK_SIZE, dtype=np.int64)
     bat = np.empty(BAT_SIZE * BATCH)
-    return _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
-                          sdepth, bat)
+    evals = _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
+                           sdepth, bat)
+    return evals, scr[SCR_RUN, RUN_WLO], scr[SCR_RUN, RUN_WHI]
 
 
 @ngjit_nrt_free
@@ -905,7 +920,7 @@ def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals
     cleared), and with VP_AA its coverage planes the coverages. hrec (W, n_lines,
     H_SIZE) receives horizon-line records when hstride > 0; evals (W,) the evaluations
     of f, and wrange (W, 2) the lowest and highest w where the upper side is seen (inf,
-    -inf where it is not), read while the column is in the cache. A tile's columns
+    -inf where it is not), kept while the pixels are painted (_fill). A tile's columns
     run on one thread, one after another, and write only their own tile: no shared
     scratch."""
     n_tiles = gbuf.shape[0]
@@ -917,14 +932,6 @@ def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals
             c = b * T + lane
             if c >= W:
                 break
-            evals[c] = render_column(kind, f, fg, fb, hf, hfp, vp, c, gbuf[b, :, lane],
-                                     ebuf[b, :, :, lane], hrec[c], hstride)
-            lo = np.inf
-            hi = -np.inf
-            for j in range(H):
-                if seen_side(ebuf[b, E_SEEN, j, lane]) > 0.0:
-                    w = gbuf[b, j, lane, G_W]
-                    lo = min(lo, w)
-                    hi = max(hi, w)
-            wrange[c, 0] = lo
-            wrange[c, 1] = hi
+            evals[c], wrange[c, 0], wrange[c, 1] = render_column(
+                kind, f, fg, fb, hf, hfp, vp, c, gbuf[b, :, lane], ebuf[b, :, :, lane], hrec[c],
+                hstride)

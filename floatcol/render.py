@@ -15,7 +15,7 @@ from .kernels.horizon import horizon_kernel
 from .kernels import layout as L
 from .kernels.layout import G_DEPTH, G_NX, G_NZ, G_SIZE, G_U, G_V, G_W
 from .kernels.shade import (
-    INTERP_INTENSITY, INTERP_NORMAL, finish_kernel)
+    INTERP_INTENSITY, INTERP_NORMAL, centre_kernel, finish_kernel)
 from .output import png_bytes, save_image
 from .surface import Surface, as_surface, check_range
 from .view import View, _number, build_view
@@ -61,11 +61,15 @@ class Render:
     depth (H, W) float32 screen z of the seen point (larger = farther), +inf where none;
     stats: "samples" (evaluations of f), "seconds", and more. ``u``, ``v``, ``w`` and
     ``normal`` give the seen point's coordinates and unit normal per pixel.
+
+    A shaded render computes ``intensity`` and ``depth`` from its G-buffer when they
+    are first asked for (the picture does not need them: it is ready sooner), then
+    keeps them.
     """
     rgba: np.ndarray
-    intensity: np.ndarray
+    _intensity: np.ndarray = field(repr=False)
     side: np.ndarray
-    depth: np.ndarray
+    _depth: np.ndarray = field(repr=False)
     stats: dict
     view: View = field(repr=False)
     #: the column pass's tiled G-buffer (kernels/layout.py), set only where a surface
@@ -75,6 +79,31 @@ class Render:
     line_t: np.ndarray = field(default=None, repr=False)
     #: (H, W) bool, where a surface is seen, when ``side`` does not say it (horizon)
     _seen: np.ndarray = field(default=None, repr=False)
+    #: (vp, interpolation, ambient): how centre_kernel lights the G-buffer where
+    #: intensity and depth are still None
+    _centre: tuple = field(default=None, repr=False)
+
+    def _centres(self):
+        if self._intensity is None or self._depth is None:
+            vp, interp, ambient = self._centre
+            intensity = np.empty(self.side.shape, np.float32)
+            depth = np.empty(self.side.shape, np.float32)
+            centre_kernel(self._gbuf, vp, interp, ambient, self.side, intensity, depth)
+            self._intensity, self._depth = intensity, depth
+
+    @property
+    def intensity(self):
+        """(H, W) float32 ambient + diffuse light of the surface at each pixel's centre,
+        in [0, 1]; NaN where no surface is seen."""
+        self._centres()
+        return self._intensity
+
+    @property
+    def depth(self):
+        """(H, W) float32 screen z of the seen point (larger = farther); +inf where no
+        surface is seen."""
+        self._centres()
+        return self._depth
 
     def _mask(self):
         return self.side != 0 if self._seen is None else self._seen
@@ -300,12 +329,10 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         bg8 = color.to_rgba8(background)
         shade_args = (INTERPOLATIONS[interpolation], amb, spec, shine)
 
-        intensity = _pool.empty((H, W), np.float32)
+        intensity = depth = None        # Render computes them when asked (centre_kernel)
         side = _pool.empty((H, W), np.int8)
-        depth = _pool.empty((H, W), np.float32)
         rgba = _pool.empty((H, W, 4), np.uint8)
-        finish_kernel(gbuf, ebuf, vp, *shade_args, lut, w_lo, w_hi, lower_rgb, bg8, intensity,
-                      side, depth, rgba)
+        finish_kernel(gbuf, ebuf, vp, *shade_args, lut, w_lo, w_hi, lower_rgb, bg8, side, rgba)
         if sub_columns > 1:
             # section 6.4 across columns: sub-columns at even offsets inside each pixel,
             # averaged (premultiplied), one column of scratch per thread; the
@@ -340,7 +367,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         "derivatives": surface.derivatives,
         "w_limits": w_limits,      # the colormap's height range (column method)
     }
-    return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t, seen)
+    return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t, seen,
+                  (vp, INTERPOLATIONS[interpolation], amb))
 
 
 def _batch_evaluator(surface, view, method, sampling):

@@ -48,6 +48,7 @@ class Surface:
         self.time = time            # name of the time parameter, or None
         self.hf = np.zeros((2, 2))
         self.hfp = np.array([0.0, 1.0, 0.0, 1.0])   # hfp[0]: the time t
+        self._fits = {}     # fit_grid's, shared by the copies made by at()
 
     def at(self, t):
         """The same surface at time ``t`` (same compiled functions, no recompile)."""
@@ -141,6 +142,36 @@ def check_range(name, rng):
     if hi == lo:
         raise ValueError(f"range {name} = ({lo}, {hi}) is empty: low must be below high")
     return lo, hi
+
+
+#: fit_grid keeps this many grids per Surface (domains, sizes, times)
+FITS_KEPT = 8
+
+
+def fit_grid(surface, domain, n):
+    """f of ``surface`` (a Surface, or anything with ``evaluate(u, v)``) on an n x n
+    grid over domain ((ua, ub), (va, vb)), NaN at holes, as a dict of read-only
+    arrays "u", "v", "w" (rows follow v), where its user may keep what it derives
+    from them alone. A Surface keeps the last FITS_KEPT: the same dict comes back for
+    the same domain, n and time (view.build_view fits every picture's camera on it;
+    the grid and its range took 0.7 of the 0.9 ms a render spent in Python)."""
+    (ua, ub), (va, vb) = domain
+    keep = isinstance(surface, Surface)
+    if keep:
+        key = (float(ua), float(ub), float(va), float(vb), int(n), surface.hfp.tobytes())
+        fit = surface._fits.get(key)
+        if fit is not None:
+            return fit
+    gu, gv = np.meshgrid(np.linspace(ua, ub, n), np.linspace(va, vb, n))
+    gw = surface.evaluate(gu, gv)
+    for a in (gu, gv, gw):
+        a.flags.writeable = False
+    fit = {"u": gu, "v": gv, "w": gw}
+    if keep:
+        while len(surface._fits) >= FITS_KEPT:
+            surface._fits.pop(next(iter(surface._fits)))
+        surface._fits[key] = fit
+    return fit
 
 
 def as_surface(expr, vars=None, time=None) -> Surface:

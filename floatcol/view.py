@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .kernels import layout as L
+from .surface import fit_grid
 
 PROJECTIONS = {"orthographic": True, "ortho": True, "perspective": False, "persp": False}
 FIT_GRID = 65          # samples per side used to fit the picture and estimate w
@@ -176,11 +177,21 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
     ortho = PROJECTIONS[projection.lower()]
     (ua, ub), (va, vb) = domain
 
-    # A grid over the domain: the extent of the surface for fitting.
-    gu, gv = np.meshgrid(np.linspace(ua, ub, FIT_GRID), np.linspace(va, vb, FIT_GRID))
-    gw = surface.evaluate(gu, gv)
-    ok = np.isfinite(gw)
-    w_lo, w_hi = _robust_range(gw) if ok.any() else (0.0, 0.0)
+    # A grid over the domain: the extent of the surface for fitting (kept by the
+    # surface, with what is derived here from it alone).
+    fit = fit_grid(surface, domain, FIT_GRID)
+    gu, gv, gw = fit["u"], fit["v"], fit["w"]
+    if "ok" not in fit:
+        fit["ok"] = ok = np.isfinite(gw)
+        ok.flags.writeable = False
+        fit["range"] = _robust_range(gw) if ok.any() else (0.0, 0.0)
+        fit["all"] = (float(gw[ok].min()), float(gw[ok].max())) if ok.any() else (0.0, 0.0)
+        # the fit points: the surface's, and the domain's at the centre's height
+        fit["pu"] = np.concatenate([gu[ok], gu.ravel()])
+        fit["pv"] = np.concatenate([gv[ok], gv.ravel()])
+        fit["pu"].flags.writeable = fit["pv"].flags.writeable = False
+    ok = fit["ok"]
+    w_lo, w_hi = fit["range"]
     if center is None:
         # A fitted picture is centred; a given scale keeps the paper's origin.
         center = "auto" if scale is None else (0.0, 0.0, 0.0)
@@ -196,8 +207,8 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
         if len(center) != 3:
             raise ValueError(f"center must be None, 'auto' or (u, v, w), got {center!r}")
 
-    pu = np.concatenate([gu[ok], gu.ravel()])
-    pv = np.concatenate([gv[ok], gv.ravel()])
+    pu = fit["pu"]
+    pv = fit["pv"]
     pw = np.concatenate([np.clip(gw[ok], w_lo, w_hi), np.full(gu.size, center[2])])
     if not ok.any():
         pw[:] = center[2]
@@ -215,8 +226,7 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
                  for cu_ in (ua, ub) for cv_ in (va, vb)]
     t_range = (min(corners_t), max(corners_t))
     spread = max(w_hi - w_lo, 1e-9)
-    wmin_all = float(gw[ok].min()) if ok.any() else 0.0
-    wmax_all = float(gw[ok].max()) if ok.any() else 0.0
+    wmin_all, wmax_all = fit["all"]
     w_range = (wmin_all - spread, wmax_all + spread)
 
     proto = View(width, height, elev, azim, ortho, d1, d2, 1.0, center, domain, t_range,

@@ -154,3 +154,38 @@ def test_heightfield_holes():
     # no painted pixel inside the missing cells (cells 2..6 touch a NaN corner)
     inside = (r.u > 2.05) & (r.u < 5.95) & (r.v > 2.05) & (r.v < 5.95)
     assert not (seen & inside).any()
+
+
+class _OnlyEvaluate:
+    """A surface seen only through evaluate(): build_view fits it without a cache."""
+
+    def __init__(self, surface):
+        self.surface = surface
+
+    def evaluate(self, u, v):
+        return self.surface.evaluate(u, v)
+
+
+def test_the_fit_grid_is_kept_per_domain_and_time():
+    from floatcol.surface import FITS_KEPT, fit_grid
+    from floatcol.view import build_view
+    s = fc.as_surface("sin(u - 2*t) * cos(v) + u/4", time="t")
+    s0, s1 = s.at(0.0), s.at(1.0)
+    dom_a, dom_b = ((-2.0, 2.0), (-1.0, 3.0)), ((0.0, 5.0), (-5.0, 0.0))
+    fa = fit_grid(s0, dom_a, 65)
+    assert fit_grid(s0, dom_a, 65) is fa                   # kept
+    assert fit_grid(s0, dom_b, 65) is not fa               # another domain
+    f1 = fit_grid(s1, dom_a, 65)                           # another time
+    assert f1 is not fa and not np.array_equal(f1["w"], fa["w"])
+    gu, gv = np.meshgrid(np.linspace(-2, 2, 65), np.linspace(-1, 3, 65))
+    assert np.array_equal(f1["w"], s1.evaluate(gu, gv))
+    assert not fa["w"].flags.writeable                     # shared: read only
+    # the camera fitted on the kept grid is the one fitted afresh, for each domain
+    for dom in (dom_a, dom_b, dom_a):
+        for proj in ("orthographic", "perspective"):
+            kept = build_view(s0, dom, (320, 240), 30, 40, proj)
+            fresh = build_view(_OnlyEvaluate(s0), dom, (320, 240), 30, 40, proj)
+            assert kept.params().tolist() == fresh.params().tolist()
+    for k in range(FITS_KEPT + 3):                         # bounded
+        fit_grid(s0, ((0.0, 1.0 + k), (0.0, 1.0)), 9)
+    assert len(s0._fits) == FITS_KEPT

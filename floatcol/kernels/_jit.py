@@ -85,3 +85,22 @@ def stack_pair(typingctx):
     def codegen(context, builder, signature, args):
         return cgutils.alloca_once(builder, context.get_value_type(types.float64), size=2)
     return types.CPointer(types.float64)(), codegen
+
+
+
+@intrinsic(prefer_literal=True)
+def array_as_tuple(typingctx, arr, n):
+    """The first n (a literal) values of the 1-D array arr as a tuple: values in
+    registers, which a loop's stores cannot change, so a loop that reads them (the
+    view parameters vp, say) needs neither reloads nor run-time alias checks."""
+    if not isinstance(n, types.IntegerLiteral):
+        return None
+    size = n.literal_value
+    tup = types.UniTuple(arr.dtype, size)
+
+    def codegen(context, builder, signature, args):
+        ary = context.make_array(signature.args[0])(context, builder, args[0])
+        intp = context.get_value_type(types.intp)
+        vals = [builder.load(builder.gep(ary.data, [intp(i)])) for i in range(size)]
+        return context.make_tuple(builder, tup, vals)
+    return tup(arr, n), codegen

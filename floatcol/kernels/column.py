@@ -22,7 +22,8 @@ import math
 import numpy as np
 from numba import prange
 
-from ._jit import array_ptr, ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
+from ._jit import (
+    array_as_tuple, array_ptr, ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel)
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
@@ -31,7 +32,7 @@ from .layout import (
     SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1,
-    VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR, VP_BATCH,
+    VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR, VP_BATCH, VP_SIZE,
 )
 from .coverage import coverages, keep_coverages, seen_side
 from .correct import (
@@ -653,12 +654,13 @@ def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0,
                 and math.isfinite(bat[o + 2 * m + k])):
             bat[o + k], bat[o + m + k], bat[o + 2 * m + k] = surface_eval(
                 kind, fg, hf, hfp, bat[BAT_U * BATCH + k], bat[BAT_V * BATCH + k])
+    vt = array_as_tuple(vp, VP_SIZE)    # (in registers: the loop below becomes SIMD code)
     for k in range(m):
         t = _plane_t(i_lo + k, n, ta, tb, t0, ka, dt)
         u = bat[BAT_U * BATCH + k]
         v = bat[BAT_V * BATCH + k]
-        if in_domain(vp, u, v):
-            st, y, z, nx, ny, nz, lam = ortho_point(vp, t, bat[o + k], bat[o + m + k],
+        if in_domain(vt, u, v):
+            st, y, z, nx, ny, nz, lam = ortho_point(vt, t, bat[o + k], bat[o + m + k],
                                                     bat[o + 2 * m + k])
         else:
             st, y, z, nx, ny, nz, lam = S_OUTSIDE, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0

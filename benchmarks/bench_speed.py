@@ -3,10 +3,13 @@
 floatcol at 1920x1080 and 1024x768, default quality (corrections, antialiasing), in
 both projections; matplotlib ``plot_surface`` of a 400x400 mesh saved to PNG at
 1024x768; PyVista off-screen (optional: ``pip install -e .[bench]``) of the same mesh
-at 1024x768 and 1920x1080, screenshot included (VTK renders with whatever OpenGL the
+at 1024x768 and 1920x1080 in both projections (its parallel projection against
+floatcol's orthographic), screenshot included (VTK renders with whatever OpenGL the
 machine has: on a machine without a GPU, Mesa's software llvmpipe). Every tool is
 warmed up first (Numba compilation, VTK context); times are medians (floatcol's best
-too: a shared virtual machine's speed drifts, compare ratios within one run).
+too: a shared virtual machine's speed drifts, compare ratios within one run). A
+floatcol render's time is the picture's; its intensity and depth arrays are computed
+when first read, and the rows "+ intensity and depth read" time that too.
 
 Then fidelity, the other half of the comparison: the three tools' pictures of the
 same surface from the same orthographic camera, lit by the reference model (I =
@@ -75,7 +78,9 @@ def matplotlib_ms(size):
     return _median_ms(once, 3)
 
 
-def pyvista_ms(size):
+def pyvista_ms(size, parallel=False):
+    """(new view, new mesh) median ms of PyVista at ``size``; ``parallel``: its
+    parallel (orthographic) projection, as floatcol's default."""
     try:
         import pyvista as pv
     except ImportError:
@@ -85,6 +90,8 @@ def pyvista_ms(size):
     grid["w"] = W.ravel(order="F")
     pl = pv.Plotter(off_screen=True, window_size=list(size))
     pl.add_mesh(grid, scalars="w", cmap="viridis", show_scalar_bar=False)
+    if parallel:
+        pl.enable_parallel_projection()
     pl.camera.elevation = 30
     pl.screenshot(return_img=True)                 # warm-up: context and upload
 
@@ -97,6 +104,8 @@ def pyvista_ms(size):
     def fresh():
         p2 = pv.Plotter(off_screen=True, window_size=list(size))
         p2.add_mesh(pv.StructuredGrid(U, V, W), cmap="viridis", show_scalar_bar=False)
+        if parallel:
+            p2.enable_parallel_projection()
         p2.screenshot(return_img=True)
         p2.close()
     fresh()
@@ -230,36 +239,47 @@ def main():
     print("\n| tool | size | projection | samples | median ms | fps | best ms |")
     print("|---|---|---|---|---|---|---|")
     ours = {}
+
+    def with_arrays(**kw):
+        # the picture and, asked for, intensity and depth (Render computes them from
+        # its G-buffer when first read: the picture does not wait for them)
+        r = fc.render(EXPR, **kw, **DOM)
+        return r.intensity, r.depth
+
     for size in ((1920, 1080), (1024, 768)):
         for proj in ("orthographic", "perspective"):
             r = fc.render(EXPR, size=size, projection=proj, **DOM)
-            ts = _times_ms(lambda: fc.render(EXPR, size=size, projection=proj, **DOM), 9)
+            ts = _times_ms(lambda: fc.render(EXPR, size=size, projection=proj, **DOM), 15)
             ms = statistics.median(ts)
             ours[size, proj] = ms
             print(f"| floatcol | {size[0]}x{size[1]} | {proj} | {r.stats['samples']} | {ms:.1f} | "
                   f"{1000 / ms:.1f} | {min(ts):.1f} |")
+            ts = _times_ms(lambda: with_arrays(size=size, projection=proj), 9)
+            print(f"| floatcol, + intensity and depth read | {size[0]}x{size[1]} | {proj} | | "
+                  f"{statistics.median(ts):.1f} | {1000 / statistics.median(ts):.1f} | "
+                  f"{min(ts):.1f} |")
     mpl = matplotlib_ms((1024, 768))
     print(f"| matplotlib plot_surface {MESH}x{MESH}, savefig PNG | 1024x768 | persp | "
           f"{MESH * MESH} vertices | {mpl:.0f} | {1000 / mpl:.2f} | |")
     pv_res = {}
     for size in ((1024, 768), (1920, 1080)):
-        res = pyvista_ms(size)
-        if res is None:
-            print("| PyVista | - | not installed (pip install -e .[bench]) | | | | |")
-            break
-        pv_res[size] = res
-        print(f"| PyVista {MESH}x{MESH}, new view + screenshot | {size[0]}x{size[1]} | persp | "
-              f"{MESH * MESH} vertices | {res[0]:.1f} | {1000 / res[0]:.1f} | |")
-        print(f"| PyVista {MESH}x{MESH}, new mesh + screenshot | {size[0]}x{size[1]} | persp | "
-              f"{MESH * MESH} vertices | {res[1]:.1f} | {1000 / res[1]:.1f} | |")
+        for proj in ("orthographic", "perspective"):
+            res = pyvista_ms(size, parallel=proj == "orthographic")
+            if res is None:
+                print("| PyVista | - | not installed (pip install -e .[bench]) | | | | |")
+                break
+            pv_res[size, proj] = res
+            for what, ms in zip(("new view", "new mesh"), res):
+                print(f"| PyVista {MESH}x{MESH}, {what} + screenshot | {size[0]}x{size[1]} | "
+                      f"{proj} | {MESH * MESH} vertices | {ms:.1f} | {1000 / ms:.1f} | |")
     print("\n| ratio | value |")
     print("|---|---|")
     for proj in ("orthographic", "perspective"):
         print(f"| matplotlib 1024x768 / floatcol 1024x768 {proj} | {mpl / ours[(1024, 768), proj]:.1f}x |")
-    for size, (view_ms, fresh_ms) in pv_res.items():
-        ms = ours[size, "perspective"]
-        print(f"| PyVista new view / floatcol persp, {size[0]}x{size[1]} | {view_ms / ms:.2f}x |")
-        print(f"| PyVista new mesh / floatcol persp, {size[0]}x{size[1]} | {fresh_ms / ms:.2f}x |")
+    for (size, proj), (view_ms, fresh_ms) in pv_res.items():
+        ms = ours[size, proj]           # the same projection on both sides
+        print(f"| PyVista new view / floatcol, {size[0]}x{size[1]} {proj} | {view_ms / ms:.2f}x |")
+        print(f"| PyVista new mesh / floatcol, {size[0]}x{size[1]} {proj} | {fresh_ms / ms:.2f}x |")
     rows = fidelity()
     print("\n| tool, orthographic 512x384 against the ray caster | PSNR dB | agreement |")
     print("|---|---|---|")

@@ -86,8 +86,8 @@ class Render:
     def _centres(self):
         if self._intensity is None or self._depth is None:
             vp, interp, ambient = self._centre
-            intensity = np.empty(self.side.shape, np.float32)
-            depth = np.empty(self.side.shape, np.float32)
+            intensity = _pool.empty(self.side.shape, np.float32)
+            depth = _pool.empty(self.side.shape, np.float32)
             centre_kernel(self._gbuf, vp, interp, ambient, self.side, intensity, depth)
             self._intensity, self._depth = intensity, depth
 

@@ -268,7 +268,8 @@ def centre_kernel(gbuf, vp, interp, ambient, side, intensity, depth):
     """intensity (ambient + diffuse, NaN where nothing is seen) and depth (+inf where
     nothing is seen) at the pixel centres, top row first, from the tiled G-buffer
     gbuf where ``side`` (finish_kernel's) says a surface is seen: the values
-    finish_kernel lights the picture with (_light at the centre)."""
+    finish_kernel lights the picture with (_light at the centre). In finish_kernel's
+    order: blocks of FINISH_ROWS rows filled in runs, then tile by tile."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]
@@ -280,14 +281,17 @@ def centre_kernel(gbuf, vp, interp, ambient, side, intensity, depth):
         for j in range(j_lo, j_hi):
             i = H - 1 - j
             for c in range(W):
-                if side[i, c] == 0:
-                    intensity[i, c] = np.nan
-                    depth[i, c] = np.inf
-                    continue
-                b = c // T
-                lane = c - b * T
-                g = gbuf[b, j, lane]
-                lam, _ = _light(vp, column_x0(vp, c), j, g[G_DEPTH], g[G_NX], g[G_NY], g[G_NZ],
-                                g[G_I], interp, ambient, 0.0, 1.0)
-                intensity[i, c] = lam
-                depth[i, c] = g[G_DEPTH]
+                intensity[i, c] = np.nan
+                depth[i, c] = np.inf
+        for b in range(n_tiles):
+            for j in range(j_lo, j_hi):
+                i = H - 1 - j
+                for lane in range(min(T, W - b * T)):
+                    c = b * T + lane
+                    if side[i, c] == 0:
+                        continue
+                    g = gbuf[b, j, lane]
+                    lam, _ = _light(vp, column_x0(vp, c), j, g[G_DEPTH], g[G_NX], g[G_NY],
+                                    g[G_NZ], g[G_I], interp, ambient, 0.0, 1.0)
+                    intensity[i, c] = lam
+                    depth[i, c] = g[G_DEPTH]

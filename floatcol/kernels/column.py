@@ -344,23 +344,44 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
     upper = side > 0.0
     w_lo = run[RUN_WLO]
     w_hi = run[RUN_WHI]
+    # the chord's ends, read once: the stores below might alias prev and cur for all
+    # LLVM knows, which made it load all 18 again for every pixel
+    z0 = prev[A_Z]
+    u0 = prev[A_U]
+    v0 = prev[A_V]
+    w0 = prev[A_W]
+    nx0 = prev[A_NX]
+    ny0 = prev[A_NY]
+    nz0 = prev[A_NZ]
+    i0 = prev[A_I]
+    t0 = prev[A_T]
+    dz = cur[A_Z] - z0
+    du = cur[A_U] - u0
+    dv = cur[A_V] - v0
+    dw = cur[A_W] - w0
+    dnx = cur[A_NX] - nx0
+    dny = cur[A_NY] - ny0
+    dnz = cur[A_NZ] - nz0
+    di = cur[A_I] - i0
+    dt = cur[A_T] - t0
     for j in range(j0, j1 + 1):
         x = ecol[E_SEEN, j]
         if seen_side(x) != 0.0:
             continue                    # painted by an earlier, nearer run
         lw = _chord_weight(j, yp, inv_dy, persp, qp, qc)
-        gcol[j, G_DEPTH] = prev[A_Z] + lw * (cur[A_Z] - prev[A_Z])
-        gcol[j, G_U] = prev[A_U] + lw * (cur[A_U] - prev[A_U])
-        gcol[j, G_V] = prev[A_V] + lw * (cur[A_V] - prev[A_V])
-        gcol[j, G_W] = prev[A_W] + lw * (cur[A_W] - prev[A_W])
-        if upper:                       # (the value stored, in the G-buffer's type)
-            w_lo = min(w_lo, gcol[j, G_W])
-            w_hi = max(w_hi, gcol[j, G_W])
-        gcol[j, G_NX] = prev[A_NX] + lw * (cur[A_NX] - prev[A_NX])
-        gcol[j, G_NY] = prev[A_NY] + lw * (cur[A_NY] - prev[A_NY])
-        gcol[j, G_NZ] = prev[A_NZ] + lw * (cur[A_NZ] - prev[A_NZ])
-        gcol[j, G_I] = prev[A_I] + lw * (cur[A_I] - prev[A_I])
-        gcol[j, G_T] = prev[A_T] + lw * (cur[A_T] - prev[A_T])
+        gcol[j, G_DEPTH] = z0 + lw * dz
+        gcol[j, G_U] = u0 + lw * du
+        gcol[j, G_V] = v0 + lw * dv
+        w32 = np.float32(w0 + lw * dw)  # (the value stored, in the G-buffer's type)
+        gcol[j, G_W] = w32
+        if upper:
+            w_lo = min(w_lo, w32)
+            w_hi = max(w_hi, w32)
+        gcol[j, G_NX] = nx0 + lw * dnx
+        gcol[j, G_NY] = ny0 + lw * dny
+        gcol[j, G_NZ] = nz0 + lw * dnz
+        gcol[j, G_I] = i0 + lw * di
+        gcol[j, G_T] = t0 + lw * dt
         if aa:
             c0 = max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0)
             if cont and j == j_cont and x != 0.0:

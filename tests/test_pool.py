@@ -15,7 +15,7 @@ KW = dict(u=(-5, 5), v=(-5, 5), size=(320, 240))
 
 @pytest.fixture
 def small_pool(monkeypatch):
-    """Pool the buffers of 320x240 renders too (normally only those over 32 MiB)."""
+    """Pool the buffers of 320x240 renders too (normally only those of 1 MiB on)."""
     monkeypatch.setattr(_pool, "MIN_BYTES", 1 << 16)
     _pool.clear()
     yield
@@ -44,6 +44,25 @@ def test_held_results_are_never_overwritten(small_pool):
             if k == "_gbuf":
                 continue                # set only where a surface is seen: gbuffer
             assert np.array_equal(a, _arrays(r)[k], equal_nan=True), k
+
+
+def test_intensity_and_depth_read_late_are_those_of_their_render(small_pool):
+    # a Render computes them from its G-buffer when first read: other renders, and
+    # their own intensity and depth (pooled), must not have touched what it reads
+    r1 = fc.render(E1, **KW)
+    r2 = fc.render(E2, **KW)
+    r2.intensity, r2.depth
+    del r2
+    r3 = fc.render(E1, elev=-40, **KW)
+    r3.intensity
+    late = r1.intensity.copy(), r1.depth.copy()
+    _pool.clear()
+    fresh = fc.render(E1, **KW)
+    assert np.array_equal(late[0], fresh.intensity, equal_nan=True)
+    assert np.array_equal(late[1], fresh.depth)
+    assert not np.shares_memory(r1.intensity, r3.intensity)
+    assert (r1.side != 0).any() and np.isnan(late[0][r1.side == 0]).all()
+    assert np.isfinite(late[0][r1.side != 0]).all() and np.isinf(late[1][r1.side == 0]).all()
 
 
 def test_a_view_keeps_its_buffer(small_pool):

@@ -830,7 +830,7 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                 else:
                     evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
                                    sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)
-            _copy(prev, cur)
+            prev, cur = cur, prev       # cur becomes prev (its old values: scratch)
         else:
             run[RUN_OPEN] = 0.0
         prev_st = st

@@ -87,7 +87,6 @@ def stack_pair(typingctx):
     return types.CPointer(types.float64)(), codegen
 
 
-
 @intrinsic(prefer_literal=True)
 def array_as_tuple(typingctx, arr, n):
     """The first n (a literal) values of the 1-D array arr as a tuple: values in

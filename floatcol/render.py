@@ -299,9 +299,11 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     vp[L.VP_AA] = 1.0 if aa_cov else 0.0
     ebuf = _pool.empty((n_tiles, L.E_SIZE, H, L.TILE), np.float32)
     wrange = np.empty((W, 2))
+    rows = np.empty((n_tiles, 2), dtype=np.int64)
     fb = _batch_evaluator(surface, view, method, sampling)
     vp[L.VP_BATCH] = 0.0 if fb is None else 1.0
-    column_kernel(*surface.kernel_args(fb), vp, gbuf, ebuf, hrec, hstride, evals, wrange)
+    column_kernel(*surface.kernel_args(fb), vp, gbuf, ebuf, hrec, hstride, evals, wrange,
+                  rows)
     t_kernel = time.perf_counter()
     line_t = None
     w_limits = None
@@ -332,7 +334,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         intensity = depth = None        # Render computes them when asked (centre_kernel)
         side = _pool.empty((H, W), np.int8)
         rgba = _pool.empty((H, W, 4), np.uint8)
-        finish_kernel(gbuf, ebuf, vp, *shade_args, lut, w_lo, w_hi, lower_rgb, bg8, side, rgba)
+        finish_kernel(gbuf, ebuf, rows, vp, *shade_args, lut, w_lo, w_hi, lower_rgb, bg8, side,
+                      rgba)
         if sub_columns > 1:
             # section 6.4 across columns: sub-columns at even offsets inside each pixel,
             # averaged (premultiplied), one column of scratch per thread; the

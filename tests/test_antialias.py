@@ -91,3 +91,40 @@ def test_antialias_defaults_and_errors():
             fc.render(expr, antialias=bad, **kw)
     with pytest.raises(ValueError, match="antialias"):
         fc.render(expr, method="horizon", antialias=3, **kw)
+
+
+@pytest.mark.parametrize("expr, kw", [
+    ("3*sin(u*cos(v))", dict(u=(-5, 5), v=(-5, 5))),
+    ("3*sin(u*cos(v))", dict(u=(-5, 5), v=(-5, 5), projection="perspective", elev=50)),
+    ("sqrt(1 - u**2 - v**2)", dict(u=(-1.2, 1.2), v=(-1.2, 1.2), elev=-20)),   # hole, lower side
+    ("floor(u) + 0.3*v", dict(u=(-3, 3), v=(-3, 3))),                          # walls
+])
+def test_the_finishing_pass_skips_only_rows_no_column_marked(monkeypatch, expr, kw):
+    # column_kernel's rows bound, per tile, where E_SEEN may be set (antialiased
+    # partial pixels included); the finishing pass reads nothing outside it
+    import sys
+    from floatcol.kernels.layout import E_SEEN
+    render_module = sys.modules["floatcol.render"]
+    seen = {}
+    kernel = render_module.column_kernel
+
+    def spy(*args):
+        kernel(*args)
+        seen["ebuf"], seen["rows"] = args[8].copy(), args[-1].copy()
+    monkeypatch.setattr(render_module, "column_kernel", spy)
+    fc.render(expr, size=(203, 151), **kw)
+    e, rows = seen["ebuf"][:, E_SEEN], seen["rows"]       # (tiles, H, TILE)
+    e[-1, :, 203 - (len(e) - 1) * e.shape[2]:] = 0.0      # lanes past the picture's
+    H = e.shape[1]                                        # edge: never written nor read
+    j = np.arange(H)[None, :, None]
+    outside = (j < rows[:, 0, None, None]) | (j > rows[:, 1, None, None])
+    assert not (outside & (e != 0)).any()
+    # ... and a tight one: within a row of the marked rows (the floor of a span's low
+    # end), H and -1 where a tile marks none
+    marked = (e != 0).any(axis=2)
+    some = marked.any(axis=1)
+    first = marked.argmax(axis=1)
+    last = H - 1 - marked[:, ::-1].argmax(axis=1)
+    assert (rows[some, 0] >= first[some] - 1).all() and (rows[some, 1] <= last[some] + 1).all()
+    assert (rows[~some, 0] == H).all() and (rows[~some, 1] == -1).all()
+    assert some.any() and (rows[some, 1] - rows[some, 0] + 1).sum() < 0.8 * H * some.sum()

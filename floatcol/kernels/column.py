@@ -81,7 +81,9 @@ RUN_MT2 = 11
 RUN_MN = 12        # how many of those three there are
 RUN_WLO = 13       # the lowest and highest w painted with the upper side seen (the
 RUN_WHI = 14       # colormap's range), over all the column's passes
-RUN_SIZE = 15
+RUN_JLO = 15       # rows (from the bottom) between which the column's passes may have
+RUN_JHI = 16       # set E_SEEN (the finishing pass reads none outside them)
+RUN_SIZE = 17
 #: _newton_start keeps the parabola while its bend is at most this fraction of the
 #: line's step (measured on the fidelity suite in perspective: 0.25, 0.5, 1 and 4 give
 #: the same pictures; 1080p evaluations 1.36 M, 1.34 M, 1.31 M, 1.30 M; the line
@@ -295,6 +297,10 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
         run[RUN_YMIN] = y
     else:
         return                          # hidden: inside the floating interval
+    # the rows the span may mark: its pixels from the floor of its low end to the
+    # one holding its high end (the partly covered pixels included)
+    run[RUN_JLO] = min(run[RUN_JLO], max(math.floor(lo_f), 0.0))
+    run[RUN_JHI] = max(run[RUN_JHI], min(math.floor(hi_f + 0.5), H - 1.0))
     yp = prev[A_Y]
     inv_dy = 1.0 / (y - yp)
     qp = 1.0
@@ -883,7 +889,8 @@ def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     """Render pixel column ``col`` into gcol (H, G_SIZE) and ecol (E_SIZE, H): gcol
     only where ecol's E_SEEN row, cleared here, is not 0 (coverage.py). Returns
     (evaluations of f, the lowest and highest w where the upper side is seen: inf,
-    -inf where it is not)."""
+    -inf where it is not, the lowest and highest row where E_SEEN may be set: H, -1
+    where none is)."""
     ecol[E_SEEN, :] = 0.0               # (the coverage planes are kept lazily)
     hrec[:, :] = np.nan
     x0 = column_x0(vp, col)
@@ -893,11 +900,14 @@ def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     scr[SCR_RUN, :] = 0.0
     scr[SCR_RUN, RUN_WLO] = np.inf
     scr[SCR_RUN, RUN_WHI] = -np.inf
+    scr[SCR_RUN, RUN_JLO] = ecol.shape[1]
+    scr[SCR_RUN, RUN_JHI] = -1.0
     sdepth = np.zeros(STACK_SIZE, dtype=np.int64)
     bat = np.empty(BAT_SIZE * BATCH)
     evals = _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
                            sdepth, bat)
-    return evals, scr[SCR_RUN, RUN_WLO], scr[SCR_RUN, RUN_WHI]
+    return (evals, scr[SCR_RUN, RUN_WLO], scr[SCR_RUN, RUN_WHI], int(scr[SCR_RUN, RUN_JLO]),
+            int(scr[SCR_RUN, RUN_JHI]))
 
 
 @ngjit_nrt_free
@@ -936,25 +946,32 @@ def _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, 
 
 
 @ngjit_parallel
-def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals, wrange):
+def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals, wrange,
+                  rows):
     """Render every column c into gbuf (n_tiles, H, TILE, G_SIZE) and ebuf (n_tiles,
     E_SIZE, H, TILE) (layout.py: tiles of TILE columns, rows from the bottom), the
     tiles in parallel. ebuf's E_SEEN plane says where the G-buffer is set (it is not
     cleared), and with VP_AA its coverage planes the coverages. hrec (W, n_lines,
     H_SIZE) receives horizon-line records when hstride > 0; evals (W,) the evaluations
-    of f, and wrange (W, 2) the lowest and highest w where the upper side is seen (inf,
-    -inf where it is not), kept while the pixels are painted (_fill). A tile's columns
-    run on one thread, one after another, and write only their own tile: no shared
-    scratch."""
+    of f; wrange (W, 2) the lowest and highest w where the upper side is seen (inf,
+    -inf where it is not), kept while the pixels are painted (_fill); rows (n_tiles,
+    2) the lowest and highest row of each tile where E_SEEN may be set (H, -1: none),
+    outside which its E_SEEN is 0 and the finishing pass does not read it. A tile's
+    columns run on one thread, one after another, and write only their own tile: no
+    shared scratch."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]
     W = evals.shape[0]
     for b in prange(n_tiles):
+        rows[b, 0] = H
+        rows[b, 1] = -1
         for lane in range(T):
             c = b * T + lane
             if c >= W:
                 break
-            evals[c], wrange[c, 0], wrange[c, 1] = render_column(
+            evals[c], wrange[c, 0], wrange[c, 1], j_lo, j_hi = render_column(
                 kind, f, fg, fb, hf, hfp, vp, c, gbuf[b, :, lane], ebuf[b, :, :, lane], hrec[c],
                 hstride)
+            rows[b, 0] = min(rows[b, 0], j_lo)
+            rows[b, 1] = max(rows[b, 1], j_hi)

@@ -79,13 +79,13 @@ class Render:
     line_t: np.ndarray = field(default=None, repr=False)
     #: (H, W) bool, where a surface is seen, when ``side`` does not say it (horizon)
     _seen: np.ndarray = field(default=None, repr=False)
-    #: (vp, interpolation, ambient): how centre_kernel lights the G-buffer where
+    #: (vp, interpolation, ambient): how centre_kernel lights the G-buffer while
     #: intensity and depth are still None
-    _centre: tuple = field(default=None, repr=False)
+    _light_args: tuple = field(default=None, repr=False)
 
     def _centres(self):
         if self._intensity is None or self._depth is None:
-            vp, interp, ambient = self._centre
+            vp, interp, ambient = self._light_args
             intensity = _pool.empty(self.side.shape, np.float32)
             depth = _pool.empty(self.side.shape, np.float32)
             centre_kernel(self._gbuf, vp, interp, ambient, self.side, intensity, depth)

@@ -177,20 +177,9 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
     ortho = PROJECTIONS[projection.lower()]
     (ua, ub), (va, vb) = domain
 
-    # A grid over the domain: the extent of the surface for fitting (kept by the
-    # surface, with what is derived here from it alone).
-    fit = fit_grid(surface, domain, FIT_GRID)
-    gu, gv, gw = fit["u"], fit["v"], fit["w"]
-    if "ok" not in fit:
-        fit["ok"] = ok = np.isfinite(gw)
-        ok.flags.writeable = False
-        fit["range"] = _robust_range(gw) if ok.any() else (0.0, 0.0)
-        fit["all"] = (float(gw[ok].min()), float(gw[ok].max())) if ok.any() else (0.0, 0.0)
-        # the fit points: the surface's, and the domain's at the centre's height
-        fit["pu"] = np.concatenate([gu[ok], gu.ravel()])
-        fit["pv"] = np.concatenate([gv[ok], gv.ravel()])
-        fit["pu"].flags.writeable = fit["pv"].flags.writeable = False
-    ok = fit["ok"]
+    # A grid over the domain: the extent of the surface for fitting.
+    fit = _fit(surface, domain)
+    gu, gw, ok = fit["u"], fit["w"], fit["ok"]
     w_lo, w_hi = fit["range"]
     if center is None:
         # A fitted picture is centred; a given scale keeps the paper's origin.
@@ -272,6 +261,26 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
     return View(width, height, elev, azim, ortho, float(d1), float(d2), float(scale),
                 tuple(float(c) for c in center), ((float(ua), float(ub)), (float(va), float(vb))),
                 t_range, float(step), w_range, light, (wmin_all, wmax_all), placement, nearest)
+
+
+def _fit(surface, domain):
+    """The fit grid (surface.fit_grid, which a Surface keeps) with what build_view
+    derives from it alone, computed once per grid: where f is finite ("ok"), its
+    robust range and its extremes, and the fit points' u and v (the surface's, then
+    the whole grid's, which build_view puts at the centre's height)."""
+    fit = fit_grid(surface, domain, FIT_GRID)
+    if "ok" not in fit:
+        gu, gv, gw = fit["u"], fit["v"], fit["w"]
+        ok = np.isfinite(gw)
+        seen = ok.any()
+        fit["range"] = _robust_range(gw) if seen else (0.0, 0.0)
+        fit["all"] = (float(gw[ok].min()), float(gw[ok].max())) if seen else (0.0, 0.0)
+        fit["pu"] = np.concatenate([gu[ok], gu.ravel()])
+        fit["pv"] = np.concatenate([gv[ok], gv.ravel()])
+        for a in (ok, fit["pu"], fit["pv"]):
+            a.flags.writeable = False
+        fit["ok"] = ok                  # last: the mark that the rest is there
+    return fit
 
 
 def _robust_range(grid):

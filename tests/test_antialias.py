@@ -112,9 +112,10 @@ def test_the_finishing_pass_skips_only_rows_no_column_marked(monkeypatch, expr, 
         kernel(*args)
         seen["ebuf"], seen["rows"] = args[8].copy(), args[-1].copy()
     monkeypatch.setattr(render_module, "column_kernel", spy)
-    fc.render(expr, size=(203, 151), **kw)
+    W = 203
+    fc.render(expr, size=(W, 151), **kw)
     e, rows = seen["ebuf"][:, E_SEEN], seen["rows"]       # (tiles, H, TILE)
-    e[-1, :, 203 - (len(e) - 1) * e.shape[2]:] = 0.0      # lanes past the picture's
+    e[-1, :, W - (len(e) - 1) * e.shape[2]:] = 0.0        # lanes past the picture's
     H = e.shape[1]                                        # edge: never written nor read
     j = np.arange(H)[None, :, None]
     outside = (j < rows[:, 0, None, None]) | (j > rows[:, 1, None, None])

@@ -129,3 +129,41 @@ def test_the_finishing_pass_skips_only_rows_no_column_marked(monkeypatch, expr, 
     assert (rows[some, 0] >= first[some] - 1).all() and (rows[some, 1] <= last[some] + 1).all()
     assert (rows[~some, 0] == H).all() and (rows[~some, 1] == -1).all()
     assert some.any() and (rows[some, 1] - rows[some, 0] + 1).sum() < 0.8 * H * some.sum()
+
+
+@pytest.mark.parametrize("expr, kw", [
+    ("3*sin(u*cos(v))", dict(u=(-5, 5), v=(-5, 5))),
+    ("3*sin(u*cos(v))", dict(u=(-5, 5), v=(-5, 5), projection="perspective", elev=50)),
+    ("sqrt(1 - u**2 - v**2)", dict(u=(-1.2, 1.2), v=(-1.2, 1.2), elev=-20)),   # hole, lower side
+])
+def test_every_edge_surface_left_in_a_pixel_is_written(monkeypatch, expr, kw):
+    # The column pass holds a new edge surface back (column._hold_edge) and writes it
+    # out only where its pixel still has one when the next is made or the column
+    # ends; the finishing pass reads the planes of every pixel whose E_COV > 0. The
+    # buffer is filled with NaN first: a surface not written out stays NaN.
+    import sys
+    from floatcol.kernels.coverage import flagged
+    from floatcol.kernels.layout import (E_COV, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SEEN,
+                                         E_SIDE, E_W)
+    render_module = sys.modules["floatcol.render"]
+    seen = {}
+    kernel = render_module.column_kernel
+
+    def spy(*args):
+        args[8][...] = np.nan                       # ebuf
+        kernel(*args)
+        seen["ebuf"] = args[8].copy()
+    monkeypatch.setattr(render_module, "column_kernel", spy)
+    W = 203
+    fc.render(expr, size=(W, 151), **kw)
+    e = seen["ebuf"]                                 # (tiles, E_SIZE, H, TILE)
+    e = e.transpose(1, 2, 0, 3).reshape(e.shape[1], e.shape[2], -1)[:, :, :W]
+    x = e[E_SEEN]
+    assert not np.isnan(x).any()                     # every pixel's E_SEEN is set
+    edge = np.vectorize(flagged)(x) & (e[E_COV] > 0)
+    assert edge.sum() > 20                           # silhouettes, reappearing surface
+    planes = e[[E_NX, E_NY, E_NZ, E_W, E_I, E_DEPTH, E_SIDE]][:, edge]
+    assert np.isfinite(planes).all()
+    assert set(np.unique(e[E_SIDE][edge])) <= {-1.0, 1.0}
+    n = np.sqrt(e[E_NX][edge] ** 2 + e[E_NY][edge] ** 2 + e[E_NZ][edge] ** 2)
+    assert (n > 0.3).all() and (n < 1.0001).all()    # between two unit normals

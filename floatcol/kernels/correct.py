@@ -58,14 +58,7 @@ def probe(vp, x0, a):
     ca = vp[VP_CA]
     sa = vp[VP_SA]
     if vp[VP_ORTHO] != 0.0:
-        # the same with V = (0, 0, -1) and n_Pi = (1, 0, 0) (no root, no division but
-        # the slope's: this runs for every sample)
-        if vp[VP_LX] != 0.0 or vp[VP_LY] != 0.0 or vp[VP_LZ] != 0.0:
-            bump = vp[VP_LY] * nz - vp[VP_LZ] * ny
-        else:
-            bump = ny
-        dt = nz * sa + ny * ca
-        return -nz, bump, (-nz / dt * scale if dt != 0.0 else math.copysign(1e30, -nz))
+        return probe_ortho(vp, ny, nz)
     y0 = (a[A_Y] - (vp[VP_H] - 1.0) * 0.5) / scale
     if vp[VP_ORTHO] != 0.0:
         vx = 0.0
@@ -108,6 +101,19 @@ def probe(vp, x0, a):
     else:
         slope = dy / dt * scale
     return vn, bump, slope
+
+
+@ngjit_inline
+def probe_ortho(vp, ny, nz):
+    """probe() in orthographic projection, of a unit normal (., ny, nz): V = (0, 0, -1)
+    and n_Pi = (1, 0, 0) (no root, no division but the slope's: this runs for every
+    sample; for the batched planes in _batch_planes' SIMD loop, vp a tuple there)."""
+    if vp[VP_LX] != 0.0 or vp[VP_LY] != 0.0 or vp[VP_LZ] != 0.0:
+        bump = vp[VP_LY] * nz - vp[VP_LZ] * ny
+    else:
+        bump = ny
+    dt = nz * vp[VP_SA] + ny * vp[VP_CA]
+    return -nz, bump, (-nz / dt * vp[VP_SCALE] if dt != 0.0 else math.copysign(1e30, -nz))
 
 
 @ngjit_nrt_free

@@ -68,6 +68,7 @@ class View:
         vp[L.VP_CB] = math.cos(self.beta)
         vp[L.VP_SB] = math.sin(self.beta)
         vp[L.VP_D1] = self.d1
+        vp[L.VP_INV_D1] = 1.0 / self.d1 if self.d1 else 0.0
         vp[L.VP_D3] = self.d3
         vp[L.VP_SCALE] = self.scale
         vp[L.VP_W] = self.width

@@ -41,7 +41,8 @@ VP_XOFF = 35      # sub-column offset in pixels (antialiasing across columns)
 VP_ADAPT = 36     # 1.0: locally adaptive planes (section 6.3)
 VP_QNEAR = 37     # perspective: the nearest depth z + d3, where the step is a pixel
 VP_BATCH = 38     # 1.0: orthographic planes are evaluated in batches by fb (SIMD code)
-VP_SIZE = 39
+VP_INV_D1 = 39    # 1 / d1 (perspective; 0 in orthographic)
+VP_SIZE = 40
 
 FIX_NONE = 0
 FIX_SPLINE = 1

@@ -411,10 +411,8 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
                 continue
             keep_coverages(ecol, jp)
             lw = _chord_weight(0.5 * (a + b), yp, inv_dy, persp, qp, qc)
-            if new_j >= 0:              # the span's second: the first is written now
-                _put_edge(ecol, new_j, e_nx, e_ny, e_nz, e_w, e_i, e_z, e_side)
-                if run[RUN_EDGE_J] == new_j:
-                    run[RUN_EDGE_J] = -1.0      # (what was held there is overwritten)
+            if new_j >= 0:              # the span's second: hold the first now
+                _hold_edge(ecol, run, new_j, e_nx, e_ny, e_nz, e_w, e_i, e_z, e_side)
             new_j = jp                  # held back: _hold_edge, below
             e_nx = prev[A_NX] + lw * (cur[A_NX] - prev[A_NX])
             e_ny = prev[A_NY] + lw * (cur[A_NY] - prev[A_NY])
@@ -515,26 +513,19 @@ def _hold_edge(ecol, run, j, nx, ny, nz, w, lam, z, side):
 
 
 @ngjit_inline
-def _put_edge(ecol, j, nx, ny, nz, w, lam, z, side):
-    """Write an edge surface to row j of ecol's planes."""
-    ecol[E_NX, j] = nx
-    ecol[E_NY, j] = ny
-    ecol[E_NZ, j] = nz
-    ecol[E_W, j] = w
-    ecol[E_I, j] = lam
-    ecol[E_DEPTH, j] = z
-    ecol[E_SIDE, j] = side
-
-
-@ngjit_inline
 def _write_edge(ecol, run):
     """Write the edge surface that ``run`` holds (_hold_edge) to its row of ecol's
     planes where it is still there (E_COV > 0: an edge's coverage only goes back up
     from 0 with a new edge surface), and hold none."""
     j = int(run[RUN_EDGE_J])
     if j >= 0 and coverages(ecol, j)[1] > 0.0:
-        _put_edge(ecol, j, run[RUN_EDGE], run[RUN_EDGE + 1], run[RUN_EDGE + 2],
-                  run[RUN_EDGE + 3], run[RUN_EDGE + 4], run[RUN_EDGE + 5], run[RUN_EDGE + 6])
+        ecol[E_NX, j] = run[RUN_EDGE]
+        ecol[E_NY, j] = run[RUN_EDGE + 1]
+        ecol[E_NZ, j] = run[RUN_EDGE + 2]
+        ecol[E_W, j] = run[RUN_EDGE + 3]
+        ecol[E_I, j] = run[RUN_EDGE + 4]
+        ecol[E_DEPTH, j] = run[RUN_EDGE + 5]
+        ecol[E_SIDE, j] = run[RUN_EDGE + 6]
     run[RUN_EDGE_J] = -1.0
 
 

@@ -54,25 +54,18 @@ def probe(vp, x0, a):
     nx = a[A_NX]
     ny = a[A_NY]
     nz = a[A_NZ]
+    if vp[VP_ORTHO] != 0.0:
+        return probe_ortho(vp, ny, nz)
     scale = vp[VP_SCALE]
     ca = vp[VP_CA]
     sa = vp[VP_SA]
-    if vp[VP_ORTHO] != 0.0:
-        return probe_ortho(vp, ny, nz)
+    d1 = vp[VP_D1]
     y0 = (a[A_Y] - (vp[VP_H] - 1.0) * 0.5) / scale
-    if vp[VP_ORTHO] != 0.0:
-        vx = 0.0
-        vy = 0.0
-        vz = -1.0
-        px = 1.0                  # Pi: x = x0
-        pz = 0.0
-    else:
-        d1 = vp[VP_D1]
-        vx = -x0
-        vy = -y0
-        vz = -d1
-        px = d1                   # Pi through the viewpoint: d1 x - x0 z = x0 d3 (eq. 8)
-        pz = -x0
+    vx = -x0
+    vy = -y0
+    vz = -d1
+    px = d1                       # Pi through the viewpoint: d1 x - x0 z = x0 d3 (eq. 8)
+    pz = -x0
     vlen = math.sqrt(vx * vx + vy * vy + vz * vz)
     vn = (vx * nx + vy * ny + vz * nz) / vlen
     if vp[VP_LX] != 0.0 or vp[VP_LY] != 0.0 or vp[VP_LZ] != 0.0:
@@ -90,12 +83,9 @@ def probe(vp, x0, a):
     ty = pz * nx - px * nz
     tz = px * ny
     dt = -ty * sa + tz * ca                       # t = -y sin(a) + z cos(a), eq. (1)
-    if vp[VP_ORTHO] != 0.0:
-        dy = ty
-    else:
-        q = a[A_Z] + vp[VP_D3]                     # y0 = y1 d1 / (z1 + d3), eq. (10)
-        y1 = y0 * q / vp[VP_D1]
-        dy = vp[VP_D1] * (ty * q - y1 * tz) / (q * q)
+    q = a[A_Z] + vp[VP_D3]                        # y0 = y1 d1 / (z1 + d3), eq. (10)
+    y1 = y0 * q / d1
+    dy = d1 * (ty * q - y1 * tz) / (q * q)
     if dt == 0.0:
         slope = math.copysign(1e30, dy)
     else:

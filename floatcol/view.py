@@ -10,7 +10,7 @@ the bottom) sit at ``x0 = (c - (W-1)/2) / scale``, ``y0 = (j - (H-1)/2) / scale`
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -42,6 +42,9 @@ class View:
     f_range: tuple = (0.0, 0.0)       # min and max of f on the fitting grid
     placement: str = "exact"          # perspective: "exact" on Pi, or "paper" (eq. 9)
     q_near: float = 0.0               # perspective: nearest depth z + d3 (step is set there)
+    #: perspective, a surface with holes: hole_map's (n, u0, v0, cells per unit u,
+    #: per unit v, summed-area table); None: no map
+    holes: tuple = field(default=None, compare=False, repr=False)
 
     @property
     def alpha(self):
@@ -82,6 +85,11 @@ class View:
         vp[L.VP_FLO], vp[L.VP_FHI] = self.f_range
         vp[L.VP_PAPER] = 1.0 if self.placement == "paper" else 0.0
         vp[L.VP_QNEAR] = self.q_near
+        if self.holes is not None:
+            n, u0, v0, su, sv, sat = self.holes
+            vp[L.VP_HOLE_N], vp[L.VP_HOLE_U0], vp[L.VP_HOLE_V0] = n, u0, v0
+            vp[L.VP_HOLE_SU], vp[L.VP_HOLE_SV] = su, sv
+            vp = np.concatenate([vp, sat.ravel()])
         return vp
 
     def to_screen(self, u, v, w):
@@ -259,9 +267,70 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
         if lv.shape != (3,) or not np.linalg.norm(lv) > 0:
             raise ValueError(f"light must be a non-zero direction (x, y, z), got {light!r}")
         light = tuple(lv / np.linalg.norm(lv))
+    holes = None
+    if not ortho and placement == "exact" and not ok.all():
+        holes = hole_map(surface, domain, fit)
     return View(width, height, elev, azim, ortho, float(d1), float(d2), float(scale),
                 tuple(float(c) for c in center), ((float(ua), float(ub)), (float(va), float(vb))),
-                t_range, float(step), w_range, light, (wmin_all, wmax_all), placement, nearest)
+                t_range, float(step), w_range, light, (wmin_all, wmax_all), placement, nearest,
+                holes)
+
+
+#: hole_map's cells per side, how far its box reaches beyond the domain (a fraction of
+#: the domain's size on each side), and how many cells around a cell must be holes
+HOLE_CELLS = 256
+HOLE_MARGIN = 0.125
+HOLE_DILATE = 2
+
+
+def hole_map(surface, domain, fit):
+    """Where f is surely a hole, for the perspective sample's fallback scan.
+
+    A perspective sample whose Newton iteration fails (its start lies in a hole, or
+    at a steep rim) scans the line of its plane in Pi for the surface: up to 24
+    evaluations of f, then bisections, and a plane through a hole scans in vain. On a
+    hemisphere sqrt(1 - u^2 - v^2) over a square, most planes of the corner columns
+    do (1920x1080: 23.7 million evaluations, 344 ms, against 1 million for a surface
+    without holes). The map, HOLE_CELLS cells a side over the domain and HOLE_MARGIN
+    of its size around it (the scanned lines reach beyond it), marks a cell 0 where f
+    is NaN on every point of a (HOLE_CELLS + 1)^2 grid within HOLE_DILATE cells of
+    it, and the scan takes f as NaN there without evaluating it
+    (kernels/sample._g_at). A finite part of f that no grid point within
+    HOLE_DILATE cells sees (an island or a sliver narrower than a cell, about 1/200
+    of the domain, away from the rest of the surface) can so be missed by the scan;
+    Newton's iteration, which follows the surface from plane to plane, never reads
+    the map. Computed once per fit grid (the Surface keeps it), only where the fit
+    grid saw a hole. Returns (n, u0, v0, cells per unit u, cells per unit v, sat):
+    sat (n + 1, n + 1) the summed-area table of the cells where f may be finite
+    (rows along v), which tells in four reads whether a box of cells holds any
+    (kernels/sample.finite_cells)."""
+    if "holes" in fit:
+        return fit["holes"]
+    (ua, ub), (va, vb) = domain
+    n = HOLE_CELLS
+    mu = HOLE_MARGIN * (ub - ua)
+    mv = HOLE_MARGIN * (vb - va)
+    u0, u1, v0, v1 = ua - mu, ub + mu, va - mv, vb + mv
+    gu, gv = np.meshgrid(np.linspace(u0, u1, n + 1), np.linspace(v0, v1, n + 1))
+    with np.errstate(all="ignore"):
+        finite = np.isfinite(surface.evaluate(gu, gv))
+    # a cell may hold finite values if any of its corners does, or any corner of the
+    # cells within HOLE_DILATE of it
+    k = 2 * HOLE_DILATE + 2                       # grid points per side of the window
+    pad = np.pad(finite, HOLE_DILATE)
+    rows = np.zeros((n, pad.shape[1]), dtype=bool)
+    for di in range(k):
+        rows |= pad[di:di + n]
+    win = np.zeros((n, n), dtype=bool)
+    for dk in range(k):
+        win |= rows[:, dk:dk + n]
+    # stored as its summed-area table: sat[i, k] = cells below row i, left of column k
+    sat = np.zeros((n + 1, n + 1))
+    sat[1:, 1:] = win.cumsum(0).cumsum(1)
+    sat.flags.writeable = False
+    holes = (float(n), u0, v0, n / (u1 - u0), n / (v1 - v0), sat)
+    fit["holes"] = holes
+    return holes
 
 
 def _fit(surface, domain):

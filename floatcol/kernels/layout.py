@@ -42,7 +42,18 @@ VP_ADAPT = 36     # 1.0: locally adaptive planes (section 6.3)
 VP_QNEAR = 37     # perspective: the nearest depth z + d3, where the step is a pixel
 VP_BATCH = 38     # 1.0: orthographic planes are evaluated in batches by fb (SIMD code)
 VP_INV_D1 = 39    # 1 / d1 (perspective; 0 in orthographic)
-VP_SIZE = 40
+# The hole map (perspective, a surface with holes; view.hole_map): n x n cells over
+# the box u in [U0, U0 + n / SU], v in [V0, V0 + n / SV], where f may be finite or is
+# NaN all around (as far as a grid saw), stored after the vector as the summed-area
+# table of the former: vp[VP_SIZE + i * (n + 1) + k] = how many of the cells below row
+# i (along v) and left of column k (along u) may hold finite values (sample.py's
+# finite_cells; the fallback scan of a perspective sample skips f where none).
+VP_HOLE_N = 40    # n; 0: no map
+VP_HOLE_U0 = 41
+VP_HOLE_V0 = 42
+VP_HOLE_SU = 43   # cells per unit of u
+VP_HOLE_SV = 44   # ... of v
+VP_SIZE = 45
 
 FIX_NONE = 0
 FIX_SPLINE = 1

@@ -10,8 +10,8 @@ from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, stack_pair
 from .layout import (
     S_BEHIND, S_HOLE, S_OK, S_OUTSIDE, SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_H, VP_LX, VP_LY, VP_LZ, VP_ORTHO,
-    VP_FHI, VP_FLO, VP_PAPER, VP_SA, VP_SB, VP_W,
-    VP_SCALE, VP_UA, VP_UB, VP_VA, VP_VB, VP_XOFF,
+    VP_FHI, VP_FLO, VP_HOLE_N, VP_HOLE_SU, VP_HOLE_SV, VP_HOLE_U0, VP_HOLE_V0, VP_PAPER,
+    VP_SA, VP_SB, VP_SIZE, VP_W, VP_SCALE, VP_UA, VP_UB, VP_VA, VP_VB, VP_XOFF,
 )
 
 # Relative slack of the domain test, so chord endpoints computed in floating
@@ -167,6 +167,9 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
             r = r0 + k * s
             u = cu + r * cb + t * sb             # eq. (2)
             v = cv - r * sb + t * cb
+            if in_known_hole(vp, u, v):          # (hole_map): f is NaN there
+                w = np.nan
+                break
             w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
             evals += 1
             if not math.isfinite(w):
@@ -280,14 +283,52 @@ def eval_grid(kind, f, fg, fb, hf, hfp, u, v, out):
         out[i, 2] = wv
 
 
+@ngjit_inline
+def finite_cells(vp, u_a, v_a, u_b, v_b):
+    """How many cells of vp's hole map (layout.py; view.hole_map) where f may be
+    finite lie in the box of cells that holds the points (u_a, v_a) and (u_b, v_b)
+    and the segment between them: 0 where f is NaN all over it (as far as the map
+    knows), -1 where the box leaves the map (or there is none). Four reads of the
+    map's summed-area table."""
+    n = vp[VP_HOLE_N]
+    if n == 0.0:
+        return -1.0
+    su = vp[VP_HOLE_SU]
+    sv = vp[VP_HOLE_SV]
+    x0 = (min(u_a, u_b) - vp[VP_HOLE_U0]) * su
+    x1 = (max(u_a, u_b) - vp[VP_HOLE_U0]) * su
+    y0 = (min(v_a, v_b) - vp[VP_HOLE_V0]) * sv
+    y1 = (max(v_a, v_b) - vp[VP_HOLE_V0]) * sv
+    if not (x0 >= 0.0 and x1 < n and y0 >= 0.0 and y1 < n):
+        return -1.0
+    m = int(n) + 1
+    k0 = int(x0)
+    k1 = int(x1) + 1
+    i0 = int(y0) * m
+    i1 = (int(y1) + 1) * m
+    return (vp[VP_SIZE + i1 + k1] - vp[VP_SIZE + i0 + k1] - vp[VP_SIZE + i1 + k0]
+            + vp[VP_SIZE + i0 + k0])
+
+
+@ngjit_inline
+def in_known_hole(vp, u, v):
+    """Whether f is NaN at (u, v) as far as vp's hole map knows: f need not be
+    evaluated there."""
+    return finite_cells(vp, u, v, u, v) == 0.0
+
+
 @ngjit_nrt_free
 def _g_at(kind, f, hf, hfp, vp, r0, k, t, s):
-    """g(s) = f(u(s), v(s)) - cw - s on the line of plane t inside Pi (NaN: a hole)."""
+    """(g(s), evaluations): g = f(u(s), v(s)) - cw - s on the line of plane t inside
+    Pi, NaN at a hole, without evaluating f (0 evaluations) where the hole map knows
+    one."""
     r = r0 + k * s
     u = vp[VP_CU] + r * vp[VP_CB] + t * vp[VP_SB]
     v = vp[VP_CV] - r * vp[VP_SB] + t * vp[VP_CB]
+    if in_known_hole(vp, u, v):
+        return np.nan, 0
     w = surface_value(kind, f, hf, hfp, u, v)
-    return w - vp[VP_CW] - s
+    return w - vp[VP_CW] - s, 1
 
 
 @ngjit_nrt_free
@@ -300,6 +341,15 @@ def _bracketed_s(kind, f, hf, hfp, vp, r0, k, t, s_near):
     spare = 0.25 * (vp[VP_FHI] - vp[VP_FLO]) + 1e-9
     s_lo = vp[VP_FLO] - spare - vp[VP_CW]
     s_hi = vp[VP_FHI] + spare - vp[VP_CW]
+    # a line that the hole map knows is a hole all along: nothing to scan
+    pad = 1e-9 * (s_hi - s_lo + 1.0)
+    r_a = r0 + k * (s_lo - pad)
+    r_b = r0 + k * (s_hi + pad)
+    u_t = vp[VP_CU] + t * vp[VP_SB]
+    v_t = vp[VP_CV] + t * vp[VP_CB]
+    if finite_cells(vp, u_t + r_a * vp[VP_CB], v_t - r_a * vp[VP_SB],
+                    u_t + r_b * vp[VP_CB], v_t - r_b * vp[VP_SB]) == 0.0:
+        return np.nan, 0
     seg_px = abs(k) * (s_hi - s_lo) * vp[VP_SCALE]
     n = min(SCAN_MAX, max(SCAN_MIN, int(math.ceil(seg_px / SCAN_PIXELS)) + 1))
     ds = (s_hi - s_lo) / (n - 1)
@@ -308,12 +358,12 @@ def _bracketed_s(kind, f, hf, hfp, vp, r0, k, t, s_near):
     best_b = np.nan
     ga_best = np.nan
     prev_s = s_lo
-    prev_g = _g_at(kind, f, hf, hfp, vp, r0, k, t, s_lo)
-    evals += 1
+    prev_g, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, s_lo)
+    evals += ev
     for i in range(1, n):
         cur_s = s_lo + i * ds
-        cur_g = _g_at(kind, f, hf, hfp, vp, r0, k, t, cur_s)
-        evals += 1
+        cur_g, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, cur_s)
+        evals += ev
         # the pair to test for a sign change; where f is finite at one end only (the
         # domain's edge, or a hole's), the finite part's end, located by bisection,
         # stands in for the other: a root just inside an edge is found too
@@ -326,8 +376,8 @@ def _bracketed_s(kind, f, hf, hfp, vp, r0, k, t, s_near):
             fin_s, fin_g, nan_s = (prev_s, prev_g, cur_s) if prev_fin else (cur_s, cur_g, prev_s)
             for _ in range(EDGE_BISECT):
                 m = 0.5 * (fin_s + nan_s)
-                gm = _g_at(kind, f, hf, hfp, vp, r0, k, t, m)
-                evals += 1
+                gm, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, m)
+                evals += ev
                 if math.isfinite(gm):
                     fin_s = m
                     fin_g = gm
@@ -355,8 +405,8 @@ def _bracketed_s(kind, f, hf, hfp, vp, r0, k, t, s_near):
     tol = 1e-4 / (vp[VP_SCALE] * max(abs(k), 1e-12))
     for _ in range(BISECT_ITERS):
         m = 0.5 * (a + b)
-        gm = _g_at(kind, f, hf, hfp, vp, r0, k, t, m)
-        evals += 1
+        gm, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, m)
+        evals += ev
         if not math.isfinite(gm):
             # a hole inside the bracket: keep the half next to the finite end a
             b = m

@@ -33,7 +33,7 @@ from .layout import (
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1,
     VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR, VP_BATCH, VP_SIZE, VP_INV_D1, VP_UA, VP_UB,
-    VP_VA, VP_VB,
+    VP_VA, VP_VB, VP_H,
 )
 from .coverage import coverages, keep_coverages, seen_side
 from .correct import (
@@ -596,7 +596,7 @@ def _problem(vp, x0, prev, cur, run):
             or (fix_s != FIX_NONE and shading_problem(vp, x0, prev, cur, detect, run[RUN_YMIN],
                                                       run[RUN_YMAX]))
             or ((detect & DETECT_WALL) != 0
-                and wall_between(prev, cur, run[RUN_YMIN], run[RUN_YMAX], False)))
+                and wall_between(prev, cur, run[RUN_YMIN], run[RUN_YMAX], False, vp[VP_H])))
 
 
 @ngjit_nrt_free
@@ -628,7 +628,7 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
         right = stk[n - 1]
         searching = sdepth[n - 1] >= WALL_MODE     # inside a wall's bisection
         d = sdepth[n - 1] - (WALL_MODE if searching else 0)
-        if walls and wall_between(left, right, run[RUN_YMIN], run[RUN_YMAX], searching):
+        if walls and wall_between(left, right, run[RUN_YMIN], run[RUN_YMAX], searching, H):
             # end of section 5: halve while the jump persists; then shade it as a wall
             halvings = d if searching else 0
             if halvings < WALL_DEPTH and n < STACK_SIZE - 2:

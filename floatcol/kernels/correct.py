@@ -147,7 +147,20 @@ def ridge_between(vp, x0, a, b, run_lo, run_hi):
     _, ye = hermite_extremum(a[A_Y], b[A_Y], a[A_SLOPE], b[A_SLOPE], b[A_T] - a[A_T])
     top = max(ye, a[A_Y], b[A_Y]) + RIDGE_MARGIN_PX
     bot = min(ye, a[A_Y], b[A_Y]) - RIDGE_MARGIN_PX
-    return math.floor(top) > math.floor(run_hi) or math.ceil(bot) < math.ceil(run_lo)
+    return new_rows_seen(top, bot, run_lo, run_hi, vp[VP_H])
+
+
+@ngjit_inline
+def new_rows_seen(top, bot, run_lo, run_hi, H):
+    """Whether the screen rows from bot to top (a span, or its spline) reach a pixel
+    row that the floating interval [run_lo, run_hi] does not cover, inside the
+    picture: rows -1 to H (one to spare on each side for the antialiasing's partly
+    covered pixels). A part of the surface beyond the picture's top or bottom gets no
+    correction: nothing of it is seen (a log(u v) plunging toward its poles below the
+    picture had 60 % of its samples there, spent on corrections)."""
+    up = math.floor(top) > math.floor(run_hi) and top >= -1.0 and run_hi < H
+    down = math.ceil(bot) < math.ceil(run_lo) and bot <= H and run_lo > -1.0
+    return up or down
 
 
 @ngjit_inline
@@ -156,9 +169,7 @@ def shading_problem(vp, x0, a, b, detect, run_lo, run_hi):
     intensity jumps by more than VP_JUMP, or the samples straddle a bump (section
     5.3: (L x N_Pi)0 . (L x N_Pi)1 < 0 while L.N keeps its sign)."""
     y = b[A_Y]
-    paints = (y > run_hi and math.floor(y) > math.floor(run_hi)) or \
-             (y < run_lo and math.ceil(y) < math.ceil(run_lo))
-    if not paints:
+    if not new_rows_seen(y, y, run_lo, run_hi, vp[VP_H]):
         return False
     if detect & DETECT_JUMP and abs(b[A_I] - a[A_I]) > vp[VP_JUMP]:
         return True
@@ -169,7 +180,7 @@ def shading_problem(vp, x0, a, b, detect, run_lo, run_hi):
 
 
 @ngjit_inline
-def wall_between(a, b, run_lo, run_hi, searching):
+def wall_between(a, b, run_lo, run_hi, searching, H):
     """A discontinuity between samples a and b (end of section 5: "a big jump in the
     y-values" where the normals do not explain it): the rows jump by more than
     WALL_MIN_PX and WALL_RATIO times what the smaller end slope predicts, on a span
@@ -179,8 +190,7 @@ def wall_between(a, b, run_lo, run_hi, searching):
     if dy <= WALL_MIN_PX:
         return False
     y = b[A_Y]
-    if not ((y > run_hi and math.floor(y) > math.floor(run_hi))
-            or (y < run_lo and math.ceil(y) < math.ceil(run_lo))):
+    if not new_rows_seen(y, y, run_lo, run_hi, H):
         return False
     if searching:
         return True

@@ -156,8 +156,9 @@ def new_rows_seen(top, bot, run_lo, run_hi, H):
     row that the floating interval [run_lo, run_hi] does not cover, inside the
     picture: rows -1 to H (one to spare on each side for the antialiasing's partly
     covered pixels). A part of the surface beyond the picture's top or bottom gets no
-    correction: nothing of it is seen (a log(u v) plunging toward its poles below the
-    picture had 60 % of its samples there, spent on corrections)."""
+    correction: nothing of it is seen. Surfaces with poles spent most of their samples
+    there (320x240: tan(u v) 15.4 times the samples of its uncorrected render, log(u v)
+    2.6 times; 1.29 and 1.64 times since)."""
     up = math.floor(top) > math.floor(run_hi) and top >= -1.0 and run_hi < H
     down = math.ceil(bot) < math.ceil(run_lo) and bot <= H and run_lo > -1.0
     return up or down

@@ -317,14 +317,21 @@ def in_known_hole(vp, u, v):
     return finite_cells(vp, u, v, u, v) == 0.0
 
 
+@ngjit_inline
+def _line_uv(vp, r0, k, t, s):
+    """(u, v) of the point at height s on the line of plane t inside Pi, where
+    r = r0 + k s (eq. 2)."""
+    r = r0 + k * s
+    return (vp[VP_CU] + r * vp[VP_CB] + t * vp[VP_SB],
+            vp[VP_CV] - r * vp[VP_SB] + t * vp[VP_CB])
+
+
 @ngjit_nrt_free
 def _g_at(kind, f, hf, hfp, vp, r0, k, t, s):
     """(g(s), evaluations): g = f(u(s), v(s)) - cw - s on the line of plane t inside
     Pi, NaN at a hole, without evaluating f (0 evaluations) where the hole map knows
     one."""
-    r = r0 + k * s
-    u = vp[VP_CU] + r * vp[VP_CB] + t * vp[VP_SB]
-    v = vp[VP_CV] - r * vp[VP_SB] + t * vp[VP_CB]
+    u, v = _line_uv(vp, r0, k, t, s)
     if in_known_hole(vp, u, v):
         return np.nan, 0
     w = surface_value(kind, f, hf, hfp, u, v)
@@ -343,12 +350,9 @@ def _bracketed_s(kind, f, hf, hfp, vp, r0, k, t, s_near):
     s_hi = vp[VP_FHI] + spare - vp[VP_CW]
     # a line that the hole map knows is a hole all along: nothing to scan
     pad = 1e-9 * (s_hi - s_lo + 1.0)
-    r_a = r0 + k * (s_lo - pad)
-    r_b = r0 + k * (s_hi + pad)
-    u_t = vp[VP_CU] + t * vp[VP_SB]
-    v_t = vp[VP_CV] + t * vp[VP_CB]
-    if finite_cells(vp, u_t + r_a * vp[VP_CB], v_t - r_a * vp[VP_SB],
-                    u_t + r_b * vp[VP_CB], v_t - r_b * vp[VP_SB]) == 0.0:
+    u_a, v_a = _line_uv(vp, r0, k, t, s_lo - pad)
+    u_b, v_b = _line_uv(vp, r0, k, t, s_hi + pad)
+    if finite_cells(vp, u_a, v_a, u_b, v_b) == 0.0:
         return np.nan, 0
     seg_px = abs(k) * (s_hi - s_lo) * vp[VP_SCALE]
     n = min(SCAN_MAX, max(SCAN_MIN, int(math.ceil(seg_px / SCAN_PIXELS)) + 1))

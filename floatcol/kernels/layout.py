@@ -53,7 +53,9 @@ VP_HOLE_U0 = 41
 VP_HOLE_V0 = 42
 VP_HOLE_SU = 43   # cells per unit of u
 VP_HOLE_SV = 44   # ... of v
-VP_SIZE = 45
+VP_CLIP = 45      # 1.0: a perspective column skips the planes it surely misses
+                  # (column.py's _pass_planes; 0.0 only to test that it changes nothing)
+VP_SIZE = 46
 
 FIX_NONE = 0
 FIX_SPLINE = 1

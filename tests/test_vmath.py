@@ -112,6 +112,26 @@ def test_batches_draw_the_picture_of_single_points(monkeypatch, expr):
     assert np.max(np.abs(a.rgba.astype(int) - b.rgba)) <= 1
 
 
+@pytest.mark.parametrize("kw", [
+    dict(shading="default"),
+    dict(shading="default", corrections="spline+supersample", elev=15),
+    dict(shading="default", interpolation="intensity", corrections="adaptive", elev=50),
+    dict(shading="default", antialias=False, elev=-30, azim=40),
+])
+def test_hidden_batched_samples_change_nothing(monkeypatch, kw):
+    """A batched sample strictly inside the floating interval is passed over
+    (column._column_pass keeps it in the batch as the previous sample): with the
+    detectors and corrections on, every sample they would have made is still made,
+    and the picture is that of single points (two thirds of the default picture's
+    samples are hidden)."""
+    expr = "3*sin(u*cos(v))"
+    a, b = _pair(monkeypatch, expr, **dict(dict(u=(-5, 5), v=(-5, 5), size=(240, 180)), **kw))
+    assert a.stats["samples"] == b.stats["samples"]
+    assert np.array_equal(a.side, b.side)
+    assert np.nanmax(np.abs(a.intensity - b.intensity)) <= 1e-6
+    assert np.max(np.abs(a.rgba.astype(int) - b.rgba)) <= 1
+
+
 def test_batches_of_a_surface_in_time_use_its_time(monkeypatch):
     s = fc.as_surface("sin(u + 2*t) * cos(v)", time="t")
     a, b = _pair(monkeypatch, s.at(0.7), elev=40)

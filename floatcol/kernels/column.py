@@ -917,6 +917,25 @@ def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0,
                 probe_ortho(vt, ny, nz)
 
 
+@ngjit_inline
+def _prev_from_batch(prev, bat, kb, t, detect):
+    """Write batched sample kb (plane t) into ``prev`` as _sample_at writes it."""
+    prev[A_Y] = bat[BAT_Y * BATCH + kb]
+    prev[A_Z] = bat[BAT_Z * BATCH + kb]
+    prev[A_U] = bat[BAT_U * BATCH + kb]
+    prev[A_V] = bat[BAT_V * BATCH + kb]
+    prev[A_W] = bat[BAT_W * BATCH + kb]
+    prev[A_NX] = bat[BAT_NX * BATCH + kb]
+    prev[A_NY] = bat[BAT_NY * BATCH + kb]
+    prev[A_NZ] = bat[BAT_NZ * BATCH + kb]
+    prev[A_I] = bat[BAT_I * BATCH + kb]
+    prev[A_T] = t
+    if detect:
+        prev[A_VN] = bat[BAT_VN * BATCH + kb]
+        prev[A_BUMP] = bat[BAT_BUMP * BATCH + kb]
+        prev[A_SLOPE] = bat[BAT_SLOPE * BATCH + kb]
+
+
 @ngjit_nrt_free
 def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, hstride,
                  prev, cur, edge, tmp, run, stk, sdepth, left, mid, bat):
@@ -970,15 +989,50 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
     resume = False
     t_resume = 0.0
     k_resume = -1
+    # A batched plane whose sample is hidden (strictly inside the floating interval,
+    # the run open since the plane before, and no ridge test it could fail) changes
+    # nothing but which sample is the previous one: that stays in the batch (number
+    # prev_kb) until a plane that does something needs it in ``prev``
+    # (_prev_from_batch). Two thirds of the default picture's samples are hidden.
+    hidden_ok = batched and hstride == 0
+    detect = vp[VP_DETECT] != 0.0
+    prev_kb = -1
     while True:
         if batched:
             if i >= b_hi:
+                if prev_kb >= 0:
+                    _prev_from_batch(prev, bat, prev_kb, prev_t, detect)
+                    prev_kb = -1
                 b_lo = i
                 b_hi = min(n, i + BATCH)
                 _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, b_lo, b_hi, n, ta, tb, t0, ka,
                               dt)
-            st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True, bat,
-                                i - b_lo)
+            kb_i = i - b_lo
+            if hidden_ok and prev_st == S_OK and run[RUN_OPEN] != 0.0 and \
+                    bat[BAT_ST * BATCH + kb_i] == S_OK:
+                y = bat[BAT_Y * BATCH + kb_i]
+                hidden = run[RUN_YMIN] < y < run[RUN_YMAX]
+                if hidden and detect:
+                    vn_prev = bat[BAT_VN * BATCH + prev_kb] if prev_kb >= 0 else prev[A_VN]
+                    hidden = not vn_prev * bat[BAT_VN * BATCH + kb_i] < 0.0
+                if hidden:
+                    evals += 1
+                    prev_kb = kb_i
+                    prev_t = t
+                    i += 1                   # the next plane, as below
+                    if i >= i_end:
+                        break
+                    if i == n - 1:
+                        t = tb
+                        k = -1
+                    else:
+                        k = ka + (i - 1)
+                        t = t0 + k * dt
+                    continue
+            if prev_kb >= 0:
+                _prev_from_batch(prev, bat, prev_kb, prev_t, detect)
+                prev_kb = -1
+            st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True, bat, kb_i)
         else:
             st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True, bat, -1)
         evals += ev

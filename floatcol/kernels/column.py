@@ -855,6 +855,18 @@ def _grid_range(t0, dt, ta, tb):
 
 
 @ngjit_inline
+def _pass_plane(i, n, ta, tb, t0, ka, kb, dt, sigma):
+    """(t, k) of a uniform pass's plane number i of n: ta, the grid's planes t0 + k dt
+    (from k = ka up when sigma > 0, from kb down when not), tb; k = -1 at the ends."""
+    if i == 0:
+        return ta, -1
+    if i == n - 1:
+        return tb, -1
+    k = ka + (i - 1) if sigma > 0 else kb - (i - 1)
+    return t0 + k * dt, k
+
+
+@ngjit_inline
 def _plane_t(i, n, ta, tb, t0, ka, dt):
     """t of an ascending pass's plane number i of n: ta, the grid's planes
     t0 + k dt from k = ka on, tb (as _column_pass steps)."""
@@ -971,11 +983,7 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
         i, i_end = _pass_planes(vp, x0, sigma, n, ka, kb, t0, dt)
         if i >= i_end:
             return 0                    # the column meets nothing
-        if i == n - 1:
-            t = tb
-        elif i > 0:
-            k = ka + (i - 1) if sigma > 0 else kb - (i - 1)
-            t = t0 + k * dt
+        t, k = _pass_plane(i, n, ta, tb, t0, ka, kb, dt, sigma)
     # the orthographic planes evaluated ahead, BATCH at a time: planes b_lo to b_hi - 1
     batched = (vp[VP_BATCH] != 0.0 and not persp and not adaptive and sigma > 0.0
                and kind != SURF_HEIGHTFIELD)
@@ -1022,12 +1030,7 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                     i += 1                   # the next plane, as below
                     if i >= i_end:
                         break
-                    if i == n - 1:
-                        t = tb
-                        k = -1
-                    else:
-                        k = ka + (i - 1)
-                        t = t0 + k * dt
+                    t, k = _pass_plane(i, n, ta, tb, t0, ka, kb, dt, sigma)
                     continue
             if prev_kb >= 0:
                 _prev_from_batch(prev, bat, prev_kb, prev_t, detect)
@@ -1144,12 +1147,7 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
             i += 1
             if i >= i_end:
                 break
-            if i == n - 1:
-                t = tb
-                k = -1
-            else:
-                k = ka + (i - 1) if sigma > 0 else kb - (i - 1)
-                t = t0 + k * dt
+            t, k = _pass_plane(i, n, ta, tb, t0, ka, kb, dt, sigma)
     return evals
 
 

@@ -2,13 +2,18 @@
 compare speeds on a machine whose speed drifts (a shared virtual machine's does, by
 up to 1.5x within minutes, so runs made apart cannot be compared).
 
-    python benchmarks/bench_ab.py REV [REPEATS]
+    python benchmarks/bench_ab.py REV [REPEATS] [--kernels]
 
 REV is a git revision (HEAD, a commit, a tag): its floatcol/ is exported to a
 temporary folder as the package ``floatcol_ab`` (compiled there on first use, about
 a minute) and rendered against the working tree's floatcol, the same scenes, best
 and median of REPEATS (default 11) after a warm-up. Pictures of the two are
 compared too (``same`` when rgba, side and w_limits are bit-identical).
+
+With ``--kernels`` it times the two kernels of each version instead, the column
+pass and the finishing pass, each called again and again on the buffers of one
+render (captured from render()): less noise than whole renders, where a change is
+inside one kernel.
 """
 import os
 import statistics
@@ -41,15 +46,59 @@ def export(rev):
     return folder, sha
 
 
+def _kernel_args(fc, size, proj):
+    """{kernel name: (the kernel, copies of its arguments)} of one render by fc."""
+    render_module = sys.modules[fc.__name__ + ".render"]
+    got = {}
+    for name in ("column_kernel", "finish_kernel"):
+        kernel = getattr(render_module, name)
+
+        def capture(*args, kernel=kernel, name=name):
+            got[name] = (kernel, [a.copy() if isinstance(a, np.ndarray) else a
+                                  for a in args])
+            return kernel(*args)
+        setattr(render_module, name, capture)
+    try:
+        fc.render(EXPR, size=size, projection=proj, **DOM)
+    finally:
+        for name, (kernel, _) in got.items():
+            setattr(render_module, name, kernel)
+    return got
+
+
+def kernels(then, now, sha, repeats):
+    print(f"| scene | kernel | {sha} best / median ms | working tree best / median ms "
+          "| ratio of bests |")
+    print("|---|---|---|---|---|")
+    for size, proj in SCENES:
+        calls = {"then": _kernel_args(then, size, proj), "now": _kernel_args(now, size, proj)}
+        for name in ("column_kernel", "finish_kernel"):
+            ts = {"then": [], "now": []}
+            for rep in range(repeats + 1):
+                for which in ("then", "now"):
+                    kernel, args = calls[which][name]
+                    t = time.perf_counter()
+                    kernel(*args)
+                    ts[which].append((time.perf_counter() - t) * 1e3)
+            a, b = (ts[k][1:] for k in ("then", "now"))
+            print(f"| {size[0]}x{size[1]} {proj} | {name} | {min(a):.2f} / "
+                  f"{statistics.median(a):.2f} | {min(b):.2f} / {statistics.median(b):.2f} | "
+                  f"{min(a) / min(b):.3f} |", flush=True)
+
+
 def main():
-    if len(sys.argv) < 2:
+    args = [a for a in sys.argv[1:] if a != "--kernels"]
+    if not args:
         sys.exit(__doc__)
-    rev = sys.argv[1]
-    repeats = int(sys.argv[2]) if len(sys.argv) > 2 else 11
+    rev = args[0]
+    repeats = int(args[1]) if len(args) > 1 else 11
     folder, sha = export(rev)
     sys.path.insert(0, folder)
     import floatcol as now
     import floatcol_ab as then
+    if "--kernels" in sys.argv[1:]:
+        kernels(then, now, sha, repeats)
+        return
     print(f"| scene | {sha} best / median ms | working tree best / median ms | ratio of bests "
           "| pictures |")
     print("|---|---|---|---|---|")

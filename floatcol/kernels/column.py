@@ -866,17 +866,6 @@ def _pass_plane(i, n, ta, tb, t0, ka, kb, dt, sigma):
     return t0 + k * dt, k
 
 
-@ngjit_inline
-def _plane_t(i, n, ta, tb, t0, ka, dt):
-    """t of an ascending pass's plane number i of n: ta, the grid's planes
-    t0 + k dt from k = ka on, tb (as _column_pass steps)."""
-    if i == 0:
-        return ta
-    if i == n - 1:
-        return tb
-    return t0 + (ka + (i - 1)) * dt
-
-
 @ngjit_nrt_free
 def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0, ka, dt):
     """Sample an orthographic column's planes i_lo to i_hi - 1 ahead into bat, BATCH
@@ -893,7 +882,7 @@ def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0,
     u0 = vp[VP_CU] + x0 * cb            # eq. (3), as sample_point computes it
     v0 = vp[VP_CV] - x0 * sb
     for k in range(m):
-        t = _plane_t(i_lo + k, n, ta, tb, t0, ka, dt)
+        t = _pass_plane(i_lo + k, n, ta, tb, t0, ka, 0, dt, 1.0)[0]
         bat[BAT_U * BATCH + k] = u0 + t * sb
         bat[BAT_V * BATCH + k] = v0 + t * cb
     o = BAT_W * BATCH
@@ -907,7 +896,7 @@ def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0,
     vt = array_as_tuple(vp, VP_SIZE)    # (in registers: the loop below becomes SIMD code)
     detect = vt[VP_DETECT] != 0.0
     for k in range(m):
-        t = _plane_t(i_lo + k, n, ta, tb, t0, ka, dt)
+        t = _pass_plane(i_lo + k, n, ta, tb, t0, ka, 0, dt, 1.0)[0]
         u = bat[BAT_U * BATCH + k]
         v = bat[BAT_V * BATCH + k]
         if in_domain(vt, u, v):

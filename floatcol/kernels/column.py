@@ -368,12 +368,15 @@ def _column_t_range(vp, x0):
     polygon that _pass_constraint's six constraints leave of the plane of (t, s),
     found among its vertices (where two constraint lines cross). Returns (lo, hi),
     lo > hi where the polygon is empty (the column meets nothing)."""
+    lines = (_pass_constraint(vp, x0, 0), _pass_constraint(vp, x0, 1),
+             _pass_constraint(vp, x0, 2), _pass_constraint(vp, x0, 3),
+             _pass_constraint(vp, x0, 4), _pass_constraint(vp, x0, 5))
     lo = np.inf
     hi = -np.inf
     for i in range(6):
-        ai, bi, ci = _pass_constraint(vp, x0, i)
+        ai, bi, ci = lines[i]
         for j in range(i + 1, 6):
-            aj, bj, cj = _pass_constraint(vp, x0, j)
+            aj, bj, cj = lines[j]
             det = ai * bj - aj * bi
             if abs(det) <= 1e-14 * (abs(ai) + abs(bi)) * (abs(aj) + abs(bj)):
                 continue                         # parallel
@@ -381,7 +384,7 @@ def _column_t_range(vp, x0):
             s = (aj * ci - ai * cj) / det
             inside = True
             for m in range(6):
-                a, b, c = _pass_constraint(vp, x0, m)
+                a, b, c = lines[m]
                 if a * t + b * s + c < -CLIP_TOL * ((abs(a) + abs(b)) * (1.0 + abs(t) + abs(s))
                                                   + abs(c)):
                     inside = False

@@ -164,9 +164,7 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
             s = 0.0
             k = 0.0
         for _ in range(NEWTON_ITERS):
-            r = r0 + k * s
-            u = cu + r * cb + t * sb             # eq. (2)
-            v = cv - r * sb + t * cb
+            u, v = _line_uv(vp, r0, k, t, s)     # eq. (2)
             if in_known_hole(vp, u, v):          # (hole_map): f is NaN there
                 w = np.nan
                 break
@@ -191,8 +189,7 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
                 r_next = r0 + k * s_next
                 out = max(ra - r_next, r_next - rb)
                 if out > 2.0 * abs(k * (s_next - s)) and out > 1e-9 * (1.0 + abs(r_next)):
-                    u = cu + r_next * cb + t * sb
-                    v = cv - r_next * sb + t * cb
+                    u, v = _line_uv(vp, r0, k, t, s_next)
                     return S_OUTSIDE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
             s = s_next
         if not paper and (not math.isfinite(w) or abs(k * g) * vp[VP_SCALE] > NEWTON_TOL_PX):
@@ -202,9 +199,7 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
             evals += n_b
             if not math.isfinite(s_b):
                 return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
-            r = r0 + k * s_b
-            u = cu + r * cb + t * sb
-            v = cv - r * sb + t * cb
+            u, v = _line_uv(vp, r0, k, t, s_b)
             w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
             evals += 1
             if not math.isfinite(w):

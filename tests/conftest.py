@@ -16,6 +16,20 @@ def reference_for(r, expr, u, v, elev, azim, projection, **kw):
                    vw.d1, vw.d2, vw.scale, center=vw.center, **kw)
 
 
+def render_with_switch_off(monkeypatch, index, expr, **kw):
+    """The render of ``expr`` with view parameter ``index`` (one of vp's test-only
+    switches, kernels/layout.py) set to 0, and patched so for the rest of the test."""
+    from floatcol import view as view_mod
+    params = view_mod.View.params
+
+    def switched_off(self):
+        vp = params(self)
+        vp[index] = 0.0
+        return vp
+    monkeypatch.setattr(view_mod.View, "params", switched_off)
+    return fc.render(expr, **kw)
+
+
 @pytest.fixture(scope="session")
 def demo():
     """Gordon's 3 sin(u cos v), orthographic, rendered once."""

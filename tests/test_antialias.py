@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 import floatcol as fc
+from conftest import render_with_switch_off
 from reference import numpy_surface, raycast_box
 
 
@@ -167,3 +168,59 @@ def test_every_edge_surface_left_in_a_pixel_is_written(monkeypatch, expr, kw):
     assert set(np.unique(e[E_SIDE][edge])) <= {-1.0, 1.0}
     n = np.sqrt(e[E_NX][edge] ** 2 + e[E_NY][edge] ** 2 + e[E_NZ][edge] ** 2)
     assert (n > 0.3).all() and (n < 1.0001).all()    # between two unit normals
+
+
+# An antialiased run keeps the coverage of its top pixel in its state until the next
+# span (column._fill, _fill_on): nearly always that span goes on through the pixel and
+# makes it whole. It must leave every buffer as flagging the pixel at once does.
+KEEP_TOP_CASES = [
+    ("3*sin(u*cos(v))", dict(u=(-5, 5), v=(-5, 5), size=(203, 151))),
+    ("3*sin(u*cos(v))", dict(u=(-5, 5), v=(-5, 5), size=(150, 110), projection="perspective",
+                             elev=50, azim=-110)),
+    ("3*sin(u*cos(v))", dict(u=(-5, 5), v=(-5, 5), size=(120, 90), antialias=3,
+                             corrections="supersample", interpolation="intensity")),
+    ("sqrt(1 - u**2 - v**2)", dict(u=(-1.2, 1.2), v=(-1.2, 1.2), size=(160, 120),
+                                   elev=-20)),                         # hole, lower side
+    ("floor(2*u)*0.5 + 0.2*v", dict(u=(-3, 3), v=(-3, 3), size=(160, 120), elev=25,
+                                    azim=-30)),                        # walls
+    ("sin(8*u)*cos(7*v)", dict(u=(-3, 3), v=(-3, 3), size=(400, 300), elev=45, azim=-135)),
+    ("exp(-(u**2 + v**2))*cos(3*sqrt(u**2 + v**2))", dict(u=(-3, 3), v=(-3, 3),
+                                                          size=(160, 120), elev=5,
+                                                          shading="lambert",
+                                                          antialias=True)),
+]
+
+
+@pytest.mark.parametrize("expr, kw", KEEP_TOP_CASES)
+def test_keeping_a_runs_top_pixel_in_its_state_changes_nothing(monkeypatch, expr, kw):
+    import sys
+    from floatcol.kernels.coverage import flagged
+    from floatcol.kernels.layout import (E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ,
+                                         E_SEEN, E_SIDE, E_W, VP_KEEP_TOP)
+    render_module = sys.modules["floatcol.render"]
+    kernel = render_module.column_kernel
+    seen = []
+
+    def spy(*args):
+        args[8][...] = np.nan                       # ebuf: what is not written stays NaN
+        kernel(*args)
+        seen.append(args[8].copy())
+    monkeypatch.setattr(render_module, "column_kernel", spy)
+    r = fc.render(expr, **kw)
+    r0 = render_with_switch_off(monkeypatch, VP_KEEP_TOP, expr, **kw)   # flagged at once
+    assert r.stats["samples"] == r0.stats["samples"]
+    for k in ("rgba", "side", "intensity", "depth"):
+        assert np.array_equal(getattr(r, k), getattr(r0, k), equal_nan=True), k
+    # the edge buffers of the last column pass (a sub-column's), pixel by pixel:
+    # E_SEEN everywhere, the coverages where flagged, the edge surface where it has one
+    e, e0 = seen[len(seen) // 2 - 1], seen[-1]
+    assert np.array_equal(e[:, E_SEEN], e0[:, E_SEEN], equal_nan=True)   # (NaN: lanes
+    # past the picture's right edge)
+    flag = np.vectorize(flagged)(e0[:, E_SEEN])
+    assert flag.sum() > 20
+    for p in (E_COV0, E_COV):
+        assert np.array_equal(e[:, p][flag], e0[:, p][flag])
+    edge = flag & (e0[:, E_COV] > 0)
+    assert edge.sum() > 5
+    for p in (E_NX, E_NY, E_NZ, E_W, E_I, E_DEPTH, E_SIDE):
+        assert np.array_equal(e[:, p][edge], e0[:, p][edge])

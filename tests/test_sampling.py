@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import floatcol as fc
-from conftest import reference_for
+from conftest import reference_for, render_with_switch_off
 from reference import psnr
 
 TERRAIN = "0.3*sin(u)*cos(0.7*v) + 0.1*sin(3*u + v)"
@@ -73,18 +73,10 @@ CLIP_CASES = [
 
 @pytest.mark.parametrize("expr,d,view", CLIP_CASES)
 def test_skipping_planes_a_column_surely_misses_changes_nothing(expr, d, view, monkeypatch):
-    from floatcol import view as view_mod
     from floatcol.kernels.layout import VP_CLIP
     kw = dict(u=(-d, d), v=(-0.7 * d, d), size=(150, 110), projection="perspective", **view)
     r = fc.render(expr, **kw)
-    params = view_mod.View.params
-
-    def all_planes(self):
-        vp = params(self)
-        vp[VP_CLIP] = 0.0
-        return vp
-    monkeypatch.setattr(view_mod.View, "params", all_planes)
-    r0 = fc.render(expr, **kw)
+    r0 = render_with_switch_off(monkeypatch, VP_CLIP, expr, **kw)   # every plane
     assert r.stats["samples"] == r0.stats["samples"]
     for k in ("rgba", "side", "intensity", "depth"):
         assert np.array_equal(getattr(r, k), getattr(r0, k), equal_nan=True), k

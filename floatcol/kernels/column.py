@@ -33,7 +33,7 @@ from .layout import (
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1,
     VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR, VP_BATCH, VP_SIZE, VP_INV_D1, VP_UA, VP_UB,
-    VP_VA, VP_VB, VP_H, VP_CLIP,
+    VP_VA, VP_VB, VP_H, VP_CLIP, VP_KEEP_TOP,
 )
 from .coverage import coverages, keep_coverages, seen_side
 from .correct import (
@@ -86,7 +86,16 @@ RUN_JLO = 15       # rows (from the bottom) between which the column's passes ma
 RUN_JHI = 16       # set E_SEEN (the finishing pass reads none outside them)
 RUN_EDGE_J = 17    # antialiasing: the row of the edge surface held back (-1: none), and
 RUN_EDGE = 18      # its E_NX, E_NY, E_NZ, E_W, E_I, E_DEPTH, E_SIDE (_hold_edge)
-RUN_SIZE = 25
+RUN_TOP_J = 25     # antialiasing: the top pixel of the run's interval whose coverage
+RUN_TOP_KIND = 26  # is kept here, not yet in ecol (-1: none; _fill, _settle_top), its
+RUN_TOP_COV = 27   # kind (TOP_EDGE, TOP_CENTRE) and coverage; RUN_TOP_ON: whether it
+RUN_TOP_ON = 28    # may (vp's VP_KEEP_TOP)
+RUN_SIZE = 29
+#: RUN_TOP_KIND: the pixel's centre lies above the interval (an edge surface covers
+#: its bottom, RUN_TOP_COV of it) or inside it (the surface at the centre covers
+#: RUN_TOP_COV of it)
+TOP_EDGE = 0.0
+TOP_CENTRE = 1.0
 #: _newton_start keeps the parabola while its bend is at most this fraction of the
 #: line's step (measured on the fidelity suite in perspective: 0.25, 0.5, 1 and 4 give
 #: the same pictures; 1080p evaluations 1.36 M, 1.34 M, 1.31 M, 1.30 M; the line
@@ -437,14 +446,22 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
     pixel's coverage: ecol's E_COV0 for the surface at the pixel's centre, and an edge
     surface for the part of a pixel that a span covers without its centre (where the
     surface reappears beyond an extremum, or at a silhouette), blended by coverage
-    later."""
+    later.
+
+    The pixel at the top of a span going up, covered in part, is kept in ``run``
+    (RUN_TOP_*), not flagged in ecol: the next span of the run nearly always goes on
+    through it and covers the rest, and then the pixel is whole and nothing needs
+    writing. Any other span settles it first (_settle_top), so ecol holds what
+    flagging it at once would have written whenever another span reads it."""
     y = cur[A_Y]
     if run[RUN_OPEN] == 0.0:
+        _settle_top(ecol, run)
         run[RUN_OPEN] = 1.0
         run[RUN_YMIN] = y
         run[RUN_YMAX] = y
         return
-    if y > run[RUN_YMAX]:                      # above the column's max: upper side if ascending
+    up = y > run[RUN_YMAX]
+    if up:                                     # above the column's max: upper side if ascending
         lo_f = run[RUN_YMAX]
         hi_f = y
         cont = prev[A_Y] >= lo_f               # the same surface goes on from the max
@@ -464,17 +481,27 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
         run[RUN_YMIN] = y
     else:
         return                          # hidden: inside the floating interval
-    # the rows the span may mark: its pixels from the floor of its low end to the
-    # one holding its high end (the partly covered pixels included)
-    run[RUN_JLO] = min(run[RUN_JLO], max(math.floor(lo_f), 0.0))
-    run[RUN_JHI] = max(run[RUN_JHI], min(math.floor(hi_f + 0.5), H - 1.0))
-    yp = prev[A_Y]
-    inv_dy = 1.0 / (y - yp)
-    qp = 1.0
-    qc = 1.0
-    if persp:
-        qp = 1.0 / (prev[A_Z] + d3)
-        qc = 1.0 / (cur[A_Z] + d3)
+    # the top pixel kept in run: this span goes on through it (then taken over here:
+    # pj, its kind and coverage), or it is settled
+    pj = -1
+    p_edge = False
+    p_cov = 0.0
+    if run[RUN_TOP_J] >= 0.0:
+        if up and cont and aa and int(run[RUN_TOP_J]) == j_cont:
+            pj = j_cont
+            p_edge = run[RUN_TOP_KIND] == TOP_EDGE
+            p_cov = run[RUN_TOP_COV]
+            run[RUN_TOP_J] = -1.0
+        else:
+            _settle_top(ecol, run)
+    # the pixel holding the new top (-1: none to keep)
+    j_top = int(math.floor(hi_f + 0.5)) if up and run[RUN_TOP_ON] != 0.0 else -1
+    if pj >= 0 and (lo_f < pj or not p_edge) and 0 <= j_top < H and \
+            (j_top == pj or ecol[E_SEEN, j_top] == 0.0):
+        _fill_on(gcol, ecol, run, prev, cur, side, persp, d3, H, lo_f, hi_f, j0, j1, pj,
+                 p_edge, p_cov, j_top)
+        return
+    yp, inv_dy, qp, qc = _span_rows(run, prev, cur, persp, d3, H, lo_f, hi_f)
     # a new edge surface (section 6.4) made by this span, held back (_hold_edge)
     new_j = -1
     e_nx = e_ny = e_nz = e_w = e_i = e_z = e_side = 0.0
@@ -491,7 +518,19 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
             cov = b - a
             if cov <= 0.0:
                 continue
-            seen_p = seen_side(ecol[E_SEEN, jp]) != 0.0
+            if jp == pj:                # the top pixel kept in run (e == 0)
+                if p_edge:              # its centre not reached: more of it covered
+                    _keep_top(run, jp, TOP_EDGE, min(p_cov + cov, 1.0))
+                else:                   # the rest of it covered: whole (unflagged)
+                    c0 = min(p_cov + cov, 1.0)
+                    if c0 < 1.0:        # (short of 1 by a rounding)
+                        _keep_top(run, jp, TOP_CENTRE, c0)
+                if j_top != jp:
+                    _settle_top(ecol, run)      # no longer the top
+                pj = -1
+                continue
+            x_p = ecol[E_SEEN, jp]
+            seen_p = seen_side(x_p) != 0.0
             cov0_p, ecov_p = coverages(ecol, jp)
             if seen_p and cont and jp == j_cont:
                 c0 = min(cov0_p + cov, 1.0)
@@ -505,19 +544,59 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
             if ecov_p > 0.0:
                 ecol[E_COV, jp] = min(ecov_p + cov, room)
                 continue
-            keep_coverages(ecol, jp)
+            # the new top's pixel, untouched so far: kept in run (its coverage alone)
+            keep_top = jp == j_top and x_p == 0.0 and np.float32(min(cov, room)) > 0.0
+            if not keep_top:
+                keep_coverages(ecol, jp)
             lw = _chord_weight(0.5 * (a + b), yp, inv_dy, persp, qp, qc)
             if new_j >= 0:              # the span's second: hold the first now
                 _hold_edge(ecol, run, new_j, e_nx, e_ny, e_nz, e_w, e_i, e_z, e_side)
             new_j = jp                  # held back: _hold_edge, below
-            e_nx = prev[A_NX] + lw * (cur[A_NX] - prev[A_NX])
-            e_ny = prev[A_NY] + lw * (cur[A_NY] - prev[A_NY])
-            e_nz = prev[A_NZ] + lw * (cur[A_NZ] - prev[A_NZ])
-            e_w = prev[A_W] + lw * (cur[A_W] - prev[A_W])
-            e_i = prev[A_I] + lw * (cur[A_I] - prev[A_I])
-            e_z = prev[A_Z] + lw * (cur[A_Z] - prev[A_Z])
+            e_nx, e_ny, e_nz, e_w, e_i, e_z = _chord_at(prev, cur, lw)
             e_side = side
-            ecol[E_COV, jp] = min(cov, room)
+            if keep_top:
+                _keep_top(run, jp, TOP_EDGE, min(cov, room))
+            else:
+                ecol[E_COV, jp] = min(cov, room)
+    _paint(gcol, ecol, run, prev, cur, side, persp, H, yp, inv_dy, qp, qc, lo_f, hi_f, j0, j1,
+           aa, False, cont, j_cont, pj, p_cov, j_top)
+    if new_j >= 0:
+        _hold_edge(ecol, run, new_j, e_nx, e_ny, e_nz, e_w, e_i, e_z, e_side)
+
+
+@ngjit_inline
+def _span_rows(run, prev, cur, persp, d3, H, lo_f, hi_f):
+    """Widen the rows the column may mark (RUN_JLO, RUN_JHI) to the span's: its pixels
+    from the floor of its low end to the one holding its high end (the partly
+    covered pixels included). Returns what _chord_weight takes of the chord prev ->
+    cur: (yp, inv_dy, qp, qc)."""
+    run[RUN_JLO] = min(run[RUN_JLO], max(math.floor(lo_f), 0.0))
+    run[RUN_JHI] = max(run[RUN_JHI], min(math.floor(hi_f + 0.5), H - 1.0))
+    yp = prev[A_Y]
+    qp = 1.0
+    qc = 1.0
+    if persp:
+        qp = 1.0 / (prev[A_Z] + d3)
+        qc = 1.0 / (cur[A_Z] + d3)
+    return yp, 1.0 / (cur[A_Y] - yp), qp, qc
+
+
+@ngjit_inline
+def _chord_at(prev, cur, lw):
+    """(nx, ny, nz, w, intensity, depth) at weight lw of the chord prev -> cur."""
+    return (prev[A_NX] + lw * (cur[A_NX] - prev[A_NX]), prev[A_NY] + lw * (cur[A_NY] - prev[A_NY]),
+            prev[A_NZ] + lw * (cur[A_NZ] - prev[A_NZ]), prev[A_W] + lw * (cur[A_W] - prev[A_W]),
+            prev[A_I] + lw * (cur[A_I] - prev[A_I]), prev[A_Z] + lw * (cur[A_Z] - prev[A_Z]))
+
+
+@ngjit_inline
+def _paint(gcol, ecol, run, prev, cur, side, persp, H, yp, inv_dy, qp, qc, lo_f, hi_f, j0, j1,
+           aa, on, cont, j_cont, pj, p_cov, j_top):
+    """Paint rows j0 to j1 of the span prev -> cur (from lo_f to hi_f) where no
+    earlier, nearer run did: the G-buffer interpolated along the chord, the side seen,
+    and with ``aa`` each pixel's coverage (_fill). ``on`` (a constant): the span goes
+    on through the top pixel kept in run, pj (_fill_on): every pixel it paints is
+    whole there but where an edge surface of an earlier run shares it."""
     j0 = max(j0, 0)
     j1 = min(j1, H - 1)
     upper = side > 0.0
@@ -563,27 +642,118 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
         gcol[j, G_T] = t0 + lw * dt
         if aa:
             c0 = max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0)
-            if cont and j == j_cont and x != 0.0:
-                # The pixel at the interval's continuing end: its edge surface is the
-                # part this run's spans covered below (above) the centre. The same
-                # surface goes on through the centre, so the pixel is the centre's,
-                # as every pixel inside a run (the end pixel of a span was a blend of
-                # two points of one surface: 10 % of the pixels at 1920x1080)
-                c0 = min(c0 + ecol[E_COV, j], 1.0)
-                ecol[E_COV, j] = 0.0
-                if c0 >= 1.0:
-                    ecol[E_SEEN, j] = side
+            if on:
+                if x != 0.0:            # shared with an earlier run's edge surface
+                    keep_coverages(ecol, j)
+                    ecol[E_COV0, j] = c0
+                    ecol[E_SEEN, j] = side + E_FLAG
                     continue
-            if x != 0.0 or c0 != 1.0:   # covered in part, or shared with an edge surface
-                keep_coverages(ecol, j)
-                ecol[E_COV0, j] = c0
-                ecol[E_SEEN, j] = side + E_FLAG
-                continue
+            else:
+                if j == pj:
+                    # the top pixel kept in run, its centre not reached until now: its
+                    # edge surface covered the part under this span, the same surface
+                    # goes on through the centre (as below, where it is flagged)
+                    c0 = min(c0 + p_cov, 1.0)
+                    if c0 >= 1.0:
+                        ecol[E_SEEN, j] = side
+                        continue
+                elif cont and j == j_cont and x != 0.0:
+                    # The pixel at the interval's continuing end: its edge surface is
+                    # the part this run's spans covered below (above) the centre. The
+                    # same surface goes on through the centre, so the pixel is the
+                    # centre's, as every pixel inside a run (the end pixel of a span
+                    # was a blend of two points of one surface: 10 % of the pixels at
+                    # 1920x1080)
+                    c0 = min(c0 + ecol[E_COV, j], 1.0)
+                    ecol[E_COV, j] = 0.0
+                    if c0 >= 1.0:
+                        ecol[E_SEEN, j] = side
+                        continue
+                if x != 0.0 or c0 != 1.0:   # covered in part, or shared with an edge
+                    if x == 0.0 and j == j_top:
+                        ecol[E_SEEN, j] = side      # the new top: kept in run
+                        _keep_top(run, j, TOP_CENTRE, c0)
+                        continue
+                    keep_coverages(ecol, j)
+                    ecol[E_COV0, j] = c0
+                    ecol[E_SEEN, j] = side + E_FLAG
+                    continue
         ecol[E_SEEN, j] = side
     run[RUN_WLO] = w_lo
     run[RUN_WHI] = w_hi
-    if new_j >= 0:
-        _hold_edge(ecol, run, new_j, e_nx, e_ny, e_nz, e_w, e_i, e_z, e_side)
+
+
+@ngjit_inline
+def _fill_on(gcol, ecol, run, prev, cur, side, persp, d3, H, lo_f, hi_f, j0, j1, pj, p_edge,
+             p_cov, j_top):
+    """_fill of an antialiased span that goes on up from the top of the run's interval
+    (lo_f, in pixel pj, kept in run: p_edge and p_cov its kind and coverage; pj's
+    centre not reached yet where p_edge) to hi_f (in pixel j_top, untouched so far
+    unless it is pj): what _fill's general path writes, without its branches on
+    where the span's ends fall inside their pixels (half go either way; the two cost
+    about a tenth of the column pass). The pixels between are whole; pj is whole now
+    unless the span ends inside it (or a rounding leaves it short of 1); the new top
+    is kept in run (its kind and coverage chosen by selects); and its edge surface is
+    held (_hold_edge), whatever its kind: one that a pixel does not keep (its E_COV
+    0) is never written."""
+    yp, inv_dy, qp, qc = _span_rows(run, prev, cur, persp, d3, H, lo_f, hi_f)
+    _paint(gcol, ecol, run, prev, cur, side, persp, H, yp, inv_dy, qp, qc, lo_f, hi_f, j0, j1,
+           True, True, True, pj, pj, p_cov, j_top)
+    # (branch-free where the outcome is a toss: where the span ends inside its pixels)
+    same = j_top == pj
+    # pj's rest covered (its centre from below, or its top part): whole unless a
+    # rounding leaves it short
+    c0 = min(p_cov + ((pj + 0.5) - lo_f), 1.0)
+    if (not same) & (c0 < 1.0):
+        ecol[E_COV0, pj] = c0
+        ecol[E_COV, pj] = 0.0
+        ecol[E_SEEN, pj] = side + E_FLAG
+    a = max(lo_f, j_top - 0.5)
+    cov = min(p_cov + (hi_f - lo_f), 1.0) if same else hi_f - a
+    centre = hi_f >= j_top
+    keep = (cov < 1.0) if centre else (cov > 0.0)
+    run[RUN_TOP_J] = j_top if keep else -1.0
+    run[RUN_TOP_KIND] = TOP_CENTRE if centre else TOP_EDGE
+    run[RUN_TOP_COV] = np.float32(cov)
+    # the new top's edge surface, for where its centre is not covered (held where it
+    # is as well; where the span stays in pj, the one held before stays)
+    e_nx, e_ny, e_nz, e_w, e_i, e_z = _chord_at(
+        prev, cur, _chord_weight(0.5 * (a + hi_f), yp, inv_dy, persp, qp, qc))
+    jh = int(run[RUN_EDGE_J])
+    if (jh != j_top) & (jh >= 0) & (coverages(ecol, jh)[1] > 0.0):
+        _write_edge(ecol, run)
+    run[RUN_EDGE_J] = j_top
+    run[RUN_EDGE] = run[RUN_EDGE] if same else e_nx
+    run[RUN_EDGE + 1] = run[RUN_EDGE + 1] if same else e_ny
+    run[RUN_EDGE + 2] = run[RUN_EDGE + 2] if same else e_nz
+    run[RUN_EDGE + 3] = run[RUN_EDGE + 3] if same else e_w
+    run[RUN_EDGE + 4] = run[RUN_EDGE + 4] if same else e_i
+    run[RUN_EDGE + 5] = run[RUN_EDGE + 5] if same else e_z
+    run[RUN_EDGE + 6] = run[RUN_EDGE + 6] if same else side
+
+
+@ngjit_inline
+def _keep_top(run, j, kind, cov):
+    """Keep pixel j, the top of the run's interval, in run (RUN_TOP_*): its kind and
+    its coverage, as ecol's float32 plane would hold it."""
+    run[RUN_TOP_J] = j
+    run[RUN_TOP_KIND] = kind
+    run[RUN_TOP_COV] = np.float32(cov)
+
+
+@ngjit_inline
+def _settle_top(ecol, run):
+    """Write the top pixel kept in run (_fill) to ecol as flagging it at once would
+    have: its coverages kept and flagged (coverage.py), an edge surface's in E_COV,
+    the centre's in E_COV0."""
+    j = int(run[RUN_TOP_J])
+    if j < 0:
+        return
+    x = ecol[E_SEEN, j]                 # 0 (TOP_EDGE), or the side (TOP_CENTRE)
+    ecol[E_COV0, j] = run[RUN_TOP_COV] if run[RUN_TOP_KIND] == TOP_CENTRE else 0.0
+    ecol[E_COV, j] = run[RUN_TOP_COV] if run[RUN_TOP_KIND] == TOP_EDGE else 0.0
+    ecol[E_SEEN, j] = x + E_FLAG
+    run[RUN_TOP_J] = -1.0
 
 
 @ngjit_inline
@@ -1174,10 +1344,13 @@ def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     scr[SCR_RUN, RUN_JLO] = ecol.shape[1]
     scr[SCR_RUN, RUN_JHI] = -1.0
     scr[SCR_RUN, RUN_EDGE_J] = -1.0
+    scr[SCR_RUN, RUN_TOP_J] = -1.0
+    scr[SCR_RUN, RUN_TOP_ON] = vp[VP_KEEP_TOP]
     sdepth = np.zeros(STACK_SIZE, dtype=np.int64)
     bat = np.empty(BAT_SIZE * BATCH)
     evals = _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
                            sdepth, bat)
+    _settle_top(ecol, scr[SCR_RUN])
     _write_edge(ecol, scr[SCR_RUN])
     return (evals, scr[SCR_RUN, RUN_WLO], scr[SCR_RUN, RUN_WHI], int(scr[SCR_RUN, RUN_JLO]),
             int(scr[SCR_RUN, RUN_JHI]))

@@ -55,7 +55,10 @@ VP_HOLE_SU = 43   # cells per unit of u
 VP_HOLE_SV = 44   # ... of v
 VP_CLIP = 45      # 1.0: a perspective column skips the planes it surely misses
                   # (column.py's _pass_planes; 0.0 only to test that it changes nothing)
-VP_SIZE = 46
+VP_KEEP_TOP = 46  # 1.0: an antialiased run keeps its top pixel's coverage in its state
+                  # until the next span (column.py's _fill; 0.0 only to test that it
+                  # changes nothing)
+VP_SIZE = 47
 
 FIX_NONE = 0
 FIX_SPLINE = 1

@@ -335,7 +335,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         side = _pool.empty((H, W), np.int8)
         rgba = _pool.empty((H, W, 4), np.uint8)
         finish_kernel(gbuf, ebuf, rows, vp, *shade_args, lut, w_lo, w_hi, lower_rgb, bg8, side,
-                      rgba)
+                      rgba.view(np.uint32)[..., 0])
         if sub_columns > 1:
             # section 6.4 across columns: sub-columns at even offsets inside each pixel,
             # averaged (premultiplied), one column of scratch per thread; the

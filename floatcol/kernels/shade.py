@@ -1,5 +1,6 @@
 """Per-pixel lighting of the G-buffer (after the column pass)."""
 import math
+import sys
 
 import numpy as np
 from numba import prange
@@ -15,6 +16,8 @@ from .sample import column_x0
 
 INTERP_INTENSITY = 0   # the paper's iis (Gouraud): lit at the samples, interpolated
 INTERP_NORMAL = 1      # nis: the normal is interpolated and lit at each pixel
+#: finish_kernel writes a pixel's 4 bytes (r, g, b, alpha) as one uint32 (_rgba32)
+LITTLE_ENDIAN = sys.byteorder == "little"
 
 
 @ngjit_inline
@@ -146,6 +149,16 @@ def pixel_rgba(s, w, cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp, lut, w_lo, 
 
 
 @ngjit_inline
+def _rgba32(r, g, b, a):
+    """The bytes r, g, b, a (each a whole number 0 to 255, any type) in memory order
+    as one uint32: a pixel of an (H, W, 4) uint8 picture viewed as (H, W) uint32."""
+    r, g, b, a = np.uint32(r), np.uint32(g), np.uint32(b), np.uint32(a)
+    if LITTLE_ENDIAN:
+        return r | (g << np.uint32(8)) | (b << np.uint32(16)) | (a << np.uint32(24))
+    return (r << np.uint32(24)) | (g << np.uint32(16)) | (b << np.uint32(8)) | a
+
+
+@ngjit_inline
 def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular, shininess,
                 lut, w_lo, span, lower_rgb, background):
     """Light (_light) and colour (pixel_rgba) row j of the column in lane ``lane`` of
@@ -207,7 +220,9 @@ def _block_rows(blk, H):
 def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lut, w_lo,
                   w_hi, lower_rgb, background, side, rgba):
     """Light, colour and assemble the picture, top row first, in one pass: side and
-    rgba (shade_pixel), from the tiled G-buffer gbuf and edge buffer ebuf (layout.py).
+    rgba (shade_pixel; rgba an (H, W, 4) uint8 picture viewed as (H, W) uint32, one
+    store a pixel: _rgba32), from the tiled G-buffer gbuf and edge buffer ebuf
+    (layout.py).
     With VP_AA, ebuf holds the coverages (where E_SEEN is flagged, coverage.py) and
     rgba is blended; side stays that of the pixel's centre. The G-buffer is read only
     where ebuf's E_SEEN plane says a surface is seen. Intensity and depth at the
@@ -227,12 +242,12 @@ def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lu
     span = w_hi - w_lo if w_hi > w_lo else 1.0
     for blk in prange(n_blocks):
         j_lo, j_hi = _block_rows(blk, H)
+        bg = _rgba32(background[0], background[1], background[2], background[3])
         for j in range(j_lo, j_hi):
             i = H - 1 - j
             for c in range(W):
                 side[i, c] = 0
-                for k in range(4):
-                    rgba[i, c, k] = background[k]
+                rgba[i, c] = bg
         for b in range(n_tiles):
             if rows[b, 1] < j_lo or rows[b, 0] >= j_hi:
                 continue                                   # only background here
@@ -263,18 +278,15 @@ def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lu
                                          ambient, specular, shininess)
                         r, g, bl = _side_rgb(s, gbuf[b, j, lane, G_W], lut, w_lo, span,
                                              lower_rgb)
-                        rgba[i, c, 0] = np.uint8(min(r * lam + sp, 1.0) * 255.0 + 0.5)
-                        rgba[i, c, 1] = np.uint8(min(g * lam + sp, 1.0) * 255.0 + 0.5)
-                        rgba[i, c, 2] = np.uint8(min(bl * lam + sp, 1.0) * 255.0 + 0.5)
-                        rgba[i, c, 3] = np.uint8(255)
+                        rgba[i, c] = _rgba32(min(r * lam + sp, 1.0) * 255.0 + 0.5,
+                                             min(g * lam + sp, 1.0) * 255.0 + 0.5,
+                                             min(bl * lam + sp, 1.0) * 255.0 + 0.5, 255)
                         continue
                     _, r, g, bl, a = shade_pixel(gbuf, ebuf, b, lane, j, aa, vp, x0, interp,
                                                  ambient, specular, shininess, lut, w_lo, span,
                                                  lower_rgb, background)
-                    rgba[i, c, 0] = np.uint8(r * 255.0 + 0.5)
-                    rgba[i, c, 1] = np.uint8(g * 255.0 + 0.5)
-                    rgba[i, c, 2] = np.uint8(bl * 255.0 + 0.5)
-                    rgba[i, c, 3] = np.uint8(a * 255.0 + 0.5)
+                    rgba[i, c] = _rgba32(r * 255.0 + 0.5, g * 255.0 + 0.5, bl * 255.0 + 0.5,
+                                         a * 255.0 + 0.5)
 
 
 @ngjit_parallel

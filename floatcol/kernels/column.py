@@ -91,9 +91,9 @@ RUN_TOP_KIND = 26  # is kept here, not yet in ecol (-1: none; _fill, _settle_top
 RUN_TOP_COV = 27   # kind (TOP_EDGE, TOP_CENTRE) and coverage; RUN_TOP_ON: whether it
 RUN_TOP_ON = 28    # may (vp's VP_KEEP_TOP)
 RUN_SIZE = 29
-#: RUN_TOP_KIND: the pixel's centre lies above the interval (an edge surface covers
-#: its bottom, RUN_TOP_COV of it) or inside it (the surface at the centre covers
-#: RUN_TOP_COV of it)
+#: RUN_TOP_KIND: the pixel's centre lies outside the interval (an edge surface covers
+#: RUN_TOP_COV of the pixel: its bottom, or where the run began above the centre, a
+#: part above it) or inside it (the surface at the centre covers RUN_TOP_COV of it)
 TOP_EDGE = 0.0
 TOP_CENTRE = 1.0
 #: _newton_start keeps the parabola while its bend is at most this fraction of the

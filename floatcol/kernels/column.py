@@ -642,13 +642,7 @@ def _paint(gcol, ecol, run, prev, cur, side, persp, H, yp, inv_dy, qp, qc, lo_f,
         gcol[j, G_T] = t0 + lw * dt
         if aa:
             c0 = max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0)
-            if on:
-                if x != 0.0:            # shared with an earlier run's edge surface
-                    keep_coverages(ecol, j)
-                    ecol[E_COV0, j] = c0
-                    ecol[E_SEEN, j] = side + E_FLAG
-                    continue
-            else:
+            if not on:                  # (on: whole, unless an edge surface shares it)
                 if j == pj:
                     # the top pixel kept in run, its centre not reached until now: its
                     # edge surface covered the part under this span, the same surface
@@ -669,15 +663,15 @@ def _paint(gcol, ecol, run, prev, cur, side, persp, H, yp, inv_dy, qp, qc, lo_f,
                     if c0 >= 1.0:
                         ecol[E_SEEN, j] = side
                         continue
-                if x != 0.0 or c0 != 1.0:   # covered in part, or shared with an edge
-                    if x == 0.0 and j == j_top:
-                        ecol[E_SEEN, j] = side      # the new top: kept in run
-                        _keep_top(run, j, TOP_CENTRE, c0)
-                        continue
-                    keep_coverages(ecol, j)
-                    ecol[E_COV0, j] = c0
-                    ecol[E_SEEN, j] = side + E_FLAG
+                if x == 0.0 and c0 != 1.0 and j == j_top:
+                    ecol[E_SEEN, j] = side      # the new top, covered in part: kept in run
+                    _keep_top(run, j, TOP_CENTRE, c0)
                     continue
+            if x != 0.0 or (c0 != 1.0 and not on):  # in part, or shared with an edge
+                keep_coverages(ecol, j)
+                ecol[E_COV0, j] = c0
+                ecol[E_SEEN, j] = side + E_FLAG
+                continue
         ecol[E_SEEN, j] = side
     run[RUN_WLO] = w_lo
     run[RUN_WHI] = w_hi
@@ -705,9 +699,8 @@ def _fill_on(gcol, ecol, run, prev, cur, side, persp, d3, H, lo_f, hi_f, j0, j1,
     # rounding leaves it short
     c0 = min(p_cov + ((pj + 0.5) - lo_f), 1.0)
     if (not same) & (c0 < 1.0):
-        ecol[E_COV0, pj] = c0
-        ecol[E_COV, pj] = 0.0
-        ecol[E_SEEN, pj] = side + E_FLAG
+        _keep_top(run, pj, TOP_CENTRE, c0)
+        _settle_top(ecol, run)          # (its centre is painted: E_SEEN holds the side)
     a = max(lo_f, j_top - 0.5)
     cov = min(p_cov + (hi_f - lo_f), 1.0) if same else hi_f - a
     centre = hi_f >= j_top

@@ -27,8 +27,8 @@ INTERPOLATIONS = {"normal": INTERP_NORMAL, "nis": INTERP_NORMAL,
 DEFAULT_RANGE = (-10.0, 10.0)   # as sympy's plot3d
 DEFAULT_LINES = 160             # horizon lines, as in the paper's figures
 #: Orthographic pictures with at least this many samples evaluate f in batches of SIMD
-#: code (Surface.batch): about 58 ns less per sample, for a compile of about 0.1 s
-#: once per expression (1024x768 of 3 sin(u cos v): 380 000 samples)
+#: code (Surface.batch): about 58 ns less per sample, for a compile of 0.1-0.2 s once
+#: per expression (1024x768 of 3 sin(u cos v): 380 000 samples)
 BATCH_MIN_SAMPLES = 200_000
 #: the key light of the default shading: from the upper left, toward the viewer
 DEFAULT_LIGHT = (-0.45, 0.55, -1.0)

@@ -708,21 +708,17 @@ def _fill_on(gcol, ecol, run, prev, cur, side, persp, d3, H, lo_f, hi_f, j0, j1,
     run[RUN_TOP_J] = j_top if keep else -1.0
     run[RUN_TOP_KIND] = TOP_CENTRE if centre else TOP_EDGE
     run[RUN_TOP_COV] = np.float32(cov)
-    # the new top's edge surface, for where its centre is not covered (held where it
-    # is as well; where the span stays in pj, the one held before stays)
+    # the new top's edge surface, for where its centre is not covered, held as
+    # _hold_edge holds it (held where the centre is covered as well; where the span
+    # stays in pj, the one held before stays)
     e_nx, e_ny, e_nz, e_w, e_i, e_z = _chord_at(
         prev, cur, _chord_weight(0.5 * (a + hi_f), yp, inv_dy, persp, qp, qc))
-    jh = int(run[RUN_EDGE_J])
-    if (jh != j_top) & (jh >= 0) & (coverages(ecol, jh)[1] > 0.0):
+    held = (e_nx, e_ny, e_nz, e_w, e_i, e_z, side)
+    if run[RUN_EDGE_J] != j_top:
         _write_edge(ecol, run)
     run[RUN_EDGE_J] = j_top
-    run[RUN_EDGE] = run[RUN_EDGE] if same else e_nx
-    run[RUN_EDGE + 1] = run[RUN_EDGE + 1] if same else e_ny
-    run[RUN_EDGE + 2] = run[RUN_EDGE + 2] if same else e_nz
-    run[RUN_EDGE + 3] = run[RUN_EDGE + 3] if same else e_w
-    run[RUN_EDGE + 4] = run[RUN_EDGE + 4] if same else e_i
-    run[RUN_EDGE + 5] = run[RUN_EDGE + 5] if same else e_z
-    run[RUN_EDGE + 6] = run[RUN_EDGE + 6] if same else side
+    for k in range(7):
+        run[RUN_EDGE + k] = run[RUN_EDGE + k] if same else held[k]
 
 
 @ngjit_inline

@@ -23,12 +23,27 @@ BATCH_SIG = types.void(types.CPointer(types.float64), types.CPointer(types.float
                        types.float64, types.CPointer(types.float64), types.int64)
 BatchFn = types.FunctionType(BATCH_SIG)
 
-#: Small helpers inlined into kernels.
-ngjit = numba.njit(cache=True, nogil=True, error_model="numpy")
-#: Per-pixel and per-sample helpers with array arguments, inlined into their callers
-#: by Numba itself: a call that is not inlined increments and decrements the
-#: reference count of every array it is passed (atomic operations, about 8 ns each).
-ngjit_inline = numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _llvm_inline():
+    """Options that have LLVM inline a function wherever it is called (Numba's
+    ``forceinline``: LLVM's alwaysinline attribute; the function is compiled once, and
+    its code goes with the caller's library); where a Numba lacks the option, Numba's
+    own inlining (same code, slower compile)."""
+    try:
+        from numba.core.cpu import CPUTargetOptions
+    except ImportError:  # pragma: no cover - layout of another Numba
+        return {"inline": "always"}
+    return {"forceinline": True} if hasattr(CPUTargetOptions, "forceinline") \
+        else {"inline": "always"}
+
+
+def _llvm_call():
+    """Options that keep a function a call: ``forceinline`` said (False), since a
+    function that does not say takes its first caller's while that compiles."""
+    try:
+        from numba.core.cpu import CPUTargetOptions
+    except ImportError:  # pragma: no cover - layout of another Numba
+        return {}
+    return {"forceinline": False} if hasattr(CPUTargetOptions, "forceinline") else {}
 
 
 def _nrt_off():
@@ -41,14 +56,35 @@ def _nrt_off():
     return {"_nrt": False} if hasattr(CPUTargetOptions, "_nrt") else {}
 
 
+#: Functions called (where LLVM's heuristics do not inline them).
+ngjit = numba.njit(cache=True, nogil=True, error_model="numpy", **_llvm_call())
+#: Per-sample and per-pixel helpers, inlined into their callers by LLVM. Without
+#: reference counting (they allocate nothing), as their callers (ngjit_nrt_free,
+#: ngjit_parallel_nrt_free): in a caller that counts references, LLVM's inlining
+#: leaves the increments and decrements of the counts of the arrays passed around
+#: each call (atomic operations, about 8 ns each; the finishing pass was 15-20 %
+#: slower with them). Not Numba's inlining (``inline="always"``), which copies the
+#: callee's IR and runs Numba's passes on the copy at every call site, nested: the
+#: first render of a fresh install compiled for 106 s that way instead of 52-54 s
+#: (2 cores), to the same code and speed.
+ngjit_inline = numba.njit(cache=True, nogil=True, error_model="numpy", **_nrt_off(),
+                          **_llvm_inline())
+
+
 #: The column's loop and what it calls, none of which allocates: compiled without
 #: Numba's reference counting (its runtime, NRT), so passing an array or inlining a
 #: helper that takes one costs no call of NRT_incref/NRT_decref. Those calls were
 #: about a fifth of the column loop even where the arrays were views without owner
 #: (each call then a null test). Allocating here is a compile error.
-ngjit_nrt_free = numba.njit(cache=True, nogil=True, error_model="numpy", **_nrt_off())
+ngjit_nrt_free = numba.njit(cache=True, nogil=True, error_model="numpy", **_nrt_off(),
+                            **_llvm_call())
 #: Kernels: ``prange`` over pixel columns.
-ngjit_parallel = numba.njit(cache=True, nogil=True, parallel=True, error_model="numpy")
+ngjit_parallel = numba.njit(cache=True, nogil=True, parallel=True, error_model="numpy",
+                            **_llvm_call())
+#: ... and one that allocates nothing and calls helpers with arrays per pixel (the
+#: finishing pass): no reference counting, as ngjit_nrt_free.
+ngjit_parallel_nrt_free = numba.njit(cache=True, nogil=True, parallel=True,
+                                     error_model="numpy", **_nrt_off(), **_llvm_call())
 
 
 def compile_surface_fn(pyfunc):

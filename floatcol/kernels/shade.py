@@ -5,7 +5,7 @@ import sys
 import numpy as np
 from numba import prange
 
-from ._jit import ngjit_inline, ngjit_parallel
+from ._jit import ngjit_inline, ngjit_parallel_nrt_free
 from .layout import (
     E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_W, VP_AA, VP_D1, VP_D3, VP_H, VP_LX, VP_LY,
@@ -216,7 +216,7 @@ def _block_rows(blk, H):
     return j_lo, min(H, j_lo + FINISH_ROWS)
 
 
-@ngjit_parallel
+@ngjit_parallel_nrt_free
 def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lut, w_lo,
                   w_hi, lower_rgb, background, side, rgba):
     """Light, colour and assemble the picture, top row first, in one pass: side and
@@ -289,7 +289,7 @@ def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lu
                                          a * 255.0 + 0.5)
 
 
-@ngjit_parallel
+@ngjit_parallel_nrt_free
 def centre_kernel(gbuf, vp, interp, ambient, side, intensity, depth):
     """intensity (ambient + diffuse, NaN where nothing is seen) and depth (+inf where
     nothing is seen) at the pixel centres, top row first, from the tiled G-buffer

@@ -1,6 +1,9 @@
 """Core engine timings: new views, new expressions, cold CLI, against matplotlib.
 
-Run: python benchmarks/bench_core.py   (prints tables; warm-up compiles first)
+Run: python benchmarks/bench_core.py [--cold]   (prints tables; warm-up compiles first)
+
+With --cold it first times the compile of a fresh install: a new process with an
+empty Numba cache renders 1920x1080 orthographic, then perspective (about a minute).
 """
 import io
 import os
@@ -30,7 +33,35 @@ def best_ms(fn, repeat=7):
     return min(times), statistics.median(times), out
 
 
+COLD = """
+import sys, time
+t0 = time.perf_counter()
+import floatcol as fc
+t1 = time.perf_counter()
+fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(1920, 1080))
+t2 = time.perf_counter()
+fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(1920, 1080), projection="perspective")
+t3 = time.perf_counter()
+print(f"{t1 - t0:.1f} {t2 - t1:.1f} {t3 - t2:.1f}")
+"""
+
+
+def cold_compile():
+    """Seconds of a fresh install's first renders (import, orthographic, perspective),
+    in a new process whose Numba cache is empty."""
+    with tempfile.TemporaryDirectory() as cache:
+        env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+        out = subprocess.run([sys.executable, "-c", COLD], env=env, check=True,
+                             capture_output=True, text=True).stdout.split()
+    return [float(x) for x in out[-3:]]
+
+
 def main():
+    if "--cold" in sys.argv[1:]:
+        imp, ortho, persp = cold_compile()
+        print(f"Fresh install (empty Numba cache): import {imp:.1f} s, first render "
+              f"(1920x1080 orthographic, compiles the kernels) {ortho:.1f} s, then "
+              f"perspective {persp:.1f} s\n")
     threads = numba.get_num_threads()
     print(f"floatcol {fc.__version__}, numba {numba.__version__}, {threads} threads, {os.cpu_count()} cpus")
     # warm-up: compile or load every kernel once

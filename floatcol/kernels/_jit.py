@@ -65,7 +65,7 @@ ngjit = numba.njit(cache=True, nogil=True, error_model="numpy", **_llvm_call())
 #: each call (atomic operations, about 8 ns each; the finishing pass was 15-20 %
 #: slower with them). Not Numba's inlining (``inline="always"``), which copies the
 #: callee's IR and runs Numba's passes on the copy at every call site, nested: the
-#: first render of a fresh install compiled for 106 s that way instead of 52-54 s
+#: first render of a fresh install compiled for 106 s that way instead of 46-54 s
 #: (2 cores), to the same code and speed.
 ngjit_inline = numba.njit(cache=True, nogil=True, error_model="numpy", **_nrt_off(),
                           **_llvm_inline())

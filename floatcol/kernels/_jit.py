@@ -23,41 +23,31 @@ BATCH_SIG = types.void(types.CPointer(types.float64), types.CPointer(types.float
                        types.float64, types.CPointer(types.float64), types.int64)
 BatchFn = types.FunctionType(BATCH_SIG)
 
-def _llvm_inline():
-    """Options that have LLVM inline a function wherever it is called (Numba's
-    ``forceinline``: LLVM's alwaysinline attribute; the function is compiled once, and
-    its code goes with the caller's library); where a Numba lacks the option, Numba's
-    own inlining (same code, slower compile)."""
+
+def _option(name, value, otherwise=None):
+    """{name: value} where this Numba has the decorator option ``name``, else
+    ``otherwise`` (default: no option)."""
     try:
         from numba.core.cpu import CPUTargetOptions
     except ImportError:  # pragma: no cover - layout of another Numba
-        return {"inline": "always"}
-    return {"forceinline": True} if hasattr(CPUTargetOptions, "forceinline") \
-        else {"inline": "always"}
+        return dict(otherwise or {})
+    return {name: value} if hasattr(CPUTargetOptions, name) else dict(otherwise or {})
 
 
-def _llvm_call():
-    """Options that keep a function a call: ``forceinline`` said (False), since a
-    function that does not say takes its first caller's while that compiles."""
-    try:
-        from numba.core.cpu import CPUTargetOptions
-    except ImportError:  # pragma: no cover - layout of another Numba
-        return {}
-    return {"forceinline": False} if hasattr(CPUTargetOptions, "forceinline") else {}
-
-
-def _nrt_off():
-    """Numba's (private, long-standing) option that compiles without its runtime;
-    where a Numba lacks it the functions are compiled with reference counting."""
-    try:
-        from numba.core.cpu import CPUTargetOptions
-    except ImportError:  # pragma: no cover - layout of another Numba
-        return {}
-    return {"_nrt": False} if hasattr(CPUTargetOptions, "_nrt") else {}
+#: LLVM inlines the function wherever it is called (Numba's ``forceinline``: LLVM's
+#: alwaysinline attribute; compiled once, its code goes with the caller's library);
+#: where a Numba lacks the option, Numba's own inlining (same code, slower compile).
+_LLVM_INLINE = _option("forceinline", True, otherwise={"inline": "always"})
+#: The function stays a call: a function that does not say ``forceinline`` takes its
+#: first caller's while that compiles.
+_LLVM_CALL = _option("forceinline", False)
+#: Numba's (private, long-standing) option that compiles without its runtime; where a
+#: Numba lacks it the functions are compiled with reference counting.
+_NRT_OFF = _option("_nrt", False)
 
 
 #: Functions called (where LLVM's heuristics do not inline them).
-ngjit = numba.njit(cache=True, nogil=True, error_model="numpy", **_llvm_call())
+ngjit = numba.njit(cache=True, nogil=True, error_model="numpy", **_LLVM_CALL)
 #: Per-sample and per-pixel helpers, inlined into their callers by LLVM. Without
 #: reference counting (they allocate nothing), as their callers (ngjit_nrt_free,
 #: ngjit_parallel_nrt_free): in a caller that counts references, LLVM's inlining
@@ -67,8 +57,8 @@ ngjit = numba.njit(cache=True, nogil=True, error_model="numpy", **_llvm_call())
 #: callee's IR and runs Numba's passes on the copy at every call site, nested: the
 #: first render of a fresh install compiled for 106 s that way instead of 46-54 s
 #: (2 cores), to the same code and speed.
-ngjit_inline = numba.njit(cache=True, nogil=True, error_model="numpy", **_nrt_off(),
-                          **_llvm_inline())
+ngjit_inline = numba.njit(cache=True, nogil=True, error_model="numpy", **_NRT_OFF,
+                          **_LLVM_INLINE)
 
 
 #: The column's loop and what it calls, none of which allocates: compiled without
@@ -76,15 +66,15 @@ ngjit_inline = numba.njit(cache=True, nogil=True, error_model="numpy", **_nrt_of
 #: helper that takes one costs no call of NRT_incref/NRT_decref. Those calls were
 #: about a fifth of the column loop even where the arrays were views without owner
 #: (each call then a null test). Allocating here is a compile error.
-ngjit_nrt_free = numba.njit(cache=True, nogil=True, error_model="numpy", **_nrt_off(),
-                            **_llvm_call())
+ngjit_nrt_free = numba.njit(cache=True, nogil=True, error_model="numpy", **_NRT_OFF,
+                            **_LLVM_CALL)
 #: Kernels: ``prange`` over pixel columns.
 ngjit_parallel = numba.njit(cache=True, nogil=True, parallel=True, error_model="numpy",
-                            **_llvm_call())
+                            **_LLVM_CALL)
 #: ... and one that allocates nothing and calls helpers with arrays per pixel (the
 #: finishing pass): no reference counting, as ngjit_nrt_free.
 ngjit_parallel_nrt_free = numba.njit(cache=True, nogil=True, parallel=True,
-                                     error_model="numpy", **_nrt_off(), **_llvm_call())
+                                     error_model="numpy", **_NRT_OFF, **_LLVM_CALL)
 
 
 def compile_surface_fn(pyfunc):

@@ -14,6 +14,7 @@ import numpy as np
 
 from .output import atomic_file, check_output
 from .plot import parse_ranges, plot_surface, render_view
+from .render import box_factors
 from .surface import as_surface, check_range, sympify_expression
 
 ANIMATION_FORMATS = {".gif": "GIF", ".mp4": "MP4"}
@@ -103,6 +104,9 @@ class _Envelope:
         self.upper = upper
         self.variables = surfaces[0].variables
 
+    def scaled(self, a, b, c):
+        return _Envelope([s.scaled(a, b, c) for s in self.surfaces], self.upper)
+
     def evaluate(self, u, v):
         ws = np.stack([s.evaluate(u, v) for s in self.surfaces])
         fin = np.isfinite(ws)
@@ -170,11 +174,12 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     hi_grid, lo_grid = upper.evaluate(gu, gv), lower.evaluate(gu, gv)
     w_hi = float(np.nanmax(hi_grid)) if np.isfinite(hi_grid).any() else 1.0
     w_lo = float(np.nanmin(lo_grid)) if np.isfinite(lo_grid).any() else 0.0
-    fixed = {}
+    # one box for the clip too: the domain and the range of f over all frames
+    fixed = {"box": box_factors(kw.get("aspect", "equal"), None, domain, (w_lo, w_hi))}
     if kw.get("scale") is None:
         center = kw.get("center") or (0.5 * (ua + ub), 0.5 * (va + vb), 0.5 * (w_lo + w_hi))
-        kw_fit = dict(kw, center=center)
-        views = [render_view(s, kw_fit) for s in (upper, lower)]
+        kw_fit = dict(kw, center=center, box=fixed["box"])
+        views = [render_view(s, kw_fit)[0] for s in (upper, lower)]
         fixed.update(scale=min(v.scale for v in views), center=tuple(center))
         if kw["projection"] == "perspective":
             fixed.update(d1=min(v.d1 for v in views), d2=max(v.d2 for v in views))

@@ -40,6 +40,19 @@ def _range(text):
     return lo, hi
 
 
+def _aspect(text):
+    if text in ("auto", "equal", "equalxy"):
+        return text
+    try:
+        box = tuple(float(x) for x in text.split(":"))
+    except ValueError:
+        box = ()
+    if len(box) != 3 or not all(0 < x < float("inf") for x in box):
+        raise argparse.ArgumentTypeError(f"aspect {text!r} must be auto, equal, equalxy or a "
+                                         "box BX:BY:BZ of positive numbers, e.g. 1:1:0.5")
+    return box
+
+
 def _size(text):
     try:
         w, h = (int(x) for x in text.lower().split("x"))
@@ -68,6 +81,10 @@ def _surface_options(p, default_size="800x600", many=False):
     p.add_argument("--proj", default="persp", choices=["persp", "ortho", "perspective", "orthographic"],
                    help="projection (default persp, as matplotlib)")
     p.add_argument("--focal-length", type=float, default=None, help="perspective focal length, as matplotlib")
+    p.add_argument("--aspect", type=_aspect, default="auto", metavar="{auto,equal,equalxy,BX:BY:BZ}",
+                   help="the box's proportions: auto (default, as matplotlib: the ranges of "
+                        "x, y and the height fill 4:4:3), equal (true proportions), equalxy, "
+                        "or a box BX:BY:BZ")
     p.add_argument("--method", default="column", choices=["column", "horizon"],
                    help="shaded floating column or monochrome floating horizon")
     p.add_argument("--shading", default="default", choices=["default", "lambert"])
@@ -192,7 +209,7 @@ def _ranges(args):
 def _options(args):
     opts = dict(size=args.size, elev=args.elev, azim=args.azim, proj_type=args.proj,
                 method=args.method, shading=args.shading, interpolation=args.interpolation,
-                dpi=args.dpi)
+                dpi=args.dpi, aspect=args.aspect)
     if args.antialias is not None:
         opts["antialias"] = {"on": True, "off": False, "2": 2, "3": 3, "4": 4}[args.antialias]
     for name in ("focal_length", "cmap", "color", "vmin", "vmax", "lines", "corrections",

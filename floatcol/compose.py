@@ -17,9 +17,11 @@ import numpy as np
 
 from . import color
 from .kernels.layout import G_DEPTH
-from .render import Render, _domain, _untile, default_background, render
+from .render import (
+    NO_BOX, Render, _boxed, _check_box, _domain, _untile, box_factors, box_point,
+    default_background, render)
 from .surface import as_surface
-from .view import build_view, viewpoint_distances
+from .view import _fit, build_view, viewpoint_distances
 
 
 def render_many(surfaces, size=(400, 300), elev=30.0, azim=30.0, projection="orthographic",
@@ -53,10 +55,14 @@ def render_many(surfaces, size=(400, 300), elev=30.0, azim=30.0, projection="ort
         background = default_background(options.get("method", "column"),
                                         options.get("shading", "default"))
     bg8 = color.to_rgba8(background)
+    box = options.pop("box", None)
+    aspect = options.pop("aspect", "equal")
+    box = joint_box(items, aspect) if box is None else _check_box(box)
     cam = _joint_camera(items, size, elev, azim, projection, d1, d2, scale, center,
-                        focal_length)
+                        focal_length, box)
     renders = [render(s, u=dom[0], v=dom[1], size=size, elev=elev, azim=azim,
-                      projection=projection, background=(0, 0, 0, 0), **cam, **options)
+                      projection=projection, background=(0, 0, 0, 0), box=box, **cam,
+                      **options)
                for s, dom in items]
     out = composite(renders, bg8)
     out.stats["seconds"] = time.perf_counter() - t_start
@@ -80,8 +86,33 @@ def _items(surfaces, vars):
     return items
 
 
-def _joint_camera(items, size, elev, azim, projection, d1, d2, scale, center, focal_length):
-    """scale, center, d1, d2 that fit every surface (render()'s rules, on the union)."""
+def joint_box(items, aspect):
+    """render's box stretch (a, b, c) for ``aspect`` shared by several (surface,
+    domain) items: that of the union of their domains and of the ranges of f."""
+    if isinstance(aspect, str) and aspect == "equal":
+        return NO_BOX
+    ranges = [_fit(s, dom)["range"] for s, dom in items]
+    union = tuple((min(d[k][0] for _, d in items), max(d[k][1] for _, d in items))
+                  for k in (0, 1))
+    return box_factors(aspect, None, union, (min(lo for lo, _ in ranges),
+                                             max(hi for _, hi in ranges)))
+
+
+def _joint_camera(items, size, elev, azim, projection, d1, d2, scale, center, focal_length,
+                  box=NO_BOX):
+    """scale, center, d1, d2 that fit every surface (render()'s rules, on the union),
+    for the surfaces stretched by ``box`` (joint_box); center in the surfaces' units."""
+    if box != NO_BOX:
+        items = [_boxed(s, dom, None, box)[:2] for s, dom in items]
+        center = box_point(center, box)
+    cam = _fitted_camera(items, size, elev, azim, projection, d1, d2, scale, center,
+                         focal_length)
+    if box != NO_BOX:
+        cam["center"] = tuple(x / k for x, k in zip(cam["center"], box))
+    return cam
+
+
+def _fitted_camera(items, size, elev, azim, projection, d1, d2, scale, center, focal_length):
     views = [build_view(s, dom, size, elev, azim, projection, d1, d2, scale, "auto", None,
                         None, focal_length) for s, dom in items]
     if center is None or (isinstance(center, str) and center == "auto"):
@@ -172,8 +203,10 @@ def composite(renders, background=(255, 255, 255, 255)) -> Render:
              "seconds": sum(r.stats["seconds"] for r in renders),
              "surfaces": len(renders), "surface": which,
              "method": renders[0].stats.get("method"),
-             "w_limits": [r.stats.get("w_limits") for r in renders]}
-    return Render(out, intensity, side, depth_out, stats, renders[0].view, gbuf, None, seen)
+             "w_limits": [r.stats.get("w_limits") for r in renders],
+             "box": renders[0].box}
+    return Render(out, intensity, side, depth_out, stats, renders[0].view, gbuf, None, seen,
+                  box=renders[0].box)
 
 
 def _tile(mask, tile, n_tiles):

@@ -27,6 +27,7 @@ DEFAULT_SIZE = (800, 600)
 DEFAULT_ELEV = 30.0
 DEFAULT_AZIM = -60.0          # matplotlib's default view
 DEFAULT_PROJ = "persp"        # matplotlib's default proj_type
+DEFAULT_ASPECT = "auto"       # matplotlib's 3-D box: u, v, w ranges fill 4 : 4 : 3
 PROJ_TYPES = {"persp": "perspective", "perspective": "perspective",
               "ortho": "orthographic", "orthographic": "orthographic"}
 
@@ -255,17 +256,22 @@ class SurfacePlot(_ScalarMappable):
                 kw["antialias"] = False
         if self.zoom != 1.0 and kw.get("scale") is None:
             if self.others:
-                from .compose import _joint_camera
+                from .compose import _joint_camera, joint_box
+                box = kw.get("box")
+                if box is None:
+                    box = joint_box(self._items(), kw.get("aspect", "equal"))
                 fit = _joint_camera(self._items(), kw["size"], kw["elev"], kw["azim"],
                                     kw["projection"], kw.get("d1"), kw.get("d2"), None,
-                                    kw.get("center"), kw.get("focal_length"))
+                                    kw.get("center"), kw.get("focal_length"), box)
                 kw.update(d1=fit["d1"], d2=fit["d2"])     # the camera is fixed now
                 kw.pop("focal_length", None)
                 kw["scale"], kw["center"] = fit["scale"] * self.zoom, fit["center"]
+                kw["box"] = box
             else:
-                fit = render_view(self.surface, kw)
+                fit, box = render_view(self.surface, kw)
                 kw["scale"] = fit.scale * self.zoom
-                kw["center"] = fit.center
+                kw["center"] = tuple(x / k for x, k in zip(fit.center, box))
+                kw["box"] = box
         return kw
 
     def _items(self):
@@ -322,13 +328,20 @@ class SurfacePlot(_ScalarMappable):
 
 
 def render_view(surface, kw):
-    """The View render() would fit for these keyword arguments."""
-    from .render import _domain
+    """(View, box): the View render() would fit for these keyword arguments, and its
+    box stretch (render.box_factors; the View's coordinates are the box's)."""
+    from .render import NO_BOX, _boxed, _check_box, _domain, box_factors
     from .view import build_view
     domain = _domain(surface, kw.get("u"), kw.get("v"))
+    box = kw.get("box")
+    box = box_factors(kw.get("aspect", "equal"), surface, domain) if box is None else \
+        _check_box(box)
+    center = kw.get("center")
+    if box != NO_BOX:
+        surface, domain, center = _boxed(surface, domain, center, box)
     return build_view(surface, domain, kw["size"], kw["elev"], kw["azim"],
                       kw.get("projection", "orthographic"), kw.get("d1"), kw.get("d2"),
-                      None, kw.get("center"), None, None, kw.get("focal_length"))
+                      None, center, None, None, kw.get("focal_length")), box
 
 
 def _rgb(c):
@@ -353,6 +366,10 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
         matplotlib's.
     size : (width, height) pixels when not in an Axes (default 800x600); ``dpi`` for
         PDF/SVG output.
+    aspect : "auto" (default, as matplotlib's 3-D axes: the ranges of x, y and the
+        surface's height fill a box of proportions 4 : 4 : 3), "equal" (true
+        proportions, as :func:`floatcol.render`), "equalxy", or box proportions
+        (bx, by, bz); see :func:`floatcol.render`.
     **options : any other :func:`floatcol.render` option: method, shading,
         interpolation, step, pixel_step, lines, upper_color, lower_color, background,
         ambient, light, scale, center, d1, d2.
@@ -363,7 +380,8 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     """
     unknown = sorted(set(options) - _RENDER_OPTIONS - _OWN_OPTIONS)
     if unknown:
-        known = ", ".join(sorted(_RENDER_OPTIONS | _OWN_OPTIONS))
+        known = ", ".join(sorted(k for k in _RENDER_OPTIONS | _OWN_OPTIONS
+                                 if not k.startswith("_")))
         raise ValueError(f"unknown option{'s' if len(unknown) > 1 else ''} "
                          f"{', '.join(unknown)}; plot_surface knows: {known}")
     if "projection" in options:
@@ -372,6 +390,7 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
         options["proj_type"] = options.pop("projection")
     if "upper_color" in options and "color" not in options:
         options["color"] = options.pop("upper_color")
+    options.setdefault("aspect", DEFAULT_ASPECT)
     if isinstance(expr, list):
         # several surfaces in one picture: each an expression (the shared ranges) or
         # (expr, (x, a, b), (y, c, d)) with its own

@@ -82,6 +82,9 @@ class Render:
     #: (vp, interpolation, ambient): how centre_kernel lights the G-buffer while
     #: intensity and depth are still None
     _light_args: tuple = field(default=None, repr=False)
+    #: render's ``aspect``: the stretch (a, b, c) of u, v and w in the picture's box
+    #: (the G-buffer's u, v, w are the box's; ``u``, ``v``, ``w`` divide it out)
+    box: tuple = field(default=(1.0, 1.0, 1.0), repr=False)
 
     def _centres(self):
         if self._intensity is None or self._depth is None:
@@ -122,17 +125,21 @@ class Render:
         g = np.where(self._mask()[..., None], self._picture(slice(None)), np.float32(np.nan))
         return g[::-1].transpose(1, 0, 2)
 
+    def _unboxed(self, g, k):
+        x = self._channel(g)
+        return x if self.box[k] == 1.0 else (x / self.box[k]).astype(np.float32)
+
     @property
     def u(self):
-        return self._channel(G_U)
+        return self._unboxed(G_U, 0)
 
     @property
     def v(self):
-        return self._channel(G_V)
+        return self._unboxed(G_V, 1)
 
     @property
     def w(self):
-        return self._channel(G_W)
+        return self._unboxed(G_W, 2)
 
     @property
     def normal(self):
@@ -165,7 +172,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            placement="exact", specular=None, shininess=None,
            corrections=DEFAULT_CORRECTIONS, detect=None, jump_threshold=DEFAULT_JUMP,
            supersample_rate=DEFAULT_RATE, spline_tolerance=None,
-           antialias=None, sampling="uniform") -> Render:
+           antialias=None, sampling="uniform", aspect="equal", box=None) -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -226,6 +233,17 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     center : world point (u, v, w) at the image centre. None: the middle of the
         domain and of the range of f when scale is fitted, the origin (as in the
         paper and DESIGN.md's pixel convention) when scale is given; or "auto".
+    aspect : the proportions of the picture's box, as matplotlib's 3-D axes.
+        "equal" (default): u, v and w in true proportions, as the paper. "auto"
+        (matplotlib's default, and plot_surface's): the domain's u and v ranges and
+        the range of f stretched to a box of proportions 4 : 4 : 3, so a surface
+        much flatter or taller than its domain is wide as much as it is high;
+        "equalxy": u and v in true proportions, w stretched to 3/4 of the longer
+        side; or (bu, bv, bw): a box of those proportions. ``scale`` then counts
+        pixels per unit of u; ``center``, vmin/vmax and the Render's u, v, w stay in
+        the surface's units; ``depth``, ``normal`` and ``view`` are the box's.
+    box : (a, b, c), instead of aspect: stretch u, v and w by these factors (a
+        picture's ``stats["box"]``, to draw another in the same box).
 
     Returns
     -------
@@ -249,6 +267,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
                          f"got {interpolation!r}")
     surface = as_surface(expr, vars)
     domain = _domain(surface, u, v)
+    box = box_factors(aspect, surface, domain) if box is None else _check_box(box)
+    if box != NO_BOX:
+        surface, domain, center = _boxed(surface, domain, center, box)
     if shading == "lambert":
         if light is not None:
             raise ValueError("shading='lambert' lights from the viewpoint; leave light=None "
@@ -324,10 +345,16 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         rgba = color.line_rgba(side, background=background)
     else:
         lut, lower_rgb = color.side_colors(shading, cmap, upper_color, lower_color)
-        w_lo, w_hi = _height_limits(wrange, vmin, vmax)
+        c_w = box[2]
+        w_lo, w_hi = _height_limits(wrange if c_w == 1.0 else wrange / c_w, vmin, vmax)
         if norm is not None and lut.shape[0] > 1:
             lut, w_lo, w_hi = _norm_lut(norm, lut, w_lo, w_hi)
         w_limits = (w_lo, w_hi)
+        if c_w != 1.0:                  # the kernels colour the box's heights
+            w_lo, w_hi = w_lo * c_w, w_hi * c_w
+            if lut.shape[1] > 3:
+                lut = lut.copy()
+                lut[:, 3] *= c_w
         bg8 = color.to_rgba8(background)
         shade_args = (INTERPOLATIONS[interpolation], amb, spec, shine)
 
@@ -369,9 +396,83 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         "method": method,
         "derivatives": surface.derivatives,
         "w_limits": w_limits,      # the colormap's height range (column method)
+        "box": box,                # aspect's stretch of u, v and w (1, 1, 1: none)
     }
     return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t, seen,
-                  (vp, INTERPOLATIONS[interpolation], amb))
+                  (vp, INTERPOLATIONS[interpolation], amb), box)
+
+
+#: No stretch: u, v and w in true proportions (aspect="equal")
+NO_BOX = (1.0, 1.0, 1.0)
+#: The proportions of aspect="auto"'s box: matplotlib's default box aspect
+DEFAULT_BOX = (4.0, 4.0, 3.0)
+ASPECTS = ("equal", "auto", "equalxy")
+
+
+def box_factors(aspect, surface, domain, w_range=None):
+    """(a, b, c): how much render's ``aspect`` stretches u, v and w (a = 1: u keeps
+    its units). The range of f is its robust range on the fit grid (a pole does
+    not flatten the box) unless ``w_range`` gives it; a flat f keeps c = 1."""
+    if isinstance(aspect, str):
+        if aspect not in ASPECTS:
+            raise ValueError(f"aspect must be one of {', '.join(map(repr, ASPECTS))} or box "
+                             f"proportions (bu, bv, bw), got {aspect!r}")
+        if aspect == "equal":
+            return NO_BOX
+    (ua, ub), (va, vb) = domain
+    du, dv = ub - ua, vb - va
+    if isinstance(aspect, str) and aspect == "auto":
+        bu, bv, bw = DEFAULT_BOX
+    elif isinstance(aspect, str):                     # equalxy
+        longest = max(du, dv)
+        bu, bv, bw = du / longest, dv / longest, DEFAULT_BOX[2] / DEFAULT_BOX[0]
+    else:
+        try:
+            bu, bv, bw = (float(x) for x in aspect)
+        except (TypeError, ValueError):
+            raise ValueError("aspect must be 'equal', 'auto', 'equalxy' or box proportions "
+                             f"(bu, bv, bw), got {aspect!r}") from None
+        if not all(math.isfinite(x) and x > 0 for x in (bu, bv, bw)):
+            raise ValueError(f"aspect's box proportions must be positive numbers, got {aspect!r}")
+    if w_range is None:
+        from .view import _fit
+        w_range = _fit(surface, domain)["range"]
+    dw = float(w_range[1]) - float(w_range[0])
+    b = bv / bu * du / dv
+    c = bw / bu * du / dw if dw > 0 else 1.0
+    if not (math.isfinite(c) and 1e-150 < c < 1e150):
+        c = 1.0
+    return (1.0, b, c)
+
+
+def _check_box(box):
+    try:
+        a, b, c = (float(x) for x in box)
+    except (TypeError, ValueError):
+        raise ValueError(f"box must be stretch factors (a, b, c), got {box!r}") from None
+    if not all(math.isfinite(x) and x > 0 for x in (a, b, c)):
+        raise ValueError(f"box's stretch factors must be positive numbers, got {box!r}")
+    return a, b, c
+
+
+def _boxed(surface, domain, center, box):
+    """(surface, domain, center) stretched by box's (a, b, c) (box_factors): what
+    the kernels draw for render's ``aspect``."""
+    a, b, c = box
+    (ua, ub), (va, vb) = domain
+    return surface.scaled(a, b, c), ((ua * a, ub * a), (va * b, vb * b)), \
+        box_point(center, box)
+
+
+def box_point(center, box):
+    """A point (u, v, w) in the box of ``box`` (box_factors); None or a string as
+    is (and anything else, for build_view to say what is wrong with it)."""
+    if isinstance(center, (str, type(None))):
+        return center
+    try:
+        return tuple(float(x) * k for x, k in zip(center, box, strict=True))
+    except (TypeError, ValueError):
+        return center
 
 
 def _batch_evaluator(surface, view, method, sampling):

@@ -18,7 +18,7 @@ import numba
 import numpy as np
 
 from .kernels._jit import compile_batch_fn, compile_grad_fn, compile_surface_fn
-from .kernels.layout import SURF_FUNCTION, SURF_HEIGHTFIELD
+from .kernels.layout import HFP_CW, HFP_IU, HFP_IV, SURF_FUNCTION, SURF_HEIGHTFIELD
 from .kernels.sample import eval_grid
 
 log = logging.getLogger(__name__)
@@ -47,7 +47,8 @@ class Surface:
         self.derivatives = derivatives
         self.time = time            # name of the time parameter, or None
         self.hf = np.zeros((2, 2))
-        self.hfp = np.array([0.0, 1.0, 0.0, 1.0])   # hfp[0]: the time t
+        # hfp[0]: the time t; HFP_IU, HFP_IV, HFP_CW: the box scaling (scaled())
+        self.hfp = np.array([0.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0])
         self._fits = {}     # fit_grid's, shared by the copies made by at()
 
     def at(self, t):
@@ -57,6 +58,20 @@ class Surface:
         other = copy.copy(self)
         other.hfp = self.hfp.copy()
         other.hfp[0] = float(t)
+        return other
+
+    def scaled(self, a, b, c):
+        """The surface stretched by a along u, b along v and c along w: w = c f(p / a,
+        q / b) over the domain times (a, b), with the same compiled functions (the
+        kernels scale each evaluation, layout.py's HFP_*). render's ``aspect``
+        draws a box-scaled surface this way."""
+        if self.kind != SURF_FUNCTION:
+            raise ValueError("only a function surface scales through its parameters")
+        other = copy.copy(self)
+        other.hfp = self.hfp.copy()
+        other.hfp[HFP_IU] /= a
+        other.hfp[HFP_IV] /= b
+        other.hfp[HFP_CW] *= c
         return other
 
     #: Default domain when the caller gives none (None: the caller must choose).
@@ -119,8 +134,14 @@ class HeightField(Surface):
         super().__init__(*_zero_fns(), variables=DEFAULT_VARS,
                          derivatives="bilinear")
         self.hf = np.ascontiguousarray(z)
-        self.hfp = np.array([u[0], u[1], v[0], v[1]], dtype=np.float64)
+        self.hfp = np.array([u[0], u[1], v[0], v[1], 1.0, 1.0, 1.0], dtype=np.float64)
         self.default_domain = (u, v)
+
+    def scaled(self, a, b, c):
+        """The height field stretched by a along u, b along v and c along w (a new
+        grid: heights times c over the extent times (a, b))."""
+        (ua, ub), (va, vb) = self.default_domain
+        return HeightField(self.hf * c, u=(ua * a, ub * a), v=(va * b, vb * b))
 
     def __repr__(self):
         (a, b), (c, d) = self.default_domain

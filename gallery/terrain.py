@@ -1,7 +1,8 @@
 """A real terrain: the Jacksboro fault DEM shipped with matplotlib, as a HeightField.
 
 344 x 403 heights at 3 arc-second spacing, read as a bilinear function and drawn
-with 3x vertical exaggeration and a matplotlib LightSource from the north-west.
+with 3x vertical exaggeration (in true proportions otherwise: aspect="equal") and a
+matplotlib LightSource from the north-west.
 """
 import numpy as np
 from matplotlib.cbook import get_sample_data
@@ -18,4 +19,4 @@ ny, nx = z.shape
 terrain = fc.HeightField(3 * z / 1000.0, u=(0, (nx - 1) * km_x), v=(0, (ny - 1) * km_y))
 
 fc.plot_surface(terrain, cmap="gist_earth", lightsource=LightSource(azdeg=315, altdeg=35),
-                elev=35, azim=-110, size=(1000, 600)).save("terrain.png")
+                elev=35, azim=-110, size=(1000, 600), aspect="equal").save("terrain.png")

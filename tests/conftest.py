@@ -16,6 +16,29 @@ def reference_for(r, expr, u, v, elev, azim, projection, **kw):
                    vw.d1, vw.d2, vw.scale, center=vw.center, **kw)
 
 
+def matplotlib_agrees(view, world, box_points, limits, elev, azim):
+    """Whether matplotlib's own Axes3D camera (orthographic, default box aspect, axis
+    limits ``limits``) projects the points ``world`` (3, n) as floatcol's ``view``
+    projects ``box_points`` (the same points in the view's box), up to scale and shift
+    (to 1e-9 of the picture's spread)."""
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from mpl_toolkits.mplot3d import proj3d
+    fig = plt.figure()
+    ax = fig.add_subplot(projection="3d", proj_type="ortho")
+    for lim, set_lim in zip(limits, (ax.set_xlim, ax.set_ylim, ax.set_zlim)):
+        set_lim(*lim)
+    ax.view_init(elev, azim)
+    mx, my, _ = proj3d.proj_transform(*world, ax.get_proj())
+    plt.close(fig)
+    col, row = view.project(*box_points)
+    ours = np.stack([col, -row], 1)
+    theirs = np.stack([mx, my], 1)
+    ours = (ours - ours.mean(0)) / np.linalg.norm(ours - ours.mean(0))
+    theirs = (theirs - theirs.mean(0)) / np.linalg.norm(theirs - theirs.mean(0))
+    return np.abs(ours - theirs).max() < 1e-9
+
+
 def render_with_switch_off(monkeypatch, index, expr, **kw):
     """The render of ``expr`` with view parameter ``index`` (one of vp's test-only
     switches, kernels/layout.py) set to 0, and patched so for the rest of the test."""

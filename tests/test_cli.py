@@ -66,6 +66,8 @@ def test_several_expressions_make_one_picture(capsys, monkeypatch, tmp_path):
 @pytest.mark.parametrize("flags,opts", [
     (("--corrections", "none", "--antialias", "off"), dict(corrections="none", antialias=False)),
     (("--antialias", "3", "--sampling", "adaptive"), dict(antialias=3, sampling="adaptive")),
+    (("--aspect", "equal"), dict(aspect="equal")),
+    (("--aspect", "1:2:1"), dict(aspect=(1.0, 2.0, 1.0))),
 ])
 def test_fidelity_flags_match_plot_surface(capsys, monkeypatch, tmp_path, flags, opts):
     import floatcol as fc
@@ -111,6 +113,8 @@ def test_animate_writes_gif_with_frames(capsys, monkeypatch, tmp_path):
     (["render", "u", "-o", "x.gif"], "must end in .jpeg, .jpg, .pdf, .png, .svg"),
     (["render", "u", "--bogus", "-o", "x.png"], "unrecognized arguments"),
     (["render", "u", "--proj", "fisheye", "-o", "x.png"], "invalid choice"),
+    (["render", "u", "--aspect", "cube", "-o", "x.png"], "BX:BY:BZ"),
+    (["render", "u", "--aspect", "1:0:1", "-o", "x.png"], "positive"),
     (["render", "u", "--cmap", "nosuchmap", "-o", "x.png"], "nosuchmap"),
     (["render", "u", "--elev", "120", "-o", "x.png"], "elev"),
     (["render", "u*v", "--vars", "u", "-o", "x.png"], "--vars"),

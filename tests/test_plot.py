@@ -11,6 +11,7 @@ matplotlib.use("Agg")
 
 import floatcol as fc  # noqa: E402
 from floatcol.plot import mpl_to_paper_angles  # noqa: E402
+from conftest import matplotlib_agrees  # noqa: E402
 
 x, y, a, b = sp.symbols("x y a b")
 SMALL = (64, 48)
@@ -76,28 +77,12 @@ def test_angles_follow_matplotlib():
     """Project the domain's corners with matplotlib's own Axes3D camera (orthographic,
     equal x/y ranges, so its box scaling is uniform) and with floatcol's View for the
     same elev/azim: the two quadrilaterals agree up to scale and shift."""
-    import matplotlib.pyplot as plt
-    from mpl_toolkits.mplot3d import proj3d
-    cu = np.array([-1.0, 1.0, 1.0, -1.0])
-    cv = np.array([-1.0, -1.0, 1.0, 1.0])
-    cw = np.array([0.0, 0.0, 0.0, 0.0])
+    corners = np.array([[-1.0, 1.0, 1.0, -1.0], [-1.0, -1.0, 1.0, 1.0], [0.0] * 4])
     for elev, azim in [(30, -60), (45, 30), (20, 160), (60, -135)]:
-        fig = plt.figure()
-        ax = fig.add_subplot(projection="3d", proj_type="ortho")
-        ax.set_xlim(-1, 1)
-        ax.set_ylim(-1, 1)
-        ax.set_zlim(-1, 1)
-        ax.view_init(elev, azim)
-        mx, my, _ = proj3d.proj_transform(cu, cv, cw, ax.get_proj())
-        plt.close(fig)
         p = fc.plot_surface("0*x", ("x", -1, 1), ("y", -1, 1), elev=elev, azim=azim,
                             proj_type="ortho", size=(200, 200))
-        col, row = p.draw().view.project(cu, cv, cw)
-        ours = np.stack([col, -row], 1)
-        theirs = np.stack([mx, my], 1)
-        ours = (ours - ours.mean(0)) / np.linalg.norm(ours - ours.mean(0))
-        theirs = (theirs - theirs.mean(0)) / np.linalg.norm(theirs - theirs.mean(0))
-        assert np.abs(ours - theirs).max() < 1e-9, (elev, azim)
+        assert matplotlib_agrees(p.draw().view, corners, corners, [(-1, 1)] * 3, elev, azim), \
+            (elev, azim)
     assert mpl_to_paper_angles(30, -60) == (30.0, -30.0)
 
 

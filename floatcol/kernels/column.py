@@ -27,7 +27,7 @@ from ._jit import (
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
-    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W,
+    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W, HFP_CW, HFP_IU, HFP_IV,
     DETECT_RIDGE, DETECT_WALL, FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
     SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
@@ -125,7 +125,9 @@ BAT_I = 11
 BAT_VN = 12       # probe()'s values, where vp's VP_DETECT asks for them
 BAT_BUMP = 13
 BAT_SLOPE = 14
-BAT_SIZE = 15
+BAT_US = 15       # u and v of f where the surface is box-scaled (HFP_IU, HFP_IV)
+BAT_VS = 16
+BAT_SIZE = 17
 
 
 @ngjit_inline
@@ -1048,8 +1050,24 @@ def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0,
         bat[BAT_U * BATCH + k] = u0 + t * sb
         bat[BAT_V * BATCH + k] = v0 + t * cb
     o = BAT_W * BATCH
-    fb(array_ptr(bat, BAT_U * BATCH), array_ptr(bat, BAT_V * BATCH), hfp[0],
-       array_ptr(bat, o), m)
+    iu = hfp[HFP_IU]
+    iv = hfp[HFP_IV]
+    c = hfp[HFP_CW]
+    boxed = iu != 1.0 or iv != 1.0 or c != 1.0       # (surface_eval's scaling)
+    pu = BAT_U * BATCH
+    pv = BAT_V * BATCH
+    if boxed:
+        for k in range(m):
+            bat[BAT_US * BATCH + k] = bat[pu + k] * iu
+            bat[BAT_VS * BATCH + k] = bat[pv + k] * iv
+        pu = BAT_US * BATCH
+        pv = BAT_VS * BATCH
+    fb(array_ptr(bat, pu), array_ptr(bat, pv), hfp[0], array_ptr(bat, o), m)
+    if boxed:
+        for k in range(m):
+            bat[o + k] *= c
+            bat[o + m + k] *= c * iu
+            bat[o + 2 * m + k] *= c * iv
     for k in range(m):
         if not (math.isfinite(bat[o + k]) and math.isfinite(bat[o + m + k])
                 and math.isfinite(bat[o + 2 * m + k])):

@@ -74,6 +74,17 @@ DETECT_WALL = 8       # a discontinuity: a screen-y jump the slopes cannot expla
 SURF_FUNCTION = 0
 SURF_HEIGHTFIELD = 1
 
+# A surface's parameter vector ``hfp`` (float64, Surface.hfp). A function surface
+# reads its time t from HFP_T; a height field its extent from HFP_T to 3. Every
+# kernel call of a function surface's f is c f(u iu, v iv, t), with its partials
+# c iu f_u and c iv f_v: the box scaling of render's ``aspect`` (Surface.scaled;
+# 1, 1, 1 for true proportions, which leaves every value as it was).
+HFP_T = 0
+HFP_IU = 4        # iu: u of the picture's box -> u of f
+HFP_IV = 5        # iv: likewise v
+HFP_CW = 6        # c: w of f -> w of the box
+HFP_SIZE = 7
+
 # The column pass's buffers are tiled: tiles of TILE neighbouring columns, each tile's
 # rows in order, so that a column's pixels lie TILE pixels apart (one thread renders a
 # tile's columns one after another, through the same cache lines and pages) and the

@@ -8,7 +8,7 @@ import numpy as np
 
 from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, stack_pair
 from .layout import (
-    S_BEHIND, S_HOLE, S_OK, S_OUTSIDE, SURF_HEIGHTFIELD,
+    HFP_CW, HFP_IU, HFP_IV, S_BEHIND, S_HOLE, S_OK, S_OUTSIDE, SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_H, VP_LX, VP_LY, VP_LZ, VP_ORTHO,
     VP_FHI, VP_FLO, VP_HOLE_N, VP_HOLE_SU, VP_HOLE_SV, VP_HOLE_U0, VP_HOLE_V0, VP_PAPER,
     VP_SA, VP_SB, VP_SIZE, VP_W, VP_SCALE, VP_UA, VP_UB, VP_VA, VP_VB, VP_XOFF,
@@ -54,14 +54,17 @@ def heightfield_eval(hf, hfp, u, v):
 def surface_eval(kind, fg, hf, hfp, u, v):
     """w = f(u, v) and its partials, from one call of the fused function fg; NaN w
     means a hole. A function surface's parameter t (the time of an animation) is
-    hfp[0]."""
+    hfp[0], its box scaling hfp's HFP_IU, HFP_IV and HFP_CW (layout.py)."""
     if kind == SURF_HEIGHTFIELD:
         return heightfield_eval(hf, hfp, u, v)
     p = stack_pair()
-    w = fg(u, v, hfp[0], p)
+    iu = hfp[HFP_IU]
+    iv = hfp[HFP_IV]
+    c = hfp[HFP_CW]
+    w = fg(u * iu, v * iv, hfp[0], p) * c
     if not math.isfinite(w):
         return np.nan, np.nan, np.nan
-    return w, p[0], p[1]
+    return w, p[0] * (c * iu), p[1] * (c * iv)
 
 
 @ngjit_inline
@@ -69,7 +72,7 @@ def surface_value(kind, f, hf, hfp, u, v):
     """w = f(u, v) alone (NaN at a hole), where no partials are needed."""
     if kind == SURF_HEIGHTFIELD:
         return heightfield_eval(hf, hfp, u, v)[0]
-    w = f(u, v, hfp[0])
+    w = f(u * hfp[HFP_IU], v * hfp[HFP_IV], hfp[0]) * hfp[HFP_CW]
     return w if math.isfinite(w) else np.nan
 
 

@@ -81,7 +81,8 @@ def _surface_options(p, default_size="800x600", many=False):
     p.add_argument("--proj", default="persp", choices=["persp", "ortho", "perspective", "orthographic"],
                    help="projection (default persp, as matplotlib)")
     p.add_argument("--focal-length", type=float, default=None, help="perspective focal length, as matplotlib")
-    p.add_argument("--aspect", type=_aspect, default="auto", metavar="{auto,equal,equalxy,BX:BY:BZ}",
+    p.add_argument("--aspect", type=_aspect, default="auto",
+                   metavar="{auto,equal,equalxy,BX:BY:BZ}",
                    help="the box's proportions: auto (default, as matplotlib: the ranges of "
                         "x, y and the height fill 4:4:3), equal (true proportions), equalxy, "
                         "or a box BX:BY:BZ")

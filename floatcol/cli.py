@@ -14,6 +14,7 @@ EXAMPLES = """examples:
   floatcol render "3*sin(u*cos(v))" --u=-5:5 --v=-5:5 -o surface.png
   floatcol render "x**2 - y**2" --x=-2:2 --y=-2:2 --proj ortho --elev 40 -o saddle.pdf
   floatcol render "sin(x*y)" --method horizon --size 800x600 -o lines.png
+  floatcol render "sin(x)*cos(y)" --x -pi:pi --y -pi:pi --aspect equal -o waves.png
   floatcol render "x*y/3" "2*exp(-x^2-y^2) - 0.5" --x=-2:2 --y=-2:2 -o two.png
   floatcol animate "exp(-(x^2+y^2)/8)*cos(2*sqrt(x^2+y^2) - t)" --x=-6:6 --y=-6:6 --t 0:6.283 --frames 48 -o wave.gif
   floatcol gallery build -o site/gallery
@@ -34,10 +35,30 @@ class _Parser(argparse.ArgumentParser):
 
 def _range(text):
     try:
-        lo, hi = (float(x) for x in text.split(":"))
+        lo, hi = (_number(x) for x in text.split(":"))
     except ValueError:
-        raise argparse.ArgumentTypeError(f"range {text!r} must be LOW:HIGH, e.g. -5:5") from None
+        raise argparse.ArgumentTypeError(f"range {text!r} must be LOW:HIGH, e.g. -5:5 or "
+                                         "-pi:2*pi") from None
     return lo, hi
+
+
+def _number(text):
+    """A bound: a number, or a constant expression such as 2*pi or sqrt(2)."""
+    try:
+        return float(text)
+    except ValueError:
+        pass
+    import sympy
+    try:
+        value = sympy.sympify(text.replace("^", "**"))
+    except (sympy.SympifyError, TypeError, SyntaxError, AttributeError):
+        raise ValueError(text) from None
+    if not getattr(value, "is_number", False) or value.free_symbols:
+        raise ValueError(text)
+    try:
+        return float(value)
+    except TypeError:                    # a complex constant
+        raise ValueError(text) from None
 
 
 def _aspect(text):
@@ -141,18 +162,21 @@ def build_parser():
     return p
 
 
-_NEGATIVE_OK = ("--u", "--v", "--x", "--y", "--t", "--vmin", "--vmax", "--elev", "--azim")
+_RANGES = ("--u", "--v", "--x", "--y", "--t")
+_NEGATIVE_OK = _RANGES + ("--vmin", "--vmax", "--elev", "--azim")
 
 
 def _fix_negative_values(argv):
-    """Let '--u -5:5' and '--azim -60' work: argparse would take '-5:5' for an option."""
+    """Let '--u -5:5', '--u -pi:pi' and '--azim -60' work: argparse would take '-5:5'
+    for an option."""
     out = []
     i = 0
     while i < len(argv):
         a = argv[i]
-        if a in _NEGATIVE_OK and i + 1 < len(argv) and argv[i + 1][:1] == "-" \
-                and argv[i + 1][1:2] in "0123456789.":
-            out.append(f"{a}={argv[i + 1]}")
+        nxt = argv[i + 1] if i + 1 < len(argv) else ""
+        if a in _NEGATIVE_OK and nxt[:1] == "-" and (nxt[1:2] in "0123456789." or (
+                a in _RANGES and ":" in nxt)):             # -5, -5:5, -pi:pi
+            out.append(f"{a}={nxt}")
             i += 2
             continue
         out.append(a)

@@ -440,7 +440,7 @@ def box_factors(aspect, surface, domain, w_range=None):
     dw = float(w_range[1]) - float(w_range[0])
     b = bv / bu * du / dv
     c = bw / bu * du / dw if dw > 0 else 1.0
-    if not (math.isfinite(c) and 1e-150 < c < 1e150):
+    if not (math.isfinite(c) and c > 0.0):       # a range too small to divide by
         c = 1.0
     return (1.0, b, c)
 

@@ -212,8 +212,8 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
     pw = np.concatenate([np.clip(gw[ok], w_lo, w_hi), np.full(gu.size, center[2])])
     if not ok.any():
         pw[:] = center[2]
-    radius = float(np.sqrt(((pu - center[0]) ** 2 + (pv - center[1]) ** 2
-                            + (pw - center[2]) ** 2).max()))
+    # (hypot: no overflow where f is finite but huge, 1e300 u)
+    radius = float(np.hypot(np.hypot(pu - center[0], pv - center[1]), pw - center[2]).max())
     radius = max(radius, 1e-9)
     if ortho:
         d1 = 1.0 if d1 is None else _number("d1", d1, positive=True)
@@ -239,7 +239,8 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
             if not keep.any():
                 raise ValueError("the whole surface is in front of the screen plane: "
                                  "increase d1 + d2 (move the viewpoint back)")
-            x, y = x[keep] * d1 / depth[keep], y[keep] * d1 / depth[keep]
+            m = d1 / depth[keep]
+            x, y = x[keep] * m, y[keep] * m
         half_w = 0.5 * max(width - 1, 1) * (1 - FIT_MARGIN)
         half_h = 0.5 * max(height - 1, 1) * (1 - FIT_MARGIN)
         ax = max(float(np.abs(x).max()), 1e-12)

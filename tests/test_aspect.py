@@ -164,6 +164,22 @@ def test_bad_aspect_names_what_to_fix(kw, needle):
         fc.render(F, U, V, size=(40, 30), **kw)
 
 
+@pytest.mark.parametrize("expr", ["1e300*u", "exp(100*u)", "1e-300*u"])
+@pytest.mark.parametrize("proj", ["orthographic", "perspective"])
+def test_huge_and_tiny_heights_fill_the_box(expr, proj):
+    """f finite but far beyond the domain's size (up to 1e300): no overflow, no
+    warning; in true proportions a sliver narrower than a pixel, in the box a
+    picture."""
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        equal = fc.render(expr, U, V, size=(80, 60), projection=proj)
+        auto = fc.render(expr, U, V, size=(80, 60), projection=proj, aspect="auto")
+    if expr != "1e-300*u":
+        assert (equal.side != 0).mean() == 0.0
+    assert (auto.side != 0).mean() > 0.2
+
+
 def test_a_flat_surface_keeps_its_height():
     assert fc.render("0*u + 2", U, V, size=(40, 30), aspect="auto").stats["box"][2] == 1.0
     assert math.isfinite(fc.render("exp(40*u)", U, V, size=(40, 30),

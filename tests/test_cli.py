@@ -1,5 +1,6 @@
 """The floatcol command: each success writes its file; each user mistake prints one
 line on stderr, exits 2, shows no traceback and leaves no file."""
+import math
 import os
 import subprocess
 import sys
@@ -49,6 +50,16 @@ def test_render_matches_plot_surface(capsys, monkeypatch, tmp_path):
                            azim=-30, proj_type="ortho", cmap="magma").rgba
     got = np.asarray(Image.open(tmp_path / "s.png"))
     assert np.array_equal(got, want)
+
+
+def test_ranges_take_constant_expressions(capsys, monkeypatch, tmp_path):
+    import floatcol as fc
+    code, _, err = run_here(capsys, monkeypatch, tmp_path, "render", "sin(x)*cos(y)",
+                            "--x", "-pi:2*pi", "--y=-sqrt(2):1e0", "--size", "48x36", "-o", "s.png")
+    assert code == 0, err
+    want = fc.plot_surface("sin(x)*cos(y)", ("x", -math.pi, 2 * math.pi),
+                           ("y", -math.sqrt(2), 1.0), size=(48, 36)).rgba
+    assert np.array_equal(np.asarray(Image.open(tmp_path / "s.png")), want)
 
 
 def test_several_expressions_make_one_picture(capsys, monkeypatch, tmp_path):
@@ -107,6 +118,7 @@ def test_animate_writes_gif_with_frames(capsys, monkeypatch, tmp_path):
     (["render", "u", "--u", "2:1", "-o", "x.png"], "reversed"),
     (["render", "u", "--u", "1:1", "-o", "x.png"], "empty"),
     (["render", "u", "--u", "a:b", "-o", "x.png"], "LOW:HIGH"),
+    (["render", "u", "--u=-pi:I", "-o", "x.png"], "LOW:HIGH"),
     (["render", "u", "--size", "0x10", "-o", "x.png"], "positive"),
     (["render", "u", "--size", "big", "-o", "x.png"], "WIDTHxHEIGHT"),
     (["render", "u", "-o", "no/such/dir/x.png"], "does not exist"),

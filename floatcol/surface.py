@@ -301,7 +301,17 @@ def parse_expression(expr, names=DEFAULT_VARS):
         raise ValueError(
             f"unknown symbol{'s' if len(unknown) > 1 else ''} {', '.join(unknown)} in "
             f"{e}: the variables are {names[0]} and {names[1]}{hint}")
-    return e.xreplace(by_name)
+    e = e.xreplace(by_name)
+    if e.has(sp.re, sp.im, sp.arg, sp.conjugate, sp.I):
+        # The variables are real. sympy, knowing nothing of them, writes
+        # re(sqrt(x + I*y)) with re(x) and im(y), and im(log(x + I*y)) as arg(x + I*y),
+        # none of which compiles: re-built over real symbols, they become x, 0 and
+        # atan2(y, x).
+        real = {s: sp.Dummy(s.name, real=True) for s in syms.values()}
+        e = e.xreplace(real)
+        e = e.xreplace({f: f.rewrite(sp.atan2) for f in e.atoms(sp.arg)})
+        e = e.xreplace({d: s for s, d in real.items()})
+    return e
 
 
 def _parse_error_message(text, exc):

@@ -2,6 +2,7 @@
 import math
 
 import numpy as np
+import pytest
 import sympy as sp
 
 import floatcol as fc
@@ -189,3 +190,21 @@ def test_the_fit_grid_is_kept_per_domain_and_time():
     for k in range(FITS_KEPT + 3):                         # bounded
         fit_grid(s0, ((0.0, 1.0 + k), (0.0, 1.0)), 9)
     assert len(s0._fits) == FITS_KEPT
+
+
+@pytest.mark.parametrize("expr,numpy_f", [
+    ("re(sqrt(u + I*v))", lambda u, v: np.sqrt(u + 1j * v).real),
+    ("im(sqrt(u + I*v))", lambda u, v: np.sqrt(u + 1j * v).imag),
+    ("im(log(u + I*v))", lambda u, v: np.angle(u + 1j * v)),
+    ("Abs(u + I*v)", lambda u, v: np.abs(u + 1j * v)),
+    ("re((u + I*v)**3)", lambda u, v: ((u + 1j * v) ** 3).real),
+])
+def test_real_parts_of_complex_expressions_compile(expr, numpy_f):
+    """u and v are real: re, im, arg and Abs of complex expressions in them become
+    real formulas (sympy alone leaves re(u), im(v), which do not compile) with
+    symbolic partials."""
+    s = fc.as_surface(expr)
+    assert s.derivatives == "symbolic"
+    u = np.array([0.3, -2.0, 1.5, -0.7])
+    v = np.array([0.7, 0.4, -1.1, -0.2])
+    assert np.abs(s.evaluate(u, v) - numpy_f(u, v)).max() < 1e-12

@@ -25,6 +25,10 @@ def _drop_stale_cache(here=None):
     folders = [here / "__pycache__"]
     if _os.environ.get("NUMBA_CACHE_DIR"):
         folders.append(_Path(_os.environ["NUMBA_CACHE_DIR"]))
+    # Numba's folder for this directory's functions under NUMBA_CACHE_DIR:
+    # <dir name>_<sha1 of its path> (numba.core.caching's get_suitable_cache_subpath)
+    ours = {f"{here.name}_{_hashlib.sha1(str(p).encode()).hexdigest()}"
+            for p in {here, _Path(_os.path.abspath(here))}}
     for folder in folders:
         stamp = folder / "floatcol-kernels.stamp"
         try:
@@ -33,7 +37,7 @@ def _drop_stale_cache(here=None):
             if folder.is_dir():
                 for f in folder.rglob("*"):
                     if f.suffix in (".nbi", ".nbc") and f.name.split(".")[0] in stems \
-                            and "floatcol" in str(f):
+                            and ("floatcol" in str(f) or f.parent.name in ours):
                         f.unlink()
             folder.mkdir(parents=True, exist_ok=True)
             stamp.write_text(stamp_text)

@@ -318,6 +318,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     hrec = np.empty((W, n_lines, H_SIZE), dtype=np.float64)
     evals = np.zeros(W, dtype=np.int64)
     vp[L.VP_AA] = 1.0 if aa_cov else 0.0
+    if surface.derivatives not in ("symbolic", "bilinear"):
+        vp[L.VP_FOLD] = 0.0     # (layout.py: central differences tilt normals at jumps)
     ebuf = _pool.empty((n_tiles, L.E_SIZE, H, L.TILE), np.float32)
     wrange = np.empty((W, 2))
     rows = np.empty((n_tiles, 2), dtype=np.int64)

@@ -87,6 +87,7 @@ class View:
         vp[L.VP_QNEAR] = self.q_near
         vp[L.VP_CLIP] = 1.0
         vp[L.VP_KEEP_TOP] = 1.0
+        vp[L.VP_FOLD] = 0.0 if self.placement == "paper" else 1.0
         if self.holes is not None:
             n, u0, v0, su, sv, sat = self.holes
             vp[L.VP_HOLE_N], vp[L.VP_HOLE_U0], vp[L.VP_HOLE_V0] = n, u0, v0

@@ -12,12 +12,16 @@ CASES = [dict(projection="orthographic", method="column"),
          dict(projection="perspective", method="column"),
          dict(projection="perspective", method="horizon", elev=60),
          dict(projection="perspective", antialias=3, sampling="adaptive"),
-         dict(projection="orthographic", antialias=2, interpolation="intensity")]
+         dict(projection="orthographic", antialias=2, interpolation="intensity"),
+         # columns whose curve folds back, traced (kernels/fold.py)
+         dict(projection="perspective", elev=40, azim=-30, dom=(-2.2, 2.2),
+              expr="4.9*(sqrt(4 - u**2 - v**2) + sqrt(u**2 + v**2 - 1) - 2)")]
 SCRIPT = """
 import sys, numpy as np, numba, floatcol as fc
 assert numba.get_num_threads() == 1
 kw = eval(sys.argv[2])
-r = fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(160, 120), **kw)
+e, dom = kw.pop("expr", "3*sin(u*cos(v))"), kw.pop("dom", (-5, 5))
+r = fc.render(e, u=dom, v=dom, size=(160, 120), **kw)
 np.savez(sys.argv[1], rgba=r.rgba, intensity=r.intensity, side=r.side, depth=r.depth,
          samples=r.stats["samples"])
 """
@@ -29,7 +33,9 @@ def test_one_thread_equals_default(tmp_path, kw):
     env = dict(os.environ, NUMBA_NUM_THREADS="1")
     subprocess.run([sys.executable, "-c", SCRIPT, str(out), repr(kw)], check=True, env=env)
     one = np.load(out)
-    r = fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(160, 120), **kw)
+    kw = dict(kw)
+    e, dom = kw.pop("expr", "3*sin(u*cos(v))"), kw.pop("dom", (-5, 5))
+    r = fc.render(e, u=dom, v=dom, size=(160, 120), **kw)
     for name in ("rgba", "intensity", "side", "depth"):
         np.testing.assert_array_equal(one[name], getattr(r, name), err_msg=name)
     assert int(one["samples"]) == r.stats["samples"]

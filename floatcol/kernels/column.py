@@ -33,9 +33,10 @@ from .layout import (
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1,
     VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR, VP_BATCH, VP_SIZE, VP_INV_D1, VP_UA, VP_UB,
-    VP_VA, VP_VB, VP_H, VP_CLIP, VP_KEEP_TOP,
+    VP_VA, VP_VB, VP_H, VP_CLIP, VP_KEEP_TOP, VP_FOLD,
 )
 from .coverage import coverages, keep_coverages, seen_side
+from .fold import fold_test, trace_column
 from .correct import (
     WALL_DEPTH, hermite_extremum, lambert_at, probe, probe_ortho, ridge_between, shading_problem,
     wall_between, wall_normal,
@@ -90,7 +91,8 @@ RUN_TOP_J = 25     # antialiasing: the top pixel of the run's interval whose cov
 RUN_TOP_KIND = 26  # is kept here, not yet in ecol (-1: none; _fill, _settle_top), its
 RUN_TOP_COV = 27   # kind (TOP_EDGE, TOP_CENTRE) and coverage; RUN_TOP_ON: whether it
 RUN_TOP_ON = 28    # may (vp's VP_KEEP_TOP)
-RUN_SIZE = 29
+RUN_FOLD = 29      # 1.0: a sample's curve folds back in t (fold.py): trace the column
+RUN_SIZE = 30
 #: RUN_TOP_KIND: the pixel's centre lies outside the interval (an edge surface covers
 #: RUN_TOP_COV of the pixel: its bottom, or where the run began above the centre, a
 #: part above it) or inside it (the surface at the centre covers RUN_TOP_COV of it)
@@ -229,6 +231,8 @@ def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, main, bat, kb):
         return st, ev
     if vp[VP_ORTHO] == 0.0:
         _keep_solution(run, w - vp[VP_CW], t, main)
+        if vp[VP_FOLD] != 0.0 and fold_test(vp, x0, nx, ny, nz):
+            run[RUN_FOLD] = 1.0         # (fold.py)
     out[A_Y] = y
     out[A_Z] = z
     out[A_U] = u
@@ -1359,8 +1363,31 @@ def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
                            sdepth, bat)
     _settle_top(ecol, scr[SCR_RUN])
     _write_edge(ecol, scr[SCR_RUN])
+    if scr[SCR_RUN, RUN_FOLD] != 0.0 and hstride == 0:
+        # the column's curve folds back in t: drawn again, traced (fold.py)
+        evals += trace_column(kind, f, fg, hf, hfp, vp, x0, gcol, ecol)
+        _seen_ranges(gcol, ecol, scr[SCR_RUN])
     return (evals, scr[SCR_RUN, RUN_WLO], scr[SCR_RUN, RUN_WHI], int(scr[SCR_RUN, RUN_JLO]),
             int(scr[SCR_RUN, RUN_JHI]))
+
+
+@ngjit_nrt_free
+def _seen_ranges(gcol, ecol, run):
+    """run's RUN_WLO, RUN_WHI (w where the upper side is seen) and RUN_JLO, RUN_JHI
+    (the rows set) from a column's buffers."""
+    H = gcol.shape[0]
+    run[RUN_WLO] = np.inf
+    run[RUN_WHI] = -np.inf
+    run[RUN_JLO] = H
+    run[RUN_JHI] = -1.0
+    for j in range(H):
+        side = seen_side(ecol[E_SEEN, j])
+        if side != 0.0:
+            run[RUN_JLO] = min(run[RUN_JLO], j)
+            run[RUN_JHI] = max(run[RUN_JHI], j)
+            if side > 0.0:
+                run[RUN_WLO] = min(run[RUN_WLO], gcol[j, G_W])
+                run[RUN_WHI] = max(run[RUN_WHI], gcol[j, G_W])
 
 
 @ngjit_nrt_free

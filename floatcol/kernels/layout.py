@@ -58,7 +58,11 @@ VP_CLIP = 45      # 1.0: a perspective column skips the planes it surely misses
 VP_KEEP_TOP = 46  # 1.0: an antialiased run keeps its top pixel's coverage in its state
                   # until the next span (column.py's _fill; 0.0 only to test that it
                   # changes nothing)
-VP_SIZE = 47
+VP_FOLD = 47      # 1.0: a perspective column whose curve folds back in t is traced
+                  # (fold.py); render sets it where f's partials are exact (symbolic,
+                  # a height field's): central differences across a jump of f tilt a
+                  # normal as a fold would
+VP_SIZE = 48
 
 FIX_NONE = 0
 FIX_SPLINE = 1

@@ -1,0 +1,368 @@
+"""Perspective columns whose curve folds back in t: traced as a curve, drawn by depth.
+
+In perspective with elev != 0 the line where a sampling plane t meets the column
+plane Pi is tilted from the vertical (k = x0 sin(alpha) / d1 in r per unit of s).
+Where the surface is steeper than that line (k f_r > 1: a vertical rim such as
+sqrt(4 - r^2) at r = 2, in a column away from the picture's centre) the line meets
+the surface more than once: the curve C that Pi cuts, G(t, s) = f(u, v) - cw - s = 0,
+folds back in t, and the floating column, one point per plane taken front to back,
+cannot follow it (it paints the backward part as the other side, joins the branches
+with a streak, and misses what it does not take).
+
+The column pass notes such a fold (a sample whose upper normal N has N.d < 0, d =
+(k, cos(alpha), sin(alpha)) the line's direction on screen: then dG/ds = k f_r - 1
+> 0; column._sample_at, where vp's VP_FOLD allows) and render_column then traces the
+column's curve here: every piece of C by predictor-corrector continuation in (t, s)
+(steps of at most a pixel on screen), from seeds (the column pass's seen points
+every SEED_ROWS rows; the roots of g on every SEED_STRIDE-th plane, a scan like
+sample._bracketed_s's that keeps them all), each step rasterised into a buffer of
+its own with a depth test, side by N.V. The traced pixel then replaces the column
+pass's where that saw nothing, another side or a farther surface; where both agree
+the column pass's pixel stays, with its corrections and antialiasing.
+"""
+import math
+
+import numpy as np
+
+from ._jit import ngjit, ngjit_inline, ngjit_nrt_free
+from .layout import (
+    E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W,
+    VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_FHI, VP_FLO, VP_H,
+    VP_SA, VP_SB, VP_SCALE, VP_T0, VP_T1,
+)
+from .coverage import seen_side
+from .sample import _g_at, in_domain, in_known_hole, lambert, surface_eval, unit_normal
+
+#: seeds: the column pass's seen points every SEED_ROWS rows, and the scan of every
+#: SEED_STRIDE-th plane, SEED_SCAN points over the range of f
+SEED_ROWS = 8
+SEED_STRIDE = 16
+SEED_SCAN = 32
+SEED_BISECT = 50
+#: the corrector's iterations and tolerance (pixels off the curve)
+CORRECT_ITERS = 12
+CORRECT_TOL_PX = 1e-4
+#: a step is at most MAX_DY_PX on screen and turns the tangent by at most acos(MIN_TURN)
+MAX_DY_PX = 1.0
+MIN_TURN = 0.98
+#: a piece ends this many pixels off the picture
+OFF_PX = 2.0
+#: largest step, in planes' distances (where the curve runs toward the viewpoint, its
+#: steps barely move on screen)
+MAX_STEP = 64.0
+#: smallest step (a fraction of the planes' distance): below it a piece ends (a hole),
+#: or where the step still moves more than JUMP_PX on screen (a jump of f, a pole)
+MIN_STEP = 1.0 / 256.0
+JUMP_PX = 4.0
+#: the traced pixel replaces the column pass's where nearer by DEPTH_EPS d3
+DEPTH_EPS = 1e-3
+#: crossings of a plane kept (to tell a seed on a traced piece from a new one)
+CROSS_MAX = 16
+#: a point of a piece: u, v, w, unit upper normal, intensity, side, t
+P_U = 0
+P_V = 1
+P_W = 2
+P_NX = 3
+P_NY = 4
+P_NZ = 5
+P_I = 6
+P_SIDE = 7
+P_T = 8
+P_SIZE = 9
+
+
+@ngjit_inline
+def fold_test(vp, x0, nx, ny, nz):
+    """Does the curve fold back in t at a perspective sample with unit upper normal
+    (nx, ny, nz)? N.d < 0, d = (k, cos(alpha), sin(alpha)): dG/ds > 0."""
+    return (x0 * vp[VP_SA] / vp[VP_D1]) * nx + vp[VP_CA] * ny + vp[VP_SA] * nz < 0.0
+
+
+@ngjit_inline
+def _g_grad(kind, fg, hf, hfp, vp, x0, t, s):
+    """(G, dG/dt, dG/ds, u, v, w, f_u, f_v) at (t, s) of column x0's plane Pi; G NaN
+    outside the domain or at a hole."""
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    d1 = vp[VP_D1]
+    k = x0 * sa / d1
+    drdt = x0 * ca / d1
+    r = x0 * (t * ca + vp[VP_D3]) / d1 + k * s           # eq. (9) plus k s inside Pi
+    u = vp[VP_CU] + r * cb + t * sb                        # eq. (2)
+    v = vp[VP_CV] - r * sb + t * cb
+    if not in_domain(vp, u, v) or in_known_hole(vp, u, v):     # (f NaN: hole map)
+        return np.nan, 0.0, 0.0, u, v, 0.0, 0.0, 0.0
+    w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
+    if not (math.isfinite(w) and math.isfinite(wu) and math.isfinite(wv)):
+        return np.nan, 0.0, 0.0, u, v, 0.0, 0.0, 0.0
+    g_t = wu * (drdt * cb + sb) + wv * (cb - drdt * sb)
+    g_s = k * (wu * cb - wv * sb) - 1.0
+    return w - vp[VP_CW] - s, g_t, g_s, u, v, w, wu, wv
+
+
+@ngjit_nrt_free
+def _correct(kind, fg, hf, hfp, vp, x0, t, s, p):
+    """Newton's steps along the gradient of G from (t, s) onto the curve. Returns (ok,
+    t, s, dG/dt, dG/ds, evaluations); with ok, p holds the point (P_*)."""
+    tol = CORRECT_TOL_PX / vp[VP_SCALE]
+    for i in range(CORRECT_ITERS):
+        g, g_t, g_s, u, v, w, wu, wv = _g_grad(kind, fg, hf, hfp, vp, x0, t, s)
+        if not math.isfinite(g):
+            return False, t, s, 0.0, 0.0, i + 1
+        n2 = g_t * g_t + g_s * g_s
+        if n2 == 0.0:
+            return False, t, s, 0.0, 0.0, i + 1
+        if abs(g) <= tol * math.sqrt(n2):
+            if not _point(vp, x0, t, s, u, v, w, wu, wv, p):
+                return False, t, s, 0.0, 0.0, i + 1
+            return True, t, s, g_t, g_s, i + 1
+        t -= g * g_t / n2
+        s -= g * g_s / n2
+    return False, t, s, 0.0, 0.0, CORRECT_ITERS
+
+
+@ngjit_inline
+def _screen(vp, t, s):
+    """(row from the bottom, screen depth z1, y1) of the point (t, s) of Pi; NaN row in
+    front of the screen plane (eqs. 4, 10)."""
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    y1 = s * ca - t * sa
+    z1 = s * sa + t * ca
+    if z1 + vp[VP_D3] <= vp[VP_D1]:
+        return np.nan, z1, y1
+    return (y1 * vp[VP_D1] / (z1 + vp[VP_D3]) * vp[VP_SCALE] + (vp[VP_H] - 1.0) * 0.5,
+            z1, y1)
+
+
+@ngjit_inline
+def _point(vp, x0, t, s, u, v, w, wu, wv, p):
+    """Fill p (P_*) for the curve's point (t, s); False in front of the screen plane."""
+    row, z1, y1 = _screen(vp, t, s)
+    if not math.isfinite(row):
+        return False
+    nx, ny, nz = unit_normal(vp, wu, wv)                 # eq. (11)
+    d3 = vp[VP_D3]
+    vx = -x0 * (z1 + d3) / vp[VP_D1]                    # toward the viewpoint
+    vy = -y1
+    vz = -(d3 + z1)
+    p[P_U] = u
+    p[P_V] = v
+    p[P_W] = w
+    p[P_NX] = nx
+    p[P_NY] = ny
+    p[P_NZ] = nz
+    p[P_I] = lambert(vp, vx, vy, vz, nx, ny, nz)         # eq. (12)
+    p[P_SIDE] = 1.0 if nx * vx + ny * vy + nz * vz > 0.0 else -1.0
+    p[P_T] = t
+    return True
+
+
+@ngjit_nrt_free
+def _raster(gcol, ecol, ya, za, a, yb, zb, b):
+    """Rows between the points a (row ya, depth za) and b of the curve: lerped
+    G-buffer entries where nothing nearer is there yet."""
+    H = gcol.shape[0]
+    if yb == ya:
+        return
+    lo = max(int(math.ceil(min(ya, yb))), 0)
+    hi = min(int(math.floor(max(ya, yb))), H - 1)
+    for j in range(lo, hi + 1):
+        lam = (j - ya) / (yb - ya)
+        z = za + lam * (zb - za)
+        if ecol[E_SEEN, j] != 0.0 and gcol[j, G_DEPTH] <= z:
+            continue
+        g = gcol[j]
+        g[G_DEPTH] = z
+        g[G_U] = a[P_U] + lam * (b[P_U] - a[P_U])
+        g[G_V] = a[P_V] + lam * (b[P_V] - a[P_V])
+        w = a[P_W] + lam * (b[P_W] - a[P_W])
+        g[G_W] = w
+        g[G_NX] = a[P_NX] + lam * (b[P_NX] - a[P_NX])
+        g[G_NY] = a[P_NY] + lam * (b[P_NY] - a[P_NY])
+        g[G_NZ] = a[P_NZ] + lam * (b[P_NZ] - a[P_NZ])
+        g[G_I] = a[P_I] + lam * (b[P_I] - a[P_I])
+        g[G_T] = a[P_T] + lam * (b[P_T] - a[P_T])
+        ecol[E_SEEN, j] = a[P_SIDE] if lam < 0.5 else b[P_SIDE]
+
+
+@ngjit_nrt_free
+def _trace(kind, fg, hf, hfp, vp, x0, t, s, direction, s_min, s_max, gcol, ecol, cross,
+           n_cross, a, b):
+    """Trace the piece of the curve through (t, s) one way (direction +1 or -1 along
+    the tangent (-dG/ds, dG/dt)) while s stays in [s_min, s_max], rasterising each
+    step, noting where it crosses the planes (cross, n_cross). Returns (closed: back
+    at its start, evaluations)."""
+    ok, t, s, g_t, g_s, evals = _correct(kind, fg, hf, hfp, vp, x0, t, s, a)
+    if not ok or s < s_min or s > s_max:
+        return False, evals
+    dt = vp[VP_DT]
+    t0 = vp[VP_T0]
+    n = cross.shape[0]
+    tg_rows = gcol.shape[0]
+    ya, za, _ = _screen(vp, t, s)
+    if not -OFF_PX <= ya <= tg_rows - 1.0 + OFF_PX:
+        return False, evals
+    norm = math.sqrt(g_t * g_t + g_s * g_s)
+    tt = -g_s / norm * direction
+    ts = g_t / norm * direction
+    h = dt
+    t_start = t
+    s_start = s
+    travelled = 0.0
+    for _ in range(16 * n + 64):
+        ok, qt, qs, g_t, g_s, ev = _correct(kind, fg, hf, hfp, vp, x0, t + h * tt, s + h * ts,
+                                            b)
+        evals += ev
+        if not ok:
+            if h > dt * MIN_STEP:
+                h *= 0.5
+                continue
+            return False, evals                 # the piece ends (a hole, the domain's edge)
+        if qs < s_min or qs > s_max:
+            return False, evals                 # toward a pole: the piece ends
+        yb, zb, _ = _screen(vp, qt, qs)
+        if not -OFF_PX <= yb <= tg_rows - 1.0 + OFF_PX:
+            return False, evals                 # off the picture (a seed of its own
+            #                                     finds it where it comes back)
+        norm = math.sqrt(g_t * g_t + g_s * g_s)
+        nt = -g_s / norm
+        ns = g_t / norm
+        turn = nt * tt + ns * ts
+        if turn < 0.0:
+            nt = -nt
+            ns = -ns
+            turn = -turn
+        step = math.sqrt((qt - t) ** 2 + (qs - s) ** 2)
+        if abs(yb - ya) > MAX_DY_PX or turn < MIN_TURN or step > 1.5 * h:
+            if h > dt * MIN_STEP:
+                h *= 0.5
+                continue
+            if abs(yb - ya) > JUMP_PX:
+                return False, evals             # a jump of f or a pole: the piece ends
+        _raster(gcol, ecol, ya, za, a, yb, zb, b)
+        ia = (t - t0) / dt                      # the planes this step crosses
+        ib = (qt - t0) / dt
+        if ib != ia:
+            for i in range(max(int(math.ceil(min(ia, ib))), 0),
+                           min(int(math.floor(max(ia, ib))), n - 1) + 1):
+                if n_cross[i] < CROSS_MAX:
+                    cross[i, n_cross[i]] = s + (i - ia) / (ib - ia) * (qs - s)
+                    n_cross[i] += 1
+        dy = abs(yb - ya)
+        travelled += step
+        t = qt
+        s = qs
+        ya = yb
+        za = zb
+        for q in range(P_SIZE):
+            a[q] = b[q]
+        tt = nt
+        ts = ns
+        if travelled > 4.0 * dt and math.sqrt((t - t_start) ** 2 + (s - s_start) ** 2) < 1.01 * h:
+            return True, evals                  # a closed curve
+        if t < vp[VP_T0] - dt or t > vp[VP_T1] + dt:
+            return False, evals
+        h = min(h * (1.5 if dy < 0.3 * MAX_DY_PX else 1.1), MAX_STEP * dt)
+    return False, evals
+
+
+@ngjit_nrt_free
+def _seed(kind, fg, hf, hfp, vp, x0, t, s, s_min, s_max, tg, te, cross, n_cross, a, b):
+    """Trace the piece through (t, s) of plane number i = (t - T0) / DT both ways,
+    unless a traced piece crosses plane i near s already. Returns the evaluations."""
+    dt = vp[VP_DT]
+    i = int(round((t - vp[VP_T0]) / dt))
+    if 0 <= i < cross.shape[0]:
+        for c in range(n_cross[i]):
+            if abs(cross[i, c] - s) < 2.0 * dt:
+                return 0
+    row, z, _ = _screen(vp, t, s)
+    if math.isfinite(row):                  # a traced surface there, as far: known
+        j = int(round(row))
+        if 0 <= j < tg.shape[0] and te[E_SEEN, j] != 0.0 and \
+                abs(tg[j, G_DEPTH] - z) < 4.0 * DEPTH_EPS * vp[VP_D3]:
+            return 0
+    closed, evals = _trace(kind, fg, hf, hfp, vp, x0, t, s, 1.0, s_min, s_max, tg, te, cross,
+                           n_cross, a, b)
+    if not closed:
+        _, ev = _trace(kind, fg, hf, hfp, vp, x0, t, s, -1.0, s_min, s_max, tg, te, cross,
+                       n_cross, a, b)
+        evals += ev
+    return evals
+
+
+@ngjit
+def trace_column(kind, f, fg, hf, hfp, vp, x0, gcol, ecol):
+    """Trace column x0's curve (the module's docstring) into a buffer of its own, then
+    put it into gcol and ecol (the column pass's) where the column pass saw nothing,
+    another side, or a farther surface: where both agree the column pass's pixel
+    stays (with its antialiasing). Seeds: the column pass's seen points every
+    SEED_ROWS rows, and the roots on every SEED_STRIDE-th plane. Returns the
+    evaluations of f."""
+    H = gcol.shape[0]
+    tg = np.empty((H, gcol.shape[1]))
+    te = np.zeros((E_SEEN + 1, H))
+    t0 = vp[VP_T0]
+    dt = vp[VP_DT]
+    n = int((vp[VP_T1] - t0) / dt) + 2
+    cross = np.empty((n, CROSS_MAX))
+    n_cross = np.zeros(n, dtype=np.int64)
+    a = np.empty(P_SIZE)
+    b = np.empty(P_SIZE)
+    ca = vp[VP_CA]
+    d1 = vp[VP_D1]
+    k = x0 * vp[VP_SA] / d1
+    spare = 0.25 * (vp[VP_FHI] - vp[VP_FLO]) + 1e-9      # as sample._bracketed_s
+    s_lo = vp[VP_FLO] - spare - vp[VP_CW]
+    s_hi = vp[VP_FHI] + spare - vp[VP_CW]
+    s_min = s_lo - (s_hi - s_lo)                          # beyond: toward a pole
+    s_max = s_hi + (s_hi - s_lo)
+    evals = 0
+    for j in range(0, H, SEED_ROWS):                      # the column pass's points
+        if seen_side(ecol[E_SEEN, j]) != 0.0:
+            i = round((gcol[j, G_T] - t0) / dt)
+            evals += _seed(kind, fg, hf, hfp, vp, x0, t0 + i * dt, gcol[j, G_W] - vp[VP_CW],
+                           s_min, s_max, tg, te, cross, n_cross, a, b)
+    ds = (s_hi - s_lo) / (SEED_SCAN - 1)
+    for i in range(0, n, SEED_STRIDE):                    # what it never met
+        t = t0 + i * dt
+        r0 = x0 * (t * ca + vp[VP_D3]) / d1              # eq. (9)
+        g_prev = np.nan
+        for m in range(SEED_SCAN):
+            s = s_lo + m * ds
+            g, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, s)
+            evals += ev
+            if math.isfinite(g) and math.isfinite(g_prev) and (g >= 0.0) != (g_prev >= 0.0):
+                lo = s - ds
+                hi = s
+                g_lo = g_prev
+                for _ in range(SEED_BISECT):
+                    mid = 0.5 * (lo + hi)
+                    gm, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, mid)
+                    evals += ev
+                    if not math.isfinite(gm):
+                        break
+                    if (gm >= 0.0) == (g_lo >= 0.0):
+                        lo = mid
+                        g_lo = gm
+                    else:
+                        hi = mid
+                # a sign change across a pole of f is no root
+                if abs(g_lo) <= 2.0 * abs(hi - lo) + CORRECT_TOL_PX / vp[VP_SCALE]:
+                    evals += _seed(kind, fg, hf, hfp, vp, x0, t, 0.5 * (lo + hi), s_min,
+                                   s_max, tg, te, cross, n_cross, a, b)
+            g_prev = g
+    eps = DEPTH_EPS * vp[VP_D3]
+    for j in range(H):
+        side = te[E_SEEN, j]
+        if side == 0.0:
+            continue
+        seen = seen_side(ecol[E_SEEN, j])
+        if seen == 0.0 or seen != side or tg[j, G_DEPTH] < gcol[j, G_DEPTH] - eps:
+            for q in range(gcol.shape[1]):
+                gcol[j, q] = tg[j, q]
+            ecol[E_SEEN, j] = side                        # whole (no coverages kept)
+    return evals

@@ -113,6 +113,7 @@ def _joint_camera(items, size, elev, azim, projection, d1, d2, scale, center, fo
 
 
 def _fitted_camera(items, size, elev, azim, projection, d1, d2, scale, center, focal_length):
+    """_joint_camera's camera for surfaces as they are drawn (already stretched)."""
     views = [build_view(s, dom, size, elev, azim, projection, d1, d2, scale, "auto", None,
                         None, focal_length) for s, dom in items]
     if center is None or (isinstance(center, str) and center == "auto"):

@@ -380,8 +380,7 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     """
     unknown = sorted(set(options) - _RENDER_OPTIONS - _OWN_OPTIONS)
     if unknown:
-        known = ", ".join(sorted(k for k in _RENDER_OPTIONS | _OWN_OPTIONS
-                                 if not k.startswith("_")))
+        known = ", ".join(sorted(_RENDER_OPTIONS | _OWN_OPTIONS))
         raise ValueError(f"unknown option{'s' if len(unknown) > 1 else ''} "
                          f"{', '.join(unknown)}; plot_surface knows: {known}")
     if "projection" in options:

@@ -1364,7 +1364,8 @@ def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     _settle_top(ecol, scr[SCR_RUN])
     _write_edge(ecol, scr[SCR_RUN])
     if scr[SCR_RUN, RUN_FOLD] != 0.0 and hstride == 0:
-        # the column's curve folds back in t: drawn again, traced (fold.py)
+        # the column's curve folds back in t: traced, and put in where the column
+        # pass missed it (fold.py)
         evals += trace_column(kind, f, fg, hf, hfp, vp, x0, gcol, ecol)
         _seen_ranges(gcol, ecol, scr[SCR_RUN])
     return (evals, scr[SCR_RUN, RUN_WLO], scr[SCR_RUN, RUN_WHI], int(scr[SCR_RUN, RUN_JLO]),

@@ -59,9 +59,9 @@ VP_KEEP_TOP = 46  # 1.0: an antialiased run keeps its top pixel's coverage in it
                   # until the next span (column.py's _fill; 0.0 only to test that it
                   # changes nothing)
 VP_FOLD = 47      # 1.0: a perspective column whose curve folds back in t is traced
-                  # (fold.py); render sets it where f's partials are exact (symbolic,
-                  # a height field's): central differences across a jump of f tilt a
-                  # normal as a fold would
+                  # (fold.py); 0.0 for the paper's placement, and where f's partials
+                  # are central differences (render), which tilt a normal at a jump of
+                  # f as a fold would
 VP_SIZE = 48
 
 FIX_NONE = 0

@@ -2,8 +2,8 @@
 
 Bounds measured on 2026-12-02 at 200x160, shading="lambert", against the ray caster
 with 4000 march steps (finer than its default, for the vertical rims): the annulus
-below, stretched 4.9 times in height, elev 40, azim -30: 98.97 % side agreement and
-25.52 dB with the folds traced, 93.88 % and 20.23 dB without (one point per plane:
+below, stretched 4.9 times in height, elev 40, azim -30: 99.14 % side agreement and
+26.08 dB with the folds traced, 93.88 % and 20.23 dB without (one point per plane:
 streaks of the wrong side, the outer wall missed at the picture's sides).
 """
 import numpy as np
@@ -28,8 +28,8 @@ def _reference(r):
 def test_a_wall_steeper_than_the_column_plane_is_drawn(monkeypatch):
     r = fc.render(ANNULUS, **KW)
     ref = _reference(r)
-    assert (r.side == ref.side).mean() >= 0.985            # measured 0.98969
-    assert psnr(r.intensity, ref.intensity) >= 24.0         # measured 25.52
+    assert (r.side == ref.side).mean() >= 0.987            # measured 0.99144
+    assert psnr(r.intensity, ref.intensity) >= 24.5         # measured 26.08
     plain = render_with_switch_off(monkeypatch, L.VP_FOLD, ANNULUS, **KW)
     assert (plain.side == ref.side).mean() < 0.95           # measured 0.93881
     assert psnr(plain.intensity, ref.intensity) < 22.0      # measured 20.23

@@ -33,6 +33,9 @@ from .layout import (
 from .coverage import seen_side
 from .sample import _g_at, in_domain, in_known_hole, lambert, surface_eval, unit_normal
 
+#: a column is traced where a sample has 1 - k f_r below this (a fold, or nearly: a
+#: rim's last samples, where f_r grows without bound)
+FOLD_NEAR = 0.1
 #: seeds: the column pass's seen points every SEED_ROWS rows, and the scan of every
 #: SEED_STRIDE-th plane, SEED_SCAN points over the range of f
 SEED_ROWS = 8
@@ -74,8 +77,11 @@ P_SIZE = 9
 @ngjit_inline
 def fold_test(vp, x0, nx, ny, nz):
     """Does the curve fold back in t at a perspective sample with unit upper normal
-    (nx, ny, nz)? N.d < 0, d = (k, cos(alpha), sin(alpha)): dG/ds > 0."""
-    return (x0 * vp[VP_SA] / vp[VP_D1]) * nx + vp[VP_CA] * ny + vp[VP_SA] * nz < 0.0
+    (nx, ny, nz), or nearly (within FOLD_NEAR)? N.d < FOLD_NEAR N.e, d = (k,
+    cos(alpha), sin(alpha)), e = (0, cos(alpha), sin(alpha)) the world's up: N.d / N.e
+    = 1 - k f_r = -dG/ds, 0 at a fold."""
+    up = vp[VP_CA] * ny + vp[VP_SA] * nz
+    return (x0 * vp[VP_SA] / vp[VP_D1]) * nx + up < FOLD_NEAR * up
 
 
 @ngjit_inline

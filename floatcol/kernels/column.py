@@ -36,7 +36,7 @@ from .layout import (
     VP_VA, VP_VB, VP_H, VP_CLIP, VP_KEEP_TOP, VP_FOLD,
 )
 from .coverage import coverages, keep_coverages, seen_side
-from .fold import fold_test, trace_column
+from .fold import FOLD_NEAR, fold_test, trace_column
 from .correct import (
     WALL_DEPTH, hermite_extremum, lambert_at, probe, probe_ortho, ridge_between, shading_problem,
     wall_between, wall_normal,
@@ -231,7 +231,7 @@ def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, main, bat, kb):
         return st, ev
     if vp[VP_ORTHO] == 0.0:
         _keep_solution(run, w - vp[VP_CW], t, main)
-        if vp[VP_FOLD] != 0.0 and fold_test(vp, x0, nx, ny, nz):
+        if vp[VP_FOLD] != 0.0 and fold_test(vp, x0, nx, ny, nz, 0.0 if main else FOLD_NEAR):
             run[RUN_FOLD] = 1.0         # (fold.py)
     out[A_Y] = y
     out[A_Z] = z
@@ -1382,11 +1382,10 @@ def _seen_ranges(gcol, ecol, run):
     run[RUN_JLO] = H
     run[RUN_JHI] = -1.0
     for j in range(H):
-        side = seen_side(ecol[E_SEEN, j])
-        if side != 0.0:
+        if ecol[E_SEEN, j] != 0.0:       # (a partial pixel's coverages too: coverage.py)
             run[RUN_JLO] = min(run[RUN_JLO], j)
             run[RUN_JHI] = max(run[RUN_JHI], j)
-            if side > 0.0:
+            if seen_side(ecol[E_SEEN, j]) > 0.0:
                 run[RUN_WLO] = min(run[RUN_WLO], gcol[j, G_W])
                 run[RUN_WHI] = max(run[RUN_WHI], gcol[j, G_W])
 

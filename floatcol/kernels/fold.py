@@ -33,8 +33,10 @@ from .layout import (
 from .coverage import seen_side
 from .sample import _g_at, in_domain, in_known_hole, lambert, surface_eval, unit_normal
 
-#: a column is traced where a sample has 1 - k f_r below this (a fold, or nearly: a
-#: rim's last samples, where f_r grows without bound)
+#: a column is traced where a sample has 1 - k f_r < 0 (a fold), or a sample that
+#: the column pass takes between its planes (an edge's, a correction's) has 1 - k f_r
+#: below FOLD_NEAR (nearly a fold: a rim's last samples, where f_r grows without
+#: bound; on its own planes a steep ridge's near-folds are no fault of the column's)
 FOLD_NEAR = 0.1
 #: seeds: the column pass's seen points every SEED_ROWS rows, and the scan of every
 #: SEED_STRIDE-th plane, SEED_SCAN points over the range of f
@@ -75,13 +77,13 @@ P_SIZE = 9
 
 
 @ngjit_inline
-def fold_test(vp, x0, nx, ny, nz):
+def fold_test(vp, x0, nx, ny, nz, margin):
     """Does the curve fold back in t at a perspective sample with unit upper normal
-    (nx, ny, nz), or nearly (within FOLD_NEAR)? N.d < FOLD_NEAR N.e, d = (k,
-    cos(alpha), sin(alpha)), e = (0, cos(alpha), sin(alpha)) the world's up: N.d / N.e
-    = 1 - k f_r = -dG/ds, 0 at a fold."""
+    (nx, ny, nz), or nearly (within ``margin``)? N.d < margin N.e, d = (k, cos(alpha),
+    sin(alpha)), e = (0, cos(alpha), sin(alpha)) the world's up: N.d / N.e = 1 - k f_r
+    = -dG/ds, 0 at a fold."""
     up = vp[VP_CA] * ny + vp[VP_SA] * nz
-    return (x0 * vp[VP_SA] / vp[VP_D1]) * nx + up < FOLD_NEAR * up
+    return (x0 * vp[VP_SA] / vp[VP_D1]) * nx + up < margin * up
 
 
 @ngjit_inline

@@ -329,16 +329,12 @@ class SurfacePlot(_ScalarMappable):
 
 def render_view(surface, kw):
     """(View, box): the View render() would fit for these keyword arguments, and its
-    box stretch (render.box_factors; the View's coordinates are the box's)."""
-    from .render import NO_BOX, _boxed, _check_box, _domain, box_factors
+    box stretch (render.in_box; the View's coordinates are the box's)."""
+    from .render import _domain, in_box
     from .view import build_view
-    domain = _domain(surface, kw.get("u"), kw.get("v"))
-    box = kw.get("box")
-    box = box_factors(kw.get("aspect", "equal"), surface, domain) if box is None else \
-        _check_box(box)
-    center = kw.get("center")
-    if box != NO_BOX:
-        surface, domain, center = _boxed(surface, domain, center, box)
+    surface, domain, center, box = in_box(surface, _domain(surface, kw.get("u"), kw.get("v")),
+                                          kw.get("center"), kw.get("aspect", "equal"),
+                                          kw.get("box"))
     return build_view(surface, domain, kw["size"], kw["elev"], kw["azim"],
                       kw.get("projection", "orthographic"), kw.get("d1"), kw.get("d2"),
                       None, center, None, None, kw.get("focal_length")), box

@@ -267,9 +267,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
                          f"got {interpolation!r}")
     surface = as_surface(expr, vars)
     domain = _domain(surface, u, v)
-    box = box_factors(aspect, surface, domain) if box is None else _check_box(box)
-    if box != NO_BOX:
-        surface, domain, center = _boxed(surface, domain, center, box)
+    surface, domain, center, box = in_box(surface, domain, center, aspect, box)
     if shading == "lambert":
         if light is not None:
             raise ValueError("shading='lambert' lights from the viewpoint; leave light=None "
@@ -455,6 +453,15 @@ def _check_box(box):
     if not all(math.isfinite(x) and x > 0 for x in (a, b, c)):
         raise ValueError(f"box's stretch factors must be positive numbers, got {box!r}")
     return a, b, c
+
+
+def in_box(surface, domain, center, aspect, box):
+    """(surface, domain, center, box) as render draws them: stretched by ``box`` (a, b,
+    c) if given, else by ``aspect``'s (box_factors); unchanged for true proportions."""
+    box = box_factors(aspect, surface, domain) if box is None else _check_box(box)
+    if box == NO_BOX:
+        return surface, domain, center, box
+    return (*_boxed(surface, domain, center, box), box)
 
 
 def _boxed(surface, domain, center, box):

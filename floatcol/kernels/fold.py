@@ -27,11 +27,12 @@ import numpy as np
 from ._jit import ngjit, ngjit_inline, ngjit_nrt_free
 from .layout import (
     E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W,
-    VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_FHI, VP_FLO, VP_H,
+    VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_H,
     VP_SA, VP_SB, VP_SCALE, VP_T0, VP_T1,
 )
 from .coverage import seen_side
-from .sample import _g_at, in_domain, in_known_hole, lambert, surface_eval, unit_normal
+from .sample import (
+    _g_at, in_domain, in_known_hole, lambert, scan_range, surface_eval, unit_normal)
 
 #: a column is traced where a sample has 1 - k f_r < 0 (a fold), or a sample that
 #: the column pass takes between its planes (an edge's, a correction's) has 1 - k f_r
@@ -323,9 +324,7 @@ def trace_column(kind, f, fg, hf, hfp, vp, x0, gcol, ecol):
     ca = vp[VP_CA]
     d1 = vp[VP_D1]
     k = x0 * vp[VP_SA] / d1
-    spare = 0.25 * (vp[VP_FHI] - vp[VP_FLO]) + 1e-9      # as sample._bracketed_s
-    s_lo = vp[VP_FLO] - spare - vp[VP_CW]
-    s_hi = vp[VP_FHI] + spare - vp[VP_CW]
+    s_lo, s_hi = scan_range(vp)                          # as sample._bracketed_s
     s_min = s_lo - (s_hi - s_lo)                          # beyond: toward a pole
     s_max = s_hi + (s_hi - s_lo)
     evals = 0

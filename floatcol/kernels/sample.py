@@ -336,6 +336,15 @@ def _g_at(kind, f, hf, hfp, vp, r0, k, t, s):
     return w - vp[VP_CW] - s, 1
 
 
+@ngjit_inline
+def scan_range(vp):
+    """(s_lo, s_hi): the heights (relative to the centre) a scan for the surface on a
+    perspective plane's line searches: the range of f on the fitting grid, with a
+    quarter of it to spare on each side."""
+    spare = 0.25 * (vp[VP_FHI] - vp[VP_FLO]) + 1e-9
+    return vp[VP_FLO] - spare - vp[VP_CW], vp[VP_FHI] + spare - vp[VP_CW]
+
+
 @ngjit_nrt_free
 def _bracketed_s(kind, f, hf, hfp, vp, r0, k, t, s_near):
     """The root of g nearest ``s_near``, found by scanning s over the range of f on
@@ -343,9 +352,7 @@ def _bracketed_s(kind, f, hf, hfp, vp, r0, k, t, s_near):
     per SCAN_PIXELS of the segment's length on screen, then bisecting. NaN when g
     has no sign change between two finite values (the line meets only holes).
     Returns (s, evaluations)."""
-    spare = 0.25 * (vp[VP_FHI] - vp[VP_FLO]) + 1e-9
-    s_lo = vp[VP_FLO] - spare - vp[VP_CW]
-    s_hi = vp[VP_FHI] + spare - vp[VP_CW]
+    s_lo, s_hi = scan_range(vp)
     # a line that the hole map knows is a hole all along: nothing to scan
     pad = 1e-9 * (s_hi - s_lo + 1.0)
     u_a, v_a = _line_uv(vp, r0, k, t, s_lo - pad)

@@ -192,8 +192,17 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
                 r_next = r0 + k * s_next
                 out = max(ra - r_next, r_next - rb)
                 if out > 2.0 * abs(k * (s_next - s)) and out > 1e-9 * (1.0 + abs(r_next)):
-                    u, v = _line_uv(vp, r0, k, t, s_next)
-                    return S_OUTSIDE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
+                    # Newton may have started outside next to a root inside (at the
+                    # domain's edge): look there before dropping the sample
+                    ok, s_in, w, wu, wv, g, n_in = _root_inside(kind, f, fg, hf, hfp, vp, r0, k,
+                                                                t, ra, rb)
+                    evals += n_in
+                    if not ok:
+                        u, v = _line_uv(vp, r0, k, t, s_next)
+                        return S_OUTSIDE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
+                    s = s_in
+                    u, v = _line_uv(vp, r0, k, t, s)
+                    break
             s = s_next
         if not paper and (not math.isfinite(w) or abs(k * g) * vp[VP_SCALE] > NEWTON_TOL_PX):
             # Newton left the surface (a hole, or a steep rim where f_u, f_v blow
@@ -334,6 +343,64 @@ def _g_at(kind, f, hf, hfp, vp, r0, k, t, s):
         return np.nan, 0
     w = surface_value(kind, f, hf, hfp, u, v)
     return w - vp[VP_CW] - s, 1
+
+
+@ngjit_nrt_free
+def _root_inside(kind, f, fg, hf, hfp, vp, r0, k, t, ra, rb):
+    """The root of g on the part of plane t's line inside Pi that lies inside the
+    domain (r in [ra, rb]) and inside the scan range, where Newton's iterates left
+    the domain. Only a sign change of g between that part's ends counts; an end at
+    the scan range's bottom (top) has g > 0 (< 0) without evaluating f there.
+    Safeguarded Newton inside the bracket, NEWTON_ITERS steps at most (a pole's sign
+    change does not converge). Returns (found, s, w, wu, wv, g, evaluations)."""
+    if ra > rb or k == 0.0:
+        return False, 0.0, np.nan, 0.0, 0.0, np.inf, 0
+    s1 = (ra - r0) / k
+    s2 = (rb - r0) / k
+    s_lo, s_hi = scan_range(vp)
+    a = max(min(s1, s2), s_lo)
+    b = min(max(s1, s2), s_hi)
+    if not a < b:
+        return False, 0.0, np.nan, 0.0, 0.0, np.inf, 0
+    evals = 0
+    ga = 1.0
+    if a > s_lo:
+        ga, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, a)
+        evals += ev
+    gb = -1.0
+    if b < s_hi:
+        gb, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, b)
+        evals += ev
+    if not (math.isfinite(ga) and math.isfinite(gb)) or (ga >= 0.0) == (gb >= 0.0):
+        return False, 0.0, np.nan, 0.0, 0.0, np.inf, evals
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    s = a - ga * (b - a) / (gb - ga) if (a > s_lo and b < s_hi) else 0.5 * (a + b)
+    w = np.nan
+    wu = 0.0
+    wv = 0.0
+    g = np.inf
+    for _ in range(NEWTON_ITERS):
+        u, v = _line_uv(vp, r0, k, t, s)
+        w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
+        evals += 1
+        if not math.isfinite(w):
+            return False, 0.0, np.nan, 0.0, 0.0, np.inf, evals
+        g = (w - vp[VP_CW]) - s
+        if abs(k * g) * vp[VP_SCALE] <= NEWTON_TOL_PX:
+            return True, s, w, wu, wv, g, evals
+        if (g >= 0.0) == (ga >= 0.0):
+            a = s
+            ga = g
+        else:
+            b = s
+        dg = k * (wu * cb - wv * sb) - 1.0
+        s_n = s - g / dg if dg != 0.0 else np.nan
+        if not (s_n > a and s_n < b):          # NaN too: bisect
+            s_n = 0.5 * (a + b)
+        s = s_n
+    # no convergence: a pole (tan), where g changes sign through infinity
+    return False, 0.0, np.nan, 0.0, 0.0, np.inf, evals
 
 
 @ngjit_inline

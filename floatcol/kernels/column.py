@@ -35,7 +35,7 @@ from .layout import (
     VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR, VP_BATCH, VP_SIZE, VP_INV_D1, VP_UA, VP_UB,
     VP_VA, VP_VB, VP_H, VP_CLIP, VP_KEEP_TOP, VP_FOLD,
 )
-from .coverage import coverages, keep_coverages, seen_side
+from .coverage import coverages, flagged, keep_coverages, seen_side
 from .fold import FOLD_NEAR, fold_test, trace_column
 from .correct import (
     WALL_DEPTH, hermite_extremum, lambert_at, probe, probe_ortho, ridge_between, shading_problem,
@@ -631,7 +631,13 @@ def _paint(gcol, ecol, run, prev, cur, side, persp, H, yp, inv_dy, qp, qc, lo_f,
     for j in range(j0, j1 + 1):
         x = ecol[E_SEEN, j]
         if seen_side(x) != 0.0:
-            continue                    # painted by an earlier, nearer run
+            # painted by an earlier, nearer run; where that covers it in part (a
+            # silhouette's pixel, the run ended by a hole), this span shows through
+            # the rest, as its edge surface
+            if aa and flagged(x):
+                _cover_rest(ecol, j, max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0), side,
+                            _chord_weight(j, yp, inv_dy, persp, qp, qc), prev, cur)
+            continue
         lw = _chord_weight(j, yp, inv_dy, persp, qp, qc)
         gcol[j, G_DEPTH] = z0 + lw * dz
         gcol[j, G_U] = u0 + lw * du
@@ -681,6 +687,32 @@ def _paint(gcol, ecol, run, prev, cur, side, persp, H, yp, inv_dy, qp, qc, lo_f,
         ecol[E_SEEN, j] = side
     run[RUN_WLO] = w_lo
     run[RUN_WHI] = w_hi
+
+
+@ngjit_inline
+def _cover_rest(ecol, j, cov, side, lw, prev, cur):
+    """A span covers ``cov`` of pixel j, which an earlier run covers in part (flagged,
+    coverage.py): it shows through the rest (1 - E_COV0), as the pixel's edge surface
+    (the one there, with more coverage; or this span's, at weight lw of its chord).
+    Within one run the floating interval's ends do this (_fill); a later run (after a
+    hole) met such a pixel only inside a span, where it was skipped as painted, and
+    the background showed through the rest (a light dot at a rim's silhouette over
+    the surface behind)."""
+    cov0 = ecol[E_COV0, j]
+    ecov = ecol[E_COV, j]
+    room = 1.0 - cov0
+    if cov <= 0.0 or ecov >= room:
+        return
+    if ecov <= 0.0:
+        nx, ny, nz, w, lam, z = _chord_at(prev, cur, lw)
+        ecol[E_NX, j] = nx
+        ecol[E_NY, j] = ny
+        ecol[E_NZ, j] = nz
+        ecol[E_W, j] = w
+        ecol[E_I, j] = lam
+        ecol[E_DEPTH, j] = z
+        ecol[E_SIDE, j] = side
+    ecol[E_COV, j] = min(ecov + cov, room)
 
 
 @ngjit_inline

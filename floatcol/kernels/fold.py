@@ -18,7 +18,9 @@ every SEED_ROWS rows; the roots of g on every SEED_STRIDE-th plane, a scan like
 sample._bracketed_s's that keeps them all), each step rasterised into a buffer of
 its own with a depth test, side by N.V. The traced pixel then replaces the column
 pass's where that saw nothing, another side or a farther surface; where both agree
-the column pass's pixel stays, with its corrections and antialiasing.
+the traced point replaces the column pass's G-buffer entry (lerped across the fold)
+and the column pass's coverages stay, unless the traced curve runs on through the
+pixel (_inside_piece).
 """
 import math
 
@@ -30,7 +32,7 @@ from .layout import (
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_H,
     VP_SA, VP_SB, VP_SCALE, VP_T0, VP_T1,
 )
-from .coverage import seen_side
+from .coverage import flagged, seen_side
 from .sample import (
     _g_at, in_domain, in_known_hole, lambert, scan_range, surface_eval, unit_normal)
 
@@ -307,8 +309,8 @@ def _seed(kind, fg, hf, hfp, vp, x0, t, s, s_min, s_max, tg, te, cross, n_cross,
 def trace_column(kind, f, fg, hf, hfp, vp, x0, gcol, ecol):
     """Trace column x0's curve (the module's docstring) into a buffer of its own, then
     put it into gcol and ecol (the column pass's) where the column pass saw nothing,
-    another side, or a farther surface: where both agree the column pass's pixel
-    stays (with its antialiasing). Seeds: the column pass's seen points every
+    another side, or a farther surface; where both agree, the traced point with the
+    column pass's coverages (the module's docstring). Seeds: the column pass's seen points every
     SEED_ROWS rows, and the roots on every SEED_STRIDE-th plane. Returns the
     evaluations of f."""
     H = gcol.shape[0]
@@ -372,4 +374,26 @@ def trace_column(kind, f, fg, hf, hfp, vp, x0, gcol, ecol):
             for q in range(gcol.shape[1]):
                 gcol[j, q] = tg[j, q]
             ecol[E_SEEN, j] = side                        # whole (no coverages kept)
+        elif tg[j, G_DEPTH] <= gcol[j, G_DEPTH] + eps:
+            # the same surface: the traced point (exact within a pixel) replaces the
+            # column pass's, which interpolates across the fold (a wall's normal and
+            # intensity lerped between its plane's two sides)
+            for q in range(gcol.shape[1]):
+                gcol[j, q] = tg[j, q]
+            if flagged(ecol[E_SEEN, j]) and _inside_piece(tg, te, j, side, eps):
+                # the column pass's edge here (where it lost the curve at the fold)
+                # is none: the traced surface goes on through both neighbours
+                ecol[E_SEEN, j] = side
     return evals
+
+
+@ngjit_inline
+def _inside_piece(tg, te, j, side, eps):
+    """Is traced row j inside one smooth piece: rows j - 1 and j + 1 traced too, the
+    same side, the depth going on without a jump (neither step more than 3 times
+    the other, up to eps)?"""
+    if j < 1 or j > tg.shape[0] - 2 or te[E_SEEN, j - 1] != side or te[E_SEEN, j + 1] != side:
+        return False
+    a = abs(tg[j, G_DEPTH] - tg[j - 1, G_DEPTH])
+    b = abs(tg[j + 1, G_DEPTH] - tg[j, G_DEPTH])
+    return max(a, b) <= 3.0 * min(a, b) + eps

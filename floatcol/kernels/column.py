@@ -42,7 +42,7 @@ from .correct import (
     wall_between, wall_normal,
 )
 from .sample import (
-    _clip_line, column_x0, in_domain, ortho_point, sample_point, surface_eval,
+    _clip_line, column_x0, in_domain, into_domain, ortho_point, sample_point, surface_eval,
 )
 
 
@@ -1081,10 +1081,13 @@ def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0,
     sb = vp[VP_SB]
     u0 = vp[VP_CU] + x0 * cb            # eq. (3), as sample_point computes it
     v0 = vp[VP_CV] - x0 * sb
+    vt = array_as_tuple(vp, VP_SIZE)    # (in registers: the loops below become SIMD code)
     for k in range(m):
         t = _pass_plane(i_lo + k, n, ta, tb, t0, ka, 0, dt, 1.0)[0]
-        bat[BAT_U * BATCH + k] = u0 + t * sb
-        bat[BAT_V * BATCH + k] = v0 + t * cb
+        u = u0 + t * sb
+        v = v0 + t * cb
+        bat[BAT_U * BATCH + k] = u
+        bat[BAT_V * BATCH + k] = v
     o = BAT_W * BATCH
     iu = hfp[HFP_IU]
     iv = hfp[HFP_IV]
@@ -1105,17 +1108,22 @@ def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0,
             bat[o + m + k] *= c * iu
             bat[o + 2 * m + k] *= c * iv
     for k in range(m):
-        if not (math.isfinite(bat[o + k]) and math.isfinite(bat[o + m + k])
-                and math.isfinite(bat[o + 2 * m + k])):
+        u = bat[BAT_U * BATCH + k]
+        v = bat[BAT_V * BATCH + k]
+        ui, vi = into_domain(vt, u, v)
+        # a point on the domain's edge: f at it moved inside (as sample_point does)
+        edge = (ui != u or vi != v) and in_domain(vt, u, v)
+        if edge or not (math.isfinite(bat[o + k]) and math.isfinite(bat[o + m + k])
+                        and math.isfinite(bat[o + 2 * m + k])):
+            if edge:
+                bat[BAT_U * BATCH + k] = ui
+                bat[BAT_V * BATCH + k] = vi
             bat[o + k], bat[o + m + k], bat[o + 2 * m + k] = surface_eval(
                 kind, fg, hf, hfp, bat[BAT_U * BATCH + k], bat[BAT_V * BATCH + k])
-    vt = array_as_tuple(vp, VP_SIZE)    # (in registers: the loop below becomes SIMD code)
     detect = vt[VP_DETECT] != 0.0
     for k in range(m):
         t = _pass_plane(i_lo + k, n, ta, tb, t0, ka, 0, dt, 1.0)[0]
-        u = bat[BAT_U * BATCH + k]
-        v = bat[BAT_V * BATCH + k]
-        if in_domain(vt, u, v):
+        if in_domain(vt, bat[BAT_U * BATCH + k], bat[BAT_V * BATCH + k]):
             st, y, z, nx, ny, nz, lam = ortho_point(vt, t, bat[o + k], bat[o + m + k],
                                                     bat[o + 2 * m + k])
         else:

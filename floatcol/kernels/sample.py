@@ -84,6 +84,18 @@ def in_domain(vp, u, v):
             and v >= vp[VP_VA] - ev and v <= vp[VP_VB] + ev)
 
 
+@ngjit_inline
+def into_domain(vp, u, v):
+    """(u, v) moved inside the domain by DOMAIN_EPS of its size where they lie on
+    its edge or within in_domain's slack outside: f there is its limit from inside
+    (floor(v) at the edge v = 3 of [-3, 3] is 3, the next step's height: an edge
+    sample taking it drew a spike a step high along the edge)."""
+    eu = DOMAIN_EPS * (vp[VP_UB] - vp[VP_UA])
+    ev = DOMAIN_EPS * (vp[VP_VB] - vp[VP_VA])
+    return (min(max(u, vp[VP_UA] + eu), vp[VP_UB] - eu),
+            min(max(v, vp[VP_VA] + ev), vp[VP_VB] - ev))
+
+
 @ngjit_nrt_free
 def _clip_line(vp, u0, du, v0, dv, lo, hi):
     """Clip [lo, hi] to the parameters lam with (u0 + lam du, v0 + lam dv) inside the
@@ -142,6 +154,7 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
         v = cv - r * sb + t * cb
         if not in_domain(vp, u, v):
             return S_OUTSIDE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
+        u, v = into_domain(vp, u, v)
         w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
         st, ypix, z1, nx, ny, nz, lam = ortho_point(vp, t, w, wu, wv)
         if st != S_OK:
@@ -220,6 +233,15 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
             return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
         if not in_domain(vp, u, v):
             return S_OUTSIDE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
+        ui, vi = into_domain(vp, u, v)
+        if ui != u or vi != v:
+            # on the edge: f's limit from inside (into_domain)
+            u = ui
+            v = vi
+            w, wu, wv = surface_eval(kind, fg, hf, hfp, u, v)
+            evals += 1
+            if not math.isfinite(w):
+                return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
         s = w - cw
         r = (u - cu) * cb - (v - cv) * sb
     if not (math.isfinite(wu) and math.isfinite(wv)):

@@ -69,3 +69,23 @@ def test_orthographic_columns_never_fold():
                   kw["azim"], "orthographic", scale=r.view.scale, center=r.view.center,
                   steps=4000)
     assert (r.side == ref.side).mean() >= 0.985            # measured 0.98709 (rims)
+
+
+def test_traced_points_lie_on_the_surface_where_it_oscillates_wildly():
+    """y sin(1/x) near x = 0: its partials blow up, the columns are traced, and the
+    corrector's first-order test (|G| within a tolerance times |grad G|) accepted
+    points far off the surface there: lines across the whole picture. A traced point
+    now also has f within 2 pixels of its height (fold.S_TOL_PX; half a pixel cost
+    the stretched annulus 0.05 dB at its rims). Every seen pixel must lie
+    inside the picture of the box [-1, 1]^2 x [-1, 1] that holds the surface.
+    Measured (400x300, aspect equal): seen rows 0-299 before, 36-291 after; the box's
+    rows 25.4-302.3."""
+    import itertools
+    r = fc.render("v*sin(1/u)", u=(-1, 1), v=(-1, 1), size=(400, 300), elev=30, azim=-30,
+                  projection="perspective")
+    corners = np.array(list(itertools.product((-1, 1), repeat=3)), float).T
+    col, row = r.view.project(corners[0], corners[1], corners[2])
+    rows, cols = np.nonzero(r.side)
+    assert len(rows) > 20000                                # measured 30140
+    assert rows.min() >= np.floor(row.min()) - 1 and rows.max() <= np.ceil(row.max()) + 1
+    assert cols.min() >= np.floor(col.min()) - 1 and cols.max() <= np.ceil(col.max()) + 1

@@ -50,6 +50,9 @@ SEED_BISECT = 50
 #: the corrector's iterations and tolerance (pixels off the curve)
 CORRECT_ITERS = 12
 CORRECT_TOL_PX = 1e-4
+#: ... and f within this many pixels of the point's height (first order alone took
+#: points far off a wildly oscillating surface)
+S_TOL_PX = 2.0
 #: a step is at most MAX_DY_PX on screen and turns the tangent by at most acos(MIN_TURN)
 MAX_DY_PX = 1.0
 MIN_TURN = 0.98
@@ -125,7 +128,10 @@ def _correct(kind, fg, hf, hfp, vp, x0, t, s, p):
         n2 = g_t * g_t + g_s * g_s
         if n2 == 0.0:
             return False, t, s, 0.0, 0.0, i + 1
-        if abs(g) <= tol * math.sqrt(n2):
+        # on the curve within tol (to first order), and f within S_TOL_PX pixels of the
+        # point's height: where f oscillates wildly (y sin(1/x) near x = 0) the first
+        # order alone took points far off the surface (lines across the picture)
+        if abs(g) <= tol * math.sqrt(n2) and abs(g) <= S_TOL_PX / vp[VP_SCALE]:
             if not _point(vp, x0, t, s, u, v, w, wu, wv, p):
                 return False, t, s, 0.0, 0.0, i + 1
             return True, t, s, g_t, g_s, i + 1

@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import dataclasses
+import numbers
+import os
 import math
 import time
 from dataclasses import dataclass, field
@@ -312,13 +314,18 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         (vp[L.VP_FIX_RIDGE], vp[L.VP_FIX_SHADE], vp[L.VP_DETECT], vp[L.VP_JUMP], vp[L.VP_RATE],
          vp[L.VP_SPLINE_TOL]) = fixes
     n_tiles = -(-W // L.TILE)
-    gbuf = _pool.empty((n_tiles, H, L.TILE, G_SIZE), np.float32)
-    hrec = np.empty((W, n_lines, H_SIZE), dtype=np.float64)
+    _check_memory(W, H, n_tiles, n_lines, sub_columns)
+    try:
+        gbuf = _pool.empty((n_tiles, H, L.TILE, G_SIZE), np.float32)
+        hrec = np.empty((W, n_lines, H_SIZE), dtype=np.float64)
+        ebuf = _pool.empty((n_tiles, L.E_SIZE, H, L.TILE), np.float32)
+    except MemoryError:
+        raise ValueError(_too_large(W, H, _buffer_bytes(W, H, n_tiles, n_lines, sub_columns)))\
+            from None
     evals = np.zeros(W, dtype=np.int64)
     vp[L.VP_AA] = 1.0 if aa_cov else 0.0
     if surface.derivatives not in ("symbolic", "bilinear"):
         vp[L.VP_FOLD] = 0.0     # (layout.py: central differences tilt normals at jumps)
-    ebuf = _pool.empty((n_tiles, L.E_SIZE, H, L.TILE), np.float32)
     wrange = np.empty((W, 2))
     rows = np.empty((n_tiles, 2), dtype=np.int64)
     fb = _batch_evaluator(surface, view, method, sampling)
@@ -556,7 +563,40 @@ def _antialias(antialias, method, shading):
     raise ValueError(f"antialias must be True, False or 2, 3, 4 sub-columns, got {antialias!r}")
 
 
+def _buffer_bytes(W, H, n_tiles, n_lines, sub_columns):
+    """Bytes of the buffers a render of W x H pixels holds at once: the G-buffer and
+    the edge buffer (float32), the horizon records, the picture and its sides, and
+    with sub-columns their accumulator."""
+    need = n_tiles * L.TILE * H * (G_SIZE + L.E_SIZE) * 4 + W * n_lines * H_SIZE * 8 + W * H * 5
+    if sub_columns > 1:
+        need += W * H * 4 * 8
+    return need
+
+
+def _too_large(W, H, need):
+    return (f"size {W}x{H} needs about {need / 2**30:.1f} GiB of buffers, more than this "
+            "machine has: use a smaller size")
+
+
+def _check_memory(W, H, n_tiles, n_lines, sub_columns):
+    """A picture whose buffers cannot fit in the machine's memory is a bad size (a
+    ValueError naming it), not a MemoryError halfway through."""
+    need = _buffer_bytes(W, H, n_tiles, n_lines, sub_columns)
+    try:
+        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (AttributeError, ValueError, OSError):      # (not POSIX: MemoryError decides)
+        return
+    if need > 0.8 * total:
+        raise ValueError(_too_large(W, H, need))
+
+
 def _check_norm(norm, vmin, vmax):
+    for name, x in (("vmin", vmin), ("vmax", vmax)):
+        if x is not None and not (isinstance(x, numbers.Real) and math.isfinite(x)):
+            raise ValueError(f"{name} must be a finite number, got {x!r}")
+    if vmin is not None and vmax is not None and vmin > vmax:
+        raise ValueError(f"vmin must not exceed vmax, got vmin={vmin!r} > vmax={vmax!r} "
+                         "(as in matplotlib)")
     if norm is None:
         return
     if not (callable(norm) and callable(getattr(norm, "inverse", None))):

@@ -130,6 +130,8 @@ def test_animate_writes_gif_with_frames(capsys, monkeypatch, tmp_path):
     (["render", "u", "--cmap", "nosuchmap", "-o", "x.png"], "nosuchmap"),
     (["render", "u", "--elev", "120", "-o", "x.png"], "elev"),
     (["render", "u*v", "--vars", "u", "-o", "x.png"], "--vars"),
+    (["render", "u", "--vmin", "3", "--vmax", "1", "-o", "x.png"], "vmin must not exceed vmax"),
+    (["render", "u", "--vmin", "nan", "-o", "x.png"], "vmin must be a finite number"),
     (["animate", "sin(u - t)", "--frames", "0", "-o", "x.gif"], "frames"),
     (["animate", "sin(u - t)", "--t", "1:1", "-o", "x.gif"], "time range"),
     (["animate", "sin(u - t)", "-o", "x.png"], "must end in .gif, .mp4"),

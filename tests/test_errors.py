@@ -49,6 +49,9 @@ CASES = [
     (dict(expr="u", cmap="no-such-map"), "unknown colormap 'no-such-map'"),
     (dict(expr="u", lower_color="notacolour"), "is not a colour"),
     (dict(expr="u", shading="lambert", light=(1, 0, 0)), "lights from the viewpoint"),
+    (dict(expr="u", vmin=3, vmax=1), "vmin must not exceed vmax"),
+    (dict(expr="u", vmin=float("nan")), "vmin must be a finite number"),
+    (dict(expr="u", vmax="top"), "vmax must be a finite number"),
 ]
 
 
@@ -82,3 +85,25 @@ def test_unknown_symbol_suggests_vars():
         fc.render("sin(x*y)", size=(20, 15))
     r = fc.render("sin(x*y)", vars=("x", "y"), size=(20, 15))
     assert (r.side != 0).any()
+
+
+def test_a_size_beyond_the_machines_memory_is_a_bad_size(monkeypatch):
+    """30000x30000 needs 67.9 GiB of buffers: a MemoryError halfway through the render
+    before. Here the machine is said to have 1 GiB, and 4000x4000 needs 1.2."""
+    import os
+    import sys
+    real = os.sysconf
+    monkeypatch.setattr(os, "sysconf", lambda name: 2**18 if name == "SC_PHYS_PAGES"
+                        else 4096 if name == "SC_PAGE_SIZE" else real(name))
+    with pytest.raises(ValueError, match=r"size 4000x4000 needs about 1\.2 GiB"):
+        fc.render("u", size=(4000, 4000))
+    fc.render("u", size=(400, 300))                    # 0.01 GiB: drawn
+    # where the machine cannot tell its memory, a MemoryError says the same
+    monkeypatch.setattr(os, "sysconf", real)
+    render_module = sys.modules["floatcol.render"]
+
+    def no_memory(shape, dtype):
+        raise MemoryError
+    monkeypatch.setattr(render_module._pool, "empty", no_memory)
+    with pytest.raises(ValueError, match="size 400x300 needs about"):
+        fc.render("u", size=(400, 300))

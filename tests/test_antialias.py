@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import floatcol as fc
-from conftest import render_with_switch_off
+from conftest import reference_for, render_with_switch_off
 from reference import numpy_surface, raycast_box
 
 
@@ -98,7 +98,6 @@ def test_a_pixel_inside_the_silhouette_is_opaque(expr, d, proj):
     (the annulus's inner lip over its far wall; 3 sin(u cos v) past the domain's
     edge in perspective) left the rest of the pixel empty: the run after the hole
     skipped the pixel as painted (a light dot on a white background)."""
-    from conftest import reference_for
     r = fc.render(expr, u=(-d, d), v=(-d, d), elev=30, azim=-30, projection=proj,
                   size=(200, 150), background=(0, 0, 0, 0))
     ref = reference_for(r, expr, (-d, d), (-d, d), 30, -30, proj, steps=4000)

@@ -705,13 +705,7 @@ def _cover_rest(ecol, j, cov, side, lw, prev, cur):
         return
     if ecov <= 0.0:
         nx, ny, nz, w, lam, z = _chord_at(prev, cur, lw)
-        ecol[E_NX, j] = nx
-        ecol[E_NY, j] = ny
-        ecol[E_NZ, j] = nz
-        ecol[E_W, j] = w
-        ecol[E_I, j] = lam
-        ecol[E_DEPTH, j] = z
-        ecol[E_SIDE, j] = side
+        _store_edge(ecol, j, nx, ny, nz, w, lam, z, side)
     ecol[E_COV, j] = min(ecov + cov, room)
 
 
@@ -812,14 +806,22 @@ def _write_edge(ecol, run):
     from 0 with a new edge surface), and hold none."""
     j = int(run[RUN_EDGE_J])
     if j >= 0 and coverages(ecol, j)[1] > 0.0:
-        ecol[E_NX, j] = run[RUN_EDGE]
-        ecol[E_NY, j] = run[RUN_EDGE + 1]
-        ecol[E_NZ, j] = run[RUN_EDGE + 2]
-        ecol[E_W, j] = run[RUN_EDGE + 3]
-        ecol[E_I, j] = run[RUN_EDGE + 4]
-        ecol[E_DEPTH, j] = run[RUN_EDGE + 5]
-        ecol[E_SIDE, j] = run[RUN_EDGE + 6]
+        _store_edge(ecol, j, run[RUN_EDGE], run[RUN_EDGE + 1], run[RUN_EDGE + 2],
+                    run[RUN_EDGE + 3], run[RUN_EDGE + 4], run[RUN_EDGE + 5], run[RUN_EDGE + 6])
     run[RUN_EDGE_J] = -1.0
+
+
+@ngjit_inline
+def _store_edge(ecol, j, nx, ny, nz, w, lam, z, side):
+    """Write row j's edge surface (normal, w, intensity, depth, side) to ecol's
+    planes."""
+    ecol[E_NX, j] = nx
+    ecol[E_NY, j] = ny
+    ecol[E_NZ, j] = nz
+    ecol[E_W, j] = w
+    ecol[E_I, j] = lam
+    ecol[E_DEPTH, j] = z
+    ecol[E_SIDE, j] = side
 
 
 @ngjit_inline

@@ -376,20 +376,20 @@ def trace_column(kind, f, fg, hf, hfp, vp, x0, gcol, ecol):
         if side == 0.0:
             continue
         seen = seen_side(ecol[E_SEEN, j])
-        if seen == 0.0 or seen != side or tg[j, G_DEPTH] < gcol[j, G_DEPTH] - eps:
-            for q in range(gcol.shape[1]):
-                gcol[j, q] = tg[j, q]
-            ecol[E_SEEN, j] = side                        # whole (no coverages kept)
-        elif tg[j, G_DEPTH] <= gcol[j, G_DEPTH] + eps:
-            # the same surface: the traced point (exact within a pixel) replaces the
-            # column pass's, which interpolates across the fold (a wall's normal and
-            # intensity lerped between its plane's two sides)
-            for q in range(gcol.shape[1]):
-                gcol[j, q] = tg[j, q]
-            if flagged(ecol[E_SEEN, j]) and _inside_piece(tg, te, j, side, eps):
-                # the column pass's edge here (where it lost the curve at the fold)
-                # is none: the traced surface goes on through both neighbours
-                ecol[E_SEEN, j] = side
+        # the column pass saw nothing there, another side or a farther surface
+        missed = seen == 0.0 or seen != side or tg[j, G_DEPTH] < gcol[j, G_DEPTH] - eps
+        if not missed and tg[j, G_DEPTH] > gcol[j, G_DEPTH] + eps:
+            continue                                      # a nearer surface: it stays
+        # missed, or the same surface: the traced point (exact within a pixel)
+        # replaces the column pass's, which interpolates across the fold (a wall's
+        # normal and intensity lerped between its plane's two sides)
+        for q in range(gcol.shape[1]):
+            gcol[j, q] = tg[j, q]
+        if missed or (flagged(ecol[E_SEEN, j]) and _inside_piece(tg, te, j, side, eps)):
+            # whole (no coverages kept): the column pass's edge at the same surface
+            # (where it lost the curve at the fold) is none where the traced surface
+            # goes on through both neighbours
+            ecol[E_SEEN, j] = side
     return evals
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import warnings
 
 EXAMPLES = """examples:
   floatcol render "3*sin(u*cos(v))" --u=-5:5 --v=-5:5 -o surface.png
@@ -186,6 +187,17 @@ def _fix_negative_values(argv):
 
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else list(argv)
+    with warnings.catch_warnings():
+        warnings.showwarning = _show_warning
+        return _main(argv)
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    """A warning (an empty picture, say) as one line on stderr."""
+    print(f"floatcol: warning: {message}", file=sys.stderr)
+
+
+def _main(argv):
     try:
         args = build_parser().parse_args(_fix_negative_values(argv))
         if args.command is None:

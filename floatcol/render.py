@@ -6,6 +6,7 @@ import numbers
 import os
 import math
 import time
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -20,7 +21,7 @@ from .kernels.shade import (
     INTERP_INTENSITY, INTERP_NORMAL, centre_kernel, finish_kernel)
 from .output import png_bytes, save_image
 from .surface import Surface, as_surface, check_range
-from .view import View, _number, build_view
+from .view import View, _number, build_view, nowhere_finite
 
 METHODS = ("column", "horizon")
 SHADINGS = ("default", "lambert")
@@ -268,7 +269,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         raise ValueError("interpolation must be 'normal' (nis) or 'intensity' (iis), "
                          f"got {interpolation!r}")
     surface = as_surface(expr, vars)
-    domain = _domain(surface, u, v)
+    domain = user_domain = _domain(surface, u, v)
     surface, domain, center, box = in_box(surface, domain, center, aspect, box)
     if shading == "lambert":
         if light is not None:
@@ -391,6 +392,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
             rgba[..., :3] = np.clip(rgb * 255 + 0.5, 0, 255).astype(np.uint8)
             rgba[..., 3] = np.clip(a[..., 0] / sub_columns * 255 + 0.5, 0, 255).astype(np.uint8)
     t_end = time.perf_counter()
+    if nowhere_finite(surface, domain) and not (side != 0 if seen is None else seen).any():
+        warnings.warn(_empty_message(surface, user_domain), RuntimeWarning, stacklevel=2)
     stats = {
         "samples": int(evals.sum()),
         "seconds": t_end - t_start,
@@ -632,6 +635,20 @@ def _height_limits(wrange, vmin, vmax):
     w_lo = lo_s if vmin is None else float(vmin)
     w_hi = hi_s if vmax is None else float(vmax)
     return w_lo, w_hi
+
+
+def _empty_message(surface, domain):
+    (ua, ub), (va, vb) = domain
+    a, b = surface.variables
+    if surface.expr is None:
+        what = "f"
+    else:
+        import sympy
+        text = sympy.sstr(surface.expr, full_prec=False)
+        what = f"f = {text if len(text) <= 60 else text[:57] + '...'}"
+    return (f"{what} is NaN, infinite or complex everywhere on {a} in [{ua:g}, {ub:g}], "
+            f"{b} in [{va:g}, {vb:g}]: the picture is empty (check the expression and the "
+            "ranges)")
 
 
 def _domain(surface: Surface, u, v):

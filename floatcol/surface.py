@@ -594,7 +594,6 @@ def _callable_surface(fn, names):
 
 
 @functools.lru_cache(maxsize=1)
-@functools.lru_cache(maxsize=1)
 def _zero_fns():
     """f = 0 and its fused gradient (placeholders: a height field reads its grid)."""
     def zero(u, v, t):

@@ -337,6 +337,13 @@ def hole_map(surface, domain, fit):
     return holes
 
 
+def nowhere_finite(surface, domain):
+    """Is f NaN, infinite or complex at every point of the fit grid (FIT_GRID^2
+    points over the domain)? Such a surface is a hole everywhere, as far as the grid
+    sees: render warns when its picture then shows nothing."""
+    return not _fit(surface, domain)["ok"].any()
+
+
 def _fit(surface, domain):
     """The fit grid (surface.fit_grid, which a Surface keeps) with what build_view
     derives from it alone, computed once per grid: where f is finite ("ok"), its

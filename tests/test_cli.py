@@ -162,6 +162,17 @@ def test_mistake_through_the_real_command_has_no_traceback(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_a_surface_that_is_nowhere_finite_warns_in_one_line(capsys, monkeypatch, tmp_path):
+    # 1e309 overflows a double: f is infinite (or NaN at u = 0) everywhere. The
+    # picture is written (empty), and one line says why it is empty.
+    code, out, err = run_here(capsys, monkeypatch, tmp_path, "render", "1e309*u",
+                              "--size", "80x60", "-o", "x.png")
+    assert code == 0 and (tmp_path / "x.png").is_file()
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("floatcol: warning: ")
+    assert "everywhere on u in [-10, 10]" in lines[0] and "empty" in lines[0]
+
+
 def test_help_has_examples_and_version():
     p = subprocess.run([sys.executable, "-m", "floatcol.cli", "--help"], capture_output=True, text=True)
     assert p.returncode == 0 and "examples:" in p.stdout and "floatcol animate" in p.stdout

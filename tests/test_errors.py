@@ -1,4 +1,6 @@
 """Bad input raises ValueError naming what to fix."""
+import warnings
+
 import pytest
 
 import floatcol as fc
@@ -107,3 +109,24 @@ def test_a_size_beyond_the_machines_memory_is_a_bad_size(monkeypatch):
     monkeypatch.setattr(render_module._pool, "empty", no_memory)
     with pytest.raises(ValueError, match="size 400x300 needs about"):
         fc.render("u", size=(400, 300))
+
+
+def test_a_surface_that_is_nowhere_finite_warns():
+    # a hole everywhere: an empty picture, and a warning that says so (not an error:
+    # the picture is what f is)
+    with pytest.warns(RuntimeWarning, match=r"sqrt\(-u\*\*2 - 1\) is NaN, infinite or "
+                      r"complex everywhere on u in \[0, 2\], v in \[1, 3\]"):
+        r = fc.render("sqrt(-1-u**2)", u=(0, 2), v=(1, 3), size=(40, 30))
+    assert not (r.side != 0).any()
+    with pytest.warns(RuntimeWarning, match="x in"):
+        fc.render("log(-1-x**2)", vars=("x", "y"), size=(40, 30), method="horizon")
+
+
+@pytest.mark.parametrize("expr", ["sqrt(1-u**2-v**2)", "u*v"])
+def test_a_surface_with_something_to_see_does_not_warn(expr):
+    # a surface finite somewhere (the hemisphere: on a fifth of the domain) is drawn
+    # without a word
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = fc.render(expr, u=(-2, 2), v=(-2, 2), size=(40, 30))
+    assert (r.side != 0).any()

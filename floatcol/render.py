@@ -15,6 +15,7 @@ from . import _pool, color
 from .kernels.antialias import subcolumn_kernel
 from .kernels.column import H_SIZE, column_kernel
 from .kernels.horizon import horizon_kernel
+from .kernels.silhouette import silhouette_kernel
 from .kernels import layout as L
 from .kernels.layout import G_DEPTH, G_NX, G_NZ, G_SIZE, G_U, G_V, G_W
 from .kernels.shade import (
@@ -227,8 +228,10 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     antialias : section 6.4. True: coverage-weighted blending along columns (the
         floating interval's float ends give each silhouette pixel its coverage, and
         where the surface reappears beyond an extremum the pixel blends both
-        surfaces); 2, 3 or 4: that plus as many sub-columns per pixel, averaged;
-        False: off. Default: True for shading="default", False for "lambert" and the
+        surfaces), and across columns the staircase of a silhouette against the
+        background steeper than a row per column, from the columns' ends
+        (kernels/silhouette.py); 2, 3 or 4: the coverage along columns and as many
+        sub-columns per pixel, averaged (instead of the staircases' pass); False: off. Default: True for shading="default", False for "lambert" and the
         horizon. Only ``rgba`` is blended; ``intensity``, ``side``, ``depth`` and the
         G-buffer describe the surface at each pixel centre.
     focal_length : perspective only, instead of d1/d2: matplotlib's focal length
@@ -371,6 +374,11 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         rgba = _pool.empty((H, W, 4), np.uint8)
         finish_kernel(gbuf, ebuf, rows, vp, *shade_args, lut, w_lo, w_hi, lower_rgb, bg8, side,
                       rgba.view(np.uint32)[..., 0])
+        if aa_cov and sub_columns == 1:
+            # section 6.4 across columns at steep silhouettes, from the columns' ends
+            flat = side.reshape(-1)
+            silhouette_kernel(ebuf, side, flat[:flat.size // 8 * 8].view(np.uint64), bg8,
+                              rgba.view(np.uint32)[..., 0])
         if sub_columns > 1:
             # section 6.4 across columns: sub-columns at even offsets inside each pixel,
             # averaged (premultiplied), one column of scratch per thread; the

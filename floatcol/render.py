@@ -228,8 +228,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     antialias : section 6.4. True: coverage-weighted blending along columns (the
         floating interval's float ends give each silhouette pixel its coverage, and
         where the surface reappears beyond an extremum the pixel blends both
-        surfaces), and across columns the staircase of a silhouette against the
-        background steeper than a row per column, from the columns' ends
+        surfaces), and across columns the staircase of an edge steeper than a row
+        per column where the side seen changes (a silhouette against the background,
+        the lower side in front of the upper), from the columns' ends
         (kernels/silhouette.py); 2, 3 or 4: the coverage along columns and as many
         sub-columns per pixel, averaged (instead of the staircases' pass); False: off. Default: True for shading="default", False for "lambert" and the
         horizon. Only ``rgba`` is blended; ``intensity``, ``side``, ``depth`` and the
@@ -377,7 +378,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         if aa_cov and sub_columns == 1:
             # section 6.4 across columns at steep silhouettes, from the columns' ends
             flat = side.reshape(-1)
-            silhouette_kernel(ebuf, side, flat[:flat.size // 8 * 8].view(np.uint64), bg8,
+            silhouette_kernel(ebuf, gbuf, side, flat[:flat.size // 8 * 8].view(np.uint64),
                               rgba.view(np.uint32)[..., 0])
         if sub_columns > 1:
             # section 6.4 across columns: sub-columns at even offsets inside each pixel,

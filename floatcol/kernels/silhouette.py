@@ -1,75 +1,86 @@
-"""Antialiasing across columns at silhouettes, from the columns' own edges (section 6.4).
+"""Antialiasing across columns at steep edges, from the columns' own ends (section 6.4).
 
 Coverage antialiasing along a column (column.py, coverage.py) blends the pixel where a
-column's run of surface ends. Where a silhouette against the background is steeper than
-a pixel row per column, the run ends of neighbouring columns lie rows apart, and the
-pixels between them are all surface in one column and all background in the next: a
-staircase. Sub-columns (antialias=2-4) average it away at 2-4 times the cost. This pass
-instead reads where the silhouette crosses each of the two columns, the run ends at
-float rows that the coverages of the runs' end pixels give, and takes the silhouette as
-the straight line between them: each pixel of the staircase is then covered by the part
-of it on the surface's side of that line (Wu's antialiased lines, with the ends known to
-a fraction of a pixel).
+column's run of surface ends. Where an edge is steeper than a pixel row per column, the
+run ends of neighbouring columns lie rows apart, and the pixels between them show one
+thing in one column and another in the next: a staircase. Such an edge is a silhouette
+against the background, or a boundary between the two sides of the surface (the lower
+side of a fold in front of the upper side behind it, say). Sub-columns (antialias=2-4)
+average the staircases away at 2-4 times the cost. This pass instead reads where the
+edge crosses each of the two columns, at the run ends (at the float rows that the
+coverages of the runs' end pixels give against the background; at an end pixel's
+centre between sides), and takes the edge as the straight line between them: each
+pixel of the staircase is then covered by the part of it on each side of that line
+(Wu's antialiased lines, with the ends known to a fraction of a pixel).
 
-A pair of neighbouring pixels in a row, one whole (covered by its centre's surface,
-coverage 1, no edge surface) and one empty (nothing at its centre or in it), lies on a
-run of such rows: rows r0..r1, pixel columns cs (surface) and ce (empty). The
-silhouette is either
+Each pixel is of a kind: empty, upper side or lower side, whole (one surface covers
+all of it), or part (coverage.py blends it already). A pair of neighbouring pixels in a
+row, both whole or empty and of different kinds, lies on a run of rows r0..r1 where the
+two columns keep their kinds. One of them is the edge's near side, cs (a surface over
+the background; the nearer of two surfaces); the other, ce. The edge is either
 
-- below: the surface lies under it; ce shows surface just below the run (row r0 - 1)
-  and cs stops being whole just above it (row r1 + 1). The silhouette crosses ce at the
-  top of ce's surface, y_ce, and cs at the top of cs's, y_cs;
+- below: the near side lies under it; ce shows the near side's kind (or a part pixel)
+  just below the run (row r0 - 1) and cs shows another just above it (row r1 + 1);
 - or above: mirrored.
 
-At row j of the run it crosses the row's centre line a fraction f = (j - y_ce) /
-(y_cs - y_ce) of the way from ce's centre to cs's. The surface pixel keeps the part
-beyond: coverage 1.5 - f where f > 1/2; the empty pixel gets the part before: 1/2 - f
-where f < 1/2, in the colour of its surface neighbour. A pixel with such neighbours on
-both sides adds the two (a sliver of surface: the two covered parts overlap). A run
-longer than SIL_SCAN rows (a silhouette within 2 degrees of vertical), one that reaches
-the picture's edge, and one whose ends say neither (a notch) are left as they are;
-silhouettes over a farther surface are not touched (the edge surfaces of the coverage
-pass blend those along the columns).
+At row j of the run the edge crosses the row's centre line a fraction f = (j - y_ce) /
+(y_cs - y_ce) of the way from ce's centre to cs's, y_ce and y_cs where the edge crosses
+the two columns. Pixel cs takes 1.5 - f of its own colour and the rest of ce's where f >
+1/2; pixel ce takes 1/2 - f of cs's colour where f < 1/2 (premultiplied by alpha, so
+against the background it is coverage). A run longer than SIL_SCAN rows (an edge within
+2 degrees of vertical), one that reaches the picture's edge, and one whose ends say
+neither (a notch) are left as they are. Silhouettes of a surface over another part of
+the same side are not seen here (the side plane does not change there): the edge
+surfaces of the coverage pass blend those along the columns.
 
-Only rgba changes. Each row is one parallel iteration that writes only its own pixels
-(reading the original colour of a neighbour it has changed from a local), so the
-picture is the same for any number of threads.
+Only rgba changes. Blocks of SIL_ROWS rows are the parallel iterations; a block keeps,
+per pair of columns, the run and line it found last, so a run's rows in the block find
+them once. Each block writes only its own rows, reading the original colour of a
+neighbour it has changed from a local: the picture is the same for any number of
+threads.
 """
 import numpy as np
 from numba import prange
 
-from ._jit import ngjit_inline, ngjit_parallel_nrt_free
-from .coverage import flagged, seen_side
-from .layout import E_COV, E_COV0, E_SEEN
+from ._jit import ngjit_inline, ngjit_parallel
+from .coverage import flagged
+from .layout import E_COV, E_COV0, E_FLAG, E_SEEN, G_DEPTH
 from .shade import LITTLE_ENDIAN, _rgba32
 
-#: the longest staircase step (rows) whose silhouette is placed
+#: the longest staircase step (rows) whose edge is placed
 SIL_SCAN = 32
+#: rows per parallel block
+SIL_ROWS = 32
 #: a kept coverage at least this is whole (a float32 a little under 1 rounds to 255)
 FULL = 1.0 - 1.0 / 512.0
+# pixel kinds
+PART = -1
 EMPTY = 0
-WHOLE = 1
-PART = 2
-#: 8 bytes of the side plane at once: the high bit of each byte that is not 0
-LOW7 = np.uint64(0x7F7F7F7F7F7F7F7F)
-HIGH = np.uint64(0x8080808080808080)
+UPPER = 1
+LOWER = 2
+#: 8 bytes of the side plane at once: each byte equal to the first
+BYTES = np.uint64(0x0101010101010101)
 
 
 @ngjit_inline
-def pixel_state(ebuf, c, j):
-    """EMPTY, WHOLE or PART: how the surfaces cover pixel row j (from the bottom) of
-    column c, from the tiled edge buffer (layout.py, coverage.py)."""
+def pixel_kind(ebuf, c, j):
+    """PART, EMPTY, UPPER or LOWER: what covers pixel row j (from the bottom) of column
+    c, from the tiled edge buffer alone (layout.py, coverage.py); UPPER and LOWER are
+    whole pixels of that side."""
     T = ebuf.shape[3]
     x = ebuf[c // T, E_SEEN, j, c % T]
     if x == 0.0:
         return EMPTY
     if not flagged(x):
-        return WHOLE
+        return UPPER if x > 0.0 else LOWER
     if ebuf[c // T, E_COV, j, c % T] > 0.0:
         return PART
-    if seen_side(x) == 0.0:
+    s = x - E_FLAG
+    if s == 0.0:
         return EMPTY
-    return WHOLE if ebuf[c // T, E_COV0, j, c % T] >= FULL else PART
+    if ebuf[c // T, E_COV0, j, c % T] >= FULL:
+        return UPPER if s > 0.0 else LOWER
+    return PART
 
 
 @ngjit_inline
@@ -82,164 +93,208 @@ def covered(ebuf, c, j):
     if not flagged(x):
         return 1.0
     cv = ebuf[c // T, E_COV, j, c % T]
-    if seen_side(x) != 0.0:
+    if x != E_FLAG:
         cv += ebuf[c // T, E_COV0, j, c % T]
     return min(max(cv, 0.0), 1.0)
 
 
 @ngjit_inline
-def crossing(ebuf, H, cs, ce, j):
-    """f: where the silhouette between the whole pixel (cs, j) and the empty (ce, j)
-    crosses row j's centre line, as a fraction of the way from ce's centre to cs's;
-    -1 where the run's ends do not place it (the module's docstring)."""
+def _crossing_row(ebuf, c, r, kind, ks, background, near_below):
+    """The row where the edge crosses column c at its run's end pixel r (of kind
+    ``kind``; the near side's is ks), the near side below the crossing or above it:
+    the pixel's top or bottom; for a part pixel, against the background where its
+    coverage ends, between sides its centre."""
+    if kind == PART:
+        if not background:
+            return float(r)
+        cv = covered(ebuf, c, r)
+        return r - 0.5 + cv if near_below else r + 0.5 - cv
+    if (kind == ks) == near_below:
+        return r + 0.5
+    return r - 0.5
+
+
+@ngjit_inline
+def edge_line(ebuf, H, cs, ce, j, ks, ke):
+    """(r0, r1, a, b): the run of rows r0..r1 around j where column cs is of kind ks
+    and ce of kind ke, and the edge's crossing f = a j' + b at its rows j' (the
+    module's docstring); a = b = NaN where the run's ends do not place the edge, and
+    r0 = r1 = j where the run is longer than SIL_SCAN."""
     r0 = j
     n = 0
     while r0 > 0 and n < SIL_SCAN:
-        if pixel_state(ebuf, cs, r0 - 1) != WHOLE or pixel_state(ebuf, ce, r0 - 1) != EMPTY:
+        if pixel_kind(ebuf, cs, r0 - 1) != ks or pixel_kind(ebuf, ce, r0 - 1) != ke:
             break
         r0 -= 1
         n += 1
     r1 = j
     m = 0
     while r1 < H - 1 and m < SIL_SCAN:
-        if pixel_state(ebuf, cs, r1 + 1) != WHOLE or pixel_state(ebuf, ce, r1 + 1) != EMPTY:
+        if pixel_kind(ebuf, cs, r1 + 1) != ks or pixel_kind(ebuf, ce, r1 + 1) != ke:
             break
         r1 += 1
         m += 1
-    if n == SIL_SCAN or m == SIL_SCAN or r0 == 0 or r1 == H - 1:
-        return -1.0
-    below = (pixel_state(ebuf, ce, r0 - 1) != EMPTY
-             and pixel_state(ebuf, cs, r1 + 1) != WHOLE)     # the surface under the line
-    above = (pixel_state(ebuf, ce, r1 + 1) != EMPTY
-             and pixel_state(ebuf, cs, r0 - 1) != WHOLE)
+    if n == SIL_SCAN or m == SIL_SCAN:
+        return j, j, np.nan, np.nan
+    if r0 == 0 or r1 == H - 1:
+        return r0, r1, np.nan, np.nan
+    ce_lo = pixel_kind(ebuf, ce, r0 - 1)
+    cs_lo = pixel_kind(ebuf, cs, r0 - 1)
+    ce_hi = pixel_kind(ebuf, ce, r1 + 1)
+    cs_hi = pixel_kind(ebuf, cs, r1 + 1)
+    below = (ce_lo == ks or ce_lo == PART) and cs_hi != ks     # the near side under it
+    above = (ce_hi == ks or ce_hi == PART) and cs_lo != ks
     if below == above:
-        return -1.0
+        return r0, r1, np.nan, np.nan
+    bg = ke == EMPTY
     if below:
-        # the tops of the two columns' surfaces (a part-covered end pixel is covered
-        # from below)
-        y_ce = r0 - 1.5 + covered(ebuf, ce, r0 - 1)
-        y_cs = r1 + 0.5 + covered(ebuf, cs, r1 + 1)
-        return (j - y_ce) / (y_cs - y_ce)
-    y_ce = r1 + 1.5 - covered(ebuf, ce, r1 + 1)
-    y_cs = r0 - 0.5 - covered(ebuf, cs, r0 - 1)
-    return (y_ce - j) / (y_ce - y_cs)
-
-
-@ngjit_inline
-def _channels(p):
-    """(r, g, b) in [0, 1] of a pixel's uint32 (_rgba32's byte order)."""
-    if LITTLE_ENDIAN:
-        r, g, b = p, p >> np.uint32(8), p >> np.uint32(16)
+        y_ce = _crossing_row(ebuf, ce, r0 - 1, ce_lo, ks, bg, True)
+        y_cs = _crossing_row(ebuf, cs, r1 + 1, cs_hi, ks, bg, True)
     else:
-        r, g, b = p >> np.uint32(24), p >> np.uint32(16), p >> np.uint32(8)
+        y_ce = _crossing_row(ebuf, ce, r1 + 1, ce_hi, ks, bg, False)
+        y_cs = _crossing_row(ebuf, cs, r0 - 1, cs_lo, ks, bg, False)
+    a = 1.0 / (y_cs - y_ce)
+    return r0, r1, a, -y_ce * a
+
+
+@ngjit_inline
+def _pair_crossing(ebuf, gbuf, H, j, p, lo, hi, near, la, lb):
+    """(f, near column) of the pair of pixel columns p, p + 1 at row j, or (NaN, -1)
+    where they are not a staircase's pair (the module's docstring); the block's
+    arrays lo, hi, near, la, lb keep the pair's last run and line."""
+    if lo[p] <= j <= hi[p]:                       # the run found before: same kinds
+        return la[p] * j + lb[p], near[p]
+    k0 = pixel_kind(ebuf, p, j)
+    k1 = pixel_kind(ebuf, p + 1, j)
+    if k0 == PART or k1 == PART or k0 == k1:
+        return np.nan, -1
+    if k1 == EMPTY:
+        cs = p
+    elif k0 == EMPTY:
+        cs = p + 1
+    else:                                         # two sides: the nearer is in front
+        T = gbuf.shape[2]
+        d0 = gbuf[p // T, j, p % T, G_DEPTH]
+        d1 = gbuf[(p + 1) // T, j, (p + 1) % T, G_DEPTH]
+        cs = p if d0 <= d1 else p + 1
+    ce = 2 * p + 1 - cs
+    r0, r1, a, b = edge_line(ebuf, H, cs, ce, j, k0 if cs == p else k1, k1 if cs == p else k0)
+    lo[p] = r0
+    hi[p] = r1
+    near[p] = cs
+    la[p] = a
+    lb[p] = b
+    return a * j + b, cs
+
+
+@ngjit_inline
+def _weight(f, this_is_near):
+    """The part of a pixel that its neighbour's colour takes, f the edge's crossing."""
+    if not f >= 0.0:                              # NaN or -1: no edge placed
+        return 0.0
+    if this_is_near:
+        return f - 0.5 if f > 0.5 else 0.0
+    return 0.5 - f if f < 0.5 else 0.0
+
+
+@ngjit_inline
+def _unpack(p):
+    """(r, g, b, a) in [0, 1] of a pixel's uint32 (_rgba32's byte order)."""
     m = np.uint32(255)
-    return (r & m) / 255.0, (g & m) / 255.0, (b & m) / 255.0
+    if LITTLE_ENDIAN:
+        return ((p & m) / 255.0, ((p >> np.uint32(8)) & m) / 255.0,
+                ((p >> np.uint32(16)) & m) / 255.0, (p >> np.uint32(24)) / 255.0)
+    return ((p >> np.uint32(24)) / 255.0, ((p >> np.uint32(16)) & m) / 255.0,
+            ((p >> np.uint32(8)) & m) / 255.0, (p & m) / 255.0)
 
 
 @ngjit_inline
-def _over(r, g, b, cov, background):
-    """An opaque colour covering cov of the pixel over the background (straight alpha,
-    as shade.pixel_rgba)."""
-    bga = background[3] / 255.0
-    a = cov + (1.0 - cov) * bga
+def _blend(here, wl, left, wr, right):
+    """The pixel ``here`` with parts wl and wr of it taken by the colours left and
+    right, mixed premultiplied by alpha (uint32 pixels, straight alpha)."""
+    tot = wl + wr
+    if tot > 1.0:
+        wl /= tot
+        wr /= tot
+        tot = 1.0
+    r, g, b, a = _unpack(here)
+    keep = (1.0 - tot) * a
+    r *= keep
+    g *= keep
+    b *= keep
+    a = keep
+    if wl > 0.0:
+        r2, g2, b2, a2 = _unpack(left)
+        r += wl * a2 * r2
+        g += wl * a2 * g2
+        b += wl * a2 * b2
+        a += wl * a2
+    if wr > 0.0:
+        r2, g2, b2, a2 = _unpack(right)
+        r += wr * a2 * r2
+        g += wr * a2 * g2
+        b += wr * a2 * b2
+        a += wr * a2
     if a <= 0.0:
-        return _rgba32(background[0], background[1], background[2], 0)
-    rest = (1.0 - cov) * bga / 255.0
-    return _rgba32(min((cov * r + rest * background[0]) / a, 1.0) * 255.0 + 0.5,
-                   min((cov * g + rest * background[1]) / a, 1.0) * 255.0 + 0.5,
-                   min((cov * b + rest * background[2]) / a, 1.0) * 255.0 + 0.5,
-                   a * 255.0 + 0.5)
+        return here
+    return _rgba32(min(r / a, 1.0) * 255.0 + 0.5, min(g / a, 1.0) * 255.0 + 0.5,
+                   min(b / a, 1.0) * 255.0 + 0.5, min(a, 1.0) * 255.0 + 0.5)
 
 
-@ngjit_inline
-def _pixel(ebuf, H, W, i, j, c, left, right, prev, f_left, rgba, background):
-    """Blend pixel (i, c) of the picture (row j from the bottom) with the silhouettes
-    on its left and right (where the side plane changes); prev is the original colour
-    of pixel c - 1, f_left the crossing between c - 1 and c if known (else NaN).
-    Returns pixel c's original colour and the crossing between c and c + 1 (NaN if
-    none was computed)."""
-    here = rgba[i, c]
-    state = pixel_state(ebuf, c, j)
-    f_right = np.nan
-    if state == WHOLE:
-        cl = 1.0
-        cr = 1.0
-        if left and pixel_state(ebuf, c - 1, j) == EMPTY:
-            f = f_left if f_left == f_left else crossing(ebuf, H, c, c - 1, j)
-            if f > 0.5:
-                cl = 1.5 - f
-        if right and pixel_state(ebuf, c + 1, j) == EMPTY:
-            f = f_right = crossing(ebuf, H, c, c + 1, j)
-            if f > 0.5:
-                cr = 1.5 - f
-        cov = cl + cr - 1.0
-        if cov < 1.0:
-            r, g, b = _channels(here)
-            rgba[i, c] = _over(r, g, b, max(cov, 0.0), background)
-    elif state == EMPTY:                  # finish_kernel's background
-        cl = 0.0
-        cr = 0.0
-        r = 0.0
-        g = 0.0
-        b = 0.0
-        if left and pixel_state(ebuf, c - 1, j) == WHOLE:
-            f = f_left if f_left == f_left else crossing(ebuf, H, c - 1, c, j)
-            if 0.0 <= f < 0.5:
-                cl = 0.5 - f
-                pr, pg, pb = _channels(prev)
-                r += cl * pr
-                g += cl * pg
-                b += cl * pb
-        if right and pixel_state(ebuf, c + 1, j) == WHOLE:
-            f = f_right = crossing(ebuf, H, c + 1, c, j)
-            if 0.0 <= f < 0.5:
-                cr = 0.5 - f
-                pr, pg, pb = _channels(rgba[i, c + 1])
-                r += cr * pr
-                g += cr * pg
-                b += cr * pb
-        cov = cl + cr
-        if cov > 0.0:
-            rgba[i, c] = _over(r / cov, g / cov, b / cov, min(cov, 1.0), background)
-    return here, f_right
-
-
-@ngjit_parallel_nrt_free
-def silhouette_kernel(ebuf, side, words, background, rgba):
-    """Blend the staircases of steep silhouettes against the background into rgba
-    (an (H, W, 4) uint8 picture viewed as (H, W) uint32, finish_kernel's), from the
-    tiled edge buffer ebuf and finish_kernel's side plane (H, W), top row first;
-    ``words`` is the side plane's bytes read 8 at a time (the first H W // 8 of them:
-    a run of 8 pixels with no change of side = 0 and no change at either end is
-    skipped in one test). The module's docstring says how."""
+@ngjit_parallel
+def silhouette_kernel(ebuf, gbuf, side, words, rgba):
+    """Blend the staircases of steep edges in rgba (an (H, W, 4) uint8 picture viewed
+    as (H, W) uint32, finish_kernel's), from the tiled edge buffer ebuf, the tiled
+    G-buffer gbuf (depths, to tell the near side) and finish_kernel's side plane
+    (H, W), top row first; ``words`` is the side plane's bytes read 8 at a time (its
+    first H W // 8: a run of 8 pixels of one side, with the same side on both ends,
+    is passed in one test). The module's docstring says how."""
     H, W = side.shape
     n_words = words.shape[0]
-    for i in prange(H):
-        j = H - 1 - i
-        base = i * W
-        prev = rgba[i, 0]
-        prev_c = -1                       # the pixel whose original colour prev is,
-        f_prev = np.nan                   # and the crossing on its right
-        c = 0
-        while c < W:
-            k = base + c
-            if (k & 7) == 0 and c + 8 <= W and (k >> 3) < n_words:
-                w = words[k >> 3]
-                m = (((w & LOW7) + LOW7) | w) & HIGH
-                if m == 0 or m == HIGH:
-                    nz = m != 0
-                    if (c == 0 or (side[i, c - 1] != 0) == nz) and \
-                            (c + 8 == W or (side[i, c + 8] != 0) == nz):
-                        c += 8
-                        continue
-            s_here = side[i, c] != 0
-            left = c > 0 and (side[i, c - 1] != 0) != s_here
-            right = c < W - 1 and (side[i, c + 1] != 0) != s_here
-            if left or right:
-                if prev_c != c - 1:
-                    prev = rgba[i, max(c - 1, 0)]     # not blended: as it was
-                    f_prev = np.nan
-                prev, f_prev = _pixel(ebuf, H, W, i, j, c, left, right, prev, f_prev, rgba,
-                                      background)
-                prev_c = c
-            c += 1
+    n_blocks = -(-H // SIL_ROWS)
+    for blk in prange(n_blocks):
+        # per pair of columns (p, p + 1): the rows, near column and line of the run
+        # found last in this block
+        lo = np.ones(max(W - 1, 1), dtype=np.int64)
+        hi = np.zeros(max(W - 1, 1), dtype=np.int64)
+        near = np.zeros(max(W - 1, 1), dtype=np.int64)
+        la = np.zeros(max(W - 1, 1))
+        lb = np.zeros(max(W - 1, 1))
+        for p in range(W - 1):
+            lo[p] = H                             # none yet
+        for i in range(blk * SIL_ROWS, min(H, (blk + 1) * SIL_ROWS)):
+            j = H - 1 - i
+            base = i * W
+            prev = rgba[i, 0]
+            prev_c = -1                           # the pixel whose original colour is prev
+            c = 0
+            while c < W:
+                k = base + c
+                if (k & 7) == 0 and c + 8 <= W and (k >> 3) < n_words:
+                    w = words[k >> 3]
+                    if w == (w & np.uint64(255)) * BYTES:         # 8 pixels of one side
+                        s0 = side[i, c]
+                        if (c == 0 or side[i, c - 1] == s0) and \
+                                (c + 8 == W or side[i, c + 8] == s0):
+                            c += 8
+                            continue
+                s_here = side[i, c]
+                left = c > 0 and side[i, c - 1] != s_here
+                right = c < W - 1 and side[i, c + 1] != s_here
+                if left or right:
+                    if prev_c != c - 1:
+                        prev = rgba[i, max(c - 1, 0)]            # not blended: as it was
+                    here = rgba[i, c]
+                    wl = 0.0
+                    wr = 0.0
+                    if left:
+                        f, cs = _pair_crossing(ebuf, gbuf, H, j, c - 1, lo, hi, near, la, lb)
+                        wl = _weight(f, cs == c)
+                    if right:
+                        f, cs = _pair_crossing(ebuf, gbuf, H, j, c, lo, hi, near, la, lb)
+                        wr = _weight(f, cs == c)
+                    if wl > 0.0 or wr > 0.0:
+                        rgba[i, c] = _blend(here, wl, prev, wr, rgba[i, c + 1] if right else here)
+                    prev = here
+                    prev_c = c
+                c += 1

@@ -209,6 +209,14 @@ def _unpack(p):
 
 
 @ngjit_inline
+def _add(r, g, b, a, w, p):
+    """The premultiplied sums (r, g, b, a) plus part w of the pixel p."""
+    r2, g2, b2, a2 = _unpack(p)
+    wa = w * a2
+    return r + wa * r2, g + wa * g2, b + wa * b2, a + wa
+
+
+@ngjit_inline
 def _blend(here, wl, left, wr, right):
     """The pixel ``here`` with parts wl and wr of it taken by the colours left and
     right, mixed premultiplied by alpha (uint32 pixels, straight alpha)."""
@@ -217,24 +225,11 @@ def _blend(here, wl, left, wr, right):
         wl /= tot
         wr /= tot
         tot = 1.0
-    r, g, b, a = _unpack(here)
-    keep = (1.0 - tot) * a
-    r *= keep
-    g *= keep
-    b *= keep
-    a = keep
+    r, g, b, a = _add(0.0, 0.0, 0.0, 0.0, 1.0 - tot, here)
     if wl > 0.0:
-        r2, g2, b2, a2 = _unpack(left)
-        r += wl * a2 * r2
-        g += wl * a2 * g2
-        b += wl * a2 * b2
-        a += wl * a2
+        r, g, b, a = _add(r, g, b, a, wl, left)
     if wr > 0.0:
-        r2, g2, b2, a2 = _unpack(right)
-        r += wr * a2 * r2
-        g += wr * a2 * g2
-        b += wr * a2 * b2
-        a += wr * a2
+        r, g, b, a = _add(r, g, b, a, wr, right)
     if a <= 0.0:
         return here
     return _rgba32(min(r / a, 1.0) * 255.0 + 0.5, min(g / a, 1.0) * 255.0 + 0.5,
@@ -255,13 +250,12 @@ def silhouette_kernel(ebuf, gbuf, side, words, rgba):
     for blk in prange(n_blocks):
         # per pair of columns (p, p + 1): the rows, near column and line of the run
         # found last in this block
-        lo = np.ones(max(W - 1, 1), dtype=np.int64)
-        hi = np.zeros(max(W - 1, 1), dtype=np.int64)
-        near = np.zeros(max(W - 1, 1), dtype=np.int64)
-        la = np.zeros(max(W - 1, 1))
-        lb = np.zeros(max(W - 1, 1))
-        for p in range(W - 1):
-            lo[p] = H                             # none yet
+        n_pairs = max(W - 1, 1)
+        lo = np.full(n_pairs, H, dtype=np.int64)       # none yet: lo > hi
+        hi = np.zeros(n_pairs, dtype=np.int64)
+        near = np.zeros(n_pairs, dtype=np.int64)
+        la = np.zeros(n_pairs)
+        lb = np.zeros(n_pairs)
         for i in range(blk * SIL_ROWS, min(H, (blk + 1) * SIL_ROWS)):
             j = H - 1 - i
             base = i * W

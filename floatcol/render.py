@@ -232,7 +232,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         per column where the side seen changes (a silhouette against the background,
         the lower side in front of the upper), from the columns' ends
         (kernels/silhouette.py); 2, 3 or 4: the coverage along columns and as many
-        sub-columns per pixel, averaged (instead of the staircases' pass); False: off. Default: True for shading="default", False for "lambert" and the
+        sub-columns per pixel, averaged (instead of the staircases' pass); False:
+        off. Default: True for shading="default", False for "lambert" and the
         horizon. Only ``rgba`` is blended; ``intensity``, ``side``, ``depth`` and the
         G-buffer describe the surface at each pixel centre.
     focal_length : perspective only, instead of d1/d2: matplotlib's focal length
@@ -376,7 +377,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         finish_kernel(gbuf, ebuf, rows, vp, *shade_args, lut, w_lo, w_hi, lower_rgb, bg8, side,
                       rgba.view(np.uint32)[..., 0])
         if aa_cov and sub_columns == 1:
-            # section 6.4 across columns at steep silhouettes, from the columns' ends
+            # section 6.4 across columns: the staircases of steep edges where the side
+            # seen changes, from the columns' ends
             flat = side.reshape(-1)
             silhouette_kernel(ebuf, gbuf, side, flat[:flat.size // 8 * 8].view(np.uint64),
                               rgba.view(np.uint32)[..., 0])

@@ -43,7 +43,7 @@ import numpy as np
 from numba import prange
 
 from ._jit import ngjit_inline, ngjit_parallel
-from .coverage import flagged
+from .coverage import coverages, flagged, seen_side
 from .layout import E_COV, E_COV0, E_FLAG, E_SEEN, G_DEPTH
 from .shade import LITTLE_ENDIAN, _rgba32
 
@@ -85,17 +85,13 @@ def pixel_kind(ebuf, c, j):
 
 @ngjit_inline
 def covered(ebuf, c, j):
-    """The part of pixel row j of column c that surfaces cover."""
+    """The part of pixel row j of column c that surfaces cover: the centre's surface
+    (where one is seen there) and the edge surface (coverage.py's planes)."""
     T = ebuf.shape[3]
-    x = ebuf[c // T, E_SEEN, j, c % T]
-    if x == 0.0:
-        return 0.0
-    if not flagged(x):
-        return 1.0
-    cv = ebuf[c // T, E_COV, j, c % T]
-    if x != E_FLAG:
-        cv += ebuf[c // T, E_COV0, j, c % T]
-    return min(max(cv, 0.0), 1.0)
+    cov0, cov = coverages(ebuf[c // T, :, :, c % T], j)
+    if seen_side(ebuf[c // T, E_SEEN, j, c % T]) != 0.0:
+        cov += cov0
+    return min(max(cov, 0.0), 1.0)
 
 
 @ngjit_inline

@@ -15,7 +15,7 @@ import numpy as np
 from .output import atomic_file, check_output
 from .plot import parse_ranges, plot_surface, render_view
 from .render import box_factors
-from .surface import as_surface, check_range, sympify_expression
+from .surface import as_surface, check_range, sympy_expression
 
 ANIMATION_FORMATS = {".gif": "GIF", ".mp4": "MP4"}
 
@@ -157,7 +157,7 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     names, bounds = parse_ranges(expr, ranges, extra=(t_name,))
     if t_name in names:
         raise ValueError(f"{t_name} is the time; the surface's variables must be two others")
-    base = as_surface(sympify_expression(expr, names + (t_name,)), names, time=t_name)
+    base = as_surface(sympy_expression(expr, names + (t_name,)), names, time=t_name)
     domain = tuple(check_range(n, b if b is not None else (-10.0, 10.0))
                    for n, b in zip(names, bounds))
     times = np.linspace(t_lo, t_hi, frames, endpoint=endpoint and frames > 1)

@@ -44,22 +44,20 @@ def _range(text):
 
 
 def _number(text):
-    """A bound: a number, or a constant expression such as 2*pi or sqrt(2)."""
-    try:
-        return float(text)
-    except ValueError:
-        pass
-    import sympy
-    try:
-        value = sympy.sympify(text.replace("^", "**"))
-    except (sympy.SympifyError, TypeError, SyntaxError, AttributeError):
-        raise ValueError(text) from None
-    if not getattr(value, "is_number", False) or value.free_symbols:
-        raise ValueError(text)
-    try:
-        return float(value)
-    except TypeError:                    # a complex constant
-        raise ValueError(text) from None
+    """A bound: a number, or a constant expression such as 2*pi or sqrt(2) (read by
+    floatcol's parser, which never evaluates the text)."""
+    from .expression import constant
+    return constant(text)
+
+
+def _value(name):
+    """An argparse type: a number or constant expression (floatcol's parser)."""
+    def convert(text):
+        try:
+            return _number(text)
+        except ValueError as exc:
+            raise argparse.ArgumentTypeError(f"--{name}: {exc}") from None
+    return convert
 
 
 def _aspect(text):
@@ -126,8 +124,10 @@ def _surface_options(p, default_size="800x600", many=False):
     p.add_argument("--cmap", default=None, help="matplotlib colormap of the upper side (default viridis)")
     p.add_argument("--color", default=None, help="one colour for the upper side instead of a colormap")
     p.add_argument("--lower-color", default=None, help="colour of the lower side")
-    p.add_argument("--vmin", type=float, default=None, help="height at the colormap's start")
-    p.add_argument("--vmax", type=float, default=None, help="height at the colormap's end")
+    p.add_argument("--vmin", type=_value("vmin"), default=None,
+                   help="height at the colormap's start (a number or a constant such as pi/2)")
+    p.add_argument("--vmax", type=_value("vmax"), default=None,
+                   help="height at the colormap's end (a number or a constant such as pi/2)")
     p.add_argument("--no-shade", action="store_true", help="flat colours, no lighting")
     p.add_argument("--background", default=None, help="background colour, e.g. white or none")
     p.add_argument("--dpi", type=float, default=100.0, help="dots per inch of PDF/SVG output (default 100)")

@@ -37,7 +37,10 @@ def atomic_file(path):
     path = os.fspath(path)
     folder = os.path.dirname(os.path.abspath(path))
     suffix = os.path.splitext(path)[1]
-    fd, tmp = tempfile.mkstemp(prefix=".floatcol-", suffix=suffix, dir=folder)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".floatcol-", suffix=suffix, dir=folder)
+    except OSError as exc:             # the user's path in the message, not a temporary's
+        raise OSError(exc.errno, exc.strerror, path) from None
     os.close(fd)
     try:
         yield tmp
@@ -45,9 +48,11 @@ def atomic_file(path):
         os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as exc:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+        if isinstance(exc, OSError) and exc.filename in (tmp, None):
+            raise OSError(exc.errno, exc.strerror, path) from None
         raise
 
 

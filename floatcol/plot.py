@@ -93,7 +93,13 @@ def parse_ranges(expr, ranges, extra=()):
             bounds.append(None)
     if len(names) == 2 and names[0] == names[1]:
         raise ValueError(f"the two ranges name the same variable {names[0]!r}")
-    for fallback in ("x", "y", "u", "v"):
+    # a formula in one variable: its usual partner (u -> v, x -> y) names the other
+    partner = {"u": ("v",), "v": ("u",), "x": ("y",), "y": ("x",)}.get(
+        names[0] if len(names) == 1 else "", ())
+    if partner and names[0] in ("v", "y") and bounds[0] is None:
+        names.insert(0, partner[0])         # y alone: (x, y), not (y, x)
+        bounds.insert(0, None)
+    for fallback in partner + ("x", "y", "u", "v"):
         if len(names) < 2 and fallback not in names:
             names.append(fallback)
             bounds.append(None)
@@ -139,7 +145,7 @@ class SurfacePlot(_ScalarMappable):
         self.label = label
         self.size = check_size(size)
         self.dpi = _number("dpi", dpi, positive=True)
-        self.elev, self.azim = float(elev), float(azim)
+        self.elev, self.azim = _number("elev", elev), _number("azim", azim)
         if not -90.0 <= self.elev <= 90.0:
             raise ValueError(f"elev must be between -90 and 90 degrees, got {elev}")
         if not isinstance(proj_type, str) or proj_type.lower() not in PROJ_TYPES:

@@ -17,6 +17,7 @@ import numbers
 import numba
 import numpy as np
 
+from .expression import constant_number, parse_cached
 from .kernels._jit import compile_batch_fn, compile_grad_fn, compile_surface_fn
 from .kernels.layout import HFP_CW, HFP_IU, HFP_IV, SURF_FUNCTION, SURF_HEIGHTFIELD
 from .kernels.sample import eval_grid
@@ -237,19 +238,7 @@ def _is_sympy(obj):
     return isinstance(obj, sympy.Basic)
 
 
-@functools.lru_cache(maxsize=256)
-def _parse_text(text, names):
-    """sympy's parse of a formula (cached: sympy expressions are immutable, and the
-    parse took a millisecond of every render of a string)."""
-    import sympy as sp
-    from sympy.parsing.sympy_parser import (
-        convert_xor, implicit_multiplication, parse_expr, standard_transformations)
-    return parse_expr(text, local_dict={n: sp.Symbol(n) for n in names},
-                      transformations=standard_transformations + (convert_xor,
-                                                                  implicit_multiplication))
-
-
-def sympify_expression(expr, names=()):
+def sympy_expression(expr, names=()):
     """The sympy expression of a string / number / sympy object, with ``names`` read as
     plain sympy Symbols; its free symbols are not checked. ValueError says what to fix."""
     import sympy as sp
@@ -260,12 +249,10 @@ def sympify_expression(expr, names=()):
             a, b = (tuple(names) + DEFAULT_VARS)[:2] if len(names) < 2 else names[:2]
             raise ValueError("the expression is empty: give a formula in "
                              f"{a} and {b}, e.g. '3*sin({a}*cos({b}))'")
-        try:
-            e = _parse_text(text, tuple(names))
-        except Exception as exc:  # sympy raises SyntaxError, TokenError, TypeError, ...
-            raise ValueError(_parse_error_message(text, exc)) from None
+        # floatcol's own parser: it never evaluates the text (sympify would eval it)
+        e = parse_cached(text, tuple(names))
     elif isinstance(expr, numbers.Number) and not isinstance(expr, bool):
-        e = sp.sympify(expr)
+        e = constant_number(expr)
     elif isinstance(expr, sp.Basic):
         e = expr
     else:
@@ -280,7 +267,7 @@ def sympify_expression(expr, names=()):
 
 def free_names(expr):
     """Sorted names of the free symbols of an expression or string."""
-    return sorted({s.name for s in sympify_expression(expr).free_symbols})
+    return sorted({s.name for s in sympy_expression(expr).free_symbols})
 
 
 def parse_expression(expr, names=DEFAULT_VARS):
@@ -288,7 +275,7 @@ def parse_expression(expr, names=DEFAULT_VARS):
     ``names`` (as plain sympy Symbols). ValueError says what to fix."""
     import sympy as sp
     syms = {n: sp.Symbol(n) for n in names}
-    e = sympify_expression(expr, names)
+    e = sympy_expression(expr, names)
     by_name = {}
     unknown = []
     for s in sorted(e.free_symbols, key=str):
@@ -308,26 +295,15 @@ def parse_expression(expr, names=DEFAULT_VARS):
         # none of which compiles: re-built over real symbols, they become x, 0 and
         # atan2(y, x).
         real = {s: sp.Dummy(s.name, real=True) for s in syms.values()}
-        e = e.xreplace(real)
-        e = e.xreplace({f: f.rewrite(sp.atan2) for f in e.atoms(sp.arg)})
-        e = e.xreplace({d: s for s, d in real.items()})
+        try:
+            e = e.xreplace(real)
+            e = e.xreplace({f: f.rewrite(sp.atan2) for f in e.atoms(sp.arg)})
+            e = e.xreplace({d: s for s, d in real.items()})
+        except (TypeError, ValueError, ArithmeticError):
+            # re-evaluated over real variables, a part is undefined everywhere:
+            # im(u) % ... is a modulus by 0, Max(nan, ...) has no value. A hole.
+            e = sp.nan
     return e
-
-
-def _parse_error_message(text, exc):
-    """One line saying where the string stops making sense."""
-    probe = text.replace("^", "**")
-    try:
-        compile(probe, "<expression>", "eval")
-    except SyntaxError as se:
-        off = (se.offset or 0) - 1
-        if off < 0 or off >= len(probe):
-            off = len(probe)            # Python blames the end: the formula is incomplete
-        pos = off - probe[:off].count("**") + text[:off].count("**")  # '^' -> '**' shift
-        pos = min(max(pos, 0), len(text))
-        return (f"could not parse expression {text!r} ({se.msg}) at character {pos + 1}: "
-                f"{text[:pos]}<here>{text[pos:]}")
-    return f"could not parse expression {text!r}: {type(exc).__name__}: {exc}"
 
 
 # ---------------------------------------------------------------- compilation
@@ -351,10 +327,19 @@ def _compiled_expression(e, names, time=None):
     import sympy as sp
     su, sv = (sp.Symbol(n) for n in names)
     st = sp.Symbol(time) if time is not None else sp.Dummy("t")
+    if not e.free_symbols:
+        # a constant: its value in doubles; one that is not a real number (I, oo, zoo,
+        # nan) is a hole everywhere
+        from .expression import constant_value
+        value = constant_value(e)
+        e = sp.Float(value) if math.isfinite(value) else sp.nan
     f_py, f = _compile_scalar(e, su, sv, st)
     fg = None
     how = "symbolic"
-    derivs = [sp.diff(e, su), sp.diff(e, sv)]
+    try:
+        derivs = [sp.diff(e, su), sp.diff(e, sv)]
+    except (TypeError, ValueError, ArithmeticError, RecursionError):
+        derivs = [sp.Derivative(e, su), sp.Derivative(e, sv)]     # central differences
     if not any(d.has(sp.Derivative, sp.Subs) for d in derivs):
         try:
             fg = _compile_fused(e, derivs, su, sv, st)
@@ -376,8 +361,26 @@ def _is_complex(e):
 
 
 def _compile_error(e, exc):
-    first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-    return ValueError(f"cannot compile {e} for the renderer: {first}")
+    """A ValueError that says what the user can change, never Numba's or sympy's
+    internals (those go to the debug log)."""
+    import re
+    log.debug("cannot compile %s: %s", e, exc)
+    text = _short(e)
+    missing = re.search(r"name '(\w+)' is not defined", str(exc))
+    if missing:
+        why = f"the renderer has no compiled form of {missing.group(1)}"
+    elif _is_complex(e):
+        why = ("a part of it is complex where the renderer needs a real number (floor, "
+               "atan2, Min, Max, a comparison, ... of a complex value)")
+    else:
+        why = "the renderer cannot compile one of its functions for real numbers"
+    return ValueError(f"cannot draw f = {text}: {why}; rewrite that part")
+
+
+def _short(e):
+    import sympy as sp
+    text = sp.sstr(e, full_prec=False)
+    return text if len(text) <= 80 else text[:77] + "..."
 
 
 def _vectorises(e, derivs):
@@ -431,7 +434,7 @@ def _no_batch():
     return compile_batch_fn(none)
 
 
-def _lambdify_real(args, e, cse=False, functions=None):
+def _lambdify_real(args, e, cse=False, functions=None, modules="math"):
     """sympy's lambdify for Numba, with a power printed so that it cannot raise.
 
     In Numba, ``0.0 ** -2`` raises ZeroDivisionError even in numpy's error model
@@ -455,7 +458,41 @@ def _lambdify_real(args, e, cse=False, functions=None):
     printer = _Printer({"fully_qualified_modules": False, "inline": True,
                         "allow_unknown_functions": True,
                         "user_functions": {k: k for k in namespace}})
-    return sp.lambdify(args, e, modules=[namespace, "math"], printer=printer, cse=cse)
+    return sp.lambdify(args, e, modules=[namespace, modules], printer=printer, cse=cse)
+
+
+def _complex_namespace():
+    """What a complex expression's code calls: cmath's functions (sympy's own cmath
+    printer recursed without end on a Float), and the parts of a complex number."""
+    import cmath
+
+    @numba.njit(cache=False)
+    def re(z):
+        return (z + 0j).real
+
+    @numba.njit(cache=False)
+    def im(z):
+        return (z + 0j).imag
+
+    @numba.njit(cache=False)
+    def arg(z):
+        return cmath.phase(z + 0j)
+
+    @numba.njit(cache=False)
+    def conjugate(z):
+        return (z + 0j).conjugate()
+
+    names = ["sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh", "asinh",
+             "acosh", "atanh", "exp", "log", "sqrt", "log10"]
+    space = {n: getattr(cmath, n) for n in names}
+    space.update(re=re, im=im, arg=arg, conjugate=conjugate)
+    return space
+
+
+def _lambdify_complex(args, e, cse=False):
+    """lambdify of an expression with complex constants: cmath's functions for
+    math's (a value that is not real is a hole, _real_part)."""
+    return _lambdify_real(args, e, cse=cse, functions=_complex_namespace(), modules="cmath")
 
 
 def _compile_scalar(e, su, sv, st):
@@ -464,7 +501,7 @@ def _compile_scalar(e, su, sv, st):
     import sympy as sp
     try:
         if _is_complex(e):
-            g = _njit(sp.lambdify((su, sv, st), e, modules="cmath"))
+            g = _njit(_lambdify_complex((su, sv, st), e))
 
             def py(u, v, t):
                 try:
@@ -486,7 +523,7 @@ def _compile_fused(e, derivs, su, sv, st):
     triple = (e, derivs[0], derivs[1])
     try:
         if any(_is_complex(x) for x in triple):
-            g = _njit(sp.lambdify((su, sv, st), triple, modules="cmath", cse=True))
+            g = _njit(_lambdify_complex((su, sv, st), triple, cse=True))
 
             def fused(u, v, t, p):
                 try:

@@ -24,6 +24,7 @@ from numba import prange
 
 from ._jit import (
     array_as_tuple, array_ptr, ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel)
+from .index import ceil_index, floor_index, trunc_index
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
@@ -428,11 +429,11 @@ def _pass_planes(vp, x0, sigma, n, ka, kb, t0, dt):
     lo -= m
     hi += m
     if sigma > 0.0:                  # k = ka + i - 1: t grows with i
-        i_first = int(math.ceil((lo - t0) / dt)) - 1 - ka + 1       # the last t < lo
-        i_after = int(math.floor((hi - t0) / dt)) + 1 - ka + 1      # the first t > hi
+        i_first = ceil_index((lo - t0) / dt) - 1 - ka + 1       # the last t < lo
+        i_after = floor_index((hi - t0) / dt) + 1 - ka + 1      # the first t > hi
     else:                            # k = kb - (i - 1): t falls
-        i_first = kb - (int(math.floor((hi - t0) / dt)) + 1) + 1    # the last t > hi
-        i_after = kb - (int(math.ceil((lo - t0) / dt)) - 1) + 1     # the first t < lo
+        i_first = kb - (floor_index((hi - t0) / dt) + 1) + 1    # the last t > hi
+        i_after = kb - (ceil_index((lo - t0) / dt) - 1) + 1     # the first t < lo
     i_first = min(max(i_first, 0), max(n - 2, 0))
     i_end = min(max(i_after, 1) + 1, n)
     return i_first, i_end
@@ -471,18 +472,18 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
         lo_f = run[RUN_YMAX]
         hi_f = y
         cont = prev[A_Y] >= lo_f               # the same surface goes on from the max
-        j_cont = int(math.floor(lo_f + 0.5))
-        j0 = int(math.floor(run[RUN_YMAX])) + 1
-        j1 = int(math.floor(y))
+        j_cont = floor_index(lo_f + 0.5)
+        j0 = floor_index(run[RUN_YMAX]) + 1
+        j1 = floor_index(y)
         side = sigma
         run[RUN_YMAX] = y
     elif y < run[RUN_YMIN]:                    # below the min
         lo_f = y
         hi_f = run[RUN_YMIN]
         cont = prev[A_Y] <= hi_f
-        j_cont = int(math.floor(hi_f + 0.5))
-        j0 = int(math.ceil(y))
-        j1 = int(math.ceil(run[RUN_YMIN])) - 1
+        j_cont = floor_index(hi_f + 0.5)
+        j0 = ceil_index(y)
+        j1 = ceil_index(run[RUN_YMIN]) - 1
         side = -sigma
         run[RUN_YMIN] = y
     else:
@@ -501,7 +502,7 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
         else:
             _settle_top(ecol, run)
     # the pixel holding the new top (-1: none to keep)
-    j_top = int(math.floor(hi_f + 0.5)) if up and run[RUN_TOP_ON] != 0.0 else -1
+    j_top = floor_index(hi_f + 0.5) if up and run[RUN_TOP_ON] != 0.0 else -1
     if pj >= 0 and (lo_f < pj or not p_edge) and 0 <= j_top < H and \
             (j_top == pj or ecol[E_SEEN, j_top] == 0.0):
         _fill_on(gcol, ecol, run, prev, cur, side, persp, d3, H, lo_f, hi_f, j0, j1, pj,
@@ -514,8 +515,8 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
     if aa:
         # pixels the span covers in part without their centre: the two ends
         for e in range(2):
-            jp = int(math.floor((lo_f if e == 0 else hi_f) + 0.5))
-            if (e == 1 and jp == int(math.floor(lo_f + 0.5))) or jp < 0 or jp >= H:
+            jp = floor_index((lo_f if e == 0 else hi_f) + 0.5)
+            if (e == 1 and jp == floor_index(lo_f + 0.5)) or jp < 0 or jp >= H:
                 continue
             if jp >= j0 and jp <= j1:
                 continue                # its centre is painted below
@@ -911,7 +912,7 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
     fix_s = int(vp[VP_FIX_SHADE])
     walls = (detect & DETECT_WALL) != 0
     rate = max(int(vp[VP_RATE]), 2)
-    max_depth = min(int(math.ceil(math.log2(rate) - 1e-9)), STACK_SIZE - 2)
+    max_depth = min(ceil_index(math.log2(rate) - 1e-9), STACK_SIZE - 2)
     evals = 0
     _copy(left, prev)
     _copy(stk[0], cur)
@@ -1047,10 +1048,10 @@ def _spline_top(kind, f, fg, hf, hfp, vp, x0, a, b, out, run):
 def _grid_range(t0, dt, ta, tb):
     """Indices k of the planes t0 + k dt strictly between ta < tb."""
     eps = 1e-6 * dt
-    ka = int(math.floor((ta - t0) / dt)) + 1
+    ka = floor_index((ta - t0) / dt) + 1
     if t0 + ka * dt <= ta + eps:
         ka += 1
-    kb = int(math.ceil((tb - t0) / dt)) - 1
+    kb = ceil_index((tb - t0) / dt) - 1
     if t0 + kb * dt >= tb - eps:
         kb -= 1
     return ka, kb
@@ -1351,9 +1352,15 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                 break
             h = dt
             if st == S_OK:
-                if persp:       # about a pixel on screen: the step grows with distance
-                    h *= min(max((cur[A_Z] + d3) / q_near, 1.0), ADAPT_MAX_GROWTH)
+                # about a pixel on screen: the step grows with the distance of the
+                # sample just taken (prev, since the swap above; cur was the one before
+                # it, and scratch never written at a run's first sample, whose garbage
+                # made t NaN and the loop endless)
+                if persp:
+                    h *= min(max((prev[A_Z] + d3) / q_near, 1.0), ADAPT_MAX_GROWTH)
                 h *= coarse
+                if not h >= dt * ADAPT_MIN_STEP:        # (NaN too) the loop must advance
+                    h = dt
             else:
                 coarse = 1.0
             t_next = t + sigma * h
@@ -1410,8 +1417,10 @@ def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
         # pass missed it (fold.py)
         evals += trace_column(kind, f, fg, hf, hfp, vp, x0, gcol, ecol)
         _seen_ranges(gcol, ecol, scr[SCR_RUN])
-    return (evals, scr[SCR_RUN, RUN_WLO], scr[SCR_RUN, RUN_WHI], int(scr[SCR_RUN, RUN_JLO]),
-            int(scr[SCR_RUN, RUN_JHI]))
+    H = gcol.shape[0]
+    return (evals, scr[SCR_RUN, RUN_WLO], scr[SCR_RUN, RUN_WHI],
+            min(max(trunc_index(scr[SCR_RUN, RUN_JLO]), 0), H),
+            min(max(trunc_index(scr[SCR_RUN, RUN_JHI]), -1), H - 1))
 
 
 @ngjit_nrt_free

@@ -27,6 +27,7 @@ import math
 import numpy as np
 
 from ._jit import ngjit, ngjit_inline, ngjit_nrt_free
+from .index import ceil_index, floor_index, round_index, trunc_index
 from .layout import (
     E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_H,
@@ -184,8 +185,8 @@ def _raster(gcol, ecol, ya, za, a, yb, zb, b):
     H = gcol.shape[0]
     if yb == ya:
         return
-    lo = max(int(math.ceil(min(ya, yb))), 0)
-    hi = min(int(math.floor(max(ya, yb))), H - 1)
+    lo = max(ceil_index(min(ya, yb)), 0)
+    hi = min(floor_index(max(ya, yb)), H - 1)
     for j in range(lo, hi + 1):
         lam = (j - ya) / (yb - ya)
         z = za + lam * (zb - za)
@@ -263,8 +264,8 @@ def _trace(kind, fg, hf, hfp, vp, x0, t, s, direction, s_min, s_max, gcol, ecol,
         ia = (t - t0) / dt                      # the planes this step crosses
         ib = (qt - t0) / dt
         if ib != ia:
-            for i in range(max(int(math.ceil(min(ia, ib))), 0),
-                           min(int(math.floor(max(ia, ib))), n - 1) + 1):
+            for i in range(max(ceil_index(min(ia, ib)), 0),
+                           min(floor_index(max(ia, ib)), n - 1) + 1):
                 if n_cross[i] < CROSS_MAX:
                     cross[i, n_cross[i]] = s + (i - ia) / (ib - ia) * (qs - s)
                     n_cross[i] += 1
@@ -291,14 +292,14 @@ def _seed(kind, fg, hf, hfp, vp, x0, t, s, s_min, s_max, tg, te, cross, n_cross,
     """Trace the piece through (t, s) of plane number i = (t - T0) / DT both ways,
     unless a traced piece crosses plane i near s already. Returns the evaluations."""
     dt = vp[VP_DT]
-    i = int(round((t - vp[VP_T0]) / dt))
+    i = round_index((t - vp[VP_T0]) / dt)
     if 0 <= i < cross.shape[0]:
         for c in range(n_cross[i]):
             if abs(cross[i, c] - s) < 2.0 * dt:
                 return 0
     row, z, _ = _screen(vp, t, s)
     if math.isfinite(row):                  # a traced surface there, as far: known
-        j = int(round(row))
+        j = round_index(row)
         if 0 <= j < tg.shape[0] and te[E_SEEN, j] != 0.0 and \
                 abs(tg[j, G_DEPTH] - z) < 4.0 * DEPTH_EPS * vp[VP_D3]:
             return 0
@@ -324,7 +325,7 @@ def trace_column(kind, f, fg, hf, hfp, vp, x0, gcol, ecol):
     te = np.zeros((E_SEEN + 1, H))
     t0 = vp[VP_T0]
     dt = vp[VP_DT]
-    n = int((vp[VP_T1] - t0) / dt) + 2
+    n = trunc_index((vp[VP_T1] - t0) / dt) + 2
     cross = np.empty((n, CROSS_MAX))
     n_cross = np.zeros(n, dtype=np.int64)
     a = np.empty(P_SIZE)

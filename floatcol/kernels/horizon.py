@@ -15,6 +15,7 @@ import math
 from numba import prange
 
 from ._jit import ngjit, ngjit_parallel
+from .index import floor_index
 from .column import H_HI, H_LO, H_TS, H_Y
 from .coverage import seen_side
 from .layout import E_SEEN, G_T, VP_CA, VP_D3, VP_DT, VP_ORTHO, VP_T0
@@ -49,6 +50,7 @@ def horizon_kernel(hrec, gbuf, ebuf, vp, hstride, lines, line_t):
     dt = vp[VP_DT]
     t_view = -math.inf if vp[VP_ORTHO] != 0.0 else -vp[VP_D3] * vp[VP_CA]
     T = gbuf.shape[2]
+    H = gbuf.shape[1]
     for c in prange(W):
         gcol = gbuf[c // T, :, c % T]
         ecol = ebuf[c // T, :, :, c % T]
@@ -59,7 +61,7 @@ def horizon_kernel(hrec, gbuf, ebuf, vp, hstride, lines, line_t):
                 continue
             tk = t0 + k * hstride * dt
             sigma = 1.0 if tk >= t_view else -1.0
-            jc = int(math.floor(yc + 0.5))
+            jc = floor_index(yc + 0.5)
             _mark(lines, line_t, gcol, ecol, c, jc, rec, sigma, yc, tk)
             for nb in (c - 1, c + 1):
                 if nb < 0 or nb >= W:
@@ -67,9 +69,17 @@ def horizon_kernel(hrec, gbuf, ebuf, vp, hstride, lines, line_t):
                 yn = hrec[nb, k, H_Y]
                 if not math.isfinite(yn):
                     continue
-                jm = int(math.floor(0.5 * (yc + yn) + 0.5))
+                jm = floor_index(0.5 * (yc + yn) + 0.5)
                 step = 1 if jm > jc else -1
                 j = jc + step
+                # rows beyond the picture mark nothing: walk only those inside (a
+                # pole's rows reach 1e15, which took hours)
+                if step > 0:
+                    j = max(j, -1)
+                    jm = min(jm, H)
+                else:
+                    j = min(j, H)
+                    jm = max(jm, -1)
                 while (j - jm) * step <= 0:
                     _mark(lines, line_t, gcol, ecol, c, j, rec, sigma, float(j), tk)
                     j += step

@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, stack_pair
+from .index import ceil_index, floor_index
 from .layout import (
     HFP_CW, HFP_IU, HFP_IV, S_BEHIND, S_HOLE, S_OK, S_OUTSIDE, SURF_HEIGHTFIELD,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_H, VP_LX, VP_LY, VP_LZ, VP_ORTHO,
@@ -36,8 +37,8 @@ def heightfield_eval(hf, hfp, u, v):
     gy = (v - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
     if not (gx >= -1e-9 and gx <= nu - 1 + 1e-9 and gy >= -1e-9 and gy <= nv - 1 + 1e-9):
         return np.nan, np.nan, np.nan
-    i = min(max(int(math.floor(gx)), 0), nu - 2)
-    j = min(max(int(math.floor(gy)), 0), nv - 2)
+    i = min(max(floor_index(gx), 0), nu - 2)
+    j = min(max(floor_index(gy), 0), nv - 2)
     fx = gx - i
     fy = gy - j
     z00 = hf[j, i]
@@ -252,6 +253,8 @@ def sample_point(kind, f, fg, hf, hfp, vp, x0, t, s_guess):
         return S_BEHIND, evals, 0.0, z1, u, v, w, 0.0, 0.0, 0.0, 0.0
     y0 = y1 * d1 / (z1 + d3)
     ypix = y0 * vp[VP_SCALE] + (vp[VP_H] - 1.0) * 0.5
+    if not (math.isfinite(ypix) and math.isfinite(z1)):   # f near the double's limit
+        return S_HOLE, evals, 0.0, 0.0, u, v, 0.0, 0.0, 0.0, 0.0, 0.0
     nx, ny, nz = unit_normal(vp, wu, wv)
     # eq. (12): light at the viewpoint (or vp's directional light)
     lam = lambert(vp, -r, -y1, -(d3 + z1), nx, ny, nz)
@@ -284,6 +287,8 @@ def ortho_point(vp, t, w, wu, wv):
     y1 = s * ca - t * sa                         # eq. (4)
     z1 = s * sa + t * ca
     ypix = y1 * vp[VP_SCALE] + (vp[VP_H] - 1.0) * 0.5
+    if not (math.isfinite(ypix) and math.isfinite(z1)):
+        return S_HOLE, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0     # f near the double's limit
     nx, ny, nz = unit_normal(vp, wu, wv)
     # eq. (12): the light toward the viewer (0, 0, -1), or vp's directional light
     return S_OK, ypix, z1, nx, ny, nz, lambert(vp, 0.0, 0.0, -1.0, nx, ny, nz)
@@ -449,7 +454,7 @@ def _bracketed_s(kind, f, hf, hfp, vp, r0, k, t, s_near):
     if finite_cells(vp, u_a, v_a, u_b, v_b) == 0.0:
         return np.nan, 0
     seg_px = abs(k) * (s_hi - s_lo) * vp[VP_SCALE]
-    n = min(SCAN_MAX, max(SCAN_MIN, int(math.ceil(seg_px / SCAN_PIXELS)) + 1))
+    n = min(SCAN_MAX, max(SCAN_MIN, ceil_index(seg_px / SCAN_PIXELS) + 1))
     ds = (s_hi - s_lo) / (n - 1)
     evals = 0
     best_a = np.nan

@@ -1,0 +1,50 @@
+"""Fuzz floatcol's render with random expressions, ranges and options (issue 26).
+
+    python benchmarks/fuzz.py [N] [SEED]      (default 10000 cases, seed 26)
+
+Each case runs in a worker process (tests/fuzzing.py): a segfault or a hang is
+counted, the worker restarted. Prints the counts of each outcome and the first few
+findings of each kind other than "ok" and "value". Exit status 1 if any case
+crashed, hung, raised anything but ValueError, or leaked an internal name.
+"""
+import collections
+import os
+import random
+import sys
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
+import fuzzing  # noqa: E402
+
+
+def main():
+    n = int(sys.argv[1]) if len(sys.argv) > 1 else 10000
+    seed = int(sys.argv[2]) if len(sys.argv) > 2 else 26
+    rng = random.Random(seed)
+    worker = fuzzing.Worker(timeout=60.0)
+    counts = collections.Counter()
+    findings = collections.defaultdict(list)
+    t0 = time.perf_counter()
+    try:
+        for i in range(n):
+            c = fuzzing.case(rng)
+            res = worker.run(c)
+            counts[res["outcome"]] += 1
+            if res["outcome"] not in ("ok", "value") and len(findings[res["outcome"]]) < 5:
+                findings[res["outcome"]].append((c, res["message"]))
+                print(f"case {i}: {res['outcome']}: {res['message'][:200]}\n  {c}", flush=True)
+            if (i + 1) % 500 == 0:
+                print(f"{i + 1} cases, {time.perf_counter() - t0:.0f} s: {dict(counts)}",
+                      flush=True)
+    finally:
+        worker.close()
+    print(f"\n{n} cases (seed {seed}) in {time.perf_counter() - t0:.0f} s")
+    print(f"{'outcome':<10}{'cases':>8}")
+    for k in ("ok", "value", "other", "leak", "crash", "hang"):
+        print(f"{k:<10}{counts[k]:>8}")
+    bad = sum(counts[k] for k in ("other", "leak", "crash", "hang"))
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,192 @@
+"""Fuzzing floatcol in a worker process (tests/test_fuzz.py, benchmarks/fuzz.py).
+
+A case is a render call built from random parts: an expression tree over the
+operators and functions the parser allows, constants at the edges of the doubles
+(0, +-1, +-1e300, 1e-300, oo, nan, zoo, I), ranges that are degenerate, reversed,
+infinite, NaN, tiny or huge, and random sizes, angles, projections and options.
+Each case runs in a worker process (``Worker``), so that a segfault is a counted
+failure, not a dead test runner, and a hang is a time-out that kills the worker.
+
+Outcomes: "ok" (a picture), "value" (a ValueError), "other" (any other exception: a
+bug), "crash" (the worker died), "hang" (no answer within the time-out), "leak" (a
+message, error or warning, naming floatcol's, numba's or sympy's internals).
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import random
+import re
+import subprocess
+import sys
+
+CONSTANTS = ["0", "1", "-1", "1e300", "-1e300", "1e-300", "oo", "-oo", "nan", "zoo", "I",
+             "pi", "E", "2.5", "1/2", "3"]
+UNARY = ["sin", "cos", "tan", "cot", "sec", "csc", "asin", "acos", "atan", "sinh", "cosh",
+         "tanh", "asinh", "acosh", "atanh", "exp", "log", "sqrt", "cbrt", "Abs", "sign",
+         "floor", "ceiling", "frac", "re", "im", "arg", "erf", "gamma", "conjugate"]
+BINARY_OPS = ["+", "-", "*", "/", "**", "^", "%"]
+BINARY_FNS = ["atan2", "Min", "Max", "Mod", "log", "root"]
+OPTIONS = {
+    "projection": ["orthographic", "perspective", "ortho", "persp"],
+    "shading": ["default", "lambert"],
+    "method": ["column", "column", "column", "horizon"],
+    "interpolation": ["normal", "intensity"],
+    "corrections": ["none", "spline", "supersample", "adaptive", "spline+supersample",
+                    "spline+adaptive"],
+    "sampling": ["uniform", "adaptive"],
+    "antialias": [True, False, 2, 3],
+    "aspect": ["equal", "auto", "equalxy", [1, 1, 0.5]],
+    "placement": ["exact", "paper"],
+}
+BOUNDS = [0.0, 1.0, -1.0, 2.5, -7.3, 1e-300, -1e-300, 1e300, -1e300, math.inf, -math.inf,
+          math.nan, 1e-9, 1e9]
+
+#: what a message shown to a user must not contain: floatcol's, numba's or sympy's
+#: internals
+INTERNAL = re.compile(r"numba|sympy|lambdif|nopython|Traceback|\.py\b|object at 0x|"
+                      r"_fc_|Dummy|kernel|cfunc|recursion|CPUDispatcher|llvm|"
+                      r"TypingError|AttributeError|KeyError|IndexError|'NoneType'",
+                      re.IGNORECASE)
+
+
+def expression(rng: random.Random, depth: int = 0) -> str:
+    """A random formula in u and v."""
+    roll = rng.random()
+    if depth >= 4 or roll < 0.25:
+        return rng.choice(["u", "v", "u", "v"] + CONSTANTS)
+    if roll < 0.55:
+        return f"{rng.choice(UNARY)}({expression(rng, depth + 1)})"
+    if roll < 0.9:
+        a, b = expression(rng, depth + 1), expression(rng, depth + 1)
+        return f"({a}){rng.choice(BINARY_OPS)}({b})"
+    a, b = expression(rng, depth + 1), expression(rng, depth + 1)
+    return f"{rng.choice(BINARY_FNS)}({a}, {b})"
+
+
+def _range(rng):
+    r = rng.random()
+    if r < 0.8:
+        a = rng.uniform(-10, 10)
+        return [round(a, 3), round(a + rng.uniform(0.1, 15), 3)]
+    if r < 0.85:
+        a = rng.uniform(-1, 1)
+        return [a, a + rng.choice([1e-12, 1e-300, 5e-324])]          # tiny
+    return [rng.choice(BOUNDS), rng.choice(BOUNDS)]                  # anything
+
+
+def case(rng: random.Random) -> dict:
+    """A random render call: {"expr": str, "kwargs": {...}} (JSON-able)."""
+    kw = {}
+    if rng.random() < 0.9:
+        kw["u"] = _range(rng)
+    if rng.random() < 0.9:
+        kw["v"] = _range(rng)
+    kw["size"] = [rng.choice([1, 2, 7, 33, 64, 101, 160]), rng.choice([1, 3, 17, 48, 90, 120])]
+    if rng.random() < 0.03:
+        kw["size"] = [rng.choice([0, -3, 40.5]), 30]
+    kw["elev"] = rng.choice([rng.uniform(-90, 90)] * 8 + [90.0, -90.0, 0.0])
+    kw["azim"] = rng.choice([rng.uniform(-360, 360)] * 8 + [0.0, 90.0])
+    if rng.random() < 0.04:
+        kw[rng.choice(["elev", "azim"])] = rng.choice([math.nan, math.inf, 120.0, -1e300])
+    for name, values in OPTIONS.items():
+        if rng.random() < 0.4:
+            kw[name] = rng.choice(values)
+    if rng.random() < 0.1:
+        kw["vmin"], kw["vmax"] = rng.choice([[0, 1], [1, 0], [math.nan, 1], [-1e300, 1e300]])
+    return {"expr": expression(rng), "kwargs": kw}
+
+
+def run_case(c: dict) -> dict:
+    """Run one case here (the worker's side): its outcome and message."""
+    import warnings
+
+    import numpy as np
+
+    import floatcol as fc
+    kw = dict(c["kwargs"])
+    for k in ("u", "v", "size", "aspect"):
+        if isinstance(kw.get(k), list):
+            kw[k] = tuple(kw[k])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            r = fc.render(c["expr"], **kw)
+            rgba = r.rgba
+            assert rgba.dtype == np.uint8 and rgba.shape[2] == 4
+            out = {"outcome": "ok", "message": ""}
+        except ValueError as exc:
+            out = {"outcome": "value", "message": str(exc)}
+        except Exception as exc:                     # noqa: BLE001 - the finding
+            out = {"outcome": "other", "message": f"{type(exc).__name__}: {exc}"}
+    messages = [out["message"]] + [str(w.message) for w in caught
+                                   if not issubclass(w.category, DeprecationWarning)]
+    for m in messages:
+        if INTERNAL.search(m):
+            out = {"outcome": "leak", "message": m}
+    return out
+
+
+def serve():
+    """The worker's loop: a case per line on stdin, its outcome per line on stdout."""
+    import floatcol  # noqa: F401 - load the kernels before the first case
+    print(json.dumps({"ready": True}), flush=True)
+    for line in sys.stdin:
+        result = run_case(json.loads(line))
+        print(json.dumps(result), flush=True)
+
+
+class Worker:
+    """A process that runs cases one after another; restarted after a crash or hang."""
+
+    def __init__(self, timeout=60.0, env=None):
+        self.timeout = timeout
+        self.env = env
+        self.proc = None
+
+    def _start(self):
+        here = os.path.dirname(os.path.abspath(__file__))
+        env = dict(os.environ, **(self.env or {}))
+        env["PYTHONPATH"] = here + os.pathsep + env.get("PYTHONPATH", "")
+        self.proc = subprocess.Popen(
+            [sys.executable, "-c", "import fuzzing; fuzzing.serve()"], stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, env=env)
+        line = self._read(self.timeout * 4)
+        if line is None or not json.loads(line).get("ready"):
+            raise RuntimeError("the fuzz worker did not start")
+
+    def _read(self, timeout):
+        import selectors
+        sel = selectors.DefaultSelector()
+        sel.register(self.proc.stdout, selectors.EVENT_READ)
+        ready = sel.select(timeout)
+        sel.close()
+        if not ready:
+            return None
+        return self.proc.stdout.readline() or None
+
+    def run(self, c: dict) -> dict:
+        if self.proc is None or self.proc.poll() is not None:
+            self._start()
+        try:
+            self.proc.stdin.write(json.dumps(c) + "\n")
+            self.proc.stdin.flush()
+        except BrokenPipeError:
+            pass
+        line = self._read(self.timeout)
+        if line is None:
+            died = self.proc.poll() is not None
+            code = self.proc.returncode
+            self.close()
+            if died:
+                return {"outcome": "crash", "message": f"the worker died (exit {code})"}
+            return {"outcome": "hang", "message": f"no answer in {self.timeout:g} s"}
+        return json.loads(line)
+
+    def close(self):
+        if self.proc is not None:
+            if self.proc.poll() is None:
+                self.proc.kill()
+            self.proc.wait()
+            self.proc = None

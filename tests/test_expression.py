@@ -1,0 +1,208 @@
+"""floatcol's formula parser (floatcol/expression.py): it never evaluates the text.
+
+Injection strings go through every door a user's string reaches (render, plot_surface,
+the CLI's expression, range, --vmin/--vmax and --vars arguments); none may run code
+or create a file.
+"""
+import math
+import os
+import subprocess
+import sys
+
+import pytest
+import sympy as sp
+
+import floatcol as fc
+from floatcol.expression import MAX_DEPTH, MAX_LENGTH, MAX_TREE_DEPTH, constant, parse
+
+u, v = sp.symbols("u v")
+
+# each writes the marker file if it is ever evaluated
+INJECTIONS = [
+    "__import__('os').system('touch {m}')",
+    "u + 0*__import__('os').system('touch {m}')",
+    "open('{m}', 'w').write('x')",
+    "().__class__.__base__.__subclasses__()",
+    "exec(\"open('{m}','w')\")",
+    "eval(\"open('{m}','w')\")",
+    "lambda: open('{m}', 'w')",
+    "[open('{m}', 'w') for _ in (1,)]",
+    "getattr(u, '__class__')",
+    "u.__class__",
+    "Symbol('x').__class__",
+    "sin(u)[0]",
+    "sin(x=open('{m}', 'w'))",
+    "f'{{open(\"{m}\", \"w\")}}'",
+    "__builtins__",
+]
+
+
+@pytest.mark.parametrize("text,expected", [
+    ("3*sin(u*cos(v))", 3 * sp.sin(u * sp.cos(v))),
+    ("u^2 - v^2", u**2 - v**2),
+    ("2u + 3 v", 2 * u + 3 * v),                     # products without '*'
+    ("2 sin(u)", 2 * sp.sin(u)),
+    ("(u+1)(v-1)", (u + 1) * (v - 1)),
+    ("u(v+1)", u * (v + 1)),
+    ("1/2*u", u / 2),
+    ("exp(-u*u-v*v)", sp.exp(-u * u - v * v)),
+    ("Abs(u) + abs(v) + ln(u)", sp.Abs(u) + sp.Abs(v) + sp.log(u)),
+    ("atan2(v, u) + Min(u, v, 1) + Max(u, 2)", sp.atan2(v, u) + sp.Min(u, v, 1) + sp.Max(u, 2)),
+    ("u // 2 + u % 3", sp.floor(u / 2) + sp.Mod(u, 3)),
+    ("u if u > 0 else -u", sp.Piecewise((u, u > 0), (-u, True))),
+    ("Piecewise((u, u > 0 and v > 0), (0, True))",
+     sp.Piecewise((u, sp.And(u > 0, v > 0)), (0, True))),
+    ("sqrt(-1)*u", sp.I * u),
+    ("pi", sp.pi),
+    ("2**10**10", sp.oo),                    # past the doubles: oo, never an exact power
+    ("1.0e+4342944819", sp.oo),              # hung sympy's Float
+    ("gamma(10**60)", sp.oo),                # folded in doubles, not a factorial
+    ("exp(exp(exp(100)))*u", sp.oo * u),
+    ("10**10**10**10", sp.oo),
+])
+def test_parse_builds_the_expression(text, expected):
+    assert parse(text, ("u", "v")) == expected
+
+
+@pytest.mark.parametrize("text,what,where", [
+    ("__import__('os')", "the character \"'\" is not allowed", 12),
+    ("u.real", "the character '.' is not allowed", 2),
+    ("u[0]", "the character '[' is not allowed", 2),
+    ("lambda: 1", "the character ':' is not allowed", 7),
+    ("sin(*u)", "a starred argument (*x) is not allowed", 5),
+    ("(u, v)", "a tuple (outside Piecewise) is not allowed", 1),
+    ("foo(u)", "unknown function foo", 1),
+    ("__class__", "the name __class__ is not allowed", 1),
+    ("sin", "the function sin must be called", 1),
+    ("atan2(u)", "atan2 takes 2 arguments, got 1", 1),
+    ("u +* v", "could not parse expression 'u +* v' (invalid syntax)", 4),
+    ("3*sin(u", "'(' was never closed", 6),
+    ("not u", "a number where a condition is expected", 1),
+    ("u > 0", None, None),                   # a condition parses; render refuses it
+])
+def test_refusals_name_the_construct_and_point_at_it(text, what, where):
+    if what is None:
+        parse(text, ("u", "v"))
+        return
+    with pytest.raises(ValueError) as info:
+        parse(text, ("u", "v"))
+    msg = str(info.value)
+    assert what in msg
+    assert f"at character {where}:" in msg
+    assert "<here>" in msg
+
+
+def test_the_input_is_bounded():
+    with pytest.raises(ValueError, match=f"at most {MAX_LENGTH}"):
+        parse("u+" * MAX_LENGTH + "u")
+    with pytest.raises(ValueError, match="nest more than"):
+        parse("(" * (MAX_DEPTH + 5) + "u" + ")" * (MAX_DEPTH + 5))
+    with pytest.raises(ValueError, match="levels deep"):
+        parse("-" * (MAX_TREE_DEPTH + 5) + "u")
+    with pytest.raises(ValueError, match="levels deep"):
+        parse("u+" * (MAX_TREE_DEPTH + 5) + "u")
+    assert parse("u+" * 150 + "u") == 151 * sp.Symbol("u")     # long, but not deep
+
+
+@pytest.mark.parametrize("text,value", [("2*pi", 2 * math.pi), ("-pi", -math.pi),
+                                        ("sqrt(2)", math.sqrt(2)), ("1e3", 1000.0),
+                                        ("inf", math.inf), ("-5", -5.0), ("pi/2^2", math.pi / 4)])
+def test_constant(text, value):
+    assert constant(text) == value
+
+
+@pytest.mark.parametrize("text", ["u", "I", "__import__('os')", "1+", "sin"])
+def test_constant_refuses_what_is_not_a_real_number(text):
+    with pytest.raises(ValueError, match="the value"):
+        constant(text)
+
+
+@pytest.mark.parametrize("template", INJECTIONS)
+def test_injection_through_the_api_runs_nothing(template, tmp_path):
+    marker = tmp_path / "pwned"
+    text = template.format(m=marker)
+    for call in (lambda: fc.render(text, size=(8, 6)),
+                 lambda: fc.render("u", u=(text, 1), size=(8, 6)),
+                 lambda: fc.plot_surface(text, size=(8, 6)).rgba,
+                 lambda: fc.render_many([text, "u"], size=(8, 6)),
+                 lambda: fc.animate(text, frames=2, size=(8, 6))):
+        with pytest.raises(ValueError):
+            call()
+    assert not marker.exists()
+
+
+def _cli(*args, cwd):
+    return subprocess.run([sys.executable, "-m", "floatcol.cli", *args], cwd=cwd,
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_injection_through_the_cli_runs_nothing(tmp_path):
+    """Every string argument of the CLI, one process per door (with all the injection
+    strings of a door in one run where the CLI stops at the first: the expression)."""
+    marker = tmp_path / "pwned"
+    payload = f"__import__('os').system('touch {marker}')"
+    calls = [
+        ["render", payload, "-o", "a.png"],
+        ["render", f"u + 0*{payload}", "-o", "a.png"],
+        ["render", "sin(u)", f"--u={payload}:5", "-o", "a.png"],
+        ["render", "sin(u)", f"--v=0:{payload}", "-o", "a.png"],
+        ["render", "sin(u)", f"--vmin={payload}", "-o", "a.png"],
+        ["render", "sin(u)", f"--vars={payload},v", "-o", "a.png"],
+        ["render", "sin(u)", f"--aspect={payload}", "-o", "a.png"],
+        ["render", "sin(u)", f"--cmap={payload}", "-o", "a.png"],
+        ["animate", payload, "--frames", "2", "-o", "a.gif"],
+        ["animate", "sin(u+t)", f"--t=0:{payload}", "--frames", "2", "-o", "a.gif"],
+    ]
+    for args in calls:
+        res = _cli(*args, cwd=tmp_path)
+        assert res.returncode == 2, (args, res.stderr)
+        assert res.stderr.startswith("floatcol: error:") and res.stderr.count("\n") == 1
+        assert not (tmp_path / "a.png").exists() and not (tmp_path / "a.gif").exists()
+    assert not marker.exists()
+    assert not any(p.name.startswith(".floatcol-") for p in tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("expr", ["1.0*I", "-oo", "log(floor(u)) - I*pi",
+                                  "Abs(sqrt(u)) + 1 + I*pi", "zoo", "nan*u", "Max(nan, u)",
+                                  "u % 0"])
+def test_complex_and_infinite_constants_are_holes(expr):
+    """Each was an error naming sympy's or Numba's internals (maximum recursion depth,
+    invalid syntax in lambdifygenerated, 'floor', 'Abs')."""
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)       # "a hole everywhere"
+        r = fc.render(expr, u=(0.5, 3), v=(0, 2), size=(30, 20))
+    assert r.rgba.shape == (20, 30, 4)
+    if expr == "log(floor(u)) - I*pi":
+        # log(floor(u)) is real where floor(u) >= 1; minus I*pi it is complex there:
+        # a hole, and on 0.5 <= u < 1 log(0) - I*pi is not finite: a hole too
+        assert not (r.side != 0).any()
+
+
+def test_messages_name_no_internals():
+    cases = [("lambda: 1", "the character ':' is not allowed"),
+             ("atan2(I*u, v)", "cannot draw f = atan2(I*u, v)")]
+    for expr, what in cases:
+        with pytest.raises(ValueError) as info:
+            fc.render(expr, size=(10, 8))
+        msg = str(info.value)
+        assert what in msg
+        for word in ("numba", "nopython", "sympy", "lambdify", "recursion", "Traceback"):
+            assert word not in msg.lower()
+    with pytest.raises(ValueError, match="azim must be finite, got inf"):
+        fc.plot_surface("u*v", azim=math.inf).rgba
+
+
+def test_the_warning_names_the_formulas_variables():
+    with pytest.warns(RuntimeWarning, match=r"on u in \[-10, 10\], v in \[-10, 10\]"):
+        fc.plot_surface("sqrt(-1-u**2)", size=(20, 15)).rgba
+    with pytest.warns(RuntimeWarning, match=r"on x in \[-10, 10\], y in \[-10, 10\]"):
+        fc.plot_surface("sqrt(-1-y**2)", size=(20, 15)).rgba
+
+
+def test_cli_output_error_names_the_users_path(tmp_path):
+    if not os.path.isdir("/proc"):
+        pytest.skip("needs /proc: a folder where no file can be created")
+    res = _cli("render", "u", "--size", "8x6", "-o", "/proc/a.png", cwd=tmp_path)
+    assert res.returncode == 2
+    assert "/proc/a.png" in res.stderr and ".floatcol-" not in res.stderr

@@ -48,21 +48,29 @@ def export(rev):
 
 def _kernel_args(fc, size, proj):
     """{kernel name: (the kernel, copies of its arguments)} of one render by fc."""
-    render_module = sys.modules[fc.__name__ + ".render"]
+    # the module that calls each kernel: the passes' since the scene (issue 27), else
+    # render's
+    callers = {"column_kernel": (".passes.geometry", ".render"),
+               "finish_kernel": (".passes.finish", ".render")}
     got = {}
-    for name in ("column_kernel", "finish_kernel"):
-        kernel = getattr(render_module, name)
+    patched = []
+    for name, where in callers.items():
+        module = next(sys.modules[fc.__name__ + m] for m in where
+                      if fc.__name__ + m in sys.modules
+                      and hasattr(sys.modules[fc.__name__ + m], name))
+        kernel = getattr(module, name)
 
         def capture(*args, kernel=kernel, name=name):
             got[name] = (kernel, [a.copy() if isinstance(a, np.ndarray) else a
                                   for a in args])
             return kernel(*args)
-        setattr(render_module, name, capture)
+        setattr(module, name, capture)
+        patched.append((module, name, kernel))
     try:
         fc.render(EXPR, size=size, projection=proj, **DOM)
     finally:
-        for name, (kernel, _) in got.items():
-            setattr(render_module, name, kernel)
+        for module, name, kernel in patched:
+            setattr(module, name, kernel)
     return got
 
 

@@ -1,6 +1,12 @@
 """floatcol: shaded pictures of w = f(u, v) by Gordon's floating column algorithm."""
 from .animate import Animation, animate
+from .camera import Camera
 from .compose import composite, render_many
+from .light import Light
+from .material import Material
+from .quality import Quality
+from .renderer import render_scene
+from .scene import Layer, Scene
 from .plot import SurfacePlot, plot_surface
 from .render import Render, render
 from .surface import HeightField, Surface, as_surface
@@ -17,6 +23,7 @@ def __getattr__(name):
     raise AttributeError(f"module 'floatcol' has no attribute {name!r}")
 
 
-__all__ = ["Animation", "HeightField", "Render", "Surface", "SurfacePlot", "SympyBackend",
-           "View", "__version__", "animate", "as_surface", "composite", "plot_surface", "render",
-           "render_many"]
+__all__ = ["Animation", "Camera", "HeightField", "Layer", "Light", "Material", "Quality",
+           "Render", "Scene", "Surface", "SurfacePlot", "SympyBackend", "View", "__version__",
+           "animate", "as_surface", "composite", "plot_surface", "render", "render_many",
+           "render_scene"]

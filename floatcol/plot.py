@@ -262,11 +262,11 @@ class SurfacePlot(_ScalarMappable):
                 kw["antialias"] = False
         if self.zoom != 1.0 and kw.get("scale") is None:
             if self.others:
-                from .compose import _joint_camera, joint_box
+                from .camera import joint_box, joint_camera
                 box = kw.get("box")
                 if box is None:
                     box = joint_box(self._items(), kw.get("aspect", "equal"))
-                fit = _joint_camera(self._items(), kw["size"], kw["elev"], kw["azim"],
+                fit = joint_camera(self._items(), kw["size"], kw["elev"], kw["azim"],
                                     kw["projection"], kw.get("d1"), kw.get("d2"), None,
                                     kw.get("center"), kw.get("focal_length"), box)
                 kw.update(d1=fit["d1"], d2=fit["d2"])     # the camera is fixed now
@@ -284,16 +284,21 @@ class SurfacePlot(_ScalarMappable):
         return [(self.surface, self.domain), *self.others]
 
     # -- drawing ------------------------------------------------------------------
+    def scene(self, size=None):
+        """(Scene, composite): what this plot draws at a pixel size (default: the
+        plot's), and whether its layers are composited (several surfaces)."""
+        from .scene import scene_from_options
+        kw = self.render_kwargs(size or self.size)
+        u, v = kw.pop("u"), kw.pop("v")
+        if self.others:
+            return scene_from_options([(s, *d) for s, d in self._items()], **kw), True
+        return scene_from_options([(self.surface, u, v)], **kw), False
+
     def draw(self, size=None) -> Render:
         """Render at ``size`` (default: the plot's) and keep it as ``.render``."""
-        kw = self.render_kwargs(size or self.size)
-        if self.others:
-            from .compose import render_many
-            kw.pop("u")
-            kw.pop("v")
-            r = render_many([(s, *d) for s, d in self._items()], **kw)
-        else:
-            r = render(self.surface, **kw)
+        from .renderer import render_scene
+        scene, many = self.scene(size)
+        r = render_scene(scene, composite=many)
         self.render = r
         return r
 
@@ -334,16 +339,19 @@ class SurfacePlot(_ScalarMappable):
 
 
 def render_view(surface, kw):
-    """(View, box): the View render() would fit for these keyword arguments, and its
-    box stretch (render.in_box; the View's coordinates are the box's)."""
-    from .render import _domain, in_box
-    from .view import build_view
-    surface, domain, center, box = in_box(surface, _domain(surface, kw.get("u"), kw.get("v")),
-                                          kw.get("center"), kw.get("aspect", "equal"),
-                                          kw.get("box"))
-    return build_view(surface, domain, kw["size"], kw["elev"], kw["azim"],
-                      kw.get("projection", "orthographic"), kw.get("d1"), kw.get("d2"),
-                      None, center, None, None, kw.get("focal_length")), box
+    """(View, box): the View render() would fit for these keyword arguments (the one
+    camera fit, camera.fit), and its box stretch (the View's coordinates are the
+    box's)."""
+    from .camera import Camera, fit
+    from .quality import Quality
+    from .renderer import layer_domain
+    cam = Camera(size=kw["size"], elev=kw["elev"], azim=kw["azim"],
+                 projection=kw.get("projection", "orthographic"), d1=kw.get("d1"),
+                 d2=kw.get("d2"), center=kw.get("center"), focal_length=kw.get("focal_length"),
+                 aspect=kw.get("aspect", "equal"), box=kw.get("box"))
+    views, _, box = fit([(surface, layer_domain(surface, kw.get("u"), kw.get("v")))], cam,
+                        Quality())
+    return views[0], box
 
 
 def _rgb(c):

@@ -219,7 +219,7 @@ def test_the_finishing_pass_skips_only_rows_no_column_marked(monkeypatch, expr, 
     # partial pixels included); the finishing pass reads nothing outside it
     import sys
     from floatcol.kernels.layout import E_SEEN
-    render_module = sys.modules["floatcol.render"]
+    render_module = sys.modules["floatcol.passes.geometry"]  # the column pass
     seen = {}
     kernel = render_module.column_kernel
 
@@ -260,7 +260,7 @@ def test_every_edge_surface_left_in_a_pixel_is_written(monkeypatch, expr, kw):
     from floatcol.kernels.coverage import flagged
     from floatcol.kernels.layout import (E_COV, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SEEN,
                                          E_SIDE, E_W)
-    render_module = sys.modules["floatcol.render"]
+    render_module = sys.modules["floatcol.passes.geometry"]  # the column pass
     seen = {}
     kernel = render_module.column_kernel
 
@@ -311,7 +311,7 @@ def test_keeping_a_runs_top_pixel_in_its_state_changes_nothing(monkeypatch, expr
     from floatcol.kernels.coverage import flagged
     from floatcol.kernels.layout import (E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ,
                                          E_SEEN, E_SIDE, E_W, VP_KEEP_TOP)
-    render_module = sys.modules["floatcol.render"]
+    render_module = sys.modules["floatcol.passes.geometry"]  # the column pass
     kernel = render_module.column_kernel
     seen = []
 

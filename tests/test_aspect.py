@@ -84,7 +84,7 @@ def test_batch_and_scalar_paths_stretch_alike(monkeypatch):
     stretches the batch), smaller ones one point at a time (sample.surface_eval)."""
     kw = dict(size=(1024, 768), aspect="auto", elev=30, azim=20)
     batched = fc.render(F, U, V, **kw)
-    render_module = sys.modules["floatcol.render"]
+    render_module = sys.modules["floatcol.passes.geometry"]  # the column pass
     monkeypatch.setattr(render_module, "BATCH_MIN_SAMPLES", 10 ** 12)
     scalar = fc.render(F, U, V, **kw)
     assert (batched.side == scalar.side).mean() >= 0.9999

@@ -102,11 +102,11 @@ def test_a_size_beyond_the_machines_memory_is_a_bad_size(monkeypatch):
     fc.render("u", size=(400, 300))                    # 0.01 GiB: drawn
     # where the machine cannot tell its memory, a MemoryError says the same
     monkeypatch.setattr(os, "sysconf", real)
-    render_module = sys.modules["floatcol.render"]
+    from floatcol import _pool
 
     def no_memory(shape, dtype):
         raise MemoryError
-    monkeypatch.setattr(render_module._pool, "empty", no_memory)
+    monkeypatch.setattr(_pool, "empty", no_memory)
     with pytest.raises(ValueError, match="size 400x300 needs about"):
         fc.render("u", size=(400, 300))
 

@@ -100,7 +100,7 @@ def test_the_quick_domain_test_agrees_with_the_exact_one_where_it_answers(monkey
     import sys
     from floatcol.kernels.column import _domain_test, _may_meet_domain
     from floatcol.kernels.layout import VP_SCALE, VP_T0, VP_T1, VP_W
-    render_module = sys.modules["floatcol.render"]
+    render_module = sys.modules["floatcol.passes.geometry"]  # the column pass
     seen = {}
     kernel = render_module.column_kernel
 

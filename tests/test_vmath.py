@@ -11,7 +11,7 @@ import floatcol as fc
 from floatcol.surface import Surface
 from floatcol.kernels.vmath import VEXP_MAX, VEXP_MIN, VTRIG_MAX, vcos, vexp, vsin
 
-render_module = sys.modules["floatcol.render"]
+render_module = sys.modules["floatcol.passes.geometry"]  # the column pass
 
 
 @numba.njit(error_model="numpy")

@@ -1,0 +1,117 @@
+"""Lights: the frame a light lives in is part of the light (PyVista's ``Light``).
+
+- ``Light.headlight()``: at the viewpoint (orthographic: toward the viewer), the
+  paper's eq. (12) and the reference model of ``shading="lambert"``.
+- ``Light.key(direction)``: fixed to the screen, a direction (x, y, z) toward the
+  light in screen coordinates; the default shading's light is
+  ``Light.key(DEFAULT_LIGHT)``, from the upper left, toward the viewer.
+- ``Light.directional(direction)`` or ``Light.sun(azdeg, altdeg)``: fixed to the
+  surface, a direction (u, v, w) toward the light, as matplotlib's
+  ``LightSource(azdeg, altdeg).direction``; it turns with the camera.
+
+The kernels take one light, as a screen direction (``screen_direction``); zeros mean
+the headlight (kernels/sample.py ``lambert``).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+#: the key light of the default shading: from the upper left, toward the viewer
+DEFAULT_LIGHT = (-0.45, 0.55, -1.0)
+KINDS = ("headlight", "key", "directional")
+
+
+@dataclass(frozen=True)
+class Light:
+    """A light: ``kind`` one of "headlight", "key" (screen-fixed) and "directional"
+    (world-fixed); ``direction`` toward the light in the kind's frame (None for the
+    headlight)."""
+    kind: str = "headlight"
+    direction: tuple | None = None
+
+    def __post_init__(self):
+        if self.kind not in KINDS:
+            raise ValueError(f"a light's kind must be one of {', '.join(KINDS)}, got {self.kind!r}")
+        if self.kind == "headlight":
+            if self.direction is not None:
+                raise ValueError("a headlight lights from the viewpoint: it takes no direction")
+            return
+        object.__setattr__(self, "direction", _direction(self.direction, self.kind))
+
+    @classmethod
+    def headlight(cls):
+        return cls("headlight")
+
+    @classmethod
+    def key(cls, direction=DEFAULT_LIGHT):
+        return cls("key", direction)
+
+    @classmethod
+    def directional(cls, direction):
+        return cls("directional", direction)
+
+    @classmethod
+    def sun(cls, azdeg=315.0, altdeg=45.0):
+        """A world-fixed light as matplotlib's ``LightSource(azdeg, altdeg)``: azimuth
+        clockwise from north (+v), altitude above the (u, v) plane, in degrees."""
+        from .view import _number
+        az = math.radians(90.0 - _number("azdeg", azdeg))
+        alt = math.radians(_number("altdeg", altdeg))
+        return cls("directional", (math.cos(az) * math.cos(alt), math.sin(az) * math.cos(alt),
+                                   math.sin(alt)))
+
+    def screen_direction(self, elev, azim):
+        """The kernels' light for render()'s angles (degrees): a unit screen direction,
+        or None for the headlight."""
+        if self.kind == "headlight":
+            return None
+        if self.kind == "key":
+            return self.direction
+        return world_to_screen_direction(self.direction, elev, azim)
+
+
+def _direction(d, kind):
+    frame = "(x, y, z) in screen" if kind == "key" else "(u, v, w) in world"
+    try:
+        if isinstance(d, (str, bytes)):
+            raise TypeError
+        x, y, z = (float(c) for c in d)
+    except (TypeError, ValueError):
+        raise ValueError(f"light must be a direction {frame} coordinates, got {d!r}") from None
+    if not all(math.isfinite(c) for c in (x, y, z)):
+        raise ValueError(f"light must be finite, got {d!r}")
+    if x == y == z == 0.0:
+        raise ValueError(f"light must be a non-zero direction {frame[:9]}, got {d!r}")
+    return (x, y, z)
+
+
+def world_to_screen_direction(d, elev, azim):
+    """A direction in world (u, v, w) -> screen (x, y, z) for render()'s angles."""
+    a, b = -math.radians(elev), math.radians(azim)
+    ca, sa, cb, sb = math.cos(a), math.sin(a), math.cos(b), math.sin(b)
+    du, dv, s = d
+    r = du * cb - dv * sb
+    t = du * sb + dv * cb
+    return (r, s * ca - t * sa, s * sa + t * ca)
+
+
+def as_light(light, shading):
+    """render()'s ``light`` keyword as a Light: None is the shading's own (the key
+    light for "default", the headlight for "lambert"), a Light as is, and a triple a
+    key light's screen direction (render's convention since 0.1)."""
+    if isinstance(light, Light):
+        if shading == "lambert" and light.kind != "headlight":
+            raise ValueError("shading='lambert' lights from the viewpoint; leave light=None "
+                             "or use shading='default'")
+        return light
+    if shading == "lambert":
+        if light is not None:
+            raise ValueError("shading='lambert' lights from the viewpoint; leave light=None "
+                             "or use shading='default'")
+        return Light.headlight()
+    if light is None:
+        return Light("key", DEFAULT_LIGHT)
+    return Light("key", light)

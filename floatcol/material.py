@@ -1,0 +1,167 @@
+"""Material: how a surface looks, packed in one object (PyVista's ``Property``).
+
+A :class:`Material` holds what the shading and finishing passes read of one layer:
+the shading model, the colormap of the upper side and its limits (``cmap``,
+``norm``/``vmin``/``vmax`` or one ``upper_color``), the lower side's colour, the
+ambient, specular and shininess terms and the interpolation (nis/iis). Every layer of
+a :class:`~floatcol.scene.Scene` carries its own, so two surfaces in one picture can
+have two colormaps. ``render`` and ``render_many`` build them from their flat keywords.
+
+Adding a field: give it a default here, validate it in ``__post_init__``, and read it
+in the pass that needs it (``resolve`` hands the kernels their values); nothing else
+changes (docs/architecture.md).
+"""
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from . import color
+from .kernels.shade import INTERP_INTENSITY, INTERP_NORMAL
+
+SHADINGS = ("default", "lambert")
+INTERPOLATIONS = {"normal": INTERP_NORMAL, "nis": INTERP_NORMAL,
+                  "intensity": INTERP_INTENSITY, "iis": INTERP_INTENSITY}
+DEFAULT_AMBIENT = 0.25
+#: Phong highlights of the default shading (the paper has none)
+DEFAULT_SPECULAR = 0.2
+DEFAULT_SHININESS = 30.0
+
+
+@dataclass
+class Material:
+    """The look of one surface.
+
+    shading : "default" (ambient + diffuse key light, height colormap, two-coloured
+        sides, Phong highlights) or "lambert" (I = |L.N|, the reference model: no
+        ambient, no colormap, light at the viewpoint).
+    cmap, norm, vmin, vmax : the upper side's colormap and its height limits (default:
+        the range of w where the upper side is seen).
+    upper_color : one colour for the upper side instead of the colormap.
+    lower_color : the lower side's colour.
+    ambient, specular, shininess : the light's terms (None: the shading's defaults).
+    interpolation : "normal" (nis, per-pixel lighting) or "intensity" (iis, Gouraud).
+    """
+    shading: str = "default"
+    cmap: Any = "viridis"
+    norm: Any = None
+    vmin: float | None = None
+    vmax: float | None = None
+    upper_color: Any = None
+    lower_color: Any = color.DEFAULT_LOWER
+    ambient: float | None = None
+    specular: float | None = None
+    shininess: float | None = None
+    interpolation: str = "normal"
+
+    def check(self):
+        """Validate the fields (ValueError naming what to fix); returns self."""
+        if not isinstance(self.shading, str) or self.shading not in SHADINGS:
+            raise ValueError(f"shading must be one of {', '.join(SHADINGS)}, got {self.shading!r}")
+        if not isinstance(self.interpolation, str) or self.interpolation not in INTERPOLATIONS:
+            raise ValueError("interpolation must be 'normal' (nis) or 'intensity' (iis), "
+                             f"got {self.interpolation!r}")
+        return self
+
+    @property
+    def interp(self):
+        """The kernels' code of the interpolation (kernels/shade.py)."""
+        return INTERPOLATIONS[self.interpolation]
+
+    def light_terms(self):
+        """(ambient, specular, shininess) as the shading passes take them."""
+        from .view import _number
+        if self.shading == "lambert":
+            if self.specular:
+                raise ValueError("shading='lambert' is the diffuse reference model; use "
+                                 "shading='default' for specular highlights")
+            amb = 0.0 if self.ambient is None else fraction("ambient", self.ambient)
+            spec = 0.0
+        else:
+            amb = DEFAULT_AMBIENT if self.ambient is None else fraction("ambient", self.ambient)
+            spec = DEFAULT_SPECULAR if self.specular is None else fraction("specular", self.specular)
+        shine = (DEFAULT_SHININESS if self.shininess is None
+                 else _number("shininess", self.shininess, positive=True))
+        return amb, spec, shine
+
+    def check_limits(self):
+        """vmin/vmax finite and ordered, norm a matplotlib norm and not both."""
+        norm, vmin, vmax = self.norm, self.vmin, self.vmax
+        for name, x in (("vmin", vmin), ("vmax", vmax)):
+            if x is not None and not (isinstance(x, numbers.Real) and math.isfinite(x)):
+                raise ValueError(f"{name} must be a finite number, got {x!r}")
+        if vmin is not None and vmax is not None and vmin > vmax:
+            raise ValueError(f"vmin must not exceed vmax, got vmin={vmin!r} > vmax={vmax!r} "
+                             "(as in matplotlib)")
+        if norm is None:
+            return
+        if not (callable(norm) and callable(getattr(norm, "inverse", None))):
+            raise ValueError(f"norm must be a matplotlib norm (callable, with an inverse), "
+                             f"got {norm!r}")
+        if vmin is not None or vmax is not None:
+            raise ValueError("give either norm or vmin/vmax, not both (as in matplotlib)")
+
+    def colors(self):
+        """(lut, lower_rgb): the upper side's colour table and the lower side's colour
+        (color.side_colors)."""
+        return color.side_colors(self.shading, self.cmap, self.upper_color, self.lower_color)
+
+    def color_table(self, wrange, c_w=1.0):
+        """(lut, w_lo, w_hi, w_limits): the upper side's colour table and the heights at
+        its ends as the kernels take them (in the box's units, ``c_w`` its stretch of
+        w), and the limits in the surface's units (Render.stats["w_limits"]), from the
+        column pass's seen range ``wrange``."""
+        lut, _ = self.colors()
+        w_lo, w_hi = height_limits(wrange if c_w == 1.0 else wrange / c_w, self.vmin, self.vmax)
+        if self.norm is not None and lut.shape[0] > 1:
+            lut, w_lo, w_hi = norm_lut(self.norm, lut, w_lo, w_hi)
+        w_limits = (w_lo, w_hi)
+        if c_w != 1.0:                  # the kernels colour the box's heights
+            w_lo, w_hi = w_lo * c_w, w_hi * c_w
+            if lut.shape[1] > 3:
+                lut = lut.copy()
+                lut[:, 3] *= c_w
+        return lut, w_lo, w_hi, w_limits
+
+
+def fraction(name, x):
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number in [0, 1], got {x!r}") from None
+    if not 0.0 <= x <= 1.0 or math.isnan(x):
+        raise ValueError(f"{name} must be in [0, 1], got {x}")
+    return x
+
+
+def norm_lut(norm, lut, w_lo, w_hi):
+    """(lut (n, 4), w_lo, w_hi) for a non-linear norm: each row's colour and the height
+    where it begins, norm.inverse(k / (n - 1)) (shade._side_rgb). A norm without
+    ends gets the seen range's (as a matplotlib mappable's autoscale)."""
+    if getattr(norm, "vmin", 0.0) is None or getattr(norm, "vmax", 0.0) is None:
+        norm.autoscale_None(np.array([w_lo, w_hi]))
+    n = lut.shape[0]
+    try:
+        starts = np.asarray(norm.inverse(np.linspace(0.0, 1.0, n)), dtype=np.float64)
+    except (ValueError, TypeError, ZeroDivisionError) as e:
+        raise ValueError(f"norm {norm!r} cannot be inverted: {e}") from None
+    if starts.shape != (n,) or not np.isfinite(starts).all() or (np.diff(starts) < 0).any():
+        raise ValueError(f"norm {norm!r} must map heights to [0, 1] monotonically "
+                         "(its inverse gave non-finite or decreasing heights)")
+    return np.column_stack([lut[:, :3], starts]), float(starts[0]), float(starts[-1])
+
+
+def height_limits(wrange, vmin, vmax):
+    """The colormap's height range: vmin/vmax, else that of the seen upper side
+    (wrange: column_kernel's per-column range)."""
+    if vmin is None or vmax is None:
+        lo_s, hi_s = float(wrange[:, 0].min()), float(wrange[:, 1].max())
+        if not lo_s <= hi_s:
+            lo_s, hi_s = 0.0, 1.0
+    w_lo = lo_s if vmin is None else float(vmin)
+    w_hi = hi_s if vmax is None else float(vmax)
+    return w_lo, w_hi

@@ -1,0 +1,197 @@
+"""The renderer: a scene in, a Render out, as a sequence of passes (floatcol/passes/).
+
+    render_scene(scene)
+      fit       camera.fit: one View per layer, the same camera for all
+      per layer:
+        geometry   the column pass (passes/geometry.py)
+        horizon    method="horizon": the line drawing (passes/horizon.py)
+        finish     its material's light and colour (passes/finish.py)
+        antialias  staircases or sub-columns (passes/antialias.py)
+      composite  several layers merged by depth (passes/composite.py)
+
+A new pass goes in passes/ and is called here; a light kind in light.py; a material
+field in material.py and the pass that reads it (docs/architecture.md).
+"""
+from __future__ import annotations
+
+import time
+import warnings
+from dataclasses import dataclass
+
+from . import color
+from .camera import fit
+from .light import as_light
+from .passes import antialias, finish, geometry, horizon
+from .passes.composite import composite as merge
+from .result import Render
+from .surface import as_surface, check_range
+from .view import nowhere_finite
+
+DEFAULT_RANGE = (-10.0, 10.0)   # as sympy's plot3d
+
+
+@dataclass
+class _Prepared:
+    """A layer checked and ready for its passes."""
+    surface: object             # as given (the warning's units)
+    domain: tuple
+    material: object
+    light_dir: object
+    terms: tuple                # (ambient, specular, shininess)
+
+
+def render_scene(scene, stacklevel=2, composite=False) -> Render:
+    """Run a Scene's passes: one layer is a picture of its own; several (or one with
+    ``composite``) are rendered from one camera over a transparent background and
+    composited by depth (Render.stats["surface"]: the layer seen at each pixel)."""
+    t_start = time.perf_counter()
+    quality = scene.quality
+    quality.check_method()
+    if not scene.layers:
+        raise ValueError("surfaces is empty: give at least one expression")
+    layers = [_prepare(layer, scene) for layer in scene.layers]
+    many = composite or len(layers) > 1
+    views, drawn, box = fit([(p.surface, p.domain) for p in layers], scene.camera, quality,
+                            layers[0].light_dir, joint=many)
+    first = layers[0].material
+    background = scene.background
+    if background is None:
+        background = default_background(quality.method, first.shading)
+    if not many:
+        return _layer(layers[0], views[0], drawn[0], box, quality, background, t_start,
+                      stacklevel + 1)
+    renders = []
+    for p, view, (s, dom) in zip(layers, views, drawn):
+        if p.light_dir is not layers[0].light_dir:
+            view = _relit(view, p.light_dir)
+        renders.append(_layer(p, view, (s, dom), box, quality, (0, 0, 0, 0),
+                              time.perf_counter(), stacklevel + 1))
+    out = merge(renders, color.to_rgba8(background))
+    out.stats["seconds"] = time.perf_counter() - t_start
+    return out
+
+
+def _prepare(layer, scene):
+    material = layer.material.check()
+    surface = as_surface(layer.surface, scene.vars)
+    u, v = (None, None) if layer.domain is None else layer.domain
+    domain = layer_domain(surface, u, v)
+    light = as_light(scene.light, material.shading)
+    view_angles = (scene.camera.elev, scene.camera.azim)
+    light_dir = _screen_light(light, *view_angles)
+    return _Prepared(surface, domain, material, light_dir, material.light_terms())
+
+
+def _screen_light(light, elev, azim):
+    if light.kind == "directional":
+        from .view import _number
+        elev, azim = _number("elev", elev), _number("azim", azim)
+    return light.screen_direction(elev, azim)
+
+
+def _relit(view, light_dir):
+    """A View of another layer's light (the camera fit's are the first layer's)."""
+    import dataclasses
+
+    import numpy as np
+    if light_dir is None:
+        light = (0.0, 0.0, 0.0)
+    else:
+        lv = np.array(light_dir, dtype=float)
+        light = tuple(lv / np.linalg.norm(lv))
+    return dataclasses.replace(view, light=light)
+
+
+def _layer(p, view, drawn, box, quality, background, t_start, stacklevel):
+    """One layer's passes: a Render of its own."""
+    surface, domain = drawn
+    material = p.material
+    method = quality.method
+    hstride = 0
+    n_lines = 1
+    if method == "horizon":
+        n_lines = quality.n_lines()
+        view, hstride = geometry.horizon_planes(view, n_lines)
+    material.check_limits()
+    fixes = quality.fixes(material.interpolation)
+    aa_cov, sub_columns = quality.antialiasing(material.shading)
+    t_setup = time.perf_counter()
+
+    W, H = view.width, view.height
+    quality.check_sampling()
+    vp = geometry.view_params(view, method, quality.sampling, fixes, aa_cov, surface)
+    buffers = geometry.allocate(W, H, n_lines, sub_columns)
+    fb = geometry.batch_evaluator(surface, view, method, quality.sampling)
+    geom = geometry.column_pass(surface, view, vp, buffers, hstride, fb)
+    evals = geom.evals
+    t_kernel = time.perf_counter()
+    line_t = None
+    w_limits = None
+    seen = None
+    amb, spec, shine = p.terms
+    if method == "horizon":
+        rgba, side, intensity, depth, seen, line_t = horizon.line_pass(geom, W, H, background)
+    else:
+        _, lower_rgb = material.colors()
+        lut, w_lo, w_hi, w_limits = material.color_table(geom.wrange, box[2])
+        bg8 = color.to_rgba8(background)
+        shade_args = (material.interp, amb, spec, shine)
+        intensity = depth = None        # Render computes them when asked (centre_kernel)
+        rgba, side = finish.finish_pass(geom, H, W, shade_args, lut, w_lo, w_hi, lower_rgb,
+                                        bg8)
+        if aa_cov and sub_columns == 1:
+            antialias.staircase_pass(geom, side, rgba)
+        if sub_columns > 1:
+            rgba, ev2 = antialias.subcolumn_pass(surface, geom, sub_columns, rgba, shade_args,
+                                                 lut, w_lo, w_hi, lower_rgb, bg8)
+            evals += ev2
+    t_end = time.perf_counter()
+    if nowhere_finite(surface, domain) and not (side != 0 if seen is None else seen).any():
+        warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,
+                      stacklevel=stacklevel + 1)
+    stats = {
+        "samples": int(evals.sum()),
+        "seconds": t_end - t_start,
+        "kernel_seconds": t_kernel - t_setup,
+        "setup_seconds": t_setup - t_start,
+        "planes": view.planes,
+        "step": view.step,
+        "scale": view.scale,
+        "lines": n_lines if method == "horizon" else 0,
+        "method": method,
+        "derivatives": surface.derivatives,
+        "w_limits": w_limits,      # the colormap's height range (column method)
+        "box": box,                # aspect's stretch of u, v and w (1, 1, 1: none)
+    }
+    return Render(rgba, intensity, side, depth, stats, view, geom.gbuf, line_t, seen,
+                  (vp, material.interp, amb), box)
+
+
+def default_background(method, shading):
+    """Black behind the reference model's shaded pictures, white otherwise."""
+    black = method == "column" and shading == "lambert"
+    return (0, 0, 0, 255) if black else (255, 255, 255, 255)
+
+
+def layer_domain(surface, u, v):
+    """A layer's checked domain: u and v, or the surface's own, or DEFAULT_RANGE."""
+    default = surface.default_domain
+    if u is None:
+        u = default[0] if default else DEFAULT_RANGE
+    if v is None:
+        v = default[1] if default else DEFAULT_RANGE
+    return check_range(surface.variables[0], u), check_range(surface.variables[1], v)
+
+
+def empty_message(surface, domain):
+    (ua, ub), (va, vb) = domain
+    a, b = surface.variables
+    if surface.expr is None:
+        what = "f"
+    else:
+        import sympy
+        text = sympy.sstr(surface.expr, full_prec=False)
+        what = f"f = {text if len(text) <= 60 else text[:57] + '...'}"
+    return (f"{what} is NaN, infinite or complex everywhere on {a} in [{ua:g}, {ub:g}], "
+            f"{b} in [{va:g}, {vb:g}]: the picture is empty (check the expression and the "
+            "ranges)")

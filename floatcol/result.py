@@ -1,0 +1,119 @@
+"""Render: what a picture is, as arrays (the public contract of DESIGN.md section 3)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import _pool
+from .kernels.layout import G_NX, G_NZ, G_U, G_V, G_W
+from .kernels.shade import centre_kernel
+from .output import png_bytes, save_image
+from .passes.tiles import untile as _untile
+from .view import View
+
+
+@dataclass
+class Render:
+    """The result of :func:`render`. Array row 0 is the top row of the picture.
+
+    rgba (H, W, 4) uint8; intensity (H, W) float32 in [0, 1], NaN where no surface is
+    seen; side (H, W) int8, +1 where the upper side is seen, -1 the lower, 0 nothing;
+    depth (H, W) float32 screen z of the seen point (larger = farther), +inf where none;
+    stats: "samples" (evaluations of f), "seconds", and more. ``u``, ``v``, ``w`` and
+    ``normal`` give the seen point's coordinates and unit normal per pixel.
+
+    A shaded render computes ``intensity`` and ``depth`` from its G-buffer when they
+    are first asked for (the picture does not need them: it is ready sooner), then
+    keeps them.
+    """
+    rgba: np.ndarray
+    _intensity: np.ndarray = field(repr=False)
+    side: np.ndarray
+    _depth: np.ndarray = field(repr=False)
+    stats: dict
+    view: View = field(repr=False)
+    #: the column pass's tiled G-buffer (kernels/layout.py), set only where a surface
+    #: is seen (``gbuffer`` is the cleaned copy)
+    _gbuf: np.ndarray = field(repr=False)
+    #: method="horizon": t (relative to the centre) of the line at each line pixel
+    line_t: np.ndarray = field(default=None, repr=False)
+    #: (H, W) bool, where a surface is seen, when ``side`` does not say it (horizon)
+    _seen: np.ndarray = field(default=None, repr=False)
+    #: (vp, interpolation, ambient): how centre_kernel lights the G-buffer while
+    #: intensity and depth are still None
+    _light_args: tuple = field(default=None, repr=False)
+    #: render's ``aspect``: the stretch (a, b, c) of u, v and w in the picture's box
+    #: (the G-buffer's u, v, w are the box's; ``u``, ``v``, ``w`` divide it out)
+    box: tuple = field(default=(1.0, 1.0, 1.0), repr=False)
+
+    def _centres(self):
+        if self._intensity is None or self._depth is None:
+            vp, interp, ambient = self._light_args
+            intensity = _pool.empty(self.side.shape, np.float32)
+            depth = _pool.empty(self.side.shape, np.float32)
+            centre_kernel(self._gbuf, vp, interp, ambient, self.side, intensity, depth)
+            self._intensity, self._depth = intensity, depth
+
+    @property
+    def intensity(self):
+        """(H, W) float32 ambient + diffuse light of the surface at each pixel's centre,
+        in [0, 1]; NaN where no surface is seen."""
+        self._centres()
+        return self._intensity
+
+    @property
+    def depth(self):
+        """(H, W) float32 screen z of the seen point (larger = farther); +inf where no
+        surface is seen."""
+        self._centres()
+        return self._depth
+
+    def _mask(self):
+        return self.side != 0 if self._seen is None else self._seen
+
+    def _picture(self, channels):
+        """G-buffer channels as a picture, top row first (set only where _mask())."""
+        return _untile(self._gbuf[..., channels], self.side.shape[1])[::-1]
+
+    def _channel(self, g):
+        return np.where(self._mask(), self._picture(g), np.float32(np.nan))
+
+    @property
+    def gbuffer(self):
+        """(W, H, G_SIZE) float32 G-buffer, rows from the bottom (floatcol.kernels.layout's
+        G_* channels), NaN where no surface is seen: a copy."""
+        g = np.where(self._mask()[..., None], self._picture(slice(None)), np.float32(np.nan))
+        return g[::-1].transpose(1, 0, 2)
+
+    def _unboxed(self, g, k):
+        x = self._channel(g)
+        return x if self.box[k] == 1.0 else (x / self.box[k]).astype(np.float32)
+
+    @property
+    def u(self):
+        return self._unboxed(G_U, 0)
+
+    @property
+    def v(self):
+        return self._unboxed(G_V, 1)
+
+    @property
+    def w(self):
+        return self._unboxed(G_W, 2)
+
+    @property
+    def normal(self):
+        """(H, W, 3) unit upper-side normal in screen coordinates (NaN where none)."""
+        n = self._picture(slice(G_NX, G_NZ + 1))
+        n = np.where(self._mask()[..., None], n, np.float32(np.nan)).astype(np.float64)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return n / np.linalg.norm(n, axis=2, keepdims=True)
+
+    def save(self, path):
+        """Write ``rgba`` to a PNG (or .jpg, .pdf, .svg), atomically: a temporary file
+        renamed at the end."""
+        save_image(self.rgba, path)
+
+    def _repr_png_(self):
+        return png_bytes(self.rgba)

@@ -1,0 +1,112 @@
+"""The scene and its parts (scene.py, material.py, light.py, camera.py, quality.py,
+renderer.py and the passes): several surfaces with their own materials, lights in
+their frames, the one camera fit."""
+import math
+
+import numpy as np
+import pytest
+
+import floatcol as fc
+from floatcol.camera import fit
+from floatcol.passes.tiles import tile, untile
+
+DOM = ((-2.0, 2.0), (-2.0, 2.0))
+
+
+def test_two_colormaps_in_one_picture():
+    """Each layer keeps its own material: a saddle in reds, a bump in blues. Where the
+    composite shows layer k (stats["surface"]), its pixels take layer k's colours:
+    the reds have more red than blue, the blues more blue than red."""
+    scene = fc.Scene([fc.Layer("u*v/3", DOM, fc.Material(cmap="Reds", vmin=-3, vmax=1)),
+                      fc.Layer("2*exp(-u**2-v**2) - 0.5", DOM,
+                               fc.Material(cmap="Blues", vmin=-3, vmax=1))],
+                     camera=fc.Camera(size=(160, 120), elev=30, azim=30))
+    r = fc.render_scene(scene)
+    which = r.stats["surface"]
+    rgb = r.rgba[..., :3].astype(int)
+    whole = r.rgba[..., 3] == 255
+    reds = (which == 0) & whole
+    blues = (which == 1) & whole
+    assert reds.sum() > 2000 and blues.sum() > 300            # both are seen
+    assert (rgb[reds, 0] > rgb[reds, 2]).mean() > 0.99
+    assert (rgb[blues, 2] > rgb[blues, 0]).mean() > 0.99
+    # render_many takes Layers among its items the same way
+    r2 = fc.render_many([scene.layers[0], ("2*exp(-u**2-v**2) - 0.5", *DOM)], size=(160, 120),
+                        cmap="Blues", vmin=-3, vmax=1)
+    assert np.array_equal(r2.rgba, r.rgba)
+
+
+def test_a_layers_order_changes_only_which_index_it_has():
+    a = fc.Layer("u*v/3", DOM, fc.Material(cmap="Reds"))
+    b = fc.Layer("2*exp(-u**2-v**2) - 0.5", DOM, fc.Material(cmap="Blues"))
+    cam = fc.Camera(size=(120, 90))
+    r1 = fc.render_scene(fc.Scene([a, b], camera=cam))
+    r2 = fc.render_scene(fc.Scene([b, a], camera=cam))
+    s1, s2 = r1.stats["surface"], r2.stats["surface"]
+    assert np.array_equal(s1 == 0, s2 == 1) and np.array_equal(s1 == 1, s2 == 0)
+    assert np.array_equal(r1.side, r2.side)
+
+
+def test_a_world_light_is_fixed_to_the_surface():
+    """A plane w = (u + 2v)/3 under a directional light: with no ambient and no
+    highlight the intensity is |L.N| with L and N in world coordinates, whatever the
+    camera's azimuth (a key light's turns with the camera)."""
+    d = np.array([1.0, -0.5, 2.0])
+    n = np.array([-1 / 3, -2 / 3, 1.0])
+    want = abs(d @ n) / np.linalg.norm(d) / np.linalg.norm(n)
+    key = []
+    for azim in (-50, 10, 70, 160):
+        kw = dict(u=(-1, 1), v=(-1, 1), size=(60, 45), azim=azim, elev=35, ambient=0.0,
+                  specular=0.0)
+        r = fc.render("(u + 2*v)/3", light=fc.Light.directional(tuple(d)), **kw)
+        i = r.intensity[r.side != 0]
+        assert np.abs(i - want).max() < 1e-5
+        key.append(np.nanmean(fc.render("(u + 2*v)/3", light=tuple(d), **kw).intensity))
+    assert max(key) - min(key) > 0.1
+
+
+def test_the_sun_is_matplotlibs_lightsource():
+    from matplotlib.colors import LightSource
+    for az, alt in ((315, 45), (90, 10), (200, 70)):
+        assert np.allclose(fc.Light.sun(az, alt).direction, LightSource(az, alt).direction)
+
+
+@pytest.mark.parametrize("make,message", [
+    (lambda: fc.Light("spot"), "kind must be one of"),
+    (lambda: fc.Light.key((0, 0, 0)), "non-zero direction"),
+    (lambda: fc.Light.directional("up"), "light must be a direction (u, v, w)"),
+    (lambda: fc.Light("headlight", (1, 0, 0)), "takes no direction"),
+    (lambda: fc.render("u", size=(8, 6), shading="lambert", light=fc.Light.sun()),
+     "lights from the viewpoint"),
+    (lambda: fc.render_scene(fc.Scene([fc.Layer("u", material=fc.Material(shading="x"))])),
+     "shading must be one of"),
+    (lambda: fc.render_scene(fc.Scene([])), "surfaces is empty"),
+    (lambda: fc.render_scene(fc.Scene([fc.Layer("u")], quality=fc.Quality(method="ray"))),
+     "method must be one of"),
+])
+def test_parts_say_what_to_fix(make, message):
+    with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
+        make()
+
+
+def test_one_camera_for_every_layer():
+    """camera.fit: one scale, centre and viewpoint for all the layers, and the union
+    of them fits the picture (the farther surface widens the fit)."""
+    small = fc.as_surface("u*v/3")
+    big = fc.as_surface("u + v")
+    cam = fc.Camera(size=(200, 150), projection="perspective", elev=30, azim=20)
+    q = fc.Quality()
+    views, drawn, box = fit([(small, DOM), (big, ((-6, 6), (-6, 6)))], cam, q)
+    assert box == (1.0, 1.0, 1.0)
+    assert views[0].scale == views[1].scale and views[0].center == views[1].center
+    assert (views[0].d1, views[0].d2) == (views[1].d1, views[1].d2)
+    alone, _, _ = fit([(small, DOM)], cam, q)
+    assert alone[0].scale > views[0].scale
+
+
+def test_tiles_round_trip():
+    rng = np.random.default_rng(1)
+    mask = rng.random((7, 37)) > 0.5
+    t = tile(mask, 16, 3)
+    assert t.shape == (3, 7, 16)
+    assert np.array_equal(untile(t, 37), mask)

@@ -69,7 +69,17 @@ def examples():
                     size=(480, 360), proj_type="ortho").save(IMG / "horizon.png")
 
 
+def shadows():
+    """Gordon's function under a sun at 40 degrees, without and with its shadows."""
+    kw = dict(u=(-5, 5), v=(-5, 5), size=(360, 270), elev=50, azim=30, lightsource=(200, 40),
+              cmap="cividis", ambient=0.35)
+    pair = [fc.render("3*sin(u*cos(v))", shadows=s, **kw).rgba for s in (False, True)]
+    from PIL import Image
+    Image.fromarray(np.concatenate(pair, axis=1)).save(IMG / "shadows.png", optimize=True)
+
+
 if __name__ == "__main__":
     IMG.mkdir(exist_ok=True)
     camera()
     examples()
+    shadows()

@@ -139,7 +139,9 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     """Render w = f(u, v, t) at ``frames`` times in ``t`` = (low, high) or
     (symbol, low, high) (the symbol defaults to t). ``endpoint=False`` leaves out
     t = high, so a periodic clip loops without a repeated frame. ``output``: a .gif or
-    .mp4 file to write. Other options as :func:`floatcol.plot_surface`. Returns an
+    .mp4 file to write. Other options as :func:`floatcol.plot_surface`; ``lightsource``
+    may be a function of t giving (azdeg, altdeg) (a moving sun, with ``shadows=True``
+    its shadows move). Returns an
     :class:`Animation`.
     """
     import time as _time
@@ -164,6 +166,11 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     surfaces = [base.at(tk) for tk in times]      # one compilation for the clip
     ranges_ = [(names[0], *domain[0]), (names[1], *domain[1])]
 
+    # a moving sun: lightsource a function of t, called per frame
+    sun = options.pop("lightsource", None)
+    suns = [sun(tk) if callable(sun) else sun for tk in times]
+    if suns[0] is not None:
+        options["lightsource"] = suns[0]
     # One camera for the clip: fitted to the envelope of all frames.
     vmin, vmax = options.pop("vmin", None), options.pop("vmax", None)
     first = plot_surface(surfaces[0], *ranges_, vmin=0.0, vmax=1.0, **options)
@@ -189,8 +196,10 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
         fixed["vmax"] = (w_hi if w_hi > w_lo else w_lo + 1.0) if vmax is None else vmax
     out = []
     samples = 0
-    for s in tqdm(surfaces, desc="floatcol animate", unit="frame", delay=1.0,
-                  disable=not progress, leave=False):
+    for s, sun_k in tqdm(list(zip(surfaces, suns)), desc="floatcol animate", unit="frame",
+                         delay=1.0, disable=not progress, leave=False):
+        if sun_k is not None:
+            options["lightsource"] = sun_k
         r = plot_surface(s, *ranges_, **options, **fixed).draw()
         samples += r.stats["samples"]
         out.append(r.rgba)

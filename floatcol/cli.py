@@ -60,6 +60,16 @@ def _value(name):
     return convert
 
 
+def _sun(text):
+    """--light AZ/ALT: two numbers or constant formulas (floatcol's parser)."""
+    try:
+        az, alt = (_number(x) for x in text.split("/"))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"light {text!r} must be AZ/ALT in degrees, e.g. "
+                                         "315/25") from None
+    return az, alt
+
+
 def _aspect(text):
     if text in ("auto", "equal", "equalxy"):
         return text
@@ -129,6 +139,11 @@ def _surface_options(p, default_size="800x600", many=False):
     p.add_argument("--vmax", type=_value("vmax"), default=None,
                    help="height at the colormap's end (a number or a constant such as pi/2)")
     p.add_argument("--no-shade", action="store_true", help="flat colours, no lighting")
+    p.add_argument("--light", type=_sun, default=None, metavar="AZ/ALT",
+                   help="a sun fixed to the surface: azimuth clockwise from north and altitude, "
+                        "in degrees, as matplotlib's LightSource (e.g. 315/25)")
+    p.add_argument("--shadows", action="store_true",
+                   help="the light casts shadows (Gordon 6.2): with --light, or the default light")
     p.add_argument("--background", default=None, help="background colour, e.g. white or none")
     p.add_argument("--dpi", type=float, default=100.0, help="dots per inch of PDF/SVG output (default 100)")
 
@@ -164,7 +179,7 @@ def build_parser():
 
 
 _RANGES = ("--u", "--v", "--x", "--y", "--t")
-_NEGATIVE_OK = _RANGES + ("--vmin", "--vmax", "--elev", "--azim")
+_NEGATIVE_OK = _RANGES + ("--vmin", "--vmax", "--elev", "--azim", "--light")
 
 
 def _fix_negative_values(argv):
@@ -176,7 +191,7 @@ def _fix_negative_values(argv):
         a = argv[i]
         nxt = argv[i + 1] if i + 1 < len(argv) else ""
         if a in _NEGATIVE_OK and nxt[:1] == "-" and (nxt[1:2] in "0123456789." or (
-                a in _RANGES and ":" in nxt)):             # -5, -5:5, -pi:pi
+                a in _RANGES and ":" in nxt) or (a == "--light" and "/" in nxt)):  # -5, -pi:pi
             out.append(f"{a}={nxt}")
             i += 2
             continue
@@ -258,6 +273,10 @@ def _options(args):
         opts["lower_color"] = args.lower_color
     if args.no_shade:
         opts["shade"] = False
+    if args.light is not None:
+        opts["lightsource"] = args.light
+    if args.shadows:
+        opts["shadows"] = True
     if args.background is not None:
         opts["background"] = None if args.background.lower() == "none" else args.background
     return opts

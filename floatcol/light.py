@@ -31,13 +31,19 @@ class Light:
     headlight)."""
     kind: str = "headlight"
     direction: tuple | None = None
+    #: cast and attached shadows (Gordon section 6.2; passes/shadow.py)
+    shadows: bool = False
 
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ValueError(f"a light's kind must be one of {', '.join(KINDS)}, got {self.kind!r}")
+        object.__setattr__(self, "shadows", bool(self.shadows))
         if self.kind == "headlight":
             if self.direction is not None:
                 raise ValueError("a headlight lights from the viewpoint: it takes no direction")
+            if self.shadows:
+                raise ValueError("a headlight lights from the viewpoint, where nothing seen "
+                                 "is in shadow: give a lightsource for shadows")
             return
         object.__setattr__(self, "direction", _direction(self.direction, self.kind))
 
@@ -46,22 +52,31 @@ class Light:
         return cls("headlight")
 
     @classmethod
-    def key(cls, direction=DEFAULT_LIGHT):
-        return cls("key", direction)
+    def key(cls, direction=DEFAULT_LIGHT, shadows=False):
+        return cls("key", direction, shadows)
 
     @classmethod
-    def directional(cls, direction):
-        return cls("directional", direction)
+    def directional(cls, direction, shadows=False):
+        return cls("directional", direction, shadows)
 
     @classmethod
-    def sun(cls, azdeg=315.0, altdeg=45.0):
+    def sun(cls, azdeg=315.0, altdeg=45.0, shadows=False):
         """A world-fixed light as matplotlib's ``LightSource(azdeg, altdeg)``: azimuth
         clockwise from north (+v), altitude above the (u, v) plane, in degrees."""
         from .view import _number
         az = math.radians(90.0 - _number("azdeg", azdeg))
         alt = math.radians(_number("altdeg", altdeg))
         return cls("directional", (math.cos(az) * math.cos(alt), math.sin(az) * math.cos(alt),
-                                   math.sin(alt)))
+                                   math.sin(alt)), shadows)
+
+    def world_direction(self, elev, azim):
+        """The direction toward the light in world (u, v, w) for render()'s angles
+        (a key light's turns with the camera), or None for the headlight."""
+        if self.kind == "headlight":
+            return None
+        if self.kind == "directional":
+            return self.direction
+        return screen_to_world_direction(self.direction, elev, azim)
 
     def screen_direction(self, elev, azim):
         """The kernels' light for render()'s angles (degrees): a unit screen direction,
@@ -98,10 +113,35 @@ def world_to_screen_direction(d, elev, azim):
     return (r, s * ca - t * sa, s * sa + t * ca)
 
 
-def as_light(light, shading):
+def screen_to_world_direction(d, elev, azim):
+    """The inverse of world_to_screen_direction."""
+    a, b = -math.radians(elev), math.radians(azim)
+    ca, sa, cb, sb = math.cos(a), math.sin(a), math.cos(b), math.sin(b)
+    x, y, z = d
+    s = y * ca + z * sa
+    t = -y * sa + z * ca
+    return (x * cb + t * sb, -x * sb + t * cb, s)
+
+
+def as_light(light, shading, lightsource=None, shadows=False):
     """render()'s ``light`` keyword as a Light: None is the shading's own (the key
     light for "default", the headlight for "lambert"), a Light as is, and a triple a
-    key light's screen direction (render's convention since 0.1)."""
+    key light's screen direction (render's convention since 0.1). ``lightsource``
+    (azdeg, altdeg) or a matplotlib LightSource: a sun instead; ``shadows``: the light
+    casts shadows."""
+    if lightsource is not None:
+        if light is not None:
+            raise ValueError("give either lightsource or light, not both")
+        light = _sun(lightsource)
+    if shadows:
+        if shading == "lambert":
+            raise ValueError("shading='lambert' lights from the viewpoint, where nothing seen "
+                             "is in shadow; use shading='default' for shadows")
+        if light is None:
+            light = Light("key", DEFAULT_LIGHT)
+        elif not isinstance(light, Light):
+            light = Light("key", light)
+        light = Light(light.kind, light.direction, True)
     if isinstance(light, Light):
         if shading == "lambert" and light.kind != "headlight":
             raise ValueError("shading='lambert' lights from the viewpoint; leave light=None "
@@ -115,3 +155,15 @@ def as_light(light, shading):
     if light is None:
         return Light("key", DEFAULT_LIGHT)
     return Light("key", light)
+
+
+def _sun(lightsource):
+    """A sun from render's ``lightsource``: (azdeg, altdeg) or a LightSource."""
+    if hasattr(lightsource, "azdeg") and hasattr(lightsource, "altdeg"):
+        return Light.sun(lightsource.azdeg, lightsource.altdeg)
+    try:
+        az, alt = lightsource
+    except (TypeError, ValueError):
+        raise ValueError("lightsource must be (azdeg, altdeg) in degrees or a "
+                         f"matplotlib.colors.LightSource, got {lightsource!r}") from None
+    return Light.sun(az, alt)

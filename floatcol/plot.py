@@ -18,6 +18,7 @@ from matplotlib.colors import Normalize as _Normalize
 from . import color
 from .color import colormap_lut
 from .output import png_bytes, save_image
+from .light import world_to_screen_direction  # noqa: F401 (kept importable here)
 from .render import DEFAULT_RANGE, Render, render
 from .surface import HeightField, Surface, as_surface, check_range, free_names
 from .view import _robust_range
@@ -51,16 +52,6 @@ def mpl_to_paper_angles(elev, azim):
 
 def _wrap(a):
     return (a + 180.0) % 360.0 - 180.0
-
-
-def world_to_screen_direction(d, elev, azim):
-    """A direction in world (u, v, w) -> screen (x, y, z) for render()'s angles."""
-    a, b = -math.radians(elev), math.radians(azim)
-    ca, sa, cb, sb = math.cos(a), math.sin(a), math.cos(b), math.sin(b)
-    du, dv, s = d
-    r = du * cb - dv * sb
-    t = du * sb + dv * cb
-    return (r, s * ca - t * sa, s * sa + t * ca)
 
 
 def parse_ranges(expr, ranges, extra=()):
@@ -158,7 +149,8 @@ class SurfacePlot(_ScalarMappable):
         if lightsource is not None and light is not None:
             raise ValueError("give either lightsource (a matplotlib LightSource) or light, not both")
         if lightsource is not None and not hasattr(lightsource, "direction"):
-            raise ValueError(f"lightsource must be a matplotlib.colors.LightSource, got {lightsource!r}")
+            from .light import _sun
+            lightsource = _sun(lightsource)           # (azdeg, altdeg)
         self.lightsource = lightsource
         self.light = light
         self.ambient = ambient
@@ -250,7 +242,10 @@ class SurfacePlot(_ScalarMappable):
             elif self.ambient is not None:
                 kw["ambient"] = self.ambient
             if self.lightsource is not None:
-                kw["light"] = world_to_screen_direction(self.lightsource.direction, elev, azim)
+                # fixed to the surface: it turns with the camera (light.py)
+                from .light import Light
+                kw["light"] = Light.directional(tuple(float(x) for x in
+                                                      self.lightsource.direction))
             elif self.light is not None:
                 kw["light"] = self.light
         if self.pixel_step is not None and kw.get("step") is None:

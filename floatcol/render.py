@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from . import color
 from .camera import Camera, NO_BOX, box_factors, box_point, in_box  # noqa: F401 (re-exported)
-from .light import DEFAULT_LIGHT  # noqa: F401
+from .light import DEFAULT_LIGHT, as_light  # noqa: F401
 from .material import (  # noqa: F401
     DEFAULT_AMBIENT, DEFAULT_SHININESS, DEFAULT_SPECULAR, INTERPOLATIONS, SHADINGS, Material)
 from .passes.geometry import BATCH_MIN_SAMPLES  # noqa: F401
@@ -33,7 +33,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            placement="exact", specular=None, shininess=None,
            corrections=DEFAULT_CORRECTIONS, detect=None, jump_threshold=DEFAULT_JUMP,
            supersample_rate=DEFAULT_RATE, spline_tolerance=None,
-           antialias=None, sampling="uniform", aspect="equal", box=None) -> Render:
+           antialias=None, sampling="uniform", aspect="equal", box=None, lightsource=None,
+           shadows=False) -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -109,6 +110,14 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         the surface's units; ``depth``, ``normal`` and ``view`` are the box's.
     box : (a, b, c), instead of aspect: stretch u, v and w by these factors (a
         picture's ``stats["box"]``, to draw another in the same box).
+    lightsource : (azdeg, altdeg) in degrees or a matplotlib LightSource: a light fixed
+        to the surface (its direction is LightSource.direction in (u, v, w)) instead
+        of the default shading's screen-fixed key light.
+    shadows : section 6.2: the light casts shadows (attached: a side facing away from
+        it gets ambient light only; cast: a point with the surface between it and the
+        light). ``Render.shadow`` says where (1 shadow, 0 lit, between at the
+        antialiased edges, NaN where nothing is seen). The light is ``lightsource``,
+        ``light`` or the default key light.
 
     Returns
     -------
@@ -130,7 +139,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         camera=Camera(size=size, elev=elev, azim=azim, projection=projection, d1=d1, d2=d2,
                       scale=scale, center=center, focal_length=focal_length, aspect=aspect,
                       box=box),
-        light=light,
+        light=light if lightsource is None and not shadows else
+        as_light(light, shading, lightsource, shadows),
         quality=Quality(method=method, lines=lines, step=step, pixel_step=pixel_step,
                         sampling=sampling, placement=placement, corrections=corrections,
                         detect=detect, jump_threshold=jump_threshold,

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from . import color
 from .camera import fit
 from .light import as_light
-from .passes import antialias, finish, geometry, horizon
+from .passes import antialias, finish, geometry, horizon, shadow as shadows
 from .passes.composite import composite as merge
 from .result import Render
 from .surface import as_surface, check_range
@@ -36,6 +36,7 @@ class _Prepared:
     surface: object             # as given (the warning's units)
     domain: tuple
     material: object
+    light: object               # the Light
     light_dir: object
     terms: tuple                # (ambient, specular, shininess)
 
@@ -57,15 +58,16 @@ def render_scene(scene, stacklevel=2, composite=False) -> Render:
     background = scene.background
     if background is None:
         background = default_background(quality.method, first.shading)
+    texture = _shadow_texture(layers[0].light, scene.camera, quality, drawn, views[0])
     if not many:
         return _layer(layers[0], views[0], drawn[0], box, quality, background, t_start,
-                      stacklevel + 1)
+                      stacklevel + 1, texture)
     renders = []
-    for p, view, (s, dom) in zip(layers, views, drawn):
+    for k, (p, view, (s, dom)) in enumerate(zip(layers, views, drawn)):
         if p.light_dir is not layers[0].light_dir:
             view = _relit(view, p.light_dir)
         renders.append(_layer(p, view, (s, dom), box, quality, (0, 0, 0, 0),
-                              time.perf_counter(), stacklevel + 1))
+                              time.perf_counter(), stacklevel + 1, texture, k))
     out = merge(renders, color.to_rgba8(background))
     out.stats["seconds"] = time.perf_counter() - t_start
     return out
@@ -79,7 +81,17 @@ def _prepare(layer, scene):
     light = as_light(scene.light, material.shading)
     view_angles = (scene.camera.elev, scene.camera.azim)
     light_dir = _screen_light(light, *view_angles)
-    return _Prepared(surface, domain, material, light_dir, material.light_terms())
+    return _Prepared(surface, domain, material, light, light_dir, material.light_terms())
+
+
+def _shadow_texture(light, camera, quality, drawn, view):
+    """The light's shadow texture over every layer (passes/shadow.py), or None where
+    the light casts no shadows (or the picture is a line drawing)."""
+    if not light.shadows or quality.method != "column":
+        return None
+    from .view import _number
+    direction = light.world_direction(_number("elev", camera.elev), _number("azim", camera.azim))
+    return shadows.Texture(drawn, view.scale, direction)
 
 
 def _screen_light(light, elev, azim):
@@ -102,7 +114,8 @@ def _relit(view, light_dir):
     return dataclasses.replace(view, light=light)
 
 
-def _layer(p, view, drawn, box, quality, background, t_start, stacklevel):
+def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, texture=None,
+           index=0):
     """One layer's passes: a Render of its own."""
     surface, domain = drawn
     material = p.material
@@ -125,6 +138,11 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel):
     geom = geometry.column_pass(surface, view, vp, buffers, hstride, fb)
     evals = geom.evals
     t_kernel = time.perf_counter()
+    shadow = None
+    lit = shadows.empty()
+    if texture is not None:
+        shadow, lit = shadows.shadow_pass(texture, view, geom, W, H, index)
+    t_shadow = time.perf_counter()
     line_t = None
     w_limits = None
     seen = None
@@ -138,12 +156,12 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel):
         shade_args = (material.interp, amb, spec, shine)
         intensity = depth = None        # Render computes them when asked (centre_kernel)
         rgba, side = finish.finish_pass(geom, H, W, shade_args, lut, w_lo, w_hi, lower_rgb,
-                                        bg8)
+                                        bg8, lit)
         if aa_cov and sub_columns == 1:
             antialias.staircase_pass(geom, side, rgba)
         if sub_columns > 1:
             rgba, ev2 = antialias.subcolumn_pass(surface, geom, sub_columns, rgba, shade_args,
-                                                 lut, w_lo, w_hi, lower_rgb, bg8)
+                                                 lut, w_lo, w_hi, lower_rgb, bg8, lit)
             evals += ev2
     t_end = time.perf_counter()
     if nowhere_finite(surface, domain) and not (side != 0 if seen is None else seen).any():
@@ -163,8 +181,11 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel):
         "w_limits": w_limits,      # the colormap's height range (column method)
         "box": box,                # aspect's stretch of u, v and w (1, 1, 1: none)
     }
+    if texture is not None:
+        stats["shadow_seconds"] = t_shadow - t_kernel
+        stats["shadow_texels"] = texture.texels
     return Render(rgba, intensity, side, depth, stats, view, geom.gbuf, line_t, seen,
-                  (vp, material.interp, amb), box)
+                  (vp, material.interp, amb, lit), box, shadow=shadow)
 
 
 def default_background(method, shading):

@@ -40,19 +40,24 @@ class Render:
     line_t: np.ndarray = field(default=None, repr=False)
     #: (H, W) bool, where a surface is seen, when ``side`` does not say it (horizon)
     _seen: np.ndarray = field(default=None, repr=False)
-    #: (vp, interpolation, ambient): how centre_kernel lights the G-buffer while
+    #: (vp, interpolation, ambient, lit): how centre_kernel lights the G-buffer while
     #: intensity and depth are still None
     _light_args: tuple = field(default=None, repr=False)
     #: render's ``aspect``: the stretch (a, b, c) of u, v and w in the picture's box
     #: (the G-buffer's u, v, w are the box's; ``u``, ``v``, ``w`` divide it out)
     box: tuple = field(default=(1.0, 1.0, 1.0), repr=False)
+    #: (H, W) float32 with shadows=True (section 6.2): 1 where the seen point is in
+    #: shadow (its seen side faces away from the light, or the surface lies between it
+    #: and the light), 0 lit, between at antialiased shadow edges, NaN where nothing is
+    #: seen; None without shadows
+    shadow: np.ndarray = field(default=None, repr=False)
 
     def _centres(self):
         if self._intensity is None or self._depth is None:
-            vp, interp, ambient = self._light_args
+            vp, interp, ambient, lit = self._light_args
             intensity = _pool.empty(self.side.shape, np.float32)
             depth = _pool.empty(self.side.shape, np.float32)
-            centre_kernel(self._gbuf, vp, interp, ambient, self.side, intensity, depth)
+            centre_kernel(self._gbuf, vp, interp, ambient, lit, self.side, intensity, depth)
             self._intensity, self._depth = intensity, depth
 
     @property

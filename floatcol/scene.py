@@ -62,6 +62,11 @@ def scene_from_options(surfaces, **options):
     camera = {k: options.pop(k) for k in list(options) if k in CAMERA_OPTIONS}
     quality = {k: options.pop(k) for k in list(options) if k in QUALITY_OPTIONS}
     light = options.pop("light", None)
+    lightsource = options.pop("lightsource", None)
+    shadows = options.pop("shadows", False)
+    if lightsource is not None or shadows:
+        from .light import as_light
+        light = as_light(light, material.get("shading", "default"), lightsource, shadows)
     background = options.pop("background", None)
     vars = options.pop("vars", None)
     if options:

@@ -193,3 +193,37 @@ def raycast_box(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic"
     inten = np.nan_to_num(ref.intensity).reshape(H, k, W, k).mean(axis=(1, 3))
     cover = (ref.side != 0).reshape(H, k, W, k).mean(axis=(1, 3))
     return inten, cover
+
+
+def shadow_rays(funcs, ref, u_rng, v_rng, light, steps=2000, start=1e-4):
+    """Shadows at the reference's hits (Gordon 6.2, independently): a hit is in
+    shadow where its seen side faces away from ``light`` (a direction toward the light
+    in world (u, v, w)), or where the ray from it toward the light crosses the surface
+    (w_ray - f changes sign) before it leaves the domain. Returns (H, W) float: 1
+    shadow, 0 lit, NaN where nothing is seen."""
+    f, fu, fv = funcs
+    L = np.asarray(light, float)
+    L = L / np.linalg.norm(L)
+    seen = ref.side != 0
+    u, v = ref.u[seen], ref.v[seen]
+    w = f(u, v)
+    side = ref.side[seen].astype(float)
+    n = np.stack([-fu(u, v), -fv(u, v), np.ones_like(u)], axis=1)
+    attached = side * (n @ L) <= 0.0
+    # the ray's length to the domain's edge along the ground
+    s_max = np.full(u.shape, np.inf)
+    for o, d, (lo, hi) in ((u, L[0], u_rng), (v, L[1], v_rng)):
+        if abs(d) > 1e-14:
+            s_max = np.minimum(s_max, np.maximum((lo - o) / d, (hi - o) / d))
+    diag = np.hypot(u_rng[1] - u_rng[0], v_rng[1] - v_rng[0])
+    s_max = np.minimum(s_max, diag / max(np.hypot(L[0], L[1]), 1e-12))
+    cast = np.zeros(u.shape, bool)
+    with np.errstate(all="ignore"):
+        for k in range(1, steps + 1):
+            s = start * diag + (s_max - start * diag) * (k / steps)
+            live = s <= s_max
+            g = (w + s * L[2]) - f(u + s * L[0], v + s * L[1])
+            cast |= live & np.isfinite(g) & (side * g < 0)
+    out = np.full(ref.side.shape, np.nan)
+    out[seen] = (attached | cast).astype(float)
+    return out

@@ -13,6 +13,9 @@ CASES = [dict(projection="orthographic", method="column"),
          dict(projection="perspective", method="horizon", elev=60),
          dict(projection="perspective", antialias=3, sampling="adaptive"),
          dict(projection="orthographic", antialias=2, interpolation="intensity"),
+         # shadows: the sweeps (a line per thread) and the lookup (a column per thread)
+         dict(projection="orthographic", lightsource=(315, 25), shadows=True),
+         dict(projection="perspective", lightsource=(120, 10), shadows=True, antialias=3),
          # columns whose curve folds back, traced (kernels/fold.py)
          dict(projection="perspective", elev=40, azim=-30, dom=(-2.2, 2.2),
               expr="4.9*(sqrt(4 - u**2 - v**2) + sqrt(u**2 + v**2 - 1) - 2)")]

@@ -37,13 +37,15 @@ def _power(x, e):
 
 
 @ngjit_inline
-def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shininess):
+def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shininess,
+           lit):
     """(I, specular) of one pixel: I = ambient + (1 - ambient) |L.N| / (|L| |N|), and
     Phong's specular * max(R.V, 0)^shininess (the paper has none), with V toward the
     viewpoint, N turned toward the viewer (the side that is seen) and R the
     reflection of L about N; zero where the light is behind the seen side. The light
     is vp's directional light (a unit vector), or the viewpoint when that is zero
-    (eq. 12)."""
+    (eq. 12). ``lit`` in [0, 1]: the part of the light that reaches the point (0 in a
+    shadow: ambient only; 1 without shadows, which leaves every value as it was)."""
     if vp[VP_ORTHO] != 0.0:
         vx = 0.0
         vy = 0.0
@@ -71,7 +73,7 @@ def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shi
     q = 1.0 / math.sqrt(nn2) if nn2 > 0.0 else 0.0
     nl = (lx * nx + ly * ny + lz * nz) * q        # N.L / |N|, L a unit vector
     lam = lam_iis if interp == INTERP_INTENSITY else abs(nl)
-    inten = ambient + (1.0 - ambient) * min(lam, 1.0)
+    inten = ambient + (1.0 - ambient) * min(lam, 1.0) * lit
     sp = 0.0
     if specular > 0.0 and nn2 > 0.0:
         nv = (nx * vx + ny * vy + nz * vz) * q
@@ -81,7 +83,7 @@ def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shi
         if nl > 0.0:
             rv = 2.0 * nl * nv - (lx * vx + ly * vy + lz * vz)   # R.V, R = 2 (N.L) N - L
             if rv > 0.0:
-                sp = specular * _power(rv, shininess)
+                sp = specular * _power(rv, shininess) * lit
     return inten, sp
 
 
@@ -160,7 +162,7 @@ def _rgba32(r, g, b, a):
 
 @ngjit_inline
 def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular, shininess,
-                lut, w_lo, span, lower_rgb, background):
+                lut, w_lo, span, lower_rgb, background, lit):
     """Light (_light) and colour (pixel_rgba) row j of the column in lane ``lane`` of
     tile ``tile`` of the G-buffer gbuf and the edge buffer ebuf (layout.py; E_SEEN,
     and with ``aa`` the coverages, coverage.py). Returns (intensity at the centre, NaN
@@ -174,7 +176,7 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular
     if s != 0.0:
         w = g[G_W]
         lam, sp = _light(vp, x0, j, g[G_DEPTH], g[G_NX], g[G_NY], g[G_NZ], g[G_I], interp,
-                         ambient, specular, shininess)
+                         ambient, specular, shininess, lit)
     cov0 = 1.0
     e_cov = 0.0
     e_side = 0.0
@@ -191,7 +193,7 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular
             e_side = e[E_SIDE]
             e_w = e[E_W]
             e_lam, e_sp = _light(vp, x0, j, e[E_DEPTH], e[E_NX], e[E_NY], e[E_NZ], e[E_I],
-                                 interp, ambient, specular, shininess)
+                                 interp, ambient, specular, shininess, lit)
     r, gr, bl, a = pixel_rgba(s, w, cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp,
                               lut, w_lo, span, lower_rgb, background)
     return lam, r, gr, bl, a
@@ -218,7 +220,7 @@ def _block_rows(blk, H):
 
 @ngjit_parallel_nrt_free
 def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lut, w_lo,
-                  w_hi, lower_rgb, background, side, rgba):
+                  w_hi, lower_rgb, background, lit, side, rgba):
     """Light, colour and assemble the picture, top row first, in one pass: side and
     rgba (shade_pixel; rgba an (H, W, 4) uint8 picture viewed as (H, W) uint32, one
     store a pixel: _rgba32), from the tiled G-buffer gbuf and edge buffer ebuf
@@ -236,9 +238,11 @@ def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lu
     block's rows; going down the tiles' columns instead (their own order) missed the
     cache on every store (1920x1080: 5-17 % slower). A tile whose rows (column_kernel's
     ``rows``: where its E_SEEN may be set) miss the block is background there: not
-    read at all."""
+    read at all. ``lit`` (H, W): the part of the light reaching each pixel's point
+    (passes/shadow.py), or an empty array: all of it."""
     n_tiles, H, T, W, n_blocks = _picture_blocks(gbuf, side)
     aa = vp[VP_AA] != 0.0
+    shadows = lit.shape[0] > 0
     span = w_hi - w_lo if w_hi > w_lo else 1.0
     for blk in prange(n_blocks):
         j_lo, j_hi = _block_rows(blk, H)
@@ -269,13 +273,14 @@ def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lu
                     c = b * T + lane
                     side[i, c] = np.int8(s)
                     x0 = column_x0(vp, c)
+                    lt = lit[i, c] if shadows else 1.0
                     if e_cov <= 0.0 and cov0 >= 1.0:
                         # a surface covering the whole pixel: shade_pixel's colour,
                         # without the blend
                         lam, sp = _light(vp, x0, j, gbuf[b, j, lane, G_DEPTH],
                                          gbuf[b, j, lane, G_NX], gbuf[b, j, lane, G_NY],
                                          gbuf[b, j, lane, G_NZ], gbuf[b, j, lane, G_I], interp,
-                                         ambient, specular, shininess)
+                                         ambient, specular, shininess, lt)
                         r, g, bl = _side_rgb(s, gbuf[b, j, lane, G_W], lut, w_lo, span,
                                              lower_rgb)
                         rgba[i, c] = _rgba32(min(r * lam + sp, 1.0) * 255.0 + 0.5,
@@ -284,19 +289,20 @@ def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lu
                         continue
                     _, r, g, bl, a = shade_pixel(gbuf, ebuf, b, lane, j, aa, vp, x0, interp,
                                                  ambient, specular, shininess, lut, w_lo, span,
-                                                 lower_rgb, background)
+                                                 lower_rgb, background, lt)
                     rgba[i, c] = _rgba32(r * 255.0 + 0.5, g * 255.0 + 0.5, bl * 255.0 + 0.5,
                                          a * 255.0 + 0.5)
 
 
 @ngjit_parallel_nrt_free
-def centre_kernel(gbuf, vp, interp, ambient, side, intensity, depth):
+def centre_kernel(gbuf, vp, interp, ambient, lit, side, intensity, depth):
     """intensity (ambient + diffuse, NaN where nothing is seen) and depth (+inf where
     nothing is seen) at the pixel centres, top row first, from the tiled G-buffer
     gbuf where ``side`` (finish_kernel's) says a surface is seen: the values
     finish_kernel lights the picture with (_light at the centre). In finish_kernel's
     order: blocks of FINISH_ROWS rows filled in runs, then tile by tile."""
     n_tiles, H, T, W, n_blocks = _picture_blocks(gbuf, side)
+    shadows = lit.shape[0] > 0
     for blk in prange(n_blocks):
         j_lo, j_hi = _block_rows(blk, H)
         for j in range(j_lo, j_hi):
@@ -313,6 +319,7 @@ def centre_kernel(gbuf, vp, interp, ambient, side, intensity, depth):
                         continue
                     g = gbuf[b, j, lane]
                     lam, _ = _light(vp, column_x0(vp, c), j, g[G_DEPTH], g[G_NX], g[G_NY],
-                                    g[G_NZ], g[G_I], interp, ambient, 0.0, 1.0)
+                                    g[G_NZ], g[G_I], interp, ambient, 0.0, 1.0,
+                                    lit[i, c] if shadows else 1.0)
                     intensity[i, c] = lam
                     depth[i, c] = g[G_DEPTH]

@@ -65,6 +65,13 @@ def composite(renders, background=(255, 255, 255, 255)) -> Render:
     intensity = np.where(seen, pick("intensity"), np.float32(np.nan)).astype(np.float32)
     side = np.where(seen, pick("side"), 0).astype(np.int8)
     depth_out = np.where(seen, pick("depth"), np.inf).astype(np.float32)
+    shadow = None
+    if any(r.shadow is not None for r in renders):
+        shadows = np.stack([r.shadow if r.shadow is not None
+                            else np.where(r.side != 0, 0.0, np.nan).astype(np.float32)
+                            for r in renders])
+        shadow = np.where(seen, np.take_along_axis(shadows, nearest[None], axis=0)[0],
+                          np.float32(np.nan)).astype(np.float32)
     gbuf = renders[0]._gbuf.copy()
     for k, r in enumerate(renders[1:], start=1):
         mask = tile((which == k)[::-1], gbuf.shape[2], gbuf.shape[0])
@@ -76,4 +83,4 @@ def composite(renders, background=(255, 255, 255, 255)) -> Render:
              "w_limits": [r.stats.get("w_limits") for r in renders],
              "box": renders[0].box}
     return Render(out, intensity, side, depth_out, stats, renders[0].view, gbuf, None, seen,
-                  box=renders[0].box)
+                  box=renders[0].box, shadow=shadow)

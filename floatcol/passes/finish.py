@@ -8,12 +8,13 @@ from .. import _pool
 from ..kernels.shade import finish_kernel
 
 
-def finish_pass(geom, H, W, shade_args, lut, w_lo, w_hi, lower_rgb, bg8):
+def finish_pass(geom, H, W, shade_args, lut, w_lo, w_hi, lower_rgb, bg8, lit):
     """(rgba (H, W, 4) uint8, side (H, W) int8). ``shade_args``: (interpolation,
     ambient, specular, shininess) of the material; lut, w_lo, w_hi its colour table
-    (Material.color_table); lower_rgb the lower side's colour; bg8 the background."""
+    (Material.color_table); lower_rgb the lower side's colour; bg8 the background; lit
+    (H, W) the part of the light reaching each pixel (passes/shadow.py), or empty."""
     side = _pool.empty((H, W), np.int8)
     rgba = _pool.empty((H, W, 4), np.uint8)
     finish_kernel(geom.gbuf, geom.ebuf, geom.rows, geom.vp, *shade_args, lut, w_lo, w_hi,
-                  lower_rgb, bg8, side, rgba.view(np.uint32)[..., 0])
+                  lower_rgb, bg8, lit, side, rgba.view(np.uint32)[..., 0])
     return rgba, side

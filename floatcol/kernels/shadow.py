@@ -1,0 +1,131 @@
+"""Cast shadows of a directional light (Gordon section 6.2.1): floating-horizon sweeps
+over the (u, v) domain along planes through the light.
+
+For a directional light the planes through it are parallel; each meets the domain in
+a line along the light's ground direction g. Along such a line, with sigma the
+distance toward the light and tan(theta) the light's rise per unit of ground, a point
+p is in the shadow of the upper side where some point q farther toward the light has
+
+    f(q) - sigma_q tan(theta)  >  f(p) - sigma_p tan(theta)
+
+(the light's ray from p passes under the surface at q): the running maximum of
+H = f - sigma tan(theta), swept from the light's side, is the floating horizon seen
+from the light. Its running minimum does the same for the lower side (a light from
+below). A hole casts nothing; a wall (a jump of f) casts its shadow as any slope.
+
+One line of the shadow texture per parallel plane, in parallel: each keeps its own
+maximum and minimum (no shared scratch).
+"""
+import math
+
+import numpy as np
+from numba import prange
+
+from ._jit import ngjit_inline, ngjit_parallel
+from .layout import E_FLAG, E_SEEN, G_NX, G_NY, G_NZ, G_U, G_V, G_W
+from .sample import surface_value
+
+
+@ngjit_parallel
+def horizon_sweeps(kind, f, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h, hmax, hmin):
+    """hmax[k, i] (hmin[k, i]): the highest (lowest) H = f - sigma tan_theta on line k
+    strictly beyond sample i toward the light, -inf (+inf) where there is none. Line
+    k's sample i lies at sigma = s0 + i h, tau = tau0 + k h, that is at (u, v) =
+    sigma (gu, gv) + tau (-gv, gu); domain = (ua, ub, va, vb): outside it, and at
+    holes, nothing casts."""
+    n_lines, n = hmax.shape
+    ua, ub, va, vb = domain[0], domain[1], domain[2], domain[3]
+    for k in prange(n_lines):
+        tau = tau0 + k * h
+        run_max = -np.inf
+        run_min = np.inf
+        for i in range(n - 1, -1, -1):          # from the light's side
+            hmax[k, i] = run_max
+            hmin[k, i] = run_min
+            sigma = s0 + i * h
+            u = sigma * gu - tau * gv
+            v = sigma * gv + tau * gu
+            if u < ua or u > ub or v < va or v > vb:
+                continue
+            w = surface_value(kind, f, hf, hfp, u, v)
+            if not math.isfinite(w):
+                continue                          # a hole casts no shadow
+            H = w - sigma * tan_theta
+            run_max = max(run_max, H)
+            run_min = min(run_min, H)
+
+
+@ngjit_inline
+def _bilinear(a, k, y, x):
+    """a[k] (ny, nx) at the float indices (y, x), clamped to its edges."""
+    ny = a.shape[1]
+    nx = a.shape[2]
+    x = min(max(x, 0.0), nx - 1.000001)
+    y = min(max(y, 0.0), ny - 1.000001)
+    i = int(y)
+    j = int(x)
+    fy = y - i
+    fx = x - j
+    return ((a[k, i, j] * (1.0 - fx) + a[k, i, j + 1] * fx) * (1.0 - fy)
+            + (a[k, i + 1, j] * (1.0 - fx) + a[k, i + 1, j + 1] * fx) * fy)
+
+
+@ngjit_parallel
+def shadow_lookup(gbuf, ebuf, width, light, hmax, hmin, layer, gu, gv, tan_theta, s0, t0, h,
+                  grazing, bias, shadow, lit):
+    """The shadow pass of one layer over its tiled G-buffer and edge buffer
+    (layout.py): shadow (H, W) 1 / 0 / between, NaN where nothing is seen, and lit =
+    1 - shadow (1 where nothing is seen), top row first. Attached where the seen
+    side's normal faces away from ``light`` (screen coordinates); cast where the
+    point lies under its own layer's horizon (hmax / hmin[layer], the sweeps') or
+    between another layer's extremes (the ray crosses it); the margin over one
+    texel's rise along the ray antialiases the edge (passes/shadow.py)."""
+    n_tiles = gbuf.shape[0]
+    H = gbuf.shape[1]
+    T = gbuf.shape[2]
+    n_layers = hmax.shape[0]
+    rise = abs(tan_theta) * h
+    width_m = max(rise, 1e-300)
+    for c in prange(width):
+        b = c // T
+        lane = c - b * T
+        for j in range(H):
+            i = H - 1 - j
+            x = ebuf[b, E_SEEN, j, lane]
+            s = x - E_FLAG if x > 0.5 * E_FLAG else x
+            if s == 0.0:
+                shadow[i, c] = np.nan
+                lit[i, c] = 1.0
+                continue
+            g = gbuf[b, j, lane]
+            nx = g[G_NX]
+            ny = g[G_NY]
+            nz = g[G_NZ]
+            nn = math.sqrt(nx * nx + ny * ny + nz * nz)
+            facing = s * (nx * light[0] + ny * light[1] + nz * light[2]) / nn if nn > 0.0 \
+                else 0.0
+            if not facing > 0.0:
+                shadow[i, c] = 1.0                 # attached
+                lit[i, c] = 0.0
+                continue
+            val = 0.0
+            if n_layers > 0:
+                u = g[G_U]
+                v = g[G_V]
+                along = u * gu + v * gv
+                ps = (along - s0) / h
+                pt = (-u * gv + v * gu - t0) / h
+                hp = g[G_W] - along * tan_theta
+                if s > 0.0:
+                    margin = _bilinear(hmax, layer, pt, ps) - hp
+                else:
+                    margin = hp - _bilinear(hmin, layer, pt, ps)
+                for m in range(n_layers):
+                    if m != layer:
+                        crossed = min(_bilinear(hmax, m, pt, ps) - hp,
+                                      hp - _bilinear(hmin, m, pt, ps))
+                        margin = max(margin, crossed)
+                bs = bias * rise if facing < grazing else 0.0
+                val = min(max((margin - bs) / width_m + 0.5, 0.0), 1.0)
+            shadow[i, c] = val
+            lit[i, c] = 1.0 - val

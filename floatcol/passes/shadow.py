@@ -1,0 +1,106 @@
+"""The shadow pass (Gordon section 6.2): which seen points the light does not reach.
+
+After the geometry pass of a layer, for a directional light L (a direction in the
+box's (u, v, w)):
+
+- **attached shadow**: the seen side faces away from the light, (side N) . L <= 0;
+- **cast shadow** (section 6.2.1's shadow texture): the floating-horizon sweeps of
+  kernels/shadow.py over the domain along the light's ground direction, at about one
+  texel per pixel of the picture, give each point's horizon seen from the light;
+  a seen point (u, v, w from the G-buffer) below the horizon interpolated at its
+  (u, v) is in shadow. Its margin below the horizon, over the height that one texel
+  of ground makes along the light's ray, antialiases the shadow's edge: a value
+  between 0 and 1 where the edge crosses the pixel.
+
+Returns ``shadow`` (H, W) float32: 1 in shadow, 0 lit, between at edges, NaN where
+nothing is seen; and ``lit`` = 1 - shadow (1 where nothing is seen), which the
+finishing pass multiplies the diffuse and specular light by.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..kernels.shadow import horizon_sweeps, shadow_lookup
+
+#: most texels of a shadow texture (its memory: two float64 planes, 64 MiB)
+MAX_TEXELS = 4_000_000
+#: texels per pixel of the picture along each axis
+TEXELS_PER_PIXEL = 1.0
+#: a light within this of the zenith (|ground| / |L|) casts no shadow of its own:
+#: the sweeps' lines would have no direction
+ZENITH = 1e-9
+#: the bias against a point's own surface where the light grazes it (its N.L below
+#: GRAZING), in texels of rise along the ray
+BIAS_TEXELS = 1.0
+GRAZING = 0.1
+
+
+def empty():
+    """The finishing pass's ``lit`` when shadows are off: all light everywhere."""
+    return np.zeros((0, 0), dtype=np.float32)
+
+
+class Texture:
+    """The shadow texture of a light over the layers' domains (section 6.2.1): for
+    each texel the highest and lowest H = f - sigma tan(theta) strictly beyond it
+    toward the light, over every layer (so layers shadow each other)."""
+
+    def __init__(self, drawn, scale, light_world):
+        lw = np.asarray(light_world, dtype=np.float64)
+        self.light = lw / np.linalg.norm(lw)
+        ground = math.hypot(self.light[0], self.light[1])
+        self.texels = 0
+        self.zenith = ground <= ZENITH
+        if self.zenith:
+            return
+        self.gu, self.gv = self.light[0] / ground, self.light[1] / ground
+        self.tan_theta = self.light[2] / ground
+        corners = np.array([(u, v) for _, ((ua, ub), (va, vb)) in drawn
+                            for u in (ua, ub) for v in (va, vb)])
+        sig = corners @ np.array([self.gu, self.gv])
+        tau = corners @ np.array([-self.gv, self.gu])
+        h = 1.0 / (scale * TEXELS_PER_PIXEL)
+        n_sig = int(math.ceil((sig.max() - sig.min()) / h)) + 3
+        n_tau = int(math.ceil((tau.max() - tau.min()) / h)) + 3
+        if n_sig * n_tau > MAX_TEXELS:
+            h *= math.sqrt(n_sig * n_tau / MAX_TEXELS)
+            n_sig = int(math.ceil((sig.max() - sig.min()) / h)) + 3
+            n_tau = int(math.ceil((tau.max() - tau.min()) / h)) + 3
+        self.h = h
+        self.s0 = sig.min() - h
+        self.t0 = tau.min() - h
+        # one texture per layer: a layer's own surface is a height field under which
+        # nothing of it lies (its horizon's maximum decides), while another layer
+        # shadows a point only where the ray crosses it (it may pass under a plate)
+        self.hmax, self.hmin = [], []
+        for surface, ((ua, ub), (va, vb)) in drawn:
+            a = np.empty((n_tau, n_sig))
+            b = np.empty((n_tau, n_sig))
+            kind, f, _, _, hf, hfp = surface.kernel_args()
+            horizon_sweeps(kind, f, hf, hfp, np.array([ua, ub, va, vb], dtype=np.float64),
+                           self.gu, self.gv, self.tan_theta, self.s0, self.t0, h, a, b)
+            self.hmax.append(np.maximum(a, -1e300))
+            self.hmin.append(np.minimum(b, 1e300))
+        self.hmax = np.stack(self.hmax)
+        self.hmin = np.stack(self.hmin)
+        self.texels = n_sig * n_tau * len(drawn)
+
+
+def shadow_pass(texture, view, geom, W, H, layer=0):
+    """(shadow, lit) of one layer: ``texture`` the light's (Texture), ``view`` the
+    layer's View (its light: the same one, in screen coordinates), ``geom`` its
+    Geometry (kernels/shadow.py shadow_lookup, in parallel over the columns)."""
+    shadow = np.empty((H, W), dtype=np.float32)
+    lit = np.empty((H, W), dtype=np.float32)
+    light = np.asarray(view.light, dtype=np.float64)
+    if texture.zenith:
+        none = np.zeros((0, 1, 1))
+        shadow_lookup(geom.gbuf, geom.ebuf, W, light, none, none, layer, 0.0, 0.0, 0.0, 0.0,
+                      0.0, 1.0, GRAZING, BIAS_TEXELS, shadow, lit)
+    else:
+        shadow_lookup(geom.gbuf, geom.ebuf, W, light, texture.hmax, texture.hmin, layer,
+                      texture.gu, texture.gv, texture.tan_theta, texture.s0, texture.t0,
+                      texture.h, GRAZING, BIAS_TEXELS, shadow, lit)
+    return shadow, lit

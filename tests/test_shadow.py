@@ -1,0 +1,163 @@
+"""Shadows (Gordon section 6.2): attached and cast, against the reference ray caster's
+shadow rays (tests/reference.py shadow_rays, which shares no code with
+passes/shadow.py) and an analytic outline.
+
+Measured agreement of the lit/shadow state (shadow >= 0.5) on the pixels both see,
+160x120, elev 35, azim 20 (2026-12-03; the bounds below leave a margin):
+
+    surface          projection   sun 315/25   120/10   45/60
+    exp(-u^2-v^2)    ortho          99.85 %    99.86 %  100 %
+                     persp          99.88 %    99.84 %  100 %
+    3 sin(u cos v)   ortho          99.71 %    99.29 %  99.42 %
+                     persp          99.80 %    99.52 %  99.65 %
+    sin u cos v      ortho          99.49 %    99.89 %  100 %
+                     persp          99.66 %    99.93 %  100 %
+    u^2 - v^2        ortho          98.88 %    99.56 %  99.97 %
+                     persp          99.71 %    99.83 %  100 %
+
+The misses lie along the terminator (|N.L| < 0.01: the G-buffer's interpolated
+normal against the exact one) and along the edges of cast shadows (a texel wide).
+"""
+import numpy as np
+import pytest
+
+import floatcol as fc
+from conftest import reference_for
+from reference import numpy_surface, shadow_rays
+
+CASES = [("exp(-u*u-v*v)", (-3, 3), (-3, 3), 0.995),
+         ("3*sin(u*cos(v))", (-5, 5), (-5, 5), 0.99),
+         ("sin(u)*cos(v)", (-5, 5), (-5, 5), 0.992),
+         ("u**2 - v**2", (-2, 2), (-2, 2), 0.985)]
+
+
+def _agreement(expr, U, V, proj, az, alt, size=(160, 120), elev=35, azim=20):
+    r = fc.render(expr, u=U, v=V, size=size, projection=proj, elev=elev, azim=azim,
+                  lightsource=(az, alt), shadows=True)
+    ref = reference_for(r, expr, U, V, elev, azim, proj)
+    rs = shadow_rays(numpy_surface(expr), ref, U, V, fc.Light.sun(az, alt).direction)
+    both = (r.side != 0) & (ref.side == r.side)
+    return ((r.shadow[both] >= 0.5) == (rs[both] >= 0.5)).mean(), r, rs, both
+
+
+@pytest.mark.parametrize("expr,U,V,bound", CASES)
+@pytest.mark.parametrize("proj", ["orthographic", "perspective"])
+def test_shadows_agree_with_shadow_rays(expr, U, V, bound, proj):
+    for az, alt in ((315, 25), (120, 10)):
+        agree, r, rs, both = _agreement(expr, U, V, proj, az, alt)
+        assert agree >= bound, (az, alt, agree)
+        # the same amount of shadow, within a percent of the pixels
+        assert abs(np.mean(r.shadow[both] >= 0.5) - np.mean(rs[both])) < 0.015
+
+
+def test_a_bumps_shadow_on_a_plane_has_its_analytic_outline():
+    """A hemisphere of radius 1 on the plane w = 0 under a sun at altitude 30 deg from
+    the +u direction: its shadow on the plane is the disc's shadow, the union of the
+    unit disc and the ellipse-capped strip behind it, reaching u = -1/tan(30 deg) from
+    the centre along the ground (the top's shadow) and |v| <= 1 across."""
+    expr = "Piecewise((sqrt(1 - u**2 - v**2), u**2 + v**2 < 1), (0, True))"
+    r = fc.render(expr, u=(-4, 2), v=(-2, 2), size=(300, 200), elev=89.9, azim=0,
+                  lightsource=(90, 30), shadows=True, antialias=False)
+    plane = (r.side != 0) & (np.abs(r.w) < 1e-6)
+    u, v = r.u[plane], r.v[plane]
+    s = r.shadow[plane] >= 0.5
+    # a point (u, v) of the plane is shadowed iff the ray toward the sun, rising
+    # tan(30 deg) per unit of -u ... going to +u, meets the sphere: its distance to
+    # the centre's line is below the sphere's radius at that height
+    t = np.tan(np.radians(30))
+    # the ray p + s (1, 0, t) hits the unit sphere iff (u + s)^2 + v^2 + (t s)^2 < 1
+    # for some s > 0: the discriminant of s^2 (1 + t^2) + 2 u s + u^2 + v^2 - 1
+    disc = u ** 2 - (1 + t ** 2) * (u ** 2 + v ** 2 - 1)
+    want = (disc > 0) & (u < 0) | (u ** 2 + v ** 2 < 1)
+    near_edge = np.abs(disc) < 0.08                      # within about a pixel
+    assert (s[~near_edge] == want[~near_edge]).mean() > 0.999
+    assert want.sum() > 1000
+
+
+def test_a_hole_casts_no_shadow_and_a_wall_does():
+    sun = dict(lightsource=(90, 20), shadows=True, size=(160, 120), elev=60, azim=10)
+    # a tall block that is a hole: nothing on the plane behind it is shadowed
+    hole = fc.render("Piecewise((nan, Abs(u) < 0.5), (0, True))", u=(-3, 3), v=(-2, 2), **sun)
+    seen = hole.side != 0
+    assert np.nanmax(hole.shadow[seen]) < 0.5
+    # the same block as a wall of height 2: the plane at -u of it is in shadow
+    wall = fc.render("Piecewise((2, Abs(u) < 0.5), (0, True))", u=(-3, 3), v=(-2, 2), **sun)
+    behind = (wall.side != 0) & (np.abs(wall.w) < 1e-6) & (wall.u < -0.6) & (wall.u > -0.5 - 2 / np.tan(np.radians(20)) + 0.2)
+    assert behind.sum() > 200
+    assert (wall.shadow[behind] >= 0.5).mean() > 0.98
+
+
+def test_surfaces_shadow_each_other():
+    """A floating square plate w = 1 over a plane w = 0: the plate's shadow falls on
+    the plane, which the plate alone does not cast on a plane of its own."""
+    plate = ("1 + 0*u", (-0.5, 0.5), (-0.5, 0.5))
+    ground = ("0*u", (-3, 3), (-3, 3))
+    kw = dict(size=(160, 120), elev=70, azim=15, lightsource=(90, 45), shadows=True)
+    r = fc.render_many([ground, plate], **kw)
+    on_ground = (r.stats["surface"] == 0) & (r.side != 0)
+    u, v = r.u[on_ground], r.v[on_ground]
+    # the plate's shadow on the ground: the square shifted by -1/tan(45 deg) in u
+    inside = (np.abs(u + 1.0) < 0.45) & (np.abs(v) < 0.45)
+    outside = (np.abs(u + 1.0) > 0.55) | (np.abs(v) > 0.55)
+    assert inside.sum() > 50
+    assert (r.shadow[on_ground][inside] >= 0.5).all()
+    assert (r.shadow[on_ground][outside] < 0.5).mean() > 0.99
+    # and the order of the surfaces does not matter
+    r2 = fc.render_many([plate, ground], **kw)
+    assert np.array_equal(np.isnan(r.shadow), np.isnan(r2.shadow))
+    assert np.nanmax(np.abs(r.shadow - r2.shadow)) < 1e-6
+
+
+def test_shadowed_points_get_ambient_light_only():
+    kw = dict(u=(-5, 5), v=(-5, 5), size=(120, 90), lightsource=(315, 25), ambient=0.3,
+              specular=0.0)
+    r = fc.render("sin(u)*cos(v)", shadows=True, **kw)
+    dark = r.shadow == 1.0
+    assert dark.sum() > 500
+    assert np.allclose(r.intensity[dark], 0.3, atol=1e-6)
+    lit = r.shadow == 0.0
+    assert (r.intensity[lit] > 0.3).mean() > 0.99
+    # without shadows the same light lights both (|L.N|) and shadows nothing
+    r0 = fc.render("sin(u)*cos(v)", **kw)
+    assert r0.shadow is None
+    assert (r0.intensity[dark] > 0.3).mean() > 0.5
+
+
+def test_shadow_edges_are_antialiased_and_nan_where_nothing_is_seen():
+    r = fc.render("exp(-u*u-v*v)", u=(-3, 3), v=(-3, 3), size=(160, 120),
+                  lightsource=(315, 20), shadows=True, elev=50)
+    assert np.isnan(r.shadow[r.side == 0]).all()
+    s = r.shadow[r.side != 0]
+    between = (s > 0.02) & (s < 0.98)
+    assert 10 < between.sum() < 0.1 * s.size            # along the edges only
+
+
+@pytest.mark.parametrize("kw,message", [
+    (dict(shading="lambert", shadows=True), "lights from the viewpoint"),
+    (dict(lightsource="north"), "lightsource must be"),
+    (dict(lightsource=(315, 25), light=(1, 0, 0)), "either lightsource or light"),
+])
+def test_shadow_options_say_what_to_fix(kw, message):
+    with pytest.raises(ValueError, match=message):
+        fc.render("u*v", size=(20, 15), **kw)
+
+
+def test_the_cli_and_plot_surface_take_the_sun(tmp_path):
+    from floatcol.cli import main
+    out = tmp_path / "s.png"
+    assert main(["render", "sin(x)*cos(y)", "--x=-5:5", "--y=-5:5", "--light", "315/25",
+                 "--shadows", "--size", "80x60", "-o", str(out)]) == 0
+    assert out.exists()
+    p = fc.plot_surface("sin(x)*cos(y)", ("x", -5, 5), ("y", -5, 5), lightsource=(315, 25),
+                        shadows=True, size=(80, 60))
+    assert p.draw().shadow is not None
+
+
+def test_a_moving_sun_in_an_animation():
+    a = fc.animate("exp(-x**2-y**2)*(1 + 0*t)", ("x", -3, 3), ("y", -3, 3), t=(0, 180),
+                   frames=3, size=(64, 48), lightsource=lambda t: (t, 30), shadows=True,
+                   progress=False)
+    frames = [np.asarray(f) for f in a.frames]
+    # the bump's shadow turns with the sun: the frames differ
+    assert not np.array_equal(frames[0], frames[1])
+    assert not np.array_equal(frames[1], frames[2])

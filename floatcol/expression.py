@@ -152,8 +152,6 @@ def parse(text, names=()):
     """The sympy expression of the formula ``text`` (a str), in the variables
     ``names`` (plain sympy Symbols; other names become Symbols too, for the caller to
     judge). Never evaluates the text. ValueError says what is wrong and where."""
-    import sympy as sp
-
     if not isinstance(text, str):
         raise ValueError(f"a formula must be a string, got {type(text).__name__}")
     if len(text) > MAX_LENGTH:

@@ -17,8 +17,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 #: the key light of the default shading: from the upper left, toward the viewer
 DEFAULT_LIGHT = (-0.45, 0.55, -1.0)
 KINDS = ("headlight", "key", "directional")

@@ -9,7 +9,6 @@ elevation ``elev``; :func:`floatcol.render` keeps the paper's angles, and
 from __future__ import annotations
 
 import inspect
-import math
 
 import numpy as np
 from matplotlib.cm import ScalarMappable as _ScalarMappable

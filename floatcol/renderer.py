@@ -91,7 +91,7 @@ def _shadow_texture(light, camera, quality, drawn, view):
         return None
     from .view import _number
     direction = light.world_direction(_number("elev", camera.elev), _number("azim", camera.azim))
-    return shadows.Texture(drawn, view.scale, direction)
+    return shadows.Texture(drawn, view, direction)
 
 
 def _screen_light(light, elev, azim):

@@ -95,6 +95,11 @@ def case(rng: random.Random) -> dict:
             kw[name] = rng.choice(values)
     if rng.random() < 0.1:
         kw["vmin"], kw["vmax"] = rng.choice([[0, 1], [1, 0], [math.nan, 1], [-1e300, 1e300]])
+    if rng.random() < 0.25:
+        kw["shadows"] = True
+        if rng.random() < 0.8:
+            kw["lightsource"] = rng.choice([[rng.uniform(0, 360), rng.uniform(-10, 90)],
+                                            [0, 90], [45, 0], [math.nan, 30], [10, -90]])
     return {"expr": expression(rng), "kwargs": kw}
 
 

@@ -21,27 +21,33 @@ import math
 import numpy as np
 from numba import prange
 
-from ._jit import ngjit_inline, ngjit_parallel
-from .layout import E_FLAG, E_SEEN, G_NX, G_NY, G_NZ, G_U, G_V, G_W
+from ._jit import array_ptr, ngjit_inline, ngjit_parallel
+from .layout import E_FLAG, E_SEEN, G_NX, G_NY, G_NZ, G_U, G_V, G_W, HFP_CW, HFP_IU, HFP_IV
 from .sample import surface_value
+
+#: "no horizon": finite, so that interpolating it with a real height stays finite
+NONE = 1e300
 
 
 @ngjit_parallel
-def horizon_sweeps(kind, f, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h, hmax, hmin):
-    """hmax[k, i] (hmin[k, i]): the highest (lowest) H = f - sigma tan_theta on line k
-    strictly beyond sample i toward the light, -inf (+inf) where there is none. Line
+def horizon_sweeps(kind, f, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h, hmax, hmin,
+                   layer):
+    """hmax[layer, k, i] (hmin[...]): the highest (lowest) H = f - sigma tan_theta on
+    line k strictly beyond sample i toward the light, -NONE (+NONE) where there is none
+    (finite, so that the lookup's interpolation stays finite). Line
     k's sample i lies at sigma = s0 + i h, tau = tau0 + k h, that is at (u, v) =
     sigma (gu, gv) + tau (-gv, gu); domain = (ua, ub, va, vb): outside it, and at
     holes, nothing casts."""
-    n_lines, n = hmax.shape
+    n_lines = hmax.shape[1]
+    n = hmax.shape[2]
     ua, ub, va, vb = domain[0], domain[1], domain[2], domain[3]
     for k in prange(n_lines):
         tau = tau0 + k * h
-        run_max = -np.inf
-        run_min = np.inf
+        run_max = -NONE
+        run_min = NONE
         for i in range(n - 1, -1, -1):          # from the light's side
-            hmax[k, i] = run_max
-            hmin[k, i] = run_min
+            hmax[layer, k, i] = run_max
+            hmin[layer, k, i] = run_min
             sigma = s0 + i * h
             u = sigma * gu - tau * gv
             v = sigma * gv + tau * gu
@@ -80,7 +86,6 @@ def shadow_lookup(gbuf, ebuf, width, light, hmax, hmin, layer, gu, gv, tan_theta
     point lies under its own layer's horizon (hmax / hmin[layer], the sweeps') or
     between another layer's extremes (the ray crosses it); the margin over one
     texel's rise along the ray antialiases the edge (passes/shadow.py)."""
-    n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]
     n_layers = hmax.shape[0]
@@ -129,3 +134,45 @@ def shadow_lookup(gbuf, ebuf, width, light, hmax, hmin, layer, gu, gv, tan_theta
                 val = min(max((margin - bs) / width_m + 0.5, 0.0), 1.0)
             shadow[i, c] = val
             lit[i, c] = 1.0 - val
+
+
+@ngjit_parallel
+def horizon_sweeps_batch(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h, hmax,
+                         hmin, layer):
+    """horizon_sweeps with f evaluated a line at a time by the batch evaluator fb (SIMD
+    code, kernels/_jit.py BATCH_SIG); a point it leaves NaN is evaluated again by f
+    alone, which alone decides holes. A function surface only."""
+    n_lines = hmax.shape[1]
+    n = hmax.shape[2]
+    ua, ub, va, vb = domain[0], domain[1], domain[2], domain[3]
+    iu = hfp[HFP_IU]
+    iv = hfp[HFP_IV]
+    cw = hfp[HFP_CW]
+    for k in prange(n_lines):
+        tau = tau0 + k * h
+        us = np.empty(n)
+        vs = np.empty(n)
+        out = np.empty(3 * n)
+        for i in range(n):
+            sigma = s0 + i * h
+            us[i] = (sigma * gu - tau * gv) * iu
+            vs[i] = (sigma * gv + tau * gu) * iv
+        fb(array_ptr(us, 0), array_ptr(vs, 0), hfp[0], array_ptr(out, 0), n)
+        run_max = -NONE
+        run_min = NONE
+        for i in range(n - 1, -1, -1):          # from the light's side
+            hmax[layer, k, i] = run_max
+            hmin[layer, k, i] = run_min
+            sigma = s0 + i * h
+            u = sigma * gu - tau * gv
+            v = sigma * gv + tau * gu
+            if u < ua or u > ub or v < va or v > vb:
+                continue
+            w = out[i] * cw
+            if not math.isfinite(w):
+                w = surface_value(kind, f, hf, hfp, u, v)
+                if not math.isfinite(w):
+                    continue                      # a hole casts no shadow
+            H = w - sigma * tan_theta
+            run_max = max(run_max, H)
+            run_min = min(run_min, H)

@@ -22,7 +22,9 @@ import math
 
 import numpy as np
 
-from ..kernels.shadow import horizon_sweeps, shadow_lookup
+from ..kernels.layout import SURF_FUNCTION
+from ..kernels.shadow import horizon_sweeps, horizon_sweeps_batch, shadow_lookup
+from .geometry import BATCH_MIN_SAMPLES
 
 #: most texels of a shadow texture (its memory: two float64 planes, 64 MiB)
 MAX_TEXELS = 4_000_000
@@ -47,7 +49,7 @@ class Texture:
     each texel the highest and lowest H = f - sigma tan(theta) strictly beyond it
     toward the light, over every layer (so layers shadow each other)."""
 
-    def __init__(self, drawn, scale, light_world):
+    def __init__(self, drawn, view, light_world):
         lw = np.asarray(light_world, dtype=np.float64)
         self.light = lw / np.linalg.norm(lw)
         ground = math.hypot(self.light[0], self.light[1])
@@ -61,7 +63,11 @@ class Texture:
                             for u in (ua, ub) for v in (va, vb)])
         sig = corners @ np.array([self.gu, self.gv])
         tau = corners @ np.array([-self.gv, self.gu])
-        h = 1.0 / (scale * TEXELS_PER_PIXEL)
+        # a pixel's footprint on the ground: 1 / scale, in perspective at the nearest
+        # point of the surface (as the sampling planes' step)
+        h = 1.0 / (view.scale * TEXELS_PER_PIXEL)
+        if not view.orthographic:
+            h *= max(view.q_near / view.d1, 1.0)
         n_sig = int(math.ceil((sig.max() - sig.min()) / h)) + 3
         n_tau = int(math.ceil((tau.max() - tau.min()) / h)) + 3
         if n_sig * n_tau > MAX_TEXELS:
@@ -74,17 +80,22 @@ class Texture:
         # one texture per layer: a layer's own surface is a height field under which
         # nothing of it lies (its horizon's maximum decides), while another layer
         # shadows a point only where the ray crosses it (it may pass under a plate)
-        self.hmax, self.hmin = [], []
-        for surface, ((ua, ub), (va, vb)) in drawn:
-            a = np.empty((n_tau, n_sig))
-            b = np.empty((n_tau, n_sig))
+        self.hmax = np.empty((len(drawn), n_tau, n_sig))
+        self.hmin = np.empty((len(drawn), n_tau, n_sig))
+        for layer, (surface, ((ua, ub), (va, vb))) in enumerate(drawn):
+            domain = np.array([ua, ub, va, vb], dtype=np.float64)
+            # f a line at a time in SIMD code where the texture repays the evaluator's
+            # compile (as the column pass's batches: geometry.BATCH_MIN_SAMPLES)
+            fb = (surface.batch() if n_sig * n_tau >= BATCH_MIN_SAMPLES
+                  and surface.kind == SURF_FUNCTION else None)
             kind, f, _, _, hf, hfp = surface.kernel_args()
-            horizon_sweeps(kind, f, hf, hfp, np.array([ua, ub, va, vb], dtype=np.float64),
-                           self.gu, self.gv, self.tan_theta, self.s0, self.t0, h, a, b)
-            self.hmax.append(np.maximum(a, -1e300))
-            self.hmin.append(np.minimum(b, 1e300))
-        self.hmax = np.stack(self.hmax)
-        self.hmin = np.stack(self.hmin)
+            if fb is not None:
+                horizon_sweeps_batch(kind, f, fb, hf, hfp, domain, self.gu, self.gv,
+                                     self.tan_theta, self.s0, self.t0, h, self.hmax, self.hmin,
+                                     layer)
+            else:
+                horizon_sweeps(kind, f, hf, hfp, domain, self.gu, self.gv, self.tan_theta,
+                               self.s0, self.t0, h, self.hmax, self.hmin, layer)
         self.texels = n_sig * n_tau * len(drawn)
 
 

@@ -29,38 +29,6 @@ from .sample import surface_value
 NONE = 1e300
 
 
-@ngjit_parallel
-def horizon_sweeps(kind, f, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h, hmax, hmin,
-                   layer):
-    """hmax[layer, k, i] (hmin[...]): the highest (lowest) H = f - sigma tan_theta on
-    line k strictly beyond sample i toward the light, -NONE (+NONE) where there is none
-    (finite, so that the lookup's interpolation stays finite). Line
-    k's sample i lies at sigma = s0 + i h, tau = tau0 + k h, that is at (u, v) =
-    sigma (gu, gv) + tau (-gv, gu); domain = (ua, ub, va, vb): outside it, and at
-    holes, nothing casts."""
-    n_lines = hmax.shape[1]
-    n = hmax.shape[2]
-    ua, ub, va, vb = domain[0], domain[1], domain[2], domain[3]
-    for k in prange(n_lines):
-        tau = tau0 + k * h
-        run_max = -NONE
-        run_min = NONE
-        for i in range(n - 1, -1, -1):          # from the light's side
-            hmax[layer, k, i] = run_max
-            hmin[layer, k, i] = run_min
-            sigma = s0 + i * h
-            u = sigma * gu - tau * gv
-            v = sigma * gv + tau * gu
-            if u < ua or u > ub or v < va or v > vb:
-                continue
-            w = surface_value(kind, f, hf, hfp, u, v)
-            if not math.isfinite(w):
-                continue                          # a hole casts no shadow
-            H = w - sigma * tan_theta
-            run_max = max(run_max, H)
-            run_min = min(run_min, H)
-
-
 @ngjit_inline
 def _bilinear(a, k, y, x):
     """a[k] (ny, nx) at the float indices (y, x), clamped to its edges."""
@@ -137,11 +105,16 @@ def shadow_lookup(gbuf, ebuf, width, light, hmax, hmin, layer, gu, gv, tan_theta
 
 
 @ngjit_parallel
-def horizon_sweeps_batch(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h, hmax,
-                         hmin, layer):
-    """horizon_sweeps with f evaluated a line at a time by the batch evaluator fb (SIMD
-    code, kernels/_jit.py BATCH_SIG); a point it leaves NaN is evaluated again by f
-    alone, which alone decides holes. A function surface only."""
+def horizon_sweeps(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h, hmax, hmin,
+                   layer):
+    """hmax[layer, k, i] (hmin[...]): the highest (lowest) H = f - sigma tan_theta on
+    line k strictly beyond sample i toward the light, -NONE (+NONE) where there is none
+    (finite, so that the lookup's interpolation stays finite). Line k's sample i lies at
+    sigma = s0 + i h, tau = tau0 + k h, that is at (u, v) = sigma (gu, gv) + tau (-gv,
+    gu); domain = (ua, ub, va, vb): outside it, and at holes, nothing casts. f is
+    evaluated a line at a time by the batch evaluator fb (SIMD code, kernels/_jit.py
+    BATCH_SIG; surface.py's stand-in leaves every point NaN); a point it leaves NaN is
+    evaluated again by f alone, which alone decides holes."""
     n_lines = hmax.shape[1]
     n = hmax.shape[2]
     ua, ub, va, vb = domain[0], domain[1], domain[2], domain[3]

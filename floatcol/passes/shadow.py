@@ -23,7 +23,7 @@ import math
 import numpy as np
 
 from ..kernels.layout import SURF_FUNCTION
-from ..kernels.shadow import horizon_sweeps, horizon_sweeps_batch, shadow_lookup
+from ..kernels.shadow import horizon_sweeps, shadow_lookup
 from .geometry import BATCH_MIN_SAMPLES
 
 #: most texels of a shadow texture (its memory: two float64 planes, 64 MiB)
@@ -88,14 +88,9 @@ class Texture:
             # compile (as the column pass's batches: geometry.BATCH_MIN_SAMPLES)
             fb = (surface.batch() if n_sig * n_tau >= BATCH_MIN_SAMPLES
                   and surface.kind == SURF_FUNCTION else None)
-            kind, f, _, _, hf, hfp = surface.kernel_args()
-            if fb is not None:
-                horizon_sweeps_batch(kind, f, fb, hf, hfp, domain, self.gu, self.gv,
-                                     self.tan_theta, self.s0, self.t0, h, self.hmax, self.hmin,
-                                     layer)
-            else:
-                horizon_sweeps(kind, f, hf, hfp, domain, self.gu, self.gv, self.tan_theta,
-                               self.s0, self.t0, h, self.hmax, self.hmin, layer)
+            kind, f, _, fb, hf, hfp = surface.kernel_args(fb)
+            horizon_sweeps(kind, f, fb, hf, hfp, domain, self.gu, self.gv, self.tan_theta,
+                           self.s0, self.t0, h, self.hmax, self.hmin, layer)
         self.texels = n_sig * n_tau * len(drawn)
 
 

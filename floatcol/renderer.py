@@ -86,9 +86,12 @@ def _prepare(layer, scene):
 
 def _shadow_texture(light, camera, quality, drawn, view):
     """The light's shadow texture over every layer (passes/shadow.py), or None where
-    the light casts no shadows (or the picture is a line drawing)."""
-    if not light.shadows or quality.method != "column":
+    the light casts no shadows."""
+    if not light.shadows:
         return None
+    if quality.method != "column":
+        raise ValueError("shadows need shaded pictures: method='column' (a line drawing "
+                         "has no light)")
     from .view import _number
     direction = light.world_direction(_number("elev", camera.elev), _number("azim", camera.azim))
     return shadows.Texture(drawn, view, direction)

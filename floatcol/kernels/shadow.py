@@ -44,9 +44,37 @@ def _bilinear(a, k, y, x):
             + (a[k, i + 1, j] * (1.0 - fx) + a[k, i + 1, j + 1] * fx) * fy)
 
 
+@ngjit_inline
+def _own_depth(hext, hsurf, k, y, x, upper):
+    """How far below its own layer's horizon the surface lies around (y, x): the
+    texels' own depths (hmax - H for the upper side, H - hmin for the lower) averaged
+    bilinearly over the neighbours where the surface is (NaN where none is). Depths,
+    not horizons, are interpolated: a lit slope's neighbours are all above their own
+    horizons, whatever their heights."""
+    ny = hsurf.shape[1]
+    nx = hsurf.shape[2]
+    x = min(max(x, 0.0), nx - 1.000001)
+    y = min(max(y, 0.0), ny - 1.000001)
+    i = int(y)
+    j = int(x)
+    fy = y - i
+    fx = x - j
+    acc = 0.0
+    wsum = 0.0
+    for di in range(2):
+        for dj in range(2):
+            hs = hsurf[k, i + di, j + dj]
+            if hs == hs:
+                wgt = (fy if di else 1.0 - fy) * (fx if dj else 1.0 - fx)
+                d = hext[k, i + di, j + dj] - hs if upper else hs - hext[k, i + di, j + dj]
+                acc += wgt * d
+                wsum += wgt
+    return acc / wsum if wsum > 1e-9 else np.nan
+
+
 @ngjit_parallel
-def shadow_lookup(gbuf, ebuf, width, light, hmax, hmin, layer, gu, gv, tan_theta, s0, t0, h,
-                  grazing, bias, shadow, lit):
+def shadow_lookup(gbuf, ebuf, width, light, hmax, hmin, hsurf, layer, gu, gv, tan_theta, s0,
+                  t0, h, grazing, bias, shadow, lit):
     """The shadow pass of one layer over its tiled G-buffer and edge buffer
     (layout.py): shadow (H, W) 1 / 0 / between, NaN where nothing is seen, and lit =
     1 - shadow (1 where nothing is seen), top row first. Attached where the seen
@@ -89,10 +117,12 @@ def shadow_lookup(gbuf, ebuf, width, light, hmax, hmin, layer, gu, gv, tan_theta
                 ps = (along - s0) / h
                 pt = (-u * gv + v * gu - t0) / h
                 hp = g[G_W] - along * tan_theta
-                if s > 0.0:
-                    margin = _bilinear(hmax, layer, pt, ps) - hp
-                else:
-                    margin = hp - _bilinear(hmin, layer, pt, ps)
+                margin = _own_depth(hmax if s > 0.0 else hmin, hsurf, layer, pt, ps, s > 0.0)
+                if margin != margin:            # no texel of the surface around: the horizon
+                    if s > 0.0:
+                        margin = _bilinear(hmax, layer, pt, ps) - hp
+                    else:
+                        margin = hp - _bilinear(hmin, layer, pt, ps)
                 for m in range(n_layers):
                     if m != layer:
                         crossed = min(_bilinear(hmax, m, pt, ps) - hp,
@@ -106,7 +136,7 @@ def shadow_lookup(gbuf, ebuf, width, light, hmax, hmin, layer, gu, gv, tan_theta
 
 @ngjit_parallel
 def horizon_sweeps(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h, hmax, hmin,
-                   layer):
+                   hsurf, layer):
     """hmax[layer, k, i] (hmin[...]): the highest (lowest) H = f - sigma tan_theta on
     line k strictly beyond sample i toward the light, -NONE (+NONE) where there is none
     (finite, so that the lookup's interpolation stays finite). Line k's sample i lies at
@@ -114,7 +144,8 @@ def horizon_sweeps(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h,
     gu); domain = (ua, ub, va, vb): outside it, and at holes, nothing casts. f is
     evaluated a line at a time by the batch evaluator fb (SIMD code, kernels/_jit.py
     BATCH_SIG; surface.py's stand-in leaves every point NaN); a point it leaves NaN is
-    evaluated again by f alone, which alone decides holes."""
+    evaluated again by f alone, which alone decides holes. hsurf[layer, k, i]: the
+    sample's own H (NaN outside the domain and at holes)."""
     n_lines = hmax.shape[1]
     n = hmax.shape[2]
     ua, ub, va, vb = domain[0], domain[1], domain[2], domain[3]
@@ -136,6 +167,7 @@ def horizon_sweeps(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h,
         for i in range(n - 1, -1, -1):          # from the light's side
             hmax[layer, k, i] = run_max
             hmin[layer, k, i] = run_min
+            hsurf[layer, k, i] = np.nan
             sigma = s0 + i * h
             u = sigma * gu - tau * gv
             v = sigma * gv + tau * gu
@@ -147,5 +179,6 @@ def horizon_sweeps(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h,
                 if not math.isfinite(w):
                     continue                      # a hole casts no shadow
             H = w - sigma * tan_theta
+            hsurf[layer, k, i] = H
             run_max = max(run_max, H)
             run_min = min(run_min, H)

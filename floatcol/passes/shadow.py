@@ -36,7 +36,7 @@ ZENITH = 1e-9
 #: the bias against a point's own surface where the light grazes it (its N.L below
 #: GRAZING), in texels of rise along the ray
 BIAS_TEXELS = 1.0
-GRAZING = 0.1
+GRAZING = 0.03
 
 
 def empty():
@@ -46,8 +46,10 @@ def empty():
 
 class Texture:
     """The shadow texture of a light over the layers' domains (section 6.2.1): for
-    each texel the highest and lowest H = f - sigma tan(theta) strictly beyond it
-    toward the light, over every layer (so layers shadow each other)."""
+    each layer and texel the highest and lowest H = f - sigma tan(theta) strictly
+    beyond it toward the light (``hmax``, ``hmin``: (layers, lines, samples)); a point
+    is shadowed by its own layer's horizon, and by another layer where the ray crosses
+    it (kernels/shadow.py shadow_lookup), so layers shadow each other."""
 
     def __init__(self, drawn, view, light_world):
         lw = np.asarray(light_world, dtype=np.float64)
@@ -82,6 +84,7 @@ class Texture:
         # shadows a point only where the ray crosses it (it may pass under a plate)
         self.hmax = np.empty((len(drawn), n_tau, n_sig))
         self.hmin = np.empty((len(drawn), n_tau, n_sig))
+        self.hsurf = np.empty((len(drawn), n_tau, n_sig))
         for layer, (surface, ((ua, ub), (va, vb))) in enumerate(drawn):
             domain = np.array([ua, ub, va, vb], dtype=np.float64)
             # f a line at a time in SIMD code where the texture repays the evaluator's
@@ -90,7 +93,7 @@ class Texture:
                   and surface.kind == SURF_FUNCTION else None)
             kind, f, _, fb, hf, hfp = surface.kernel_args(fb)
             horizon_sweeps(kind, f, fb, hf, hfp, domain, self.gu, self.gv, self.tan_theta,
-                           self.s0, self.t0, h, self.hmax, self.hmin, layer)
+                           self.s0, self.t0, h, self.hmax, self.hmin, self.hsurf, layer)
         self.texels = n_sig * n_tau * len(drawn)
 
 
@@ -103,10 +106,10 @@ def shadow_pass(texture, view, geom, W, H, layer=0):
     light = np.asarray(view.light, dtype=np.float64)
     if texture.zenith:
         none = np.zeros((0, 1, 1))
-        shadow_lookup(geom.gbuf, geom.ebuf, W, light, none, none, layer, 0.0, 0.0, 0.0, 0.0,
-                      0.0, 1.0, GRAZING, BIAS_TEXELS, shadow, lit)
+        shadow_lookup(geom.gbuf, geom.ebuf, W, light, none, none, none, layer, 0.0, 0.0, 0.0,
+                      0.0, 0.0, 1.0, GRAZING, BIAS_TEXELS, shadow, lit)
     else:
-        shadow_lookup(geom.gbuf, geom.ebuf, W, light, texture.hmax, texture.hmin, layer,
-                      texture.gu, texture.gv, texture.tan_theta, texture.s0, texture.t0,
-                      texture.h, GRAZING, BIAS_TEXELS, shadow, lit)
+        shadow_lookup(geom.gbuf, geom.ebuf, W, light, texture.hmax, texture.hmin,
+                      texture.hsurf, layer, texture.gu, texture.gv, texture.tan_theta,
+                      texture.s0, texture.t0, texture.h, GRAZING, BIAS_TEXELS, shadow, lit)
     return shadow, lit

@@ -55,7 +55,7 @@ def cost():
             texels = r.stats["shadow_texels"]
             print(f"| {size[0]}x{size[1]} | {proj} | {b0:.1f} / {m0:.1f} | {b1:.1f} / {m1:.1f} "
                   f"| {100 * (b1 / b0 - 1):+.0f} % | {r.stats['shadow_seconds'] * 1e3:.1f} "
-                  f"| {texels} | {texels * 16 / 2**20:.1f} |")
+                  f"| {texels} | {texels * 24 / 2**20:.1f} |")
 
 
 CASES = [("2*exp(-((u-1)**2+v**2)) + exp(-((u+1.5)**2+(v-1)**2)/0.5)", (-4, 4), (-4, 4)),

@@ -26,7 +26,7 @@ from ..kernels.layout import SURF_FUNCTION
 from ..kernels.shadow import horizon_sweeps, shadow_lookup
 from .geometry import BATCH_MIN_SAMPLES
 
-#: most texels of a shadow texture (its memory: two float64 planes, 64 MiB)
+#: most texels of a shadow texture (its memory: three float64 planes a layer, 92 MiB)
 MAX_TEXELS = 4_000_000
 #: texels per pixel of the picture along each axis
 TEXELS_PER_PIXEL = 1.0

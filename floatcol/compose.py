@@ -9,7 +9,6 @@ hide each other correctly where they overlap or cross.
 """
 from __future__ import annotations
 
-from .camera import joint_box, joint_camera  # noqa: F401 (re-exported)
 from .passes.composite import composite  # noqa: F401 (public: fc.composite)
 from .renderer import render_scene
 from .result import Render

@@ -121,6 +121,10 @@ def screen_to_world_direction(d, elev, azim):
     return (x * cb + t * sb, -x * sb + t * cb, s)
 
 
+_LAMBERT = ("shading='lambert' lights from the viewpoint; leave light=None or use "
+            "shading='default'")
+
+
 def as_light(light, shading, lightsource=None, shadows=False):
     """render()'s ``light`` keyword as a Light: None is the shading's own (the key
     light for "default", the headlight for "lambert"), a Light as is, and a triple a
@@ -142,13 +146,11 @@ def as_light(light, shading, lightsource=None, shadows=False):
         light = Light(light.kind, light.direction, True)
     if isinstance(light, Light):
         if shading == "lambert" and light.kind != "headlight":
-            raise ValueError("shading='lambert' lights from the viewpoint; leave light=None "
-                             "or use shading='default'")
+            raise ValueError(_LAMBERT)
         return light
     if shading == "lambert":
         if light is not None:
-            raise ValueError("shading='lambert' lights from the viewpoint; leave light=None "
-                             "or use shading='default'")
+            raise ValueError(_LAMBERT)
         return Light.headlight()
     if light is None:
         return Light("key", DEFAULT_LIGHT)

@@ -22,6 +22,7 @@ import numpy as np
 from numba import prange
 
 from ._jit import array_ptr, ngjit_inline, ngjit_parallel
+from .index import floor_index
 from .layout import E_FLAG, E_SEEN, G_NX, G_NY, G_NZ, G_U, G_V, G_W, HFP_CW, HFP_IU, HFP_IV
 from .sample import surface_value
 
@@ -30,16 +31,18 @@ NONE = 1e300
 
 
 @ngjit_inline
+def _cell(a, y, x):
+    """(i, j, fy, fx): the texel cell of a[k] (ny, nx) holding the float indices (y, x),
+    clamped to its edges (index.py: defined for any double), and the place in it."""
+    i = min(max(floor_index(y), 0), a.shape[1] - 2)
+    j = min(max(floor_index(x), 0), a.shape[2] - 2)
+    return i, j, min(max(y - i, 0.0), 1.0), min(max(x - j, 0.0), 1.0)
+
+
+@ngjit_inline
 def _bilinear(a, k, y, x):
     """a[k] (ny, nx) at the float indices (y, x), clamped to its edges."""
-    ny = a.shape[1]
-    nx = a.shape[2]
-    x = min(max(x, 0.0), nx - 1.000001)
-    y = min(max(y, 0.0), ny - 1.000001)
-    i = int(y)
-    j = int(x)
-    fy = y - i
-    fx = x - j
+    i, j, fy, fx = _cell(a, y, x)
     return ((a[k, i, j] * (1.0 - fx) + a[k, i, j + 1] * fx) * (1.0 - fy)
             + (a[k, i + 1, j] * (1.0 - fx) + a[k, i + 1, j + 1] * fx) * fy)
 
@@ -51,14 +54,7 @@ def _own_depth(hext, hsurf, k, y, x, upper):
     bilinearly over the neighbours where the surface is (NaN where none is). Depths,
     not horizons, are interpolated: a lit slope's neighbours are all above their own
     horizons, whatever their heights."""
-    ny = hsurf.shape[1]
-    nx = hsurf.shape[2]
-    x = min(max(x, 0.0), nx - 1.000001)
-    y = min(max(y, 0.0), ny - 1.000001)
-    i = int(y)
-    j = int(x)
-    fy = y - i
-    fx = x - j
+    i, j, fy, fx = _cell(hsurf, y, x)
     acc = 0.0
     wsum = 0.0
     for di in range(2):

@@ -45,6 +45,8 @@ class Material:
     lower_color : the lower side's colour.
     ambient, specular, shininess : the light's terms (None: the shading's defaults).
     interpolation : "normal" (nis, per-pixel lighting) or "intensity" (iis, Gouraud).
+    opacity : in [0, 1]; below 1 every layer of the surface along a ray shows,
+        composited front to back (Gordon 6.5-6.6, passes/translucency.py).
     """
     shading: str = "default"
     cmap: Any = "viridis"
@@ -57,6 +59,7 @@ class Material:
     specular: float | None = None
     shininess: float | None = None
     interpolation: str = "normal"
+    opacity: float = 1.0
 
     def check(self):
         """Validate the fields (ValueError naming what to fix); returns self."""
@@ -65,6 +68,9 @@ class Material:
         if not isinstance(self.interpolation, str) or self.interpolation not in INTERPOLATIONS:
             raise ValueError("interpolation must be 'normal' (nis) or 'intensity' (iis), "
                              f"got {self.interpolation!r}")
+        if isinstance(self.opacity, bool):
+            raise ValueError(f"opacity must be a number in [0, 1], got {self.opacity!r}")
+        self.opacity = fraction("opacity", self.opacity)
         return self
 
     @property

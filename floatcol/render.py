@@ -34,7 +34,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            corrections=DEFAULT_CORRECTIONS, detect=None, jump_threshold=DEFAULT_JUMP,
            supersample_rate=DEFAULT_RATE, spline_tolerance=None,
            antialias=None, sampling="uniform", aspect="equal", box=None, lightsource=None,
-           shadows=False) -> Render:
+           shadows=False, opacity=1.0) -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -118,6 +118,15 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         light). ``Render.shadow`` says where (1 shadow, 0 lit, between at the
         antialiased edges, NaN where nothing is seen). The light is ``lightsource``,
         ``light`` or the default key light.
+    opacity : sections 6.5-6.6: below 1 the surface is translucent: every layer of it
+        along each pixel's ray (its hidden folds, its lower side) shows, lit and
+        coloured as the opaque surface would be, composited front to back.
+        ``intensity`` is then the composite sum_k a (1 - a)^k I_k of the layers'
+        intensities over black; ``side``, ``depth``, ``shadow`` and the G-buffer are
+        the nearest layer's, ``stats["layers"]`` the number of layers met at each
+        pixel. The default shading's antialiasing covers each layer's silhouettes
+        (the part of a pixel a layer covers along the column, and 3 sub-columns
+        across); 1 (default) is the opaque surface.
 
     Returns
     -------
@@ -135,7 +144,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         [Layer(expr, (u, v), Material(
             shading=shading, cmap=cmap, norm=norm, vmin=vmin, vmax=vmax, upper_color=upper_color,
             lower_color=lower_color, ambient=ambient, specular=specular, shininess=shininess,
-            interpolation=interpolation))],
+            interpolation=interpolation, opacity=opacity))],
         camera=Camera(size=size, elev=elev, azim=azim, projection=projection, d1=d1, d2=d2,
                       scale=scale, center=center, focal_length=focal_length, aspect=aspect,
                       box=box),

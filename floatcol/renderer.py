@@ -23,6 +23,7 @@ from .camera import fit
 from .light import as_light
 from .passes import antialias, finish, geometry, horizon, shadow as shadows
 from .passes.composite import composite as merge
+from .passes.translucency import render_translucent
 from .result import Render
 from .surface import as_surface, check_range
 from .view import nowhere_finite
@@ -59,6 +60,12 @@ def render_scene(scene, stacklevel=2, composite=False) -> Render:
     if background is None:
         background = default_background(quality.method, first.shading)
     texture = _shadow_texture(layers[0].light, scene.camera, quality, drawn, views[0])
+    if any(p.material.opacity < 1.0 for p in layers):
+        if quality.method != "column":
+            raise ValueError("opacity below 1 needs shaded pictures: method='column' (a line "
+                             "drawing has no layers to blend)")
+        return render_translucent(layers, views, drawn, box, quality, background, texture,
+                                  t_start)
     if not many:
         return _layer(layers[0], views[0], drawn[0], box, quality, background, t_start,
                       stacklevel + 1, texture)

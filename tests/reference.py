@@ -73,15 +73,9 @@ def bilinear_surface(z, u_rng, v_rng):
     return f, fu, fv
 
 
-def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1=None, d2=None,
-            scale=None, steps=1500, bisections=40, w_bound=None, center=(0.0, 0.0, 0.0),
-            wall_normal=None):
-    """Ray-cast the surface given as numpy (f, f_u, f_v). scale and, in perspective,
-    d1 and d2 must be given (take them from the render being checked); ``center`` is
-    the world point (u, v, w) at the screen origin. ``wall_normal(u, v) -> (n_u, n_v)``
-    shades hits on a discontinuity of f (where f still jumps across the final
-    bisection bracket) as a vertical wall with that ground normal."""
-    f, fu, fv = funcs
+def _rays(u_rng, v_rng, size, elev, azim, projection, d1, d2, scale, w_bound, center):
+    """Each pixel's ray (origin, direction; lam in [lam_lo, lam_hi] inside the domain's
+    prism, ``live`` where it meets it) and ``world``: screen (x, y, z) -> (u, w, v, t)."""
     W, H = size
     a, b = -np.radians(elev), np.radians(azim)
     ca, sa, cb, sb = np.cos(a), np.sin(a), np.cos(b), np.sin(b)
@@ -119,6 +113,23 @@ def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1
         lam_hi = np.where(par, np.where(inside, lam_hi, -np.inf), np.minimum(lam_hi, np.maximum(l1, l2)))
     live = lam_lo < lam_hi
     lam_hi = np.where(live, lam_hi, lam_lo)
+
+    return org, dirn, lam_lo, lam_hi, live, world
+
+
+def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1=None, d2=None,
+            scale=None, steps=1500, bisections=40, w_bound=None, center=(0.0, 0.0, 0.0),
+            wall_normal=None):
+    """Ray-cast the surface given as numpy (f, f_u, f_v). scale and, in perspective,
+    d1 and d2 must be given (take them from the render being checked); ``center`` is
+    the world point (u, v, w) at the screen origin. ``wall_normal(u, v) -> (n_u, n_v)``
+    shades hits on a discontinuity of f (where f still jumps across the final
+    bisection bracket) as a vertical wall with that ground normal."""
+    f, fu, fv = funcs
+    org, dirn, lam_lo, lam_hi, live, world = _rays(u_rng, v_rng, size, elev, azim, projection,
+                                                   d1, d2, scale, w_bound, center)
+    ortho = projection.startswith("ortho")
+    x0 = org[0]
 
     def g_at(lam):
         p = org + dirn * lam
@@ -227,3 +238,84 @@ def shadow_rays(funcs, ref, u_rng, v_rng, light, steps=2000, start=1e-4):
     out = np.full(ref.side.shape, np.nan)
     out[seen] = (attached | cast).astype(float)
     return out
+
+
+def layer_hits(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1=None,
+               d2=None, scale=None, steps=1500, bisections=40, w_bound=None,
+               center=(0.0, 0.0, 0.0)):
+    """Every crossing of each pixel's ray with the surface (not only the first, as
+    raycast): the sign changes of g = w_ray - f along the marched ray, each refined by
+    bisection. Returns (pixel index into the (H, W) picture raveled, screen depth,
+    lambert intensity |L.N| with L toward the viewpoint, side +1/-1), one entry a
+    crossing."""
+    f, fu, fv = funcs
+    org, dirn, lam_lo, lam_hi, live, world = _rays(u_rng, v_rng, size, elev, azim, projection,
+                                                   d1, d2, scale, w_bound, center)
+    org = org.reshape(3, -1)
+    dirn = dirn.reshape(3, -1)
+    lam_lo, lam_hi, live = lam_lo.ravel(), lam_hi.ravel(), live.ravel()
+    ortho = projection.startswith("ortho")
+
+    def g_at(lam, o=org, d=dirn):
+        u, w, v, _ = world(*(o + d * lam))
+        return w - f(u, v)
+
+    idx, la, lb, sides = [], [], [], []
+    g_prev = np.where(live, g_at(lam_lo), np.nan)
+    lam_prev = lam_lo.copy()
+    for k in range(1, steps + 1):
+        lam = lam_lo + (lam_hi - lam_lo) * (k / steps)
+        g = g_at(lam)
+        with np.errstate(invalid="ignore"):
+            hit = live & np.isfinite(g) & np.isfinite(g_prev) & (np.sign(g) != np.sign(g_prev)) \
+                & (g_prev != 0)
+        where = np.nonzero(hit)[0]
+        idx.append(where)
+        la.append(lam_prev[where])
+        lb.append(lam[where])
+        sides.append(np.where(g_prev[where] > 0, 1, -1))
+        g_prev = np.where(np.isfinite(g), g, np.nan)
+        lam_prev = lam
+    idx, l_a, l_b, side = (np.concatenate(x) for x in (idx, la, lb, sides))
+    o, d = org[:, idx], dirn[:, idx]
+    for _ in range(bisections):
+        m = 0.5 * (l_a + l_b)
+        same = np.sign(g_at(m, o, d)) == np.sign(g_at(l_a, o, d))
+        l_a = np.where(same, m, l_a)
+        l_b = np.where(same, l_b, m)
+    p = o + d * (0.5 * (l_a + l_b))
+    u, w, v, _ = world(*p)
+    nu, nw, nv = -fu(u, v), np.ones_like(u), -fv(u, v)
+    lx, ly, lz = -d if ortho else o - p
+    lu, lw, lv, _ = (world(lx, ly, lz)[k] - world(0.0, 0.0, 0.0)[k] for k in range(4))
+    with np.errstate(all="ignore"):
+        inten = np.abs(lu * nu + lw * nw + lv * nv) / (
+            np.sqrt(lu ** 2 + lw ** 2 + lv ** 2) * np.sqrt(nu ** 2 + nw ** 2 + nv ** 2))
+    return idx, p[2], inten, side
+
+
+def composite_layers(surfaces, size, elev, azim, projection="orthographic", **kw):
+    """The translucent composite of several surfaces, every crossing of each ray
+    (layer_hits), sorted by depth: I = sum_k a_k prod_{m<k} (1 - a_m) I_k over black.
+    ``surfaces``: (funcs, u_rng, v_rng, alpha) each. Returns (intensity (H, W), NaN
+    where no crossing; crossings per pixel)."""
+    W, H = size
+    parts = [layer_hits(funcs, u, v, size, elev, azim, projection, **kw) + (np.full(0, a),)
+             for funcs, u, v, a in surfaces]
+    idx = np.concatenate([x[0] for x in parts])
+    depth = np.concatenate([x[1] for x in parts])
+    inten = np.concatenate([x[2] for x in parts])
+    alpha = np.concatenate([np.full(len(x[0]), a) for x, (_, _, _, a) in zip(parts, surfaces)])
+    order = np.lexsort((depth, idx))
+    idx, inten, alpha = idx[order], inten[order], alpha[order]
+    # transmittance in front of each crossing: the product over the pixel's nearer ones
+    log_t = np.log(np.maximum(1.0 - alpha, 1e-300))
+    cum = np.cumsum(log_t)
+    start = np.r_[0, np.nonzero(np.diff(idx))[0] + 1]
+    group = np.repeat(start, np.diff(np.r_[start, len(idx)]))
+    before = cum - log_t - np.where(group > 0, cum[np.maximum(group - 1, 0)], 0.0)
+    out = np.zeros(W * H)
+    np.add.at(out, idx, alpha * np.exp(before) * inten)
+    count = np.bincount(idx, minlength=W * H)
+    out = np.where(count > 0, out, np.nan)
+    return out.reshape(H, W), count.reshape(H, W)

@@ -37,6 +37,22 @@ def _power(x, e):
 
 
 @ngjit_inline
+def toward_viewer(vp, x0, j, depth):
+    """The unit vector from the point at depth ``depth`` on row j (from the bottom) of
+    column x0 toward the viewpoint (orthographic: toward the viewer, (0, 0, -1))."""
+    if vp[VP_ORTHO] != 0.0:
+        return 0.0, 0.0, -1.0
+    y0 = (j - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]
+    e = depth + vp[VP_D3]
+    m = e / vp[VP_D1]
+    vx = -x0 * m
+    vy = -y0 * m
+    vz = -e
+    q = 1.0 / math.sqrt(vx * vx + vy * vy + vz * vz)
+    return vx * q, vy * q, vz * q
+
+
+@ngjit_inline
 def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shininess,
            lit):
     """(I, specular) of one pixel: I = ambient + (1 - ambient) |L.N| / (|L| |N|), and
@@ -46,21 +62,7 @@ def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shi
     is vp's directional light (a unit vector), or the viewpoint when that is zero
     (eq. 12). ``lit`` in [0, 1]: the part of the light that reaches the point (0 in a
     shadow: ambient only; 1 without shadows, which leaves every value as it was)."""
-    if vp[VP_ORTHO] != 0.0:
-        vx = 0.0
-        vy = 0.0
-        vz = -1.0
-    else:
-        y0 = (j - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]
-        e = depth + vp[VP_D3]
-        m = e / vp[VP_D1]
-        vx = -x0 * m
-        vy = -y0 * m
-        vz = -e
-        q = 1.0 / math.sqrt(vx * vx + vy * vy + vz * vz)
-        vx *= q
-        vy *= q
-        vz *= q
+    vx, vy, vz = toward_viewer(vp, x0, j, depth)
     if vp[VP_LX] == 0.0 and vp[VP_LY] == 0.0 and vp[VP_LZ] == 0.0:
         lx = vx
         ly = vy

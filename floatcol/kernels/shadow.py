@@ -68,6 +68,42 @@ def _own_depth(hext, hsurf, k, y, x, upper):
     return acc / wsum if wsum > 1e-9 else np.nan
 
 
+@ngjit_inline
+def point_shadow(s, u, v, w, nx, ny, nz, light, hmax, hmin, hsurf, layer, gu, gv, tan_theta,
+                 s0, t0, h, grazing, bias):
+    """How much of the light a point of layer ``layer`` misses (1 in shadow, 0 lit,
+    between at an edge): its side s (+1 upper, -1 lower) is seen, (nx, ny, nz) its
+    upper-side normal and ``light`` the light's direction, both in screen coordinates;
+    (u, v, w) the point in the box. Attached where the seen side faces away from the
+    light; cast where it lies under its own layer's horizon or between another layer's
+    extremes (shadow_lookup)."""
+    nn = math.sqrt(nx * nx + ny * ny + nz * nz)
+    facing = s * (nx * light[0] + ny * light[1] + nz * light[2]) / nn if nn > 0.0 else 0.0
+    if not facing > 0.0:
+        return 1.0                              # attached
+    n_layers = hmax.shape[0]
+    if n_layers == 0:
+        return 0.0
+    rise = abs(tan_theta) * h
+    width_m = max(rise, 1e-300)
+    along = u * gu + v * gv
+    ps = (along - s0) / h
+    pt = (-u * gv + v * gu - t0) / h
+    hp = w - along * tan_theta
+    margin = _own_depth(hmax if s > 0.0 else hmin, hsurf, layer, pt, ps, s > 0.0)
+    if margin != margin:            # no texel of the surface around: the horizon
+        if s > 0.0:
+            margin = _bilinear(hmax, layer, pt, ps) - hp
+        else:
+            margin = hp - _bilinear(hmin, layer, pt, ps)
+    for m in range(n_layers):
+        if m != layer:
+            crossed = min(_bilinear(hmax, m, pt, ps) - hp, hp - _bilinear(hmin, m, pt, ps))
+            margin = max(margin, crossed)
+    bs = bias * rise if facing < grazing else 0.0
+    return min(max((margin - bs) / width_m + 0.5, 0.0), 1.0)
+
+
 @ngjit_parallel
 def shadow_lookup(gbuf, ebuf, width, light, hmax, hmin, hsurf, layer, gu, gv, tan_theta, s0,
                   t0, h, grazing, bias, shadow, lit):
@@ -80,9 +116,6 @@ def shadow_lookup(gbuf, ebuf, width, light, hmax, hmin, hsurf, layer, gu, gv, ta
     texel's rise along the ray antialiases the edge (passes/shadow.py)."""
     H = gbuf.shape[1]
     T = gbuf.shape[2]
-    n_layers = hmax.shape[0]
-    rise = abs(tan_theta) * h
-    width_m = max(rise, 1e-300)
     for c in prange(width):
         b = c // T
         lane = c - b * T
@@ -95,37 +128,9 @@ def shadow_lookup(gbuf, ebuf, width, light, hmax, hmin, hsurf, layer, gu, gv, ta
                 lit[i, c] = 1.0
                 continue
             g = gbuf[b, j, lane]
-            nx = g[G_NX]
-            ny = g[G_NY]
-            nz = g[G_NZ]
-            nn = math.sqrt(nx * nx + ny * ny + nz * nz)
-            facing = s * (nx * light[0] + ny * light[1] + nz * light[2]) / nn if nn > 0.0 \
-                else 0.0
-            if not facing > 0.0:
-                shadow[i, c] = 1.0                 # attached
-                lit[i, c] = 0.0
-                continue
-            val = 0.0
-            if n_layers > 0:
-                u = g[G_U]
-                v = g[G_V]
-                along = u * gu + v * gv
-                ps = (along - s0) / h
-                pt = (-u * gv + v * gu - t0) / h
-                hp = g[G_W] - along * tan_theta
-                margin = _own_depth(hmax if s > 0.0 else hmin, hsurf, layer, pt, ps, s > 0.0)
-                if margin != margin:            # no texel of the surface around: the horizon
-                    if s > 0.0:
-                        margin = _bilinear(hmax, layer, pt, ps) - hp
-                    else:
-                        margin = hp - _bilinear(hmin, layer, pt, ps)
-                for m in range(n_layers):
-                    if m != layer:
-                        crossed = min(_bilinear(hmax, m, pt, ps) - hp,
-                                      hp - _bilinear(hmin, m, pt, ps))
-                        margin = max(margin, crossed)
-                bs = bias * rise if facing < grazing else 0.0
-                val = min(max((margin - bs) / width_m + 0.5, 0.0), 1.0)
+            val = point_shadow(s, g[G_U], g[G_V], g[G_W], g[G_NX], g[G_NY], g[G_NZ], light,
+                               hmax, hmin, hsurf, layer, gu, gv, tan_theta, s0, t0, h,
+                               grazing, bias)
             shadow[i, c] = val
             lit[i, c] = 1.0 - val
 

@@ -1,0 +1,553 @@
+"""Every layer of a surface along each pixel's ray (Gordon 6.5), composited front to
+back (6.6) with the layers of other surfaces.
+
+Section 6.5: between two successive sampling planes the surface's curve in a column
+covers the pixel rows between its two samples; the opaque column keeps only the rows
+outside the floating interval, a translucent surface needs them all. Every pixel
+centre between two samples is a crossing of its ray with the surface, its depth,
+normal, height and intensity interpolated as the opaque column's, in the order of the
+planes, which is front to back along each ray (column.py's module note: in
+perspective the passes go from the viewpoint's t outward).
+
+Each crossing is lit (shade.py's _light, the shadow texture's point_shadow) and
+coloured (shade._side_rgb) as the opaque surface's pixel would be, and kept in the
+pixel's list: up to K records per surface, sorted by depth, colour and intensity
+premultiplied by alpha. A full list folds its two deepest records into one (the over
+operator is associative: exact when no other surface's crossing falls between them),
+so K = 1 is exact for one surface alone; a surface whose own transmittance at the
+pixel has fallen below STOP takes no more crossings there. The composite kernel
+merges the surfaces' lists by depth and composites them over a transmittance that
+stops at STOP too.
+
+Antialiasing (vp's VP_AA): a crossing covers the part of its pixel's height that its
+monotone stretch of the curve covers: where the curve turns (a silhouette, the fold of
+6.5's hidden layers) or ends (the domain's edge, a hole) inside a pixel, its alpha is
+that part of the opacity. Without it a crossing is a pixel centre between two samples,
+full opacity: the composite is then exactly sum_k a (1 - a)^k I_k.
+
+Memory: the lists of a band of columns (passes/translucency.py picks the band), each
+column's scratch its own (no shared scratch across the parallel columns).
+"""
+import math
+
+import numpy as np
+from numba import prange
+
+from ._jit import ngjit_inline, ngjit_nrt_free, ngjit_parallel
+from .column import _column_t_range, _grid_range, _ortho_chord, CLIP_MARGIN_PLANES, CLIP_TOL
+from .index import ceil_index, floor_index
+from .layout import (
+    A_I, A_NX, A_NY, A_NZ, A_SIZE, A_T, A_U, A_V, A_W, A_Y, A_Z,
+    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIZE, G_T, G_U, G_V, G_W, S_OK,
+    VP_AA, VP_CA, VP_CW, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_T0, VP_T1, VP_W,
+)
+from .sample import column_x0, sample_point
+from .shade import _light, _side_rgb, toward_viewer
+from .shadow import point_shadow
+
+#: transmittance below which nothing behind shows (1/512: under half a level of 8 bits)
+STOP = 1.0 / 512.0
+#: bisections that find where a run of samples meets the domain's edge or a hole
+EDGE_BISECTIONS = 12
+
+# A crossing's record in the lists (float32)
+C_DEPTH = 0
+C_R = 1           # colour times alpha (premultiplied)
+C_G = 2
+C_B = 3
+C_I = 4           # intensity times alpha
+C_A = 5           # alpha
+C_SIDE = 6        # +1 upper side, -1 lower side (of the front record, once folded)
+C_SHADOW = 7      # 1 in shadow, 0 lit (likewise)
+C_SIZE = 8
+
+# The material vector mp (float64): what the crossings are lit and coloured with
+M_ALPHA = 0       # opacity
+M_INTERP = 1      # shade.py's INTERP_*
+M_AMBIENT = 2
+M_SPECULAR = 3
+M_SHININESS = 4
+M_WLO = 5         # the colour table's heights: w_lo and w_hi - w_lo
+M_SPAN = 6
+M_SIZE = 7
+
+# The shadow vector sh (float64): passes/shadow.py's Texture of the light, or SH_ON 0
+SH_LX = 0         # the light's direction in screen coordinates (point_shadow's light)
+SH_LY = 1
+SH_LZ = 2
+SH_ON = 3
+SH_LAYER = 4      # this surface's layer of the texture
+SH_GU = 5
+SH_GV = 6
+SH_TAN = 7
+SH_S0 = 8
+SH_T0 = 9
+SH_H = 10
+SH_GRAZING = 11
+SH_BIAS = 12
+SH_SIZE = 13
+
+# The walker's state, wk (float64): a run's stretch of the curve (monotone in y) and
+# the pixel it is in, whose crossing waits until the stretch leaves it or ends
+W_DIR = 0         # +1 rising, -1 falling, 0 not yet known
+W_PJ = 1          # the waiting pixel (row from the bottom); W_NONE: none
+W_PSTART = 2      # where the stretch's part in it began (a y)
+W_PCEN = 3        # 1.0: the stretch crossed its centre (the record is the centre's)
+W_SIZE = 4
+W_NONE = -1e18
+
+
+@ngjit_inline
+def _round_row(y):
+    return floor_index(y + 0.5)
+
+
+@ngjit_inline
+def _weight(vp, p, q, y):
+    """Where row y lies between samples p and q (0 at p, 1 at q): in perspective the
+    fraction of the chord between the two points (a line in the world is a line on
+    the screen, but its parameter is not linear in y: eq. 10's division by depth)."""
+    h2 = (vp[VP_H] - 1.0) * 0.5
+    yp = p[A_Y] - h2
+    yq = q[A_Y] - h2
+    yc = y - h2
+    if vp[VP_ORTHO] != 0.0:
+        return (yc - yp) / (yq - yp)
+    qp = (p[A_Z] + vp[VP_D3]) * (yp - yc)
+    qq = (q[A_Z] + vp[VP_D3]) * (yq - yc)
+    return qp / (qp - qq)
+
+
+@ngjit_inline
+def _between(rec, p, q, lam, y):
+    """rec: the point a fraction lam from p to q, on row y."""
+    for k in range(A_SIZE):
+        rec[k] = p[k] + (q[k] - p[k]) * lam
+    rec[A_Y] = y
+
+
+@ngjit_inline
+def _copy(dst, src):
+    for k in range(A_SIZE):
+        dst[k] = src[k]
+
+
+@ngjit_inline
+def _over(lists, b, j, x, y):
+    """Record x of pixel (b, j) = x over y (premultiplied: x in front)."""
+    t = 1.0 - lists[b, j, x, C_A]
+    for k in range(C_R, C_A):
+        lists[b, j, x, k] += t * lists[b, j, y, k]
+    lists[b, j, x, C_A] = 1.0 - t * (1.0 - lists[b, j, y, C_A])
+
+
+@ngjit_nrt_free
+def _keep(lists, b, j, off, K, n, rec):
+    """Put the crossing ``rec`` (C_SIZE) into the pixel's sorted list lists[b, j, off:off
+    + K] of n records; returns (the new n, its place: 0 the front)."""
+    d = rec[C_DEPTH]
+    pos = n
+    while pos > 0 and lists[b, j, off + pos - 1, C_DEPTH] > d:
+        pos -= 1
+    if n == K:
+        if pos == K:                     # behind them all: folded into the last
+            t = 1.0 - lists[b, j, off + K - 1, C_A]
+            for k in range(C_R, C_A):
+                lists[b, j, off + K - 1, k] += t * rec[k]
+            lists[b, j, off + K - 1, C_A] = 1.0 - t * (1.0 - rec[C_A])
+            return n, pos
+        if K == 1:                       # in front of the one: it goes over it
+            t = 1.0 - rec[C_A]
+            for k in range(C_R, C_A):
+                lists[b, j, off, k] = rec[k] + t * lists[b, j, off, k]
+            lists[b, j, off, C_A] = 1.0 - t * (1.0 - lists[b, j, off, C_A])
+            lists[b, j, off, C_DEPTH] = rec[C_DEPTH]
+            lists[b, j, off, C_SIDE] = rec[C_SIDE]
+            lists[b, j, off, C_SHADOW] = rec[C_SHADOW]
+            return n, pos
+        _over(lists, b, j, off + K - 2, off + K - 1)   # room: the two deepest become one
+        n -= 1
+    for m in range(n, pos, -1):
+        for k in range(C_SIZE):
+            lists[b, j, off + m, k] = lists[b, j, off + m - 1, k]
+    for k in range(C_SIZE):
+        lists[b, j, off + pos, k] = rec[k]
+    return n + 1, pos
+
+
+@ngjit_nrt_free
+def _emit(vp, x0, j, p, cov, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists, off, K,
+          counts, trans, gfirst, hits, b, crec):
+    """The crossing of row j's ray at the point p (A_SIZE), covering ``cov`` of the
+    pixel: lit, coloured and kept in the pixel's list."""
+    H = trans.shape[0]
+    if j < 0 or j >= H or not cov > 0.0:
+        return
+    hits[b, j] += 1
+    if trans[j] < STOP:
+        return                           # this surface hides whatever else of it follows
+    depth = p[A_Z]
+    nx = p[A_NX]
+    ny = p[A_NY]
+    nz = p[A_NZ]
+    vx, vy, vz = toward_viewer(vp, x0, j, depth)
+    side = 1.0 if nx * vx + ny * vy + nz * vz >= 0.0 else -1.0
+    shade = 0.0
+    if sh[SH_ON] != 0.0:
+        shade = point_shadow(side, p[A_U], p[A_V], p[A_W], nx, ny, nz, sh, hmax, hmin,
+                             hsurf, int(sh[SH_LAYER]), sh[SH_GU], sh[SH_GV], sh[SH_TAN],
+                             sh[SH_S0], sh[SH_T0], sh[SH_H], sh[SH_GRAZING], sh[SH_BIAS])
+    inten, spec = _light(vp, x0, j, depth, nx, ny, nz, p[A_I], int(mp[M_INTERP]),
+                         mp[M_AMBIENT], mp[M_SPECULAR], mp[M_SHININESS], 1.0 - shade)
+    r, g, bl = _side_rgb(side, p[A_W], lut, mp[M_WLO], mp[M_SPAN], lower_rgb)
+    a = mp[M_ALPHA] * min(cov, 1.0)
+    crec[C_DEPTH] = depth
+    crec[C_R] = a * min(r * inten + spec, 1.0)
+    crec[C_G] = a * min(g * inten + spec, 1.0)
+    crec[C_B] = a * min(bl * inten + spec, 1.0)
+    crec[C_I] = a * inten
+    crec[C_A] = a
+    crec[C_SIDE] = side
+    crec[C_SHADOW] = shade
+    trans[j] *= 1.0 - a
+    counts[b, j], pos = _keep(lists, b, j, off, K, counts[b, j], crec)
+    if pos == 0:                         # the surface's nearest crossing: its G-buffer
+        gfirst[b, j, G_DEPTH] = depth
+        gfirst[b, j, G_U] = p[A_U]
+        gfirst[b, j, G_V] = p[A_V]
+        gfirst[b, j, G_W] = p[A_W]
+        gfirst[b, j, G_NX] = nx
+        gfirst[b, j, G_NY] = ny
+        gfirst[b, j, G_NZ] = nz
+        gfirst[b, j, G_I] = p[A_I]
+        gfirst[b, j, G_T] = p[A_T]
+
+
+@ngjit_nrt_free
+def _flush(vp, x0, wk, pend, end_y, aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists,
+           off, K, counts, trans, gfirst, hits, b, crec):
+    """The waiting pixel's crossing, its stretch ending (or leaving it) at end_y."""
+    j = wk[W_PJ]
+    if j == W_NONE:
+        return
+    wk[W_PJ] = W_NONE
+    if aa:
+        lo = j - 0.5
+        hi = j + 0.5
+        cov = abs(min(max(end_y, lo), hi) - min(max(wk[W_PSTART], lo), hi))
+    else:
+        cov = 1.0 if wk[W_PCEN] != 0.0 else 0.0
+    _emit(vp, x0, int(j), pend, cov, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists, off,
+          K, counts, trans, gfirst, hits, b, crec)
+
+
+@ngjit_nrt_free
+def _wait(wk, pend, j, start, rec, centre):
+    wk[W_PJ] = j
+    wk[W_PSTART] = start
+    wk[W_PCEN] = 1.0 if centre else 0.0
+    _copy(pend, rec)
+
+
+@ngjit_nrt_free
+def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf,
+             lists, off, K, counts, trans, gfirst, hits, b, crec):
+    """The crossings between successive samples p and q of a run (section 6.5)."""
+    H = trans.shape[0]
+    dy = q[A_Y] - p[A_Y]
+    if not dy != 0.0:
+        return
+    d = 1.0 if dy > 0.0 else -1.0
+    if wk[W_DIR] != 0.0 and d != wk[W_DIR]:
+        # the curve turns at p: the stretch before ends there, a new one begins
+        _flush(vp, x0, wk, pend, p[A_Y], aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf,
+               lists, off, K, counts, trans, gfirst, hits, b, crec)
+        _wait(wk, pend, _round_row(p[A_Y]), p[A_Y], p, False)
+    wk[W_DIR] = d
+    # the pixel centres j crossed: p.y <= j < q.y rising, q.y < j <= p.y falling
+    if d > 0.0:
+        ja = max(ceil_index(p[A_Y]), -1)
+        jb = min(ceil_index(q[A_Y]) - 1, H)
+    else:
+        ja = min(floor_index(p[A_Y]), H)
+        jb = max(floor_index(q[A_Y]) + 1, -1)
+    jq = _round_row(q[A_Y])
+    step = 1 if d > 0.0 else -1
+    n = (jb - ja) * step + 1
+    for m in range(max(n, 0)):
+        j = ja + m * step
+        _between(tmp, p, q, _weight(vp, p, q, float(j)), float(j))
+        if j == wk[W_PJ]:
+            _copy(pend, tmp)
+            wk[W_PCEN] = 1.0
+            continue
+        _flush(vp, x0, wk, pend, wk[W_PJ] + 0.5 * d, aa, mp, lut, lower_rgb, sh, hmax, hmin,
+               hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
+        if j == jq:                      # the stretch is still in this pixel at q
+            _wait(wk, pend, j, j - 0.5 * d, tmp, True)
+        else:
+            _emit(vp, x0, j, tmp, 1.0, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists, off,
+                  K, counts, trans, gfirst, hits, b, crec)
+    if jq != wk[W_PJ]:                   # q lies in a pixel whose centre it has not reached
+        _flush(vp, x0, wk, pend, wk[W_PJ] + 0.5 * d, aa, mp, lut, lower_rgb, sh, hmax, hmin,
+               hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
+        _wait(wk, pend, jq, jq - 0.5 * d, q, False)
+
+
+@ngjit_nrt_free
+def _sample(kind, f, fg, hf, hfp, vp, x0, t, out, guess):
+    """The surface's point on plane t into out (A_*); returns (status, evaluations,
+    the Newton start for the next plane)."""
+    st, ev, y, z, u, v, w, nx, ny, nz, lam = sample_point(kind, f, fg, hf, hfp, vp, x0, t,
+                                                          guess)
+    out[A_Y] = y
+    out[A_Z] = z
+    out[A_U] = u
+    out[A_V] = v
+    out[A_W] = w
+    out[A_NX] = nx
+    out[A_NY] = ny
+    out[A_NZ] = nz
+    out[A_I] = lam
+    out[A_T] = t
+    return st, ev, (w - vp[VP_CW]) if st == S_OK else guess
+
+
+@ngjit_nrt_free
+def _start(wk, pend, p):
+    """A run of samples begins at p."""
+    wk[W_DIR] = 0.0
+    _wait(wk, pend, _round_row(p[A_Y]), p[A_Y], p, False)
+
+
+@ngjit_nrt_free
+def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, lower_rgb, sh, hmax, hmin,
+                hsurf, lists, off, K, counts, trans, gfirst, hits, b, scr):
+    """One pass over the planes from ta to tb (front to back along the column's rays:
+    the grid's planes t0 + k dt between them, as the opaque column's); returns the
+    evaluations of f. Where a run of samples begins or ends between two planes (the
+    domain's edge, a hole, the screen plane) its end is found by bisection."""
+    prev = scr[0]
+    cur = scr[1]
+    edge = scr[2]
+    tmp = scr[3]
+    pend = scr[4]
+    crec = scr[5]
+    wk = scr[6]
+    aa = vp[VP_AA] != 0.0
+    t0 = vp[VP_T0]
+    dt = vp[VP_DT]
+    lo = min(ta, tb)
+    hi = max(ta, tb)
+    ka, kb = _grid_range(t0, dt, lo, hi)
+    n = max(kb - ka + 1, 0) + 2 if hi > lo else 1
+    up = tb >= ta
+    evals = 0
+    guess = np.nan
+    prev_ok = False
+    prev_t = ta
+    wk[W_DIR] = 0.0
+    wk[W_PJ] = W_NONE
+    for i in range(n):
+        if i == 0:
+            t = ta
+        elif i == n - 1:
+            t = tb
+        else:
+            t = t0 + (ka + i - 1 if up else kb - (i - 1)) * dt
+        st, ev, guess = _sample(kind, f, fg, hf, hfp, vp, x0, t, cur, guess)
+        evals += ev
+        ok = st == S_OK
+        if ok != prev_ok and i > 0:
+            t_in = t if ok else prev_t
+            t_out = prev_t if ok else t
+            found = False
+            g = guess
+            for _ in range(EDGE_BISECTIONS):
+                tm = 0.5 * (t_in + t_out)
+                sm, ev, g2 = _sample(kind, f, fg, hf, hfp, vp, x0, tm, tmp, g)
+                evals += ev
+                if sm == S_OK:
+                    t_in = tm
+                    _copy(edge, tmp)
+                    found = True
+                    g = g2
+                else:
+                    t_out = tm
+            if ok:
+                _start(wk, pend, edge if found else cur)
+                if found:
+                    _segment(vp, x0, edge, cur, wk, pend, tmp, aa, mp, lut, lower_rgb, sh,
+                             hmax, hmin, hsurf, lists, off, K, counts, trans, gfirst, hits,
+                             b, crec)
+            else:
+                last = prev
+                if found:
+                    _segment(vp, x0, prev, edge, wk, pend, tmp, aa, mp, lut, lower_rgb, sh,
+                             hmax, hmin, hsurf, lists, off, K, counts, trans, gfirst, hits,
+                             b, crec)
+                    last = edge
+                _flush(vp, x0, wk, pend, last[A_Y], aa, mp, lut, lower_rgb, sh, hmax, hmin,
+                       hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
+        elif ok and i == 0:
+            _start(wk, pend, cur)
+        elif ok:
+            _segment(vp, x0, prev, cur, wk, pend, tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin,
+                     hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
+        if ok:
+            _copy(prev, cur)
+        prev_ok = ok
+        prev_t = t
+    if prev_ok:
+        _flush(vp, x0, wk, pend, prev[A_Y], aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf,
+               lists, off, K, counts, trans, gfirst, hits, b, crec)
+    return evals
+
+
+@ngjit_nrt_free
+def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, lower_rgb, sh, hmax, hmin, hsurf,
+                   lists, off, K, counts, trans, gfirst, hits, b, scr):
+    """Every crossing of one column (column.py's _column_passes: ascending t in
+    orthographic; in perspective from the viewpoint's t outward, both ways, over the
+    planes that may meet the surface)."""
+    if vp[VP_ORTHO] != 0.0:
+        lo, hi = _ortho_chord(vp, x0)
+        if not lo <= hi:
+            return 0
+        return _layer_pass(kind, f, fg, hf, hfp, vp, x0, lo, hi, mp, lut, lower_rgb, sh, hmax,
+                           hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b, scr)
+    lo, hi = _column_t_range(vp, x0)
+    if not lo <= hi:
+        return 0
+    m = CLIP_MARGIN_PLANES * vp[VP_DT] + CLIP_TOL * (1.0 + abs(lo) + abs(hi))
+    t_lo = max(vp[VP_T0], lo - m)
+    t_hi = min(vp[VP_T1], hi + m)
+    t_view = -vp[VP_D3] * vp[VP_CA]      # the viewpoint's t, eq. (1)
+    evals = 0
+    if t_hi > t_view and t_hi >= t_lo:
+        evals += _layer_pass(kind, f, fg, hf, hfp, vp, x0, max(t_lo, t_view), t_hi, mp, lut,
+                             lower_rgb, sh, hmax, hmin, hsurf, lists, off, K, counts, trans,
+                             gfirst, hits, b, scr)
+    if t_lo < t_view and t_hi >= t_lo:
+        evals += _layer_pass(kind, f, fg, hf, hfp, vp, x0, min(t_hi, t_view), t_lo, mp, lut,
+                             lower_rgb, sh, hmax, hmin, hsurf, lists, off, K, counts, trans,
+                             gfirst, hits, b, scr)
+    return evals
+
+
+@ngjit_parallel
+def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, lower_rgb, sh, hmax, hmin, hsurf,
+                  lists, off, K, counts, gfirst, hits, evals):
+    """One surface's crossings in the band of columns c0 .. c0 + B - 1 (B =
+    lists.shape[0]; columns from vp's VP_W on are left alone): into lists[b, j, off:off
+    + K] (records C_*, sorted by depth), counts[b, j] of them, gfirst[b, j] the G-buffer
+    record (layout.py G_*) of the nearest, hits[b, j] += every crossing met; evals[b]
+    the evaluations of f. counts must be 0 on entry; the columns in parallel, each with
+    its own scratch."""
+    B = lists.shape[0]
+    H = lists.shape[1]
+    W = int(vp[VP_W])
+    for b in prange(B):
+        c = c0 + b
+        if c >= W:
+            continue
+        trans = np.ones(H)
+        scr = np.zeros((7, A_SIZE))
+        x0 = column_x0(vp, c)
+        evals[b] += _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, lower_rgb, sh, hmax,
+                                   hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b,
+                                   scr)
+
+
+# The composite's sums per pixel, acc (H, W, ACC_SIZE) float64
+ACC_R = 0         # premultiplied colour
+ACC_G = 1
+ACC_B = 2
+ACC_A = 3         # 1 - transmittance
+ACC_I = 4         # sum_k a_k T_k I_k
+ACC_SIZE = 5
+
+
+@ngjit_inline
+def _before(lists, b, j, x, y):
+    """Whether record x goes before record y of the same depth (two surfaces that meet
+    exactly): by their colours, so that the order the surfaces were given in does not
+    change the picture."""
+    for k in range(C_R, C_SIZE):
+        if lists[b, j, x, k] != lists[b, j, y, k]:
+            return lists[b, j, x, k] < lists[b, j, y, k]
+    return False
+
+
+@ngjit_parallel
+def composite_kernel(lists, counts, offs, gfirst, c0, weight, first, acc, side, depth, shadow,
+                     which, gbuf):
+    """Merge the surfaces' lists of a band (layers_kernel's; counts (n, B, H), offs the
+    surfaces' first slots, gfirst (n, B, H, G_SIZE)) by depth, front to back, over a
+    transmittance that stops below STOP: acc[i, c] += weight * the sums (ACC_*), row i
+    = H - 1 - j from the top, column c = c0 + b. With ``first``: side, depth, shadow
+    (NaN: none), which (the surface in front, -1: none) of the nearest crossing, and
+    its G-buffer record into the tiled gbuf (layout.py)."""
+    n = counts.shape[0]
+    B = lists.shape[0]
+    H = lists.shape[1]
+    W = acc.shape[1]
+    T = gbuf.shape[2]
+    for b in prange(B):
+        c = c0 + b
+        if c >= W:
+            continue
+        head = np.zeros(n, dtype=np.int64)
+        tile = c // T
+        lane = c - tile * T
+        for j in range(H):
+            i = H - 1 - j
+            for s in range(n):
+                head[s] = 0
+            tr = 1.0
+            r = 0.0
+            g = 0.0
+            bl = 0.0
+            it = 0.0
+            front = -1
+            f_side = 0.0
+            f_depth = np.inf
+            f_shadow = np.nan
+            while tr >= STOP:
+                best = -1
+                best_d = np.inf
+                for s in range(n):
+                    if head[s] < counts[s, b, j]:
+                        d = lists[b, j, offs[s] + head[s], C_DEPTH]
+                        if best < 0 or d < best_d or (d == best_d and _before(
+                                lists, b, j, offs[s] + head[s], offs[best] + head[best])):
+                            best = s
+                            best_d = d
+                if best < 0:
+                    break
+                rec = lists[b, j, offs[best] + head[best]]
+                if front < 0:
+                    front = best
+                    f_side = rec[C_SIDE]
+                    f_depth = rec[C_DEPTH]
+                    f_shadow = rec[C_SHADOW]
+                head[best] += 1
+                r += tr * rec[C_R]
+                g += tr * rec[C_G]
+                bl += tr * rec[C_B]
+                it += tr * rec[C_I]
+                tr *= 1.0 - rec[C_A]
+            a = acc[i, c]
+            a[ACC_R] += weight * r
+            a[ACC_G] += weight * g
+            a[ACC_B] += weight * bl
+            a[ACC_A] += weight * (1.0 - tr)
+            a[ACC_I] += weight * it
+            if first:
+                which[i, c] = front
+                side[i, c] = int(f_side)
+                depth[i, c] = f_depth
+                shadow[i, c] = f_shadow
+                if front >= 0:
+                    for k in range(G_SIZE):
+                        gbuf[tile, j, lane, k] = gfirst[front, b, j, k]

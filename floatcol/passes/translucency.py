@@ -1,0 +1,200 @@
+"""The translucency pass (Gordon 6.5-6.6): every layer of every surface along each
+pixel's ray, composited front to back.
+
+A scene where some layer's material has ``opacity`` < 1 takes this pass instead of
+the opaque column, shading and composite passes (renderer.py): per band of columns,
+kernels/layers.py's layers_kernel collects each surface's crossings into per-pixel
+lists (one record a pixel for a surface alone; up to ``max_records`` where several
+must be merged), and composite_kernel merges the surfaces' lists by depth and
+composites them over the transmittance, stopping when it falls below 1/512. The
+bands are as wide as LIST_BYTES of lists allow: the memory is bounded whatever the
+picture's size and the number of layers.
+
+With antialiasing (the default shading's), each crossing's alpha is the part of its
+pixel its stretch of the curve covers (silhouettes, folds, the domain's edge, holes),
+and SUB_COLUMNS columns a pixel (offsets -1/3, 0, 1/3) are averaged across; antialias
+= 2, 3 or 4 asks for that many. Render.side, depth, shadow, the G-buffer (u, v, w,
+normal) and stats["surface"] describe the nearest crossing at the pixel's centre
+column (or the sub-column nearest it); ``intensity`` is the composite of the
+layers' intensities over black, sum_k a_k prod_{m<k} (1 - a_m) I_k; ``rgba`` the
+composite of their colours over the background.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import color
+from ..kernels import layers as K
+from ..kernels.layout import G_SIZE, TILE, VP_AA, VP_XOFF
+from ..result import Render
+from . import geometry
+from .shadow import BIAS_TEXELS, GRAZING
+
+#: bytes of crossing lists and their G-buffer records a band of columns may hold
+LIST_BYTES = 64 * 2**20
+#: sub-columns a pixel where antialiasing asks for them and names no number
+SUB_COLUMNS = 3
+#: most records a pixel keeps of one surface where several are merged (deeper ones
+#: fold into the last: exact unless another surface's crossing falls between them)
+MAX_RECORDS = 16
+
+
+def records(opacity, n_surfaces):
+    """Records a pixel keeps of a surface of this opacity: one alone (folding is
+    exact), else as many as can show through (1 - a)^k >= STOP, at most MAX_RECORDS;
+    none where the surface is invisible."""
+    if opacity <= 0.0:
+        return 0
+    if n_surfaces == 1 or opacity >= 1.0:
+        return 1
+    need = math.ceil(math.log(K.STOP) / math.log1p(-opacity))
+    return int(min(max(need, 1), MAX_RECORDS))
+
+
+def offsets(sub_columns):
+    """The sub-columns' offsets in pixels, and which is nearest the centre."""
+    off = (np.arange(sub_columns) - (sub_columns - 1) / 2.0) / sub_columns
+    return off, int(np.argmin(np.abs(off)))
+
+
+def band_columns(W, H, slots, n):
+    """Columns a band may hold: its lists (slots records a pixel) and G-buffer records
+    (n surfaces) within LIST_BYTES."""
+    per_column = H * (slots * K.C_SIZE * 4 + n * (G_SIZE * 4 + 4) + 4)
+    return int(max(1, min(W, LIST_BYTES // max(per_column, 1))))
+
+
+def material_vector(material, terms, lut_range):
+    """kernels/layers.py's mp of a layer."""
+    amb, spec, shine = terms
+    w_lo, w_hi = lut_range
+    mp = np.zeros(K.M_SIZE)
+    mp[K.M_ALPHA] = material.opacity
+    mp[K.M_INTERP] = material.interp
+    mp[K.M_AMBIENT] = amb
+    mp[K.M_SPECULAR] = spec
+    mp[K.M_SHININESS] = shine
+    mp[K.M_WLO] = w_lo
+    mp[K.M_SPAN] = w_hi - w_lo if w_hi > w_lo else 1.0
+    return mp
+
+
+def shadow_vector(texture, view, layer):
+    """kernels/layers.py's sh (and the texture's planes) of a layer."""
+    sh = np.zeros(K.SH_SIZE)
+    none = np.zeros((0, 1, 1))
+    if texture is None:
+        return sh, none, none, none
+    sh[K.SH_LX:K.SH_LZ + 1] = view.light
+    sh[K.SH_ON] = 1.0
+    sh[K.SH_LAYER] = layer
+    sh[K.SH_GRAZING] = GRAZING
+    sh[K.SH_BIAS] = BIAS_TEXELS
+    if texture.zenith:
+        sh[K.SH_H] = 1.0
+        return sh, none, none, none
+    sh[K.SH_GU], sh[K.SH_GV], sh[K.SH_TAN] = texture.gu, texture.gv, texture.tan_theta
+    sh[K.SH_S0], sh[K.SH_T0], sh[K.SH_H] = texture.s0, texture.t0, texture.h
+    return sh, texture.hmax, texture.hmin, texture.hsurf
+
+
+def translucent_pass(layers, views, drawn, box, quality, background, texture):
+    """The picture of ``layers`` (renderer.py's prepared layers; one View each, from
+    one camera), every layer of each surface composited by depth. Returns
+    (rgba, intensity, side, depth, shadow, which, gbuf, stats)."""
+    aa_cov, sub = quality.antialiasing(layers[0].material.shading)
+    if aa_cov and sub == 1 and quality.antialias is not False:
+        sub = SUB_COLUMNS
+    view0 = views[0]
+    W, H = view0.width, view0.height
+    n = len(layers)
+    ks = [records(p.material.opacity, n) for p in layers]
+    offs = np.concatenate([[0], np.cumsum(ks)[:-1]]).astype(np.int64)
+    slots = max(int(sum(ks)), 1)
+    B = band_columns(W, H, slots, n)
+    plans = []
+    w_limits = []
+    for k, (p, view, (surface, _)) in enumerate(zip(layers, views, drawn)):
+        vp = geometry.view_params(view, "column", "uniform", (0.0,) * 6, aa_cov, surface)
+        vp[VP_AA] = 1.0 if aa_cov else 0.0
+        lut, w_lo, w_hi, lim = p.material.color_table(np.array([view.f_range]), box[2])
+        _, lower_rgb = p.material.colors()
+        w_limits.append(lim)
+        mp = material_vector(p.material, p.terms, (w_lo, w_hi))
+        sh, hmax, hmin, hsurf = shadow_vector(texture, view, k)
+        plans.append((surface, vp, mp, np.ascontiguousarray(lut, dtype=np.float64),
+                      np.asarray(lower_rgb, dtype=np.float64), sh, hmax, hmin, hsurf))
+    offsets_px, centre = offsets(sub)
+    order = [centre] + [i for i in range(sub) if i != centre]
+    lists = np.zeros((B, H, slots, K.C_SIZE), dtype=np.float32)
+    counts = np.zeros((n, B, H), dtype=np.int32)
+    gfirst = np.zeros((n, B, H, G_SIZE), dtype=np.float32)
+    hits = np.zeros((B, H), dtype=np.int32)
+    evals = np.zeros(B, dtype=np.int64)
+    acc = np.zeros((H, W, K.ACC_SIZE))
+    side = np.zeros((H, W), dtype=np.int8)
+    depth = np.full((H, W), np.inf, dtype=np.float32)
+    shadow = np.full((H, W), np.nan, dtype=np.float32)
+    which = np.full((H, W), -1, dtype=np.int8)
+    layers_seen = np.zeros((H, W), dtype=np.int16)
+    n_tiles = -(-W // TILE)
+    gbuf = np.zeros((n_tiles, H, TILE, G_SIZE), dtype=np.float32)
+    total_evals = 0
+    weight = 1.0 / sub
+    for c0 in range(0, W, B):
+        for m in order:
+            counts[:] = 0
+            hits[:] = 0
+            evals[:] = 0
+            for k, (surface, vp, mp, lut, lower_rgb, sh, hmax, hmin, hsurf) in enumerate(plans):
+                if ks[k] == 0:
+                    continue
+                vpk = vp.copy()
+                vpk[VP_XOFF] = offsets_px[m]
+                kind, f, fg, _, hf, hfp = surface.kernel_args(None)
+                K.layers_kernel(kind, f, fg, hf, hfp, vpk, c0, mp, lut, lower_rgb, sh, hmax,
+                                hmin, hsurf, lists, offs[k], ks[k], counts[k], gfirst[k], hits,
+                                evals)
+            total_evals += int(evals.sum())
+            first = m == centre
+            K.composite_kernel(lists, counts, offs, gfirst, c0, weight, first, acc, side, depth,
+                               shadow, which, gbuf)
+            if first:
+                cols = min(B, W - c0)
+                layers_seen[:, c0:c0 + cols] = hits[:cols, ::-1].T
+    rgba, intensity = _picture(acc, background)
+    stats = {"samples": total_evals, "translucent": True, "sub_columns": sub,
+             "band_columns": B, "records": ks,
+             "list_bytes": lists.nbytes + counts.nbytes + gfirst.nbytes + hits.nbytes,
+             "layers": layers_seen, "w_limits": w_limits if n > 1 else w_limits[0]}
+    return (rgba, intensity, side, depth, shadow if texture is not None else None, which,
+            gbuf, stats)
+
+
+def _picture(acc, background):
+    """(rgba uint8, intensity float32) of the composite's sums over ``background``."""
+    bg = color.to_rgba8(background).astype(np.float64) / 255.0
+    a = acc[..., K.ACC_A]
+    rest = (1.0 - a) * bg[3]
+    alpha = a + rest
+    rgb = (acc[..., :3] + rest[..., None] * bg[:3]) / np.where(alpha > 0, alpha, 1.0)[..., None]
+    rgba = np.empty(acc.shape[:2] + (4,), dtype=np.uint8)
+    rgba[..., :3] = np.clip(np.round(rgb * 255.0), 0, 255)
+    rgba[..., 3] = np.clip(np.round(alpha * 255.0), 0, 255)
+    intensity = np.where(a > 0.0, acc[..., K.ACC_I], np.nan).astype(np.float32)
+    return rgba, intensity
+
+
+def render_translucent(layers, views, drawn, box, quality, background, texture, t_start):
+    """translucent_pass as a Render (renderer.py's door for it)."""
+    import time
+    rgba, intensity, side, depth, shadow, which, gbuf, stats = translucent_pass(
+        layers, views, drawn, box, quality, background, texture)
+    stats.update({"seconds": time.perf_counter() - t_start, "method": "column",
+                  "box": box, "planes": views[0].planes, "step": views[0].step,
+                  "scale": views[0].scale, "surfaces": len(layers)})
+    if len(layers) > 1:
+        stats["surface"] = which
+    return Render(rgba, intensity, side, depth, stats, views[0], gbuf, box=box, shadow=shadow)

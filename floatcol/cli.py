@@ -144,6 +144,9 @@ def _surface_options(p, default_size="800x600", many=False):
                         "in degrees, as matplotlib's LightSource (e.g. 315/25)")
     p.add_argument("--shadows", action="store_true",
                    help="the light casts shadows (Gordon 6.2): with --light, or the default light")
+    p.add_argument("--opacity", type=_value("opacity"), default=None,
+                   help="below 1 the surfaces are translucent, every layer showing (Gordon 6.5), "
+                        "e.g. 0.5 (default 1)")
     p.add_argument("--background", default=None, help="background colour, e.g. white or none")
     p.add_argument("--dpi", type=float, default=100.0, help="dots per inch of PDF/SVG output (default 100)")
 
@@ -277,6 +280,8 @@ def _options(args):
         opts["lightsource"] = args.light
     if args.shadows:
         opts["shadows"] = True
+    if args.opacity is not None:
+        opts["alpha"] = args.opacity
     if args.background is not None:
         opts["background"] = None if args.background.lower() == "none" else args.background
     return opts

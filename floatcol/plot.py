@@ -37,7 +37,7 @@ _RENDER_OPTIONS = set(inspect.signature(render).parameters) - {
     "vmax", "upper_color", "light", "ambient", "focal_length"}
 _OWN_OPTIONS = {"cmap", "norm", "vmin", "vmax", "color", "shade", "lightsource", "elev",
                 "azim", "proj_type", "focal_length", "size", "dpi", "ambient", "light",
-                "upper_color", "projection"}
+                "upper_color", "projection", "alpha"}
 
 
 def mpl_to_paper_angles(elev, azim):
@@ -365,6 +365,9 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     ax : a matplotlib Axes to draw into (re-rendered at its pixel size on every draw).
     interactive : with ``ax``: drag to rotate, scroll to zoom.
     cmap, norm, vmin, vmax, color, shade, lightsource : as matplotlib's plot_surface.
+    alpha : as matplotlib's: below 1 the surface is translucent, every layer of it
+        showing (``opacity`` of :func:`floatcol.render`); with several surfaces, one
+        value or a list of one per surface.
     elev, azim : matplotlib's view_init angles (default 30, -60).
     proj_type : "persp" (default, as matplotlib) or "ortho"; ``focal_length`` as
         matplotlib's.
@@ -391,6 +394,10 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
         if "proj_type" in options:
             raise ValueError("give either proj_type or projection, not both")
         options["proj_type"] = options.pop("projection")
+    if "alpha" in options:                   # matplotlib's word for opacity
+        if "opacity" in options:
+            raise ValueError("give either alpha or opacity, not both")
+        options["opacity"] = options.pop("alpha")
     if "upper_color" in options and "color" not in options:
         options["color"] = options.pop("upper_color")
     options.setdefault("aspect", DEFAULT_ASPECT)

@@ -57,7 +57,8 @@ def scene_from_options(surfaces, **options):
     """The Scene of render()'s flat keywords: ``surfaces`` a list of Layers or of
     (expr, u, v) triples or expressions (those take the material the keywords
     describe); the keywords split into material, camera, quality, light, background
-    and vars. An unknown keyword is a TypeError, as a function's."""
+    and vars. ``opacity`` may be a list, one value a surface. An unknown keyword is a
+    TypeError, as a function's."""
     material = {k: options.pop(k) for k in list(options) if k in MATERIAL_OPTIONS}
     camera = {k: options.pop(k) for k in list(options) if k in CAMERA_OPTIONS}
     quality = {k: options.pop(k) for k in list(options) if k in QUALITY_OPTIONS}
@@ -71,14 +72,28 @@ def scene_from_options(surfaces, **options):
     vars = options.pop("vars", None)
     if options:
         raise TypeError(f"unexpected options {', '.join(sorted(options))}")
-    shared = Material(**material)
+    opacities = _per_surface("opacity", material.pop("opacity", 1.0), len(surfaces))
+    shared = Material(**material, opacity=opacities[0] if opacities else 1.0)
     layers = []
-    for item in surfaces:
+    for item, opacity in zip(surfaces, opacities):
+        mat = shared if opacity is shared.opacity else Material(**material, opacity=opacity)
         if isinstance(item, Layer):
             layers.append(item)
         elif isinstance(item, tuple) and len(item) == 3:
-            layers.append(Layer(item[0], (item[1], item[2]), shared))
+            layers.append(Layer(item[0], (item[1], item[2]), mat))
         else:
-            layers.append(Layer(item, None, shared))
+            layers.append(Layer(item, None, mat))
     return Scene(layers, camera=Camera(**camera), light=light, quality=Quality(**quality),
                  background=background, vars=vars)
+
+
+def _per_surface(name, value, n):
+    """A keyword given once for all surfaces or as a list of one value each."""
+    if isinstance(value, (list, tuple)) or (hasattr(value, "__len__") and
+                                            not isinstance(value, (str, bytes))):
+        values = list(value)
+        if len(values) != n:
+            raise ValueError(f"{name} must be one value or a list of one per surface "
+                             f"({n}), got {len(values)} values")
+        return [v.item() if hasattr(v, "item") else v for v in values]
+    return [value] * n

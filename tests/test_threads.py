@@ -16,6 +16,9 @@ CASES = [dict(projection="orthographic", method="column"),
          # shadows: the sweeps (a line per thread) and the lookup (a column per thread)
          dict(projection="orthographic", lightsource=(315, 25), shadows=True),
          dict(projection="perspective", lightsource=(120, 10), shadows=True, antialias=3),
+         # translucency: every layer, a column per thread, lists a band at a time
+         dict(projection="orthographic", opacity=0.5),
+         dict(projection="perspective", opacity=0.4, lightsource=(315, 25), shadows=True),
          # columns whose curve folds back, traced (kernels/fold.py)
          dict(projection="perspective", elev=40, azim=-30, dom=(-2.2, 2.2),
               expr="4.9*(sqrt(4 - u**2 - v**2) + sqrt(u**2 + v**2 - 1) - 2)")]

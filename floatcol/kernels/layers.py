@@ -37,7 +37,7 @@ from ._jit import ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .column import _column_t_range, _grid_range, _ortho_chord, CLIP_MARGIN_PLANES, CLIP_TOL
 from .index import ceil_index, floor_index
 from .layout import (
-    A_I, A_NX, A_NY, A_NZ, A_SIZE, A_T, A_U, A_V, A_W, A_Y, A_Z,
+    A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIZE, G_T, G_U, G_V, G_W, S_OK,
     VP_AA, VP_CA, VP_CW, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_T0, VP_T1, VP_W,
 )
@@ -49,6 +49,16 @@ from .shadow import point_shadow
 STOP = 1.0 / 512.0
 #: bisections that find where a run of samples meets the domain's edge or a hole
 EDGE_BISECTIONS = 12
+#: a span between two samples is halved (at most REFINE_DEPTH times: 1/64 of a step)
+#: where the curve folds between them (the seen side changes: a silhouette, section
+#: 5.1's ridge) or where it spans more than REFINE_ROWS rows while its normal turns by
+#: more than REFINE_TURN (cos of the angle): linear interpolation would misplace the
+#: layers there
+REFINE_DEPTH = 6
+REFINE_ROWS = 1.5
+REFINE_TURN = 0.98
+#: rows of a pass's scratch: prev, cur, edge, tmp, pend, crec, wk, then the stack
+SCR_STACK = 7
 
 # A crossing's record in the lists (float32)
 C_DEPTH = 0
@@ -310,7 +320,51 @@ def _sample(kind, f, fg, hf, hfp, vp, x0, t, out, guess):
     out[A_NZ] = nz
     out[A_I] = lam
     out[A_T] = t
+    out[A_BUMP] = 0.0
+    if st == S_OK:
+        vx, vy, vz = toward_viewer(vp, x0, y, z)
+        out[A_VN] = nx * vx + ny * vy + nz * vz
     return st, ev, (w - vp[VP_CW]) if st == S_OK else guess
+
+
+@ngjit_nrt_free
+def _refined(kind, f, fg, hf, hfp, vp, x0, p, q, scr, evals, wk, pend, tmp, aa, mp, lut,
+             lower_rgb, sh, hmax, hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b,
+             crec):
+    """_segment from p to q, the span halved where it needs it (REFINE_*), the halves
+    in order (a stack of right ends in scr's rows from SCR_STACK). Returns evals plus
+    the evaluations made."""
+    stack = scr[SCR_STACK:]
+    left = scr[SCR_STACK - 1 + stack.shape[0]]          # (the last row: the left end)
+    _copy(left, p)
+    _copy(stack[0], q)
+    top = 0
+    while top >= 0:
+        right = stack[top]
+        depth = right[A_BUMP]
+        split = False
+        if depth < REFINE_DEPTH and top + 1 < stack.shape[0] - 1:
+            if (left[A_VN] > 0.0) != (right[A_VN] > 0.0):
+                split = True
+            elif abs(right[A_Y] - left[A_Y]) > REFINE_ROWS:
+                dot = (left[A_NX] * right[A_NX] + left[A_NY] * right[A_NY]
+                       + left[A_NZ] * right[A_NZ])
+                split = dot < REFINE_TURN
+        if split:
+            mid = stack[top + 1]
+            st, ev, _ = _sample(kind, f, fg, hf, hfp, vp, x0, 0.5 * (left[A_T] + right[A_T]),
+                                mid, (left[A_W] + right[A_W]) * 0.5 - vp[VP_CW])
+            evals += ev
+            if st == S_OK:
+                right[A_BUMP] = depth + 1.0
+                mid[A_BUMP] = depth + 1.0
+                top += 1
+                continue
+        _segment(vp, x0, left, right, wk, pend, tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin,
+                 hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
+        _copy(left, right)
+        top -= 1
+    return evals
 
 
 @ngjit_nrt_free
@@ -377,23 +431,24 @@ def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, lower_rgb, sh, hm
             if ok:
                 _start(wk, pend, edge if found else cur)
                 if found:
-                    _segment(vp, x0, edge, cur, wk, pend, tmp, aa, mp, lut, lower_rgb, sh,
-                             hmax, hmin, hsurf, lists, off, K, counts, trans, gfirst, hits,
-                             b, crec)
+                    evals = _refined(kind, f, fg, hf, hfp, vp, x0, edge, cur, scr, evals, wk, pend,
+                                     tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists,
+                                     off, K, counts, trans, gfirst, hits, b, crec)
             else:
                 last = prev
                 if found:
-                    _segment(vp, x0, prev, edge, wk, pend, tmp, aa, mp, lut, lower_rgb, sh,
-                             hmax, hmin, hsurf, lists, off, K, counts, trans, gfirst, hits,
-                             b, crec)
+                    evals = _refined(kind, f, fg, hf, hfp, vp, x0, prev, edge, scr, evals, wk, pend,
+                                     tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists,
+                                     off, K, counts, trans, gfirst, hits, b, crec)
                     last = edge
                 _flush(vp, x0, wk, pend, last[A_Y], aa, mp, lut, lower_rgb, sh, hmax, hmin,
                        hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
         elif ok and i == 0:
             _start(wk, pend, cur)
         elif ok:
-            _segment(vp, x0, prev, cur, wk, pend, tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin,
-                     hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
+            evals = _refined(kind, f, fg, hf, hfp, vp, x0, prev, cur, scr, evals, wk, pend, tmp,
+                             aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists, off, K,
+                             counts, trans, gfirst, hits, b, crec)
         if ok:
             _copy(prev, cur)
         prev_ok = ok
@@ -452,7 +507,7 @@ def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, lower_rgb, sh, hmax, hm
         if c >= W:
             continue
         trans = np.ones(H)
-        scr = np.zeros((7, A_SIZE))
+        scr = np.zeros((SCR_STACK + REFINE_DEPTH + 3, A_SIZE))
         x0 = column_x0(vp, c)
         evals[b] += _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, lower_rgb, sh, hmax,
                                    hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b,
@@ -551,3 +606,24 @@ def composite_kernel(lists, counts, offs, gfirst, c0, weight, first, acc, side, 
                 if front >= 0:
                     for k in range(G_SIZE):
                         gbuf[tile, j, lane, k] = gfirst[front, b, j, k]
+
+
+@ngjit_parallel
+def picture_kernel(acc, bg, rgba, intensity):
+    """The composite's sums acc (H, W, ACC_SIZE) over the background bg (r, g, b, a in
+    [0, 1]): rgba (H, W, 4) uint8, straight alpha; intensity (H, W) the sum of the
+    layers' intensities over black, NaN where no layer is."""
+    H = acc.shape[0]
+    W = acc.shape[1]
+    for i in prange(H):
+        for c in range(W):
+            x = acc[i, c]
+            a = x[ACC_A]
+            rest = (1.0 - a) * bg[3]
+            alpha = a + rest
+            q = 1.0 / alpha if alpha > 0.0 else 1.0
+            for k in range(3):
+                v = (x[k] + rest * bg[k]) * q * 255.0
+                rgba[i, c, k] = np.uint8(min(max(round(v), 0.0), 255.0))
+            rgba[i, c, 3] = np.uint8(min(max(round(alpha * 255.0), 0.0), 255.0))
+            intensity[i, c] = x[ACC_I] if a > 0.0 else np.nan

@@ -128,9 +128,10 @@ def translucent_pass(layers, views, drawn, box, quality, background, texture):
                       np.asarray(lower_rgb, dtype=np.float64), sh, hmax, hmin, hsurf))
     offsets_px, centre = offsets(sub)
     order = [centre] + [i for i in range(sub) if i != centre]
-    lists = np.zeros((B, H, slots, K.C_SIZE), dtype=np.float32)
+    # (read only below counts: never cleared)
+    lists = np.empty((B, H, slots, K.C_SIZE), dtype=np.float32)
     counts = np.zeros((n, B, H), dtype=np.int32)
-    gfirst = np.zeros((n, B, H, G_SIZE), dtype=np.float32)
+    gfirst = np.empty((n, B, H, G_SIZE), dtype=np.float32)
     hits = np.zeros((B, H), dtype=np.int32)
     evals = np.zeros(B, dtype=np.int64)
     acc = np.zeros((H, W, K.ACC_SIZE))
@@ -176,14 +177,9 @@ def translucent_pass(layers, views, drawn, box, quality, background, texture):
 def _picture(acc, background):
     """(rgba uint8, intensity float32) of the composite's sums over ``background``."""
     bg = color.to_rgba8(background).astype(np.float64) / 255.0
-    a = acc[..., K.ACC_A]
-    rest = (1.0 - a) * bg[3]
-    alpha = a + rest
-    rgb = (acc[..., :3] + rest[..., None] * bg[:3]) / np.where(alpha > 0, alpha, 1.0)[..., None]
     rgba = np.empty(acc.shape[:2] + (4,), dtype=np.uint8)
-    rgba[..., :3] = np.clip(np.round(rgb * 255.0), 0, 255)
-    rgba[..., 3] = np.clip(np.round(alpha * 255.0), 0, 255)
-    intensity = np.where(a > 0.0, acc[..., K.ACC_I], np.nan).astype(np.float32)
+    intensity = np.empty(acc.shape[:2], dtype=np.float32)
+    K.picture_kernel(acc, bg, rgba, intensity)
     return rgba, intensity
 
 

@@ -69,6 +69,15 @@ def examples():
                     size=(480, 360), proj_type="ortho").save(IMG / "horizon.png")
 
 
+def translucency():
+    """Gordon's function opaque and at opacity 0.45: the folds behind the ridges."""
+    from PIL import Image
+    kw = dict(u=(-5, 5), v=(-5, 5), size=(400, 300), elev=35, azim=30, cmap="plasma")
+    pair = [fc.render("3*sin(u*cos(v))", opacity=a, **kw).rgba for a in (1.0, 0.45)]
+    Image.fromarray(np.concatenate(pair, axis=1)).save(IMG / "translucency.png",
+                                                       optimize=True)
+
+
 def shadows():
     """Gordon's function under a sun at 40 degrees, without and with its shadows."""
     kw = dict(u=(-5, 5), v=(-5, 5), size=(360, 270), elev=50, azim=30, lightsource=(200, 40),
@@ -83,3 +92,4 @@ if __name__ == "__main__":
     camera()
     examples()
     shadows()
+    translucency()

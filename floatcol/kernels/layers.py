@@ -28,7 +28,6 @@ full opacity: the composite is then exactly sum_k a (1 - a)^k I_k.
 Memory: the lists of a band of columns (passes/translucency.py picks the band), each
 column's scratch its own (no shared scratch across the parallel columns).
 """
-import math
 
 import numpy as np
 from numba import prange

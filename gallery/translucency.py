@@ -1,0 +1,36 @@
+"""Translucency (Gordon sections 6.5-6.6): a surface that shows its own hidden folds,
+a function and its Taylor polynomial meeting, and sympy's plot3d(f, g) with alpha.
+
+``opacity`` below 1 (matplotlib's ``alpha`` in plot_surface and plot3d) draws every
+layer of the surface along each pixel's ray, lit and coloured as the opaque surface
+would be, composited front to back; several surfaces are merged by depth, so where
+f = g the crossing is exact to the pixel, whatever order they are given in.
+"""
+import sympy
+
+import floatcol as fc
+from floatcol.sympy_backend import SympyBackend
+
+# Gordon's test function, half transparent: the folds behind the ridges show
+fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(800, 600), elev=35, azim=30,
+          opacity=0.45, cmap="plasma").save("gordon_translucent.png")
+
+# sin(u) cos(v) and its Taylor polynomial of degree 3 at the origin, both translucent:
+# they agree near the origin and part ways toward the corners
+u, v = sympy.symbols("u v")
+f = sympy.sin(u) * sympy.cos(v)
+taylor = sympy.series(sympy.sin(u), u, 0, 4).removeO() * sympy.series(
+    sympy.cos(v), v, 0, 3).removeO()
+fc.render_many([fc.Layer(f, ((-2.5, 2.5), (-2.5, 2.5)),
+                         fc.Material(cmap="viridis", opacity=0.55)),
+                fc.Layer(sympy.expand(taylor), ((-2.5, 2.5), (-2.5, 2.5)),
+                         fc.Material(upper_color="tomato", lower_color="firebrick",
+                                     opacity=0.55))],
+               size=(800, 600), elev=25, azim=-40).save("taylor_translucent.png")
+
+# sympy's own call form: two surfaces, alpha for both
+x, y = sympy.symbols("x y")
+p = sympy.plotting.plot3d(sympy.cos(x * y), x ** 2 / 8 - y ** 2 / 8, (x, -3, 3), (y, -3, 3),
+                          backend=SympyBackend, show=False, alpha=0.6, cmap="coolwarm",
+                          title="cos(xy) and (x^2 - y^2)/8, alpha = 0.6")
+p.save("plot3d_alpha.png")

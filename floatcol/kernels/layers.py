@@ -258,7 +258,7 @@ def _wait(wk, pend, j, start, rec, centre):
     _copy(pend, rec)
 
 
-@ngjit_nrt_free
+@ngjit_inline
 def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf,
              lists, off, K, counts, trans, gfirst, hits, b, crec):
     """The crossings between successive samples p and q of a run (section 6.5)."""
@@ -326,7 +326,7 @@ def _sample(kind, f, fg, hf, hfp, vp, x0, t, out, guess):
     return st, ev, (w - vp[VP_CW]) if st == S_OK else guess
 
 
-@ngjit_nrt_free
+@ngjit_inline
 def _refined(kind, f, fg, hf, hfp, vp, x0, p, q, scr, evals, wk, pend, tmp, aa, mp, lut,
              lower_rgb, sh, hmax, hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b,
              crec):
@@ -539,9 +539,10 @@ def composite_kernel(lists, counts, offs, gfirst, c0, weight, first, acc, side, 
     """Merge the surfaces' lists of a band (layers_kernel's; counts (n, B, H), offs the
     surfaces' first slots, gfirst (n, B, H, G_SIZE)) by depth, front to back, over a
     transmittance that stops below STOP: acc[i, c] += weight * the sums (ACC_*), row i
-    = H - 1 - j from the top, column c = c0 + b. With ``first``: side, depth, shadow
-    (NaN: none), which (the surface in front, -1: none) of the nearest crossing, and
-    its G-buffer record into the tiled gbuf (layout.py)."""
+    = H - 1 - j from the top, column c = c0 + b. With ``first`` (a band's first pass):
+    acc[i, c] = weight * the sums, and side, depth, shadow (NaN: none), which (the
+    surface in front, -1: none) of the nearest crossing, and its G-buffer record into
+    the tiled gbuf (layout.py; only where a crossing is: gbuf is not cleared)."""
     n = counts.shape[0]
     B = lists.shape[0]
     H = lists.shape[1]
@@ -592,11 +593,18 @@ def composite_kernel(lists, counts, offs, gfirst, c0, weight, first, acc, side, 
                 it += tr * rec[C_I]
                 tr *= 1.0 - rec[C_A]
             a = acc[i, c]
-            a[ACC_R] += weight * r
-            a[ACC_G] += weight * g
-            a[ACC_B] += weight * bl
-            a[ACC_A] += weight * (1.0 - tr)
-            a[ACC_I] += weight * it
+            if first:                    # (acc's first pass sets it: it is not cleared)
+                a[ACC_R] = weight * r
+                a[ACC_G] = weight * g
+                a[ACC_B] = weight * bl
+                a[ACC_A] = weight * (1.0 - tr)
+                a[ACC_I] = weight * it
+            else:
+                a[ACC_R] += weight * r
+                a[ACC_G] += weight * g
+                a[ACC_B] += weight * bl
+                a[ACC_A] += weight * (1.0 - tr)
+                a[ACC_I] += weight * it
             if first:
                 which[i, c] = front
                 side[i, c] = int(f_side)

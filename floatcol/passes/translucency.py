@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from .. import color
+from .. import _pool, color
 from ..kernels import layers as K
 from ..kernels.layout import G_SIZE, TILE, VP_AA, VP_XOFF
 from ..result import Render
@@ -128,20 +128,20 @@ def translucent_pass(layers, views, drawn, box, quality, background, texture):
                       np.asarray(lower_rgb, dtype=np.float64), sh, hmax, hmin, hsurf))
     offsets_px, centre = offsets(sub)
     order = [centre] + [i for i in range(sub) if i != centre]
-    # (read only below counts: never cleared)
-    lists = np.empty((B, H, slots, K.C_SIZE), dtype=np.float32)
-    counts = np.zeros((n, B, H), dtype=np.int32)
-    gfirst = np.empty((n, B, H, G_SIZE), dtype=np.float32)
-    hits = np.zeros((B, H), dtype=np.int32)
+    # (lists and gfirst are read only below counts, gbuf only where a layer is seen,
+    # the rest written in full by each band's first pass: none is cleared)
+    lists = _pool.empty((B, H, slots, K.C_SIZE), np.float32)
+    counts = _pool.empty((n, B, H), np.int32)
+    gfirst = _pool.empty((n, B, H, G_SIZE), np.float32)
+    hits = _pool.empty((B, H), np.int32)
     evals = np.zeros(B, dtype=np.int64)
-    acc = np.zeros((H, W, K.ACC_SIZE))
-    side = np.zeros((H, W), dtype=np.int8)
-    depth = np.full((H, W), np.inf, dtype=np.float32)
-    shadow = np.full((H, W), np.nan, dtype=np.float32)
-    which = np.full((H, W), -1, dtype=np.int8)
-    layers_seen = np.zeros((H, W), dtype=np.int16)
-    n_tiles = -(-W // TILE)
-    gbuf = np.zeros((n_tiles, H, TILE, G_SIZE), dtype=np.float32)
+    acc = _pool.empty((H, W, K.ACC_SIZE), np.float64)
+    side = _pool.empty((H, W), np.int8)
+    depth = _pool.empty((H, W), np.float32)
+    shadow = _pool.empty((H, W), np.float32)
+    which = _pool.empty((H, W), np.int8)
+    layers_seen = np.empty((H, W), dtype=np.int16)
+    gbuf = _pool.empty((-(-W // TILE), H, TILE, G_SIZE), np.float32)
     total_evals = 0
     weight = 1.0 / sub
     for c0 in range(0, W, B):

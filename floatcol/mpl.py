@@ -10,6 +10,7 @@ quality on release.
 """
 from __future__ import annotations
 
+from matplotlib.artist import Artist
 from matplotlib.image import AxesImage
 
 DRAG_PIXEL_STEP = 3.0
@@ -133,3 +134,129 @@ class SurfaceImage(AxesImage):
         self.plot.zoom *= ZOOM_PER_STEP ** event.step
         self.stale = True
         self.axes.figure.canvas.draw_idle()
+
+
+class Surface3DImage(Artist):
+    """The artist of a SurfacePlot drawn into matplotlib's own 3-D Axes
+    (``fig.add_subplot(projection="3d")``): everything mplot3d draws stays (panes,
+    grid, ticks, labels, title, limits, box aspect), and the surface is rendered on
+    every draw with the Axes' camera, so that it lies exactly where mplot3d would draw
+    the same mesh. Its camera, from the Axes (``axes_camera``): the limits' box
+    stretched to the box aspect (render's ``box``) about its centre, matplotlib's
+    view angles, and in perspective the eye where mplot3d puts it (``_dist`` times the
+    focal length from the box's centre); the scale and the picture's place on the
+    canvas are fitted on the box's eight corners, which mplot3d's projection and
+    floatcol's View then put on the same pixels (to 1e-12 of a pixel). While
+    mplot3d's mouse rotation drags, the picture is a lighter preview."""
+
+    def __init__(self, ax, plot):
+        super().__init__()
+        self.axes = ax
+        self.plot = plot
+        self.set_zorder(1)
+        self.set_clip_box(ax.bbox)
+        self.placed = None        # (x, y) of the last picture's lower left on the canvas
+
+    @classmethod
+    def attach(cls, plot, ax):
+        art = cls(ax, plot)
+        plot.artist = art
+        ax.add_artist(art)
+        art.set_clip_path(ax.patch)
+        (ua, ub), (va, vb) = plot._items()[0][1]
+        for others in plot._items()[1:]:
+            (a, b), (c, d) = others[1]
+            ua, ub, va, vb = min(ua, a), max(ub, b), min(va, c), max(vb, d)
+        lo, hi = plot.norm.vmin, plot.norm.vmax
+        ax.auto_scale_xyz([ua, ub], [va, vb], [lo, hi], had_data=ax.has_data())
+        return art
+
+    def get_window_extent(self, renderer=None):
+        return self.axes.bbox
+
+    def draw(self, renderer):
+        if not self.get_visible():
+            return
+        ax = self.axes
+        mag = renderer.get_image_magnification()
+        bb = ax.bbox
+        W = max(1, int(round(bb.width * mag)))
+        H = max(1, int(round(bb.height * mag)))
+        kw, (ox, oy), size = axes_camera(self.plot, ax, W, H, mag)
+        preview = getattr(ax, "button_pressed", None) in getattr(ax, "_rotate_btn", ())
+        self.plot.pixel_step = DRAG_PIXEL_STEP if preview else None
+        try:
+            r = self.plot.draw_with(size, kw)
+        finally:
+            self.plot.pixel_step = None
+        gc = renderer.new_gc()
+        gc.set_clip_rectangle(bb)
+        x = ox - 0.5 / mag
+        y = oy - (size[1] - 0.5) / mag
+        self.placed = (x, y)
+        renderer.draw_image(gc, x, y, r.rgba[::-1])
+        gc.restore()
+        self.stale = False
+
+
+def axes_camera(plot, ax, W, H, mag=1.0):
+    """(render keywords, the canvas point of the picture's pixel (0, H - 1) centre
+    ... as (ox, oy) with a pixel (col, row) at (ox + col / mag, oy - row / mag), the
+    picture's size): the camera of a 3-D Axes as Surface3DImage describes."""
+    import numpy as np
+    from mpl_toolkits.mplot3d import proj3d
+
+    from .plot import mpl_to_paper_angles, render_view
+    if getattr(ax, "roll", 0.0):
+        raise ValueError("a 3-D Axes' roll (view_init(roll=...)) is not drawn yet: use "
+                         "roll=0")
+    (x0, x1), (y0, y1), (z0, z1) = ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()
+    ba = np.asarray(ax._box_aspect, dtype=float)
+    box = (ba[0] / (x1 - x0), ba[1] / (y1 - y0), ba[2] / (z1 - z0))
+    center = ((x0 + x1) / 2.0, (y0 + y1) / 2.0, (z0 + z1) / 2.0)
+    elev, azim = mpl_to_paper_angles(ax.elev, ax.azim)
+    kw = dict(elev=elev, azim=azim, box=box, center=center)
+    if ax._focal_length == np.inf:
+        kw["projection"] = "orthographic"
+    else:
+        d3 = ax._dist * ax._focal_length
+        kw.update(projection="perspective", d1=0.05 * d3, d2=0.95 * d3)
+    cx, cy, cz = (a.ravel() for a in np.meshgrid([x0, x1], [y0, y1], [z0, z1]))
+    xs, ys, _ = proj3d.proj_transform(cx, cy, cz, ax.M)
+    disp = ax.transData.transform(np.column_stack([xs, ys]))
+    size = (W, H)
+    for _ in range(2):
+        s, dx, dy, col_c, row_c, _ = _fit(plot, kw, size, (cx, cy, cz), box, disp, mag)
+        # the picture must cover the Axes: as much larger as its centre is off theirs
+        bb = ax.bbox
+        mx = abs(col_c / mag - (bb.x0 + bb.width / 2.0)) * mag
+        my = abs(row_c / mag - (bb.y0 + bb.height / 2.0)) * mag
+        size = (W + 2 * int(np.ceil(mx)) + 2, H + 2 * int(np.ceil(my)) + 2)
+    s, dx, dy, _, _, trial_scale = _fit(plot, kw, size, (cx, cy, cz), box, disp, mag)
+    Wp, Hp = size
+    kw["scale"] = s * trial_scale
+    # pixel (col, row) of the render at s times the fit's scale: col - (Wp-1)/2 =
+    # s (col1 - (Wp-1)/2) of the fit's, whose canvas x is (s col1 + dx) / mag
+    ox = (dx + (s - 1.0) * (Wp - 1) / 2.0) / mag
+    oy = (dy - (s - 1.0) * (Hp - 1) / 2.0) / mag
+    return kw, (ox, oy), size
+
+
+def _fit(plot, kw, size, corners, box, disp, mag):
+    """(s, dx, dy, canvas x and y of the picture's centre times mag, the fit's scale)
+    so that the canvas point (times mag) of a corner is (s col + dx, -s row + dy),
+    (col, row) its pixel in the picture of ``size`` render_view fits (its own
+    scale)."""
+    import numpy as np
+
+    from .plot import render_view
+    cx, cy, cz = corners
+    (x0, x1), (y0, y1) = (cx.min(), cx.max()), (cy.min(), cy.max())
+    view, _ = render_view(plot.surface, dict(kw, size=size, u=(x0, x1), v=(y0, y1)))
+    col, row = view.project(cx * box[0], cy * box[1], cz * box[2])
+    n = len(col)
+    A = np.column_stack([np.r_[col, -row], np.r_[np.ones(n), np.zeros(n)],
+                         np.r_[np.zeros(n), np.ones(n)]])
+    (s, dx, dy), *_ = np.linalg.lstsq(A, np.r_[disp[:, 0], disp[:, 1]] * mag, rcond=None)
+    Wp, Hp = size
+    return s, dx, dy, s * (Wp - 1) / 2.0 + dx, -s * (Hp - 1) / 2.0 + dy, view.scale

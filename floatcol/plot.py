@@ -288,6 +288,26 @@ class SurfacePlot(_ScalarMappable):
             return scene_from_options([(s, *d) for s, d in self._items()], **kw), True
         return scene_from_options([(self.surface, u, v)], **kw), False
 
+    def draw_with(self, size, camera) -> Render:
+        """Render at ``size`` with the camera keywords ``camera`` (a 3-D Axes', mpl.py
+        axes_camera: angles, projection, box, centre, scale) over a transparent
+        background, and keep it as ``.render``."""
+        from .renderer import render_scene
+        from .scene import scene_from_options
+        kw = self.render_kwargs(size)
+        for k in ("aspect", "focal_length", "d1", "d2", "scale", "center", "box"):
+            kw.pop(k, None)
+        kw.update(camera)
+        kw["background"] = (0, 0, 0, 0)
+        u, v = kw.pop("u"), kw.pop("v")
+        if self.others:
+            scene, many = scene_from_options([(s, *d) for s, d in self._items()], **kw), True
+        else:
+            scene, many = scene_from_options([(self.surface, u, v)], **kw), False
+        r = render_scene(scene, composite=many)
+        self.render = r
+        return r
+
     def draw(self, size=None) -> Render:
         """Render at ``size`` (default: the plot's) and keep it as ``.render``."""
         from .renderer import render_scene
@@ -448,5 +468,7 @@ def _axes_pixels(ax):
 
 
 def attach(plot, ax, interactive=False):
-    from .mpl import SurfaceImage
+    from .mpl import Surface3DImage, SurfaceImage
+    if getattr(ax, "name", "") == "3d":       # mplot3d's own Axes: its camera, its mouse
+        return Surface3DImage.attach(plot, ax)
     return SurfaceImage.attach(plot, ax, interactive=interactive)

@@ -405,6 +405,17 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     -------
     SurfacePlot
     """
+    if _is_mesh(expr, ranges):                # matplotlib's plot_surface(X, Y, Z, ...)
+        expr, ranges = mesh_surface(expr, *ranges), ()
+    for name in _MPL_MESH_OPTIONS & set(options):
+        options.pop(name)                     # the exact surface has no mesh to draw
+    zorder = options.pop("zorder", None)
+    facecolors = options.pop("facecolors", None)
+    if facecolors is not None:
+        import warnings
+        warnings.warn("plot_surface: facecolors are not drawn yet (floatcol colours the "
+                      "surface by cmap or color); the picture uses the colormap",
+                      UserWarning, stacklevel=2)
     unknown = sorted(set(options) - _RENDER_OPTIONS - _OWN_OPTIONS)
     if unknown:
         known = ", ".join(sorted(_RENDER_OPTIONS | _OWN_OPTIONS))
@@ -437,10 +448,72 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     plot = SurfacePlot(surface, domain, label=label, render_options=options, others=others,
                        **own)
     if ax is not None:
-        attach(plot, ax, interactive=interactive)
+        art = attach(plot, ax, interactive=interactive)
+        if zorder is not None:
+            art.set_zorder(zorder)
     elif interactive:
         raise ValueError("interactive=True needs a matplotlib Axes: pass ax=")
     return plot
+
+
+#: Axes3D.plot_surface's keywords about its polygon mesh: accepted, with nothing to do
+#: (floatcol draws the exact surface, antialiased by its own rules: docs/options.md)
+_MPL_MESH_OPTIONS = {"rstride", "cstride", "rcount", "ccount", "linewidth", "linewidths",
+                     "lw", "edgecolor", "edgecolors", "ec", "antialiased", "antialiaseds",
+                     "aa"}
+
+
+def _is_mesh(expr, ranges):
+    return (len(ranges) == 2 and all(isinstance(a, np.ndarray) or
+                                     (isinstance(a, (list, tuple)) and _numeric(a))
+                                     for a in (expr, *ranges))
+            and np.ndim(ranges[1]) == 2)
+
+
+def _numeric(a):
+    try:
+        return np.asarray(a, dtype=float).ndim >= 1
+    except (TypeError, ValueError):
+        return False
+
+
+def mesh_surface(X, Y, Z):
+    """The HeightField of matplotlib's plot_surface(X, Y, Z): X and Y a meshgrid (either
+    indexing) or 1-D x (along Z's columns) and y (along its rows), evenly spaced,
+    ascending or descending (a north-up raster)."""
+    try:
+        X, Y, Z = (np.asarray(a, dtype=float) for a in (X, Y, Z))
+    except (TypeError, ValueError):
+        raise ValueError("plot_surface(X, Y, Z): X, Y and Z must be arrays of numbers") from None
+    if Z.ndim != 2:
+        raise ValueError(f"plot_surface(X, Y, Z): Z must be 2-D, got shape {Z.shape}")
+    if X.ndim == 2 and X.shape == Z.shape and Y.shape == Z.shape and \
+            np.ptp(X[0]) == 0 and np.ptp(Y[:, 0]) == 0 and Z.shape != (1, 1):
+        X, Y, Z = X.T, Y.T, Z.T                    # meshgrid(..., indexing="ij")
+    if X.ndim == 2:
+        if X.shape != Z.shape or not np.allclose(X, X[:1]):
+            raise ValueError("plot_surface(X, Y, Z): X must repeat one row of x values "
+                             "(a meshgrid)")
+        X = X[0]
+    if Y.ndim == 2:
+        if Y.shape != Z.shape or not np.allclose(Y, Y[:, :1]):
+            raise ValueError("plot_surface(X, Y, Z): Y must repeat one column of y values "
+                             "(a meshgrid)")
+        Y = Y[:, 0]
+    if X.shape != (Z.shape[1],) or Y.shape != (Z.shape[0],):
+        raise ValueError(f"plot_surface(X, Y, Z): x has {X.size} and y {Y.size} values for Z "
+                         f"of shape {Z.shape}")
+    for name, a in (("X", X), ("Y", Y)):
+        d = np.diff(a)
+        if len(a) < 2 or not np.all(np.isfinite(a)) or d[0] == 0 or \
+                not np.allclose(d, d[0], rtol=1e-6, atol=0):
+            raise ValueError(f"plot_surface(X, Y, Z): {name} must be evenly spaced and finite "
+                             "(floatcol reads Z as a regular grid)")
+    if X[1] < X[0]:
+        X, Z = X[::-1], Z[:, ::-1]
+    if Y[1] < Y[0]:
+        Y, Z = Y[::-1], Z[::-1]
+    return HeightField(Z, u=(X[0], X[-1]), v=(Y[0], Y[-1]))
 
 
 def _has_ranges(e):

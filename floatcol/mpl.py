@@ -70,6 +70,12 @@ class SurfaceImage(AxesImage):
     def get_window_extent(self, renderer=None):
         return self.axes.bbox
 
+    def to_canvas(self, col, row):
+        """Canvas points of the last picture's pixel coordinates (it fills the Axes)."""
+        bb = self.axes.bbox
+        H, W = self.plot.render.side.shape
+        return (bb.x0 + (col + 0.5) * bb.width / W, bb.y1 - (row + 0.5) * bb.height / H)
+
     def get_cursor_data(self, event):
         """The surface point under the mouse: (u, v, w), or None over background."""
         r = self.plot.render
@@ -155,7 +161,8 @@ class Surface3DImage(Artist):
         self.plot = plot
         self.set_zorder(1)
         self.set_clip_box(ax.bbox)
-        self.placed = None        # (x, y) of the last picture's lower left on the canvas
+        self.placed = None        # (ox, oy, mag) of the last picture: pixel (col, row)
+                                  # at the canvas point (ox + col / mag, oy - row / mag)
 
     @classmethod
     def attach(cls, plot, ax):
@@ -173,6 +180,11 @@ class Surface3DImage(Artist):
 
     def get_window_extent(self, renderer=None):
         return self.axes.bbox
+
+    def to_canvas(self, col, row):
+        """Canvas points of the last picture's pixel coordinates."""
+        ox, oy, mag = self.placed
+        return ox + col / mag, oy - row / mag
 
     def draw(self, renderer):
         if not self.get_visible():
@@ -193,7 +205,7 @@ class Surface3DImage(Artist):
         gc.set_clip_rectangle(bb)
         x = ox - 0.5 / mag
         y = oy - (size[1] - 0.5) / mag
-        self.placed = (x, y)
+        self.placed = (ox, oy, mag)
         renderer.draw_image(gc, x, y, r.rgba[::-1])
         gc.restore()
         self.stale = False
@@ -260,3 +272,106 @@ def _fit(plot, kw, size, corners, box, disp, mag):
     (s, dx, dy), *_ = np.linalg.lstsq(A, np.r_[disp[:, 0], disp[:, 1]] * mag, rcond=None)
     Wp, Hp = size
     return s, dx, dy, s * (Wp - 1) / 2.0 + dx, -s * (Hp - 1) / 2.0 + dy, view.scale
+
+
+class OccludedObjects(Artist):
+    """Points (markers) or a polyline in the surface's coordinates, drawn over the
+    surface's picture where they lie in front of it and hidden where it lies in front
+    of them (Gordon 6.1's z-buffer test against the render's depth, Szenberg's objects
+    on a terrain): mplot3d draws its own scatter and plot over or under a whole
+    surface, never through it. ``SurfacePlot.scatter`` and ``SurfacePlot.plot`` make
+    them; ``visible`` says, after a draw, which points (or line samples) were shown."""
+
+    def __init__(self, plot, xyz, kind, style):
+        super().__init__()
+        import numpy as np
+        self.plot = plot
+        self.xyz = np.asarray(xyz, dtype=float)
+        self.kind = kind                  # "points" or "line"
+        self.style = style
+        self.visible = None
+        self.set_zorder(plot.artist.get_zorder() + 1.5)
+
+    def _samples(self, view, box):
+        """The points, or the line's points about a pixel apart."""
+        import numpy as np
+        p = self.xyz
+        if self.kind == "points" or len(p) < 2:
+            return p
+        col, row = view.project(p[:, 0] * box[0], p[:, 1] * box[1], p[:, 2] * box[2])
+        steps = np.nan_to_num(np.hypot(np.diff(col), np.diff(row)), nan=1.0)
+        out = [p[:1]]
+        for k, n in enumerate(np.clip(np.ceil(steps), 1, 4096).astype(int)):
+            t = (np.arange(1, n + 1) / n)[:, None]
+            out.append(p[k] + (p[k + 1] - p[k]) * t)
+        return np.concatenate(out)
+
+    def draw(self, renderer):
+        import numpy as np
+        from matplotlib.collections import PathCollection
+        from matplotlib.lines import Line2D
+        from matplotlib.markers import MarkerStyle
+        from matplotlib.transforms import IdentityTransform
+        r = self.plot.render
+        art = self.plot.artist
+        if r is None or art is None or not self.get_visible():
+            return
+        box = r.box
+        pts = self._samples(r.view, box)
+        self.visible = visible_points(r, pts, box)
+        col, row = r.view.project(pts[:, 0] * box[0], pts[:, 1] * box[1], pts[:, 2] * box[2])
+        x, y = art.to_canvas(col, row)
+        xy = np.column_stack([x, y])
+        if self.kind == "points":
+            st = dict(self.style)
+            marker = MarkerStyle(st.pop("marker", "o"))
+            size = st.pop("s", 20.0)
+            color = st.pop("c", st.pop("color", "k"))
+            coll = PathCollection([marker.get_path().transformed(marker.get_transform())],
+                                  sizes=np.broadcast_to(np.asarray(size, float), len(pts))[
+                                      self.visible],
+                                  offsets=xy[self.visible], offset_transform=IdentityTransform(),
+                                  facecolors=_per_point(color, len(pts), self.visible), **st)
+            coll.set_figure(self.axes.figure)
+            coll.set_clip_box(self.axes.bbox)
+            coll.draw(renderer)
+        else:
+            run = np.where(self.visible, 0, 1).cumsum()     # the visible runs
+            for k in np.unique(run[self.visible]):
+                part = xy[self.visible & (run == k)]
+                if len(part) < 2:
+                    continue
+                line = Line2D(part[:, 0], part[:, 1], transform=IdentityTransform(),
+                              **self.style)
+                line.set_figure(self.axes.figure)
+                line.set_clip_box(self.axes.bbox)
+                line.draw(renderer)
+        self.stale = False
+
+
+def _per_point(color, n, keep):
+    import numpy as np
+    from matplotlib.colors import to_rgba_array
+    c = to_rgba_array(color)
+    return c if len(c) == 1 else c[keep]
+
+
+def visible_points(r, pts, box, pixels=2.0):
+    """Which points (n, 3) in the surface's units lie in front of the surface a Render
+    ``r`` saw at their pixel, or where it saw none (the depth test, with a tolerance of
+    ``pixels`` pixels of depth so that a point on the surface stays visible)."""
+    import numpy as np
+    view = r.view
+    bx, by, bz = (pts[:, 0] * box[0], pts[:, 1] * box[1], pts[:, 2] * box[2])
+    col, row = view.project(bx, by, bz)
+    _, _, z = view.to_screen(bx, by, bz)
+    H, W = r.side.shape
+    ok = np.isfinite(col) & np.isfinite(row)
+    c = np.clip(np.round(np.nan_to_num(col)).astype(int), 0, W - 1)
+    j = np.clip(np.round(np.nan_to_num(row)).astype(int), 0, H - 1)
+    inside = ok & (np.round(np.nan_to_num(col)) == c) & (np.round(np.nan_to_num(row)) == j)
+    tol = pixels / view.scale
+    if not view.orthographic:
+        tol = tol * (z + view.d3) / view.d1
+    seen = np.asarray(r.depth)[j, c]
+    return ok & (~inside | ~np.isfinite(seen) | (z <= seen + tol))

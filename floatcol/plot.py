@@ -205,6 +205,34 @@ class SurfacePlot(_ScalarMappable):
         return (lo, hi) if hi > lo else (lo - 0.5, hi + 0.5)
 
     # -- camera -------------------------------------------------------------------
+    # -- objects --------------------------------------------------------------------
+    def scatter(self, xs, ys, zs, **style):
+        """Markers at the points (xs, ys, zs) of the surface's space, depth-tested
+        against the picture on every draw: hidden where the surface lies in front of
+        them, drawn over it where they lie in front (mplot3d draws a scatter over or
+        under a whole surface). ``style``: s, c or color, marker and PathCollection's
+        keywords. Returns the artist (mpl.OccludedObjects; ``.visible`` after a draw)."""
+        return self._objects(xs, ys, zs, "points", style)
+
+    def plot(self, xs, ys, zs, **style):
+        """A polyline through the points (xs, ys, zs), depth-tested as ``scatter`` a
+        pixel at a time: the parts behind the surface are hidden. ``style``: Line2D's
+        keywords (color, linewidth, linestyle, ...)."""
+        return self._objects(xs, ys, zs, "line", style)
+
+    def _objects(self, xs, ys, zs, kind, style):
+        if self.artist is None:
+            raise ValueError("objects on the surface need the plot in an Axes: "
+                             "plot_surface(..., ax=ax)")
+        from .mpl import OccludedObjects
+        try:
+            xyz = np.column_stack([np.ravel(np.asarray(a, dtype=float)) for a in (xs, ys, zs)])
+        except (TypeError, ValueError):
+            raise ValueError("xs, ys and zs must be numbers or arrays of one length") from None
+        obj = OccludedObjects(self, xyz, kind, style)
+        self.artist.axes.add_artist(obj)
+        return obj
+
     def view_init(self, elev=None, azim=None):
         """Set the view as matplotlib's Axes3D.view_init does (degrees)."""
         if elev is not None:

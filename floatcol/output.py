@@ -8,8 +8,11 @@ import tempfile
 import numpy as np
 
 #: extension -> how it is written
-IMAGE_FORMATS = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG", ".pdf": "pdf",
-                 ".svg": "svg"}
+IMAGE_FORMATS = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG", ".tif": "TIFF",
+                 ".tiff": "TIFF", ".webp": "WEBP", ".pdf": "pdf", ".svg": "svg", ".eps": "eps",
+                 ".ps": "ps"}
+#: written by Pillow (the others through matplotlib's savefig)
+PIL_FORMATS = ("PNG", "JPEG", "TIFF", "WEBP")
 
 
 def check_output(path, formats=IMAGE_FORMATS):
@@ -57,20 +60,23 @@ def atomic_file(path):
 
 
 def save_image(rgba, path, dpi=100):
-    """Write an (H, W, 4) uint8 picture: PNG or JPEG with Pillow, PDF or SVG through
-    matplotlib (the picture at ``dpi``, so it keeps its pixel size in inches)."""
+    """Write an (H, W, 4) uint8 picture: PNG, JPEG, TIFF or WebP with Pillow, PDF, SVG,
+    EPS or PS through matplotlib (the picture at ``dpi``, so it keeps its pixel size in
+    inches)."""
     path, ext = check_output(path)
     rgba = np.ascontiguousarray(rgba)
     fmt = IMAGE_FORMATS[ext]
     with atomic_file(path) as tmp:
-        if fmt in ("PNG", "JPEG"):
+        if fmt in PIL_FORMATS:
             from PIL import Image
             img = Image.fromarray(rgba, "RGBA")
             if fmt == "JPEG":
                 img = _flatten(img)
                 img.save(tmp, format="JPEG", quality=95)
+            elif fmt == "WEBP":
+                img.save(tmp, format="WEBP", lossless=True)
             else:
-                img.save(tmp, format="PNG")
+                img.save(tmp, format=fmt)
         else:
             from matplotlib.figure import Figure
             h, w = rgba.shape[:2]

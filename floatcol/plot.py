@@ -355,7 +355,8 @@ class SurfacePlot(_ScalarMappable):
         return self._current().rgba
 
     def save(self, path, dpi=None):
-        """Write the picture at ``size``: .png, .jpg, .pdf or .svg (atomically)."""
+        """Write the picture at ``size``: .png, .jpg, .tif, .webp, .pdf, .svg, .eps or .ps
+        (atomically)."""
         from .output import check_output
         check_output(path)
         return save_image(self._current().rgba, path, dpi=dpi or self.dpi)

@@ -152,7 +152,8 @@ def _hidden_by_rays(f, pts, eye_dir=None, eye=None, dom=(-3, 3), steps=4000):
             d = np.asarray(eye_dir) * 100.0
         t = np.linspace(1e-4, 1.0, steps)[:, None]
         q = p + t * d
-        inside = (q[:, 0] >= dom[0]) & (q[:, 0] <= dom[1]) & (q[:, 1] >= dom[0]) & (q[:, 1] <= dom[1])
+        inside = ((q[:, 0] >= dom[0]) & (q[:, 0] <= dom[1]) & (q[:, 1] >= dom[0])
+                  & (q[:, 1] <= dom[1]))
         g = q[:, 2] - f(q[:, 0], q[:, 1])
         g0 = p[2] - f(p[0], p[1])
         hidden[k] = bool(np.any(inside & (np.sign(g) != np.sign(g0))))
@@ -203,3 +204,18 @@ def test_a_line_through_a_hill():
     assert v[:5].all() and v[-5:].all() and not v.all()
     with pytest.raises(ValueError, match="in an Axes"):
         fc.plot_surface("x*y", size=(40, 30)).scatter([0], [0], [0])
+
+
+@pytest.mark.parametrize("ext", [".png", ".jpg", ".tif", ".webp", ".pdf", ".svg", ".eps"])
+def test_every_savefig_format_from_plot_save_and_the_cli(tmp_path, ext):
+    import subprocess
+    import sys
+    p = fc.plot_surface("sin(x*y)", ("x", -2, 2), ("y", -2, 2), size=(60, 40))
+    out = tmp_path / f"p{ext}"
+    p.save(out)
+    assert out.stat().st_size > 200
+    cli = tmp_path / f"c{ext}"
+    run = subprocess.run([sys.executable, "-m", "floatcol.cli", "render", "x*y", "--size",
+                          "40x30", "-o", str(cli)], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert cli.stat().st_size > 200

@@ -69,6 +69,24 @@ def examples():
                     size=(480, 360), proj_type="ortho").save(IMG / "horizon.png")
 
 
+def mplot3d():
+    """matplotlib's surface3d example: mplot3d's mesh, and floatcol in the same Axes."""
+    from matplotlib import cm
+    X, Y = np.meshgrid(np.arange(-5, 5, 0.25), np.arange(-5, 5, 0.25))
+    Z = np.sin(np.sqrt(X ** 2 + Y ** 2))
+    fig = plt.figure(figsize=(9, 3.6), dpi=80)
+    for k, title in enumerate(("mplot3d: ax.plot_surface(X, Y, Z, ...)",
+                               "floatcol: fc.plot_surface(X, Y, Z, ax=ax, ...)")):
+        ax = fig.add_subplot(1, 2, k + 1, projection="3d")
+        kw = dict(cmap=cm.coolwarm, linewidth=0, antialiased=False)
+        s = ax.plot_surface(X, Y, Z, **kw) if k == 0 else fc.plot_surface(X, Y, Z, ax=ax, **kw)
+        ax.set_zlim(-1.01, 1.01)
+        ax.set_title(title, fontsize=9)
+        fig.colorbar(s, ax=ax, shrink=0.5, aspect=5)
+    fig.savefig(IMG / "mplot3d.png")
+    plt.close(fig)
+
+
 def translucency():
     """Gordon's function opaque and at opacity 0.45: the folds behind the ridges."""
     from PIL import Image
@@ -93,3 +111,4 @@ if __name__ == "__main__":
     examples()
     shadows()
     translucency()
+    mplot3d()

@@ -230,7 +230,10 @@ class SurfacePlot(_ScalarMappable):
         except (TypeError, ValueError):
             raise ValueError("xs, ys and zs must be numbers or arrays of one length") from None
         obj = OccludedObjects(self, xyz, kind, style)
-        self.artist.axes.add_artist(obj)
+        ax = self.artist.axes
+        ax.add_artist(obj)
+        if getattr(ax, "name", "") == "3d":          # the limits take the objects in too
+            ax.auto_scale_xyz(xyz[:, 0], xyz[:, 1], xyz[:, 2], had_data=True)
         return obj
 
     def view_init(self, elev=None, azim=None):

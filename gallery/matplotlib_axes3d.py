@@ -1,0 +1,60 @@
+"""floatcol in matplotlib's own 3-D Axes: the surface3d example with only its
+plot_surface call changed, markers hidden behind a hill, and a terrain with
+matplotlib's LightSource.
+
+``fc.plot_surface(X, Y, Z, ax=ax, ...)`` takes matplotlib's call form and keywords;
+inside ``fig.add_subplot(projection="3d")`` the Axes keep their panes, ticks, labels
+and limits, and the surface lies exactly where mplot3d would draw the mesh.
+``plot.scatter`` and ``plot.plot`` draw objects depth-tested against the surface,
+which mplot3d cannot do.
+"""
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib import cm
+from matplotlib.cbook import get_sample_data
+from matplotlib.colors import LightSource
+from matplotlib.ticker import LinearLocator
+
+import floatcol as fc
+
+# matplotlib's surface3d example: only the plot_surface line differs
+fig, ax = plt.subplots(subplot_kw={"projection": "3d"})
+X = np.arange(-5, 5, 0.25)
+Y = np.arange(-5, 5, 0.25)
+X, Y = np.meshgrid(X, Y)
+R = np.sqrt(X**2 + Y**2)
+Z = np.sin(R)
+surf = fc.plot_surface(X, Y, Z, ax=ax, cmap=cm.coolwarm, linewidth=0, antialiased=False)
+ax.set_zlim(-1.01, 1.01)
+ax.zaxis.set_major_locator(LinearLocator(10))
+ax.zaxis.set_major_formatter('{x:.02f}')
+fig.colorbar(surf, shrink=0.5, aspect=5)
+fig.savefig("surface3d.png")
+
+# markers and a path around a hill: hidden where the hill is in front of them
+fig = plt.figure(figsize=(7, 5))
+ax = fig.add_subplot(projection="3d")
+hill = fc.plot_surface("2*exp(-(x**2 + y**2)/2)", ("x", -3, 3), ("y", -3, 3), ax=ax,
+                       cmap="summer")
+rng = np.random.default_rng(3)
+pts = rng.uniform([-3, -3, 0.2], [3, 3, 2.4], (250, 3))
+hill.scatter(pts[:, 0], pts[:, 1], pts[:, 2], color="crimson", s=14)
+t = np.linspace(0, 2 * np.pi, 400)
+hill.plot(2.2 * np.cos(t), 2.2 * np.sin(t), 0.6 + 0.5 * np.sin(3 * t), color="k", linewidth=2)
+ax.set_title("scatter and plot, depth-tested against the surface")
+fig.savefig("occluded_objects.png")
+
+# matplotlib's custom hillshading example, in floatcol
+dem = get_sample_data("jacksboro_fault_dem.npz")
+z = dem["elevation"]
+nrows, ncols = z.shape
+x = np.linspace(dem["xmin"], dem["xmax"], ncols)
+y = np.linspace(dem["ymin"], dem["ymax"], nrows)
+x, y = np.meshgrid(x, y)
+region = np.s_[5:50, 5:50]
+x, y, z = x[region], y[region], z[region]
+fig, ax = plt.subplots(subplot_kw=dict(projection="3d"))
+ls = LightSource(270, 45)
+fc.plot_surface(x, y, z, ax=ax, cmap=cm.gist_earth, lightsource=ls, linewidth=0,
+                antialiased=False, shade=True)
+fig.savefig("hillshading.png")

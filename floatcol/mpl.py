@@ -10,6 +10,7 @@ quality on release.
 """
 from __future__ import annotations
 
+import numpy as np
 from matplotlib.artist import Artist
 from matplotlib.image import AxesImage
 
@@ -161,8 +162,8 @@ class Surface3DImage(Artist):
         self.plot = plot
         self.set_zorder(1)
         self.set_clip_box(ax.bbox)
-        self.placed = None        # (ox, oy, mag) of the last picture: pixel (col, row)
-                                  # at the canvas point (ox + col / mag, oy - row / mag)
+        self.placed = None        # T (2, 3) of the last picture: pixel (col, row) at the
+                                  # canvas point T @ (col, row, 1) (axes_camera)
 
     @classmethod
     def attach(cls, plot, ax):
@@ -183,8 +184,9 @@ class Surface3DImage(Artist):
 
     def to_canvas(self, col, row):
         """Canvas points of the last picture's pixel coordinates."""
-        ox, oy, mag = self.placed
-        return ox + col / mag, oy - row / mag
+        T = self.placed
+        return (T[0, 0] * col + T[0, 1] * row + T[0, 2],
+                T[1, 0] * col + T[1, 1] * row + T[1, 2])
 
     def draw(self, renderer):
         if not self.get_visible():
@@ -194,34 +196,62 @@ class Surface3DImage(Artist):
         bb = ax.bbox
         W = max(1, int(round(bb.width * mag)))
         H = max(1, int(round(bb.height * mag)))
-        kw, (ox, oy), size = axes_camera(self.plot, ax, W, H, mag)
+        kw, T, size = axes_camera(self.plot, ax, W, H, mag)
         preview = getattr(ax, "button_pressed", None) in getattr(ax, "_rotate_btn", ())
         self.plot.pixel_step = DRAG_PIXEL_STEP if preview else None
         try:
             r = self.plot.draw_with(size, kw)
         finally:
             self.plot.pixel_step = None
+        self.placed = T
         gc = renderer.new_gc()
         gc.set_clip_rectangle(bb)
-        x = ox - 0.5 / mag
-        y = oy - (size[1] - 0.5) / mag
-        self.placed = (ox, oy, mag)
-        renderer.draw_image(gc, x, y, r.rgba[::-1])
+        if abs(T[0, 1]) <= 1e-12 * abs(T[0, 0]):
+            # pixel (col, row) centred at the canvas point (ox + col / mag, oy - row / mag)
+            renderer.draw_image(gc, T[0, 2] - 0.5 / mag, T[1, 2] - (size[1] - 0.5) / mag,
+                                r.rgba[::-1])
+        else:                                     # a roll: the picture turned onto the Axes
+            x0, y0 = int(np.floor(bb.x0)), int(np.floor(bb.y0))
+            renderer.draw_image(gc, x0, y0, _turned(r.rgba, T, x0, y0, W, H, mag)[::-1])
         gc.restore()
         self.stale = False
 
 
+def _turned(rgba, T, x0, y0, W, H, mag):
+    """The picture mapped by T (pixel -> canvas) onto W x H pixels whose lower left is
+    the canvas point (x0, y0): each pixel centre mapped back, bilinear in premultiplied
+    colour."""
+    iy, ix = np.mgrid[0:H, 0:W]
+    x = x0 + (ix + 0.5) / mag
+    y = y0 + (H - 1 - iy + 0.5) / mag
+    M = T[:, :2]
+    inv = np.linalg.inv(M)
+    col = inv[0, 0] * (x - T[0, 2]) + inv[0, 1] * (y - T[1, 2])
+    row = inv[1, 0] * (x - T[0, 2]) + inv[1, 1] * (y - T[1, 2])
+    src = rgba.astype(np.float64) / 255.0
+    src[..., :3] *= src[..., 3:]
+    h, w = rgba.shape[:2]
+    c0 = np.floor(col).astype(int)
+    r0 = np.floor(row).astype(int)
+    fc_, fr = col - c0, row - r0
+    out = np.zeros((H, W, 4))
+    for dr, wr in ((0, 1.0 - fr), (1, fr)):
+        for dc, wc in ((0, 1.0 - fc_), (1, fc_)):
+            rr, cc = r0 + dr, c0 + dc
+            ok = (rr >= 0) & (rr < h) & (cc >= 0) & (cc < w)
+            out[ok] += (wr * wc)[ok][:, None] * src[rr[ok], cc[ok]]
+    a = out[..., 3:]
+    out[..., :3] = np.where(a > 0, out[..., :3] / np.maximum(a, 1e-12), 0.0)
+    return np.clip(np.round(out * 255.0), 0, 255).astype(np.uint8)
+
+
 def axes_camera(plot, ax, W, H, mag=1.0):
-    """(render keywords, the canvas point of the picture's pixel (0, H - 1) centre
-    ... as (ox, oy) with a pixel (col, row) at (ox + col / mag, oy - row / mag), the
-    picture's size): the camera of a 3-D Axes as Surface3DImage describes."""
-    import numpy as np
+    """(render keywords, T, the picture's size): the camera of a 3-D Axes as
+    Surface3DImage describes, and T (2, 3) the map of a pixel (col, row, 1) of the
+    picture to its canvas point (a turn by the Axes' roll, a scale 1 / mag)."""
     from mpl_toolkits.mplot3d import proj3d
 
     from .plot import mpl_to_paper_angles
-    if getattr(ax, "roll", 0.0):
-        raise ValueError("a 3-D Axes' roll (view_init(roll=...)) is not drawn yet: use "
-                         "roll=0")
     (x0, x1), (y0, y1), (z0, z1) = ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()
     ba = np.asarray(ax._box_aspect, dtype=float)
     box = (ba[0] / (x1 - x0), ba[1] / (y1 - y0), ba[2] / (z1 - z0))
@@ -235,43 +265,45 @@ def axes_camera(plot, ax, W, H, mag=1.0):
         kw.update(projection="perspective", d1=0.05 * d3, d2=0.95 * d3)
     cx, cy, cz = (a.ravel() for a in np.meshgrid([x0, x1], [y0, y1], [z0, z1]))
     xs, ys, _ = proj3d.proj_transform(cx, cy, cz, ax.M)
-    disp = ax.transData.transform(np.column_stack([xs, ys]))
-    size = (W, H)
+    disp = ax.transData.transform(np.column_stack([xs, ys])) * mag
+    # (a roll turns the picture: it must cover the Axes' diagonal)
+    base = (W, H) if not getattr(ax, "roll", 0.0) else (int(np.ceil(np.hypot(W, H))),) * 2
+    size = base
+    bb = ax.bbox
     for _ in range(2):
-        s, dx, dy, col_c, row_c, _ = _fit(plot, kw, size, (cx, cy, cz), box, disp, mag)
+        (a, b, dx, dy), _ = _fit(plot, kw, size, (cx, cy, cz), box, disp)
+        cW, cH = (size[0] - 1) / 2.0, (size[1] - 1) / 2.0
         # the picture must cover the Axes: as much larger as its centre is off theirs
-        bb = ax.bbox
-        mx = abs(col_c / mag - (bb.x0 + bb.width / 2.0)) * mag
-        my = abs(row_c / mag - (bb.y0 + bb.height / 2.0)) * mag
-        size = (W + 2 * int(np.ceil(mx)) + 2, H + 2 * int(np.ceil(my)) + 2)
-    s, dx, dy, _, _, trial_scale = _fit(plot, kw, size, (cx, cy, cz), box, disp, mag)
-    Wp, Hp = size
+        mx = abs(a * cW + b * cH + dx - (bb.x0 + bb.width / 2.0) * mag)
+        my = abs(b * cW - a * cH + dy - (bb.y0 + bb.height / 2.0) * mag)
+        size = (base[0] + 2 * int(np.ceil(mx)) + 2, base[1] + 2 * int(np.ceil(my)) + 2)
+    (a, b, dx, dy), trial_scale = _fit(plot, kw, size, (cx, cy, cz), box, disp)
+    s = float(np.hypot(a, b))
     kw["scale"] = s * trial_scale
-    # pixel (col, row) of the render at s times the fit's scale: col - (Wp-1)/2 =
-    # s (col1 - (Wp-1)/2) of the fit's, whose canvas x is (s col1 + dx) / mag
-    ox = (dx + (s - 1.0) * (Wp - 1) / 2.0) / mag
-    oy = (dy - (s - 1.0) * (Hp - 1) / 2.0) / mag
-    return kw, (ox, oy), size
+    # pixel (col, row) at s times the fit's scale is the fit's (c + (col - c) / s, ...),
+    # whose canvas point (times mag) is (a col1 + b row1 + dx, b col1 - a row1 + dy)
+    cW, cH = (size[0] - 1) / 2.0, (size[1] - 1) / 2.0
+    k = 1.0 - 1.0 / s
+    T = np.array([[a / s, b / s, a * cW * k + b * cH * k + dx],
+                  [b / s, -a / s, b * cW * k - a * cH * k + dy]]) / mag
+    return kw, T, size
 
 
-def _fit(plot, kw, size, corners, box, disp, mag):
-    """(s, dx, dy, canvas x and y of the picture's centre times mag, the fit's scale)
-    so that the canvas point (times mag) of a corner is (s col + dx, -s row + dy),
-    (col, row) its pixel in the picture of ``size`` render_view fits (its own
-    scale)."""
-    import numpy as np
-
+def _fit(plot, kw, size, corners, box, disp):
+    """((a, b, dx, dy), the fit's scale): the similarity that puts a corner's pixel
+    (col, row) in the picture of ``size`` render_view fits (at its own scale) on its
+    canvas point disp: x = a col + b row + dx, y = b col - a row + dy (b = 0 without a
+    roll)."""
     from .plot import render_view
     cx, cy, cz = corners
     (x0, x1), (y0, y1) = (cx.min(), cx.max()), (cy.min(), cy.max())
     view, _ = render_view(plot.surface, dict(kw, size=size, u=(x0, x1), v=(y0, y1)))
     col, row = view.project(cx * box[0], cy * box[1], cz * box[2])
     n = len(col)
-    A = np.column_stack([np.r_[col, -row], np.r_[np.ones(n), np.zeros(n)],
-                         np.r_[np.zeros(n), np.ones(n)]])
-    (s, dx, dy), *_ = np.linalg.lstsq(A, np.r_[disp[:, 0], disp[:, 1]] * mag, rcond=None)
-    Wp, Hp = size
-    return s, dx, dy, s * (Wp - 1) / 2.0 + dx, -s * (Hp - 1) / 2.0 + dy, view.scale
+    A = np.vstack([np.column_stack([col, row, np.ones(n), np.zeros(n)]),
+                   np.column_stack([-row, col, np.zeros(n), np.ones(n)])])
+    sol, *_ = np.linalg.lstsq(A, np.r_[disp[:, 0], disp[:, 1]], rcond=None)
+    return sol, view.scale
 
 
 class OccludedObjects(Artist):
@@ -287,7 +319,8 @@ class OccludedObjects(Artist):
         import numpy as np
         self.plot = plot
         self.xyz = np.asarray(xyz, dtype=float)
-        self.kind = kind                  # "points" or "line"
+        self.kind = kind                  # "points", "line" or "text"
+        self.text = ""
         self.style = style
         self.visible = None
         self.set_zorder(plot.artist.get_zorder() + 1.5)
@@ -296,7 +329,7 @@ class OccludedObjects(Artist):
         """The points, or the line's points about a pixel apart."""
         import numpy as np
         p = self.xyz
-        if self.kind == "points" or len(p) < 2:
+        if self.kind != "line" or len(p) < 2:
             return p
         col, row = view.project(p[:, 0] * box[0], p[:, 1] * box[1], p[:, 2] * box[2])
         steps = np.nan_to_num(np.hypot(np.diff(col), np.diff(row)), nan=1.0)
@@ -322,7 +355,13 @@ class OccludedObjects(Artist):
         col, row = r.view.project(pts[:, 0] * box[0], pts[:, 1] * box[1], pts[:, 2] * box[2])
         x, y = art.to_canvas(col, row)
         xy = np.column_stack([x, y])
-        if self.kind == "points":
+        if self.kind == "text":
+            from matplotlib.text import Text
+            if self.visible[0]:
+                t = Text(x[0], y[0], self.text, transform=IdentityTransform(), **self.style)
+                t.set_figure(self.axes.figure)
+                t.draw(renderer)
+        elif self.kind == "points":
             st = dict(self.style)
             marker = MarkerStyle(st.pop("marker", "o"))
             size = st.pop("s", 20.0)

@@ -220,6 +220,37 @@ class SurfacePlot(_ScalarMappable):
         keywords (color, linewidth, linestyle, ...)."""
         return self._objects(xs, ys, zs, "line", style)
 
+    def text(self, x, y, z, s, **style):
+        """Text anchored at (x, y, z), drawn where the anchor lies in front of the
+        surface, hidden where the surface hides it. ``style``: Text's keywords."""
+        obj = self._objects([x], [y], [z], "text", style)
+        obj.text = str(s)
+        return obj
+
+    def quiver(self, x, y, z, u, v, w, length=1.0, arrow_length_ratio=0.3, **style):
+        """Arrows from (x, y, z) along (u, v, w) times ``length``, as mplot3d's quiver
+        (a shaft and a two-stroke head, ``arrow_length_ratio`` of it), depth-tested a
+        pixel at a time as ``plot``."""
+        try:
+            p = np.column_stack([np.ravel(np.asarray(a, dtype=float)) for a in (x, y, z)])
+            d = np.column_stack([np.ravel(np.asarray(a, dtype=float))
+                                 for a in (u, v, w)]) * float(length)
+        except (TypeError, ValueError):
+            raise ValueError("quiver: x, y, z, u, v, w must be numbers or arrays of one "
+                             "length") from None
+        tip = p + d
+        # the head: two strokes back from the tip, in the plane of the arrow and z
+        side = np.cross(d, np.array([0.0, 0.0, 1.0]))
+        flat = np.linalg.norm(side, axis=1) < 1e-12 * (1.0 + np.linalg.norm(d, axis=1))
+        side[flat] = np.cross(d[flat], np.array([1.0, 0.0, 0.0]))
+        side /= np.maximum(np.linalg.norm(side, axis=1), 1e-300)[:, None]
+        back = d * arrow_length_ratio
+        wing = side * (np.linalg.norm(back, axis=1) * 0.5)[:, None]
+        nan = np.full_like(p, np.nan)
+        pieces = np.stack([p, tip, nan, tip - back + wing, tip, tip - back - wing, nan], axis=1)
+        xyz = pieces.reshape(-1, 3)
+        return self._objects(xyz[:, 0], xyz[:, 1], xyz[:, 2], "line", style)
+
     def _objects(self, xs, ys, zs, kind, style):
         if self.artist is None:
             raise ValueError("objects on the surface need the plot in an Axes: "

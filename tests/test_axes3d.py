@@ -117,15 +117,27 @@ def test_matplotlib_keywords_accepted():
         fc.plot_surface(X, Y, Z, facecolors=cm.viridis(Z), size=(40, 30))
 
 
-def test_roll_is_refused_by_name():
+@pytest.mark.parametrize("proj", ["persp", "ortho"])
+def test_roll_turns_the_picture_with_the_axes(proj):
+    """view_init(elev, azim, roll): the picture is rendered without the roll and turned
+    onto the Axes (bilinear). Measured IoU against mplot3d's mesh, roll 25: 0.970 persp,
+    0.968 ortho."""
     X, Y, Z = _data()
-    fig = plt.figure()
-    ax = fig.add_subplot(projection="3d")
-    fc.plot_surface(X, Y, Z, ax=ax)
-    ax.view_init(30, -60, 20)
-    with pytest.raises(ValueError, match="roll"):
-        fig.canvas.draw()
-    plt.close(fig)
+
+    def fig_of(draw):
+        fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
+        ax = fig.add_subplot(projection="3d", proj_type=proj)
+        draw(ax)
+        ax.set_zlim(-1.01, 1.01)
+        ax.view_init(30, -60, 25)
+        mask = _red(fig)
+        plt.close(fig)
+        return mask
+    ours = fig_of(lambda ax: fc.plot_surface(X, Y, Z, ax=ax, color="red", lower_color="red",
+                                             shade=False))
+    theirs = fig_of(lambda ax: ax.plot_surface(X, Y, Z, color="red", shade=False, linewidth=0,
+                                               antialiased=False))
+    assert (ours & theirs).sum() / (ours | theirs).sum() >= 0.93
 
 
 @pytest.mark.parametrize("fmt", ["png", "pdf", "svg"])
@@ -219,3 +231,41 @@ def test_every_savefig_format_from_plot_save_and_the_cli(tmp_path, ext):
                           "40x30", "-o", str(cli)], capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     assert cli.stat().st_size > 200
+
+
+def test_mplot3d_rotation_redraws_with_a_preview():
+    """mplot3d's own mouse rotation changes the Axes' angles: the next draw follows
+    them, with coarser planes while the button is held."""
+    X, Y, Z = _data()
+    fig = plt.figure(figsize=(4, 3), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    p = fc.plot_surface(X, Y, Z, ax=ax)
+    fig.canvas.draw()
+    full = p.render.stats["samples"]
+    ax.view_init(50, 10)
+    ax.button_pressed = ax._rotate_btn[0]
+    fig.canvas.draw()
+    preview = p.render
+    ax.button_pressed = None
+    fig.canvas.draw()
+    assert preview.stats["samples"] < 0.6 * p.render.stats["samples"]
+    assert p.render.stats["samples"] != full          # the new view, at full quality
+    assert p.pixel_step is None
+    plt.close(fig)
+
+
+def test_text_and_quiver_are_depth_tested():
+    fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    p = fc.plot_surface("2*exp(-(x**2+y**2)/2)", ("x", -3, 3), ("y", -3, 3), ax=ax)
+    front = p.text(0, -2.5, 0.5, "in front")
+    behind = p.text(0, 2.5, 0.3, "behind")           # the hill lies between it and the eye
+    # an arrow up through the hill's top: its lower part inside the hill is hidden
+    q = p.quiver([0.0], [0.0], [1.0], [0.0], [0.0], [1.0], length=2.0)
+    ax.set_zlim(0, 3.5)
+    ax.view_init(20, -90)                            # looking along +y, low
+    fig.canvas.draw()
+    plt.close(fig)
+    assert front.visible[0] and not behind.visible[0]
+    # the shaft (z from 1 to 3, sampled a pixel apart) is hidden below the top (z = 2)
+    assert not q.visible[:10].any() and q.visible[60:90].all()

@@ -18,7 +18,8 @@ def _figure_matches_render(im, surface_plot):
     unchanged (to 1 level) where the 3-D Axes' artist put them (mpl.py: pixel (col,
     row) at the canvas point (ox + col, oy - row))."""
     r = surface_plot.render
-    ox, oy, mag = surface_plot.artist.placed
+    T = surface_plot.artist.placed
+    ox, oy = T[0, 2], T[1, 2]
     rows, cols = np.nonzero((r.side != 0) & (r.rgba[..., 3] == 255))
     ix = np.round(ox + cols - 0.5).astype(int)
     iy = im.shape[0] - 1 - np.round(oy - rows - 0.5).astype(int)

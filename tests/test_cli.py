@@ -122,7 +122,7 @@ def test_animate_writes_gif_with_frames(capsys, monkeypatch, tmp_path):
     (["render", "u", "--size", "0x10", "-o", "x.png"], "positive"),
     (["render", "u", "--size", "big", "-o", "x.png"], "WIDTHxHEIGHT"),
     (["render", "u", "-o", "no/such/dir/x.png"], "does not exist"),
-    (["render", "u", "-o", "x.gif"], "must end in .jpeg, .jpg, .pdf, .png, .svg"),
+    (["render", "u", "-o", "x.gif"], "must end in .eps, .jpeg, .jpg, .pdf, .png, .ps, .svg, .tif, .tiff, .webp"),
     (["render", "u", "--bogus", "-o", "x.png"], "unrecognized arguments"),
     (["render", "u", "--proj", "fisheye", "-o", "x.png"], "invalid choice"),
     (["render", "u", "--aspect", "cube", "-o", "x.png"], "BX:BY:BZ"),

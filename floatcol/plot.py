@@ -273,6 +273,9 @@ class SurfacePlot(_ScalarMappable):
             self.elev = float(np.clip(elev, -90.0, 90.0))
         if azim is not None:
             self.azim = float(azim)
+        ax = None if self.artist is None else self.artist.axes
+        if getattr(ax, "name", "") == "3d":      # a 3-D Axes owns the camera
+            ax.view_init(elev=self.elev, azim=self.azim)
         self._stale()
 
     def _stale(self):
@@ -514,6 +517,15 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
         art = attach(plot, ax, interactive=interactive)
         if zorder is not None:
             art.set_zorder(zorder)
+        if getattr(ax, "name", "") == "3d":
+            # a 3-D Axes owns the camera: the angles and projection asked for go to it
+            if "elev" in own or "azim" in own:
+                ax.view_init(elev=plot.elev, azim=plot.azim)
+            if "proj_type" in own or "focal_length" in own:
+                ax.set_proj_type("persp" if plot.projection == "perspective" else "ortho",
+                                 **({"focal_length": plot.focal_length}
+                                    if plot.projection == "perspective" and
+                                    plot.focal_length is not None else {}))
     elif interactive:
         raise ValueError("interactive=True needs a matplotlib Axes: pass ax=")
     return plot

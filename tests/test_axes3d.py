@@ -269,3 +269,14 @@ def test_text_and_quiver_are_depth_tested():
     assert front.visible[0] and not behind.visible[0]
     # the shaft (z from 1 to 3, sampled a pixel apart) is hidden below the top (z = 2)
     assert not q.visible[:10].any() and q.visible[60:90].all()
+
+
+def test_angles_and_projection_given_go_to_the_axes():
+    X, Y, Z = _data()
+    fig = plt.figure()
+    ax = fig.add_subplot(projection="3d")
+    p = fc.plot_surface(X, Y, Z, ax=ax, elev=45, azim=10, proj_type="ortho")
+    assert (ax.elev, ax.azim) == (45, 10) and ax._focal_length == np.inf
+    p.view_init(elev=20, azim=-30)
+    assert (ax.elev, ax.azim) == (20, -30)
+    plt.close(fig)

@@ -137,15 +137,15 @@ def test_antialiased_silhouettes_cover_pixels_in_part():
     """With antialiasing the composite's coverage (alpha over a transparent
     background) follows the box-filtered reference: pixels a layer covers in part are
     partly transparent. Measured mean |alpha - reference| over the pixels the edge
-    crosses: 0.035 antialiased, 0.238 without."""
+    crosses, 100x75: 0.036 antialiased, 0.236 without."""
     e, d = "exp(-u*u - v*v)*2", (-2, 2)
     errors = {}
     for aa in (True, False):
-        r = fc.render(e, u=d, v=d, size=SIZE, elev=25, azim=30, opacity=1.0 - 1e-9,
+        r = fc.render(e, u=d, v=d, size=(100, 75), elev=25, azim=30, opacity=1.0 - 1e-9,
                       background=(0, 0, 0, 0), antialias=aa)
         vw = r.view
-        _, cover = raycast_box(numpy_surface(e), d, d, SIZE, 25, 30, scale=vw.scale,
-                               center=vw.center, k=4, steps=600)
+        _, cover = raycast_box(numpy_surface(e), d, d, (100, 75), 25, 30, scale=vw.scale,
+                               center=vw.center, k=4, steps=300)
         edge = (cover > 0.02) & (cover < 0.98)
         alpha = r.rgba[..., 3] / 255.0
         errors[aa] = np.abs(alpha - cover)[edge].mean()

@@ -181,6 +181,21 @@ def _keep_solution(run, s, t, main):
         run[RUN_MT0] = t
 
 
+@ngjit_inline
+def store_sample(out, y, z, u, v, w, nx, ny, nz, lam, t):
+    """A sample's attributes into its record ``out`` (layout.py A_*)."""
+    out[A_Y] = y
+    out[A_Z] = z
+    out[A_U] = u
+    out[A_V] = v
+    out[A_W] = w
+    out[A_NX] = nx
+    out[A_NY] = ny
+    out[A_NZ] = nz
+    out[A_I] = lam
+    out[A_T] = t
+
+
 @ngjit_nrt_free
 def _sample_into(kind, f, fg, hf, hfp, vp, x0, t, out, run):
     """_sample_at as a call (where sampling is rare: corrections, edges)."""
@@ -234,16 +249,7 @@ def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, main, bat, kb):
         _keep_solution(run, w - vp[VP_CW], t, main)
         if vp[VP_FOLD] != 0.0 and fold_test(vp, x0, nx, ny, nz, 0.0 if main else FOLD_NEAR):
             run[RUN_FOLD] = 1.0         # (fold.py)
-    out[A_Y] = y
-    out[A_Z] = z
-    out[A_U] = u
-    out[A_V] = v
-    out[A_W] = w
-    out[A_NX] = nx
-    out[A_NY] = ny
-    out[A_NZ] = nz
-    out[A_I] = lam
-    out[A_T] = t
+    store_sample(out, y, z, u, v, w, nx, ny, nz, lam, t)
     if vp[VP_DETECT] != 0.0 and kb < 0:
         out[A_VN], out[A_BUMP], out[A_SLOPE] = probe(vp, x0, out)
     return st, ev

@@ -33,7 +33,8 @@ import numpy as np
 from numba import prange
 
 from ._jit import ngjit_inline, ngjit_nrt_free, ngjit_parallel
-from .column import _column_t_range, _grid_range, _ortho_chord, CLIP_MARGIN_PLANES, CLIP_TOL
+from .column import (
+    _column_t_range, _grid_range, _ortho_chord, CLIP_MARGIN_PLANES, CLIP_TOL, store_sample)
 from .index import ceil_index, floor_index
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
@@ -309,16 +310,7 @@ def _sample(kind, f, fg, hf, hfp, vp, x0, t, out, guess):
     the Newton start for the next plane)."""
     st, ev, y, z, u, v, w, nx, ny, nz, lam = sample_point(kind, f, fg, hf, hfp, vp, x0, t,
                                                           guess)
-    out[A_Y] = y
-    out[A_Z] = z
-    out[A_U] = u
-    out[A_V] = v
-    out[A_W] = w
-    out[A_NX] = nx
-    out[A_NY] = ny
-    out[A_NZ] = nz
-    out[A_I] = lam
-    out[A_T] = t
+    store_sample(out, y, z, u, v, w, nx, ny, nz, lam, t)
     out[A_BUMP] = 0.0
     if st == S_OK:
         vx, vy, vz = toward_viewer(vp, x0, y, z)

@@ -205,10 +205,14 @@ SUITE = [
 @pytest.mark.parametrize("expr,dom,elev,azim,proj,interp", SUITE)
 def test_corrections_reduce_the_error_against_the_ray_caster(expr, dom, elev, azim, proj, interp):
     out = {}
+    ref = None
     for corr in ("none", "spline", "adaptive", "spline+adaptive", "supersample"):
         r = fc.render(expr, u=(-dom, dom), v=(-dom, dom), size=(160, 120), elev=elev, azim=azim,
                       projection=proj, shading="lambert", interpolation=interp, corrections=corr)
-        ref = reference_for(r, expr, (-dom, dom), (-dom, dom), elev, azim, proj)
+        if ref is None:                   # one camera for all: one reference
+            ref = reference_for(r, expr, (-dom, dom), (-dom, dom), elev, azim, proj)
+            camera = (r.view.scale, r.view.center, r.view.d1, r.view.d2)
+        assert (r.view.scale, r.view.center, r.view.d1, r.view.d2) == camera
         out[corr] = (psnr(r.intensity, ref.intensity), (r.side == ref.side).mean(),
                      r.stats["samples"])
     base = out["none"]

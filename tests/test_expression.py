@@ -150,6 +150,7 @@ def test_injection_through_the_cli_runs_nothing(tmp_path):
         ["render", "sin(u)", f"--vars={payload},v", "-o", "a.png"],
         ["render", "sin(u)", f"--aspect={payload}", "-o", "a.png"],
         ["render", "sin(u)", f"--cmap={payload}", "-o", "a.png"],
+        ["render", "sin(u)", f"--opacity={payload}", "-o", "a.png"],
         ["animate", payload, "--frames", "2", "-o", "a.gif"],
         ["animate", "sin(u+t)", f"--t=0:{payload}", "--frames", "2", "-o", "a.gif"],
     ]

@@ -162,6 +162,7 @@ class Surface3DImage(Artist):
         self.plot = plot
         self.set_zorder(1)
         self.set_clip_box(ax.bbox)
+        self.preview = False      # whether the last picture was a drag's preview
         self.placed = None        # T (2, 3) of the last picture: pixel (col, row) at the
                                   # canvas point T @ (col, row, 1) (axes_camera)
 
@@ -170,6 +171,8 @@ class Surface3DImage(Artist):
         art = cls(ax, plot)
         plot.artist = art
         ax.add_artist(art)
+        # mplot3d draws nothing on release: the last frame would stay the preview
+        art._cid = ax.figure.canvas.mpl_connect("button_release_event", art.on_release)
         art.set_clip_path(ax.patch)
         (ua, ub), (va, vb) = plot._items()[0][1]
         for others in plot._items()[1:]:
@@ -198,6 +201,7 @@ class Surface3DImage(Artist):
         H = max(1, int(round(bb.height * mag)))
         kw, T, size = axes_camera(self.plot, ax, W, H, mag)
         preview = getattr(ax, "button_pressed", None) in getattr(ax, "_rotate_btn", ())
+        self.preview = preview
         self.plot.pixel_step = DRAG_PIXEL_STEP if preview else None
         try:
             r = self.plot.draw_with(size, kw)
@@ -215,6 +219,14 @@ class Surface3DImage(Artist):
             renderer.draw_image(gc, x0, y0, _turned(r.rgba, T, x0, y0, W, H, mag)[::-1])
         gc.restore()
         self.stale = False
+
+
+    def on_release(self, event):
+        """After a drag drawn as previews, the picture at full quality."""
+        if self.preview:
+            self.preview = False
+            self.stale = True
+            self.axes.figure.canvas.draw_idle()
 
 
 def _turned(rgba, T, x0, y0, W, H, mag):

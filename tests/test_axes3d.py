@@ -246,7 +246,12 @@ def test_mplot3d_rotation_redraws_with_a_preview():
     ax.button_pressed = ax._rotate_btn[0]
     fig.canvas.draw()
     preview = p.render
+    # the release: mplot3d draws nothing; the artist asks for the full-quality frame
     ax.button_pressed = None
+    asked = []
+    fig.canvas.draw_idle = lambda: asked.append(1)
+    p.artist.on_release(None)
+    assert asked and p.artist.stale
     fig.canvas.draw()
     assert preview.stats["samples"] < 0.6 * p.render.stats["samples"]
     assert p.render.stats["samples"] != full          # the new view, at full quality

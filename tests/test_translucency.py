@@ -224,6 +224,26 @@ def test_bad_opacity(kw, word):
         fc.render("u*v", u=(-1, 1), v=(-1, 1), size=(40, 30), **kw)
 
 
+def test_a_picture_beyond_memory_is_a_bad_size(monkeypatch):
+    """As the opaque path (tests/test_errors.py): a machine of 1 GiB cannot hold a
+    4000x4000 composite (1.5 GiB of sums and arrays); where it cannot tell its memory,
+    the MemoryError says the same."""
+    import os
+    real = os.sysconf
+    monkeypatch.setattr(os, "sysconf", lambda name: 2**18 if name == "SC_PHYS_PAGES"
+                        else 4096 if name == "SC_PAGE_SIZE" else real(name))
+    with pytest.raises(ValueError, match=r"size 4000x4000 needs about 1\.5 GiB"):
+        fc.render("u*v", u=(-1, 1), v=(-1, 1), size=(4000, 4000), opacity=0.5)
+    monkeypatch.setattr(os, "sysconf", real)
+    from floatcol import _pool
+
+    def no_memory(shape, dtype):
+        raise MemoryError
+    monkeypatch.setattr(_pool, "empty", no_memory)
+    with pytest.raises(ValueError, match="size 80x60 needs about"):
+        fc.render("u*v", u=(-1, 1), v=(-1, 1), size=(80, 60), opacity=0.5)
+
+
 def test_per_surface_opacity_list_length():
     with pytest.raises(ValueError, match="one per surface"):
         fc.render_many(["u", "v"], size=(40, 30), opacity=[0.5])

@@ -121,7 +121,12 @@ def too_large(W, H, need):
 def check_memory(W, H, n_tiles, n_lines, sub_columns):
     """A picture whose buffers cannot fit in the machine's memory is a bad size (a
     ValueError naming it), not a MemoryError halfway through."""
-    need = buffer_bytes(W, H, n_tiles, n_lines, sub_columns)
+    check_bytes(W, H, buffer_bytes(W, H, n_tiles, n_lines, sub_columns))
+
+
+def check_bytes(W, H, need):
+    """ValueError (too_large) where ``need`` bytes of buffers would not fit in 80 % of
+    the machine's memory."""
     try:
         total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
     except (AttributeError, ValueError, OSError):      # (not POSIX: MemoryError decides)

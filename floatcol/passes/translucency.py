@@ -111,9 +111,24 @@ def translucent_pass(layers, views, drawn, box, quality, background, texture):
     W, H = view0.width, view0.height
     n = len(layers)
     ks = [records(p.material.opacity, n) for p in layers]
-    offs = np.concatenate([[0], np.cumsum(ks)[:-1]]).astype(np.int64)
     slots = max(int(sum(ks)), 1)
     B = band_columns(W, H, slots, n)
+    # the picture's sums and arrays, and a band's lists: a bad size, not a MemoryError
+    need = W * H * (8 * K.ACC_SIZE + 20 + 4 * G_SIZE) + LIST_BYTES
+    geometry.check_bytes(W, H, need)
+    try:
+        return _composited(layers, views, drawn, box, background, texture, ks, slots, B,
+                           aa_cov, sub)
+    except MemoryError:
+        raise ValueError(geometry.too_large(W, H, need)) from None
+
+
+def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa_cov, sub):
+    """translucent_pass's work, its sizes settled."""
+    view0 = views[0]
+    W, H = view0.width, view0.height
+    n = len(layers)
+    offs = np.concatenate([[0], np.cumsum(ks)[:-1]]).astype(np.int64)
     plans = []
     w_limits = []
     for k, (p, view, (surface, _)) in enumerate(zip(layers, views, drawn)):

@@ -362,10 +362,12 @@ class OccludedObjects(Artist):
         if r is None or art is None or not self.get_visible():
             return
         box = r.box
-        pts = self._samples(r.view, box)
-        self.visible = visible_points(r, pts, box)
-        col, row = r.view.project(pts[:, 0] * box[0], pts[:, 1] * box[1], pts[:, 2] * box[2])
-        x, y = art.to_canvas(col, row)
+        with np.errstate(invalid="ignore", over="ignore"):   # (points far off: not shown)
+            pts = self._samples(r.view, box)
+            self.visible = visible_points(r, pts, box)
+            col, row = r.view.project(pts[:, 0] * box[0], pts[:, 1] * box[1],
+                                      pts[:, 2] * box[2])
+            x, y = art.to_canvas(col, row)
         xy = np.column_stack([x, y])
         if self.kind == "text":
             from matplotlib.text import Text
@@ -417,11 +419,14 @@ def visible_points(r, pts, box, pixels=2.0):
     _, _, z = view.to_screen(bx, by, bz)
     H, W = r.side.shape
     ok = np.isfinite(col) & np.isfinite(row)
-    c = np.clip(np.round(np.nan_to_num(col)).astype(int), 0, W - 1)
-    j = np.clip(np.round(np.nan_to_num(row)).astype(int), 0, H - 1)
-    inside = ok & (np.round(np.nan_to_num(col)) == c) & (np.round(np.nan_to_num(row)) == j)
+    col = np.clip(np.where(ok, col, -1.0), -1.0, W)     # (a point far off: off the picture)
+    row = np.clip(np.where(ok, row, -1.0), -1.0, H)
+    c = np.clip(np.round(col).astype(int), 0, W - 1)
+    j = np.clip(np.round(row).astype(int), 0, H - 1)
+    inside = ok & (np.round(col) == c) & (np.round(row) == j)
     tol = pixels / view.scale
     if not view.orthographic:
         tol = tol * (z + view.d3) / view.d1
     seen = np.asarray(r.depth)[j, c]
-    return ok & (~inside | ~np.isfinite(seen) | (z <= seen + tol))
+    with np.errstate(invalid="ignore", over="ignore"):     # (points far off: not shown)
+        return ok & (~inside | ~np.isfinite(seen) | (z <= seen + tol))

@@ -263,8 +263,9 @@ class SurfacePlot(_ScalarMappable):
         obj = OccludedObjects(self, xyz, kind, style)
         ax = self.artist.axes
         ax.add_artist(obj)
-        if getattr(ax, "name", "") == "3d":          # the limits take the objects in too
-            ax.auto_scale_xyz(xyz[:, 0], xyz[:, 1], xyz[:, 2], had_data=True)
+        finite = np.isfinite(xyz).all(axis=1) & (np.abs(xyz) < 1e100).all(axis=1)
+        if getattr(ax, "name", "") == "3d" and finite.any():   # the limits take them in
+            ax.auto_scale_xyz(xyz[finite, 0], xyz[finite, 1], xyz[finite, 2], had_data=True)
         return obj
 
     def view_init(self, elev=None, azim=None):

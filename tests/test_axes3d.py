@@ -285,3 +285,19 @@ def test_angles_and_projection_given_go_to_the_axes():
     p.view_init(elev=20, azim=-30)
     assert (ax.elev, ax.azim) == (20, -30)
     plt.close(fig)
+
+
+def test_objects_far_off_or_not_numbers_are_simply_not_shown():
+    import warnings
+    fig = plt.figure()
+    ax = fig.add_subplot(projection="3d")
+    p = fc.plot_surface("x*y", ("x", -1, 1), ("y", -1, 1), ax=ax)
+    o = p.scatter([0, np.inf, np.nan, 1e300], [0, 0, 0, 0], [0, 0, 0, 0])
+    p.plot([0, np.inf, 1], [0, 0, 1], [0, 0, 0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fig.canvas.draw()
+    plt.close(fig)
+    assert list(o.visible) == [True, False, False, False]
+    with pytest.raises(ValueError, match="numbers"):
+        p.scatter(["a"], [0], [0])

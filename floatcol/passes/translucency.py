@@ -4,7 +4,7 @@ pixel's ray, composited front to back.
 A scene where some layer's material has ``opacity`` < 1 takes this pass instead of
 the opaque column, shading and composite passes (renderer.py): per band of columns,
 kernels/layers.py's layers_kernel collects each surface's crossings into per-pixel
-lists (one record a pixel for a surface alone; up to ``max_records`` where several
+lists (one record a pixel for a surface alone; up to MAX_RECORDS where several
 must be merged), and composite_kernel merges the surfaces' lists by depth and
 composites them over the transmittance, stopping when it falls below 1/512. The
 bands are as wide as LIST_BYTES of lists allow: the memory is bounded whatever the

@@ -34,13 +34,17 @@ class _Parser(argparse.ArgumentParser):
         raise UsageError(message)
 
 
-def _range(text):
+def _pair(text, sep, message):
+    """Two numbers or constant formulas joined by ``sep``; ``message`` if not."""
     try:
-        lo, hi = (_number(x) for x in text.split(":"))
+        a, b = (_number(x) for x in text.split(sep))
     except ValueError:
-        raise argparse.ArgumentTypeError(f"range {text!r} must be LOW:HIGH, e.g. -5:5 or "
-                                         "-pi:2*pi") from None
-    return lo, hi
+        raise argparse.ArgumentTypeError(message) from None
+    return a, b
+
+
+def _range(text):
+    return _pair(text, ":", f"range {text!r} must be LOW:HIGH, e.g. -5:5 or -pi:2*pi")
 
 
 def _number(text):
@@ -62,12 +66,7 @@ def _value(name):
 
 def _sun(text):
     """--light AZ/ALT: two numbers or constant formulas (floatcol's parser)."""
-    try:
-        az, alt = (_number(x) for x in text.split("/"))
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"light {text!r} must be AZ/ALT in degrees, e.g. "
-                                         "315/25") from None
-    return az, alt
+    return _pair(text, "/", f"light {text!r} must be AZ/ALT in degrees, e.g. 315/25")
 
 
 def _aspect(text):

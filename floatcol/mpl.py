@@ -328,7 +328,6 @@ class OccludedObjects(Artist):
 
     def __init__(self, plot, xyz, kind, style):
         super().__init__()
-        import numpy as np
         self.plot = plot
         self.xyz = np.asarray(xyz, dtype=float)
         self.kind = kind                  # "points", "line" or "text"
@@ -339,7 +338,6 @@ class OccludedObjects(Artist):
 
     def _samples(self, view, box):
         """The points, or the line's points about a pixel apart."""
-        import numpy as np
         p = self.xyz
         if self.kind != "line" or len(p) < 2:
             return p
@@ -352,7 +350,6 @@ class OccludedObjects(Artist):
         return np.concatenate(out)
 
     def draw(self, renderer):
-        import numpy as np
         from matplotlib.collections import PathCollection
         from matplotlib.lines import Line2D
         from matplotlib.markers import MarkerStyle
@@ -384,7 +381,7 @@ class OccludedObjects(Artist):
                                   sizes=np.broadcast_to(np.asarray(size, float), len(pts))[
                                       self.visible],
                                   offsets=xy[self.visible], offset_transform=IdentityTransform(),
-                                  facecolors=_per_point(color, len(pts), self.visible), **st)
+                                  facecolors=_per_point(color, self.visible), **st)
             coll.set_figure(self.axes.figure)
             coll.set_clip_box(self.axes.bbox)
             coll.draw(renderer)
@@ -402,7 +399,7 @@ class OccludedObjects(Artist):
         self.stale = False
 
 
-def _per_point(color, n, keep):
+def _per_point(color, keep):
     from matplotlib.colors import to_rgba_array
     c = to_rgba_array(color)
     return c if len(c) == 1 else c[keep]
@@ -412,7 +409,6 @@ def visible_points(r, pts, box, pixels=2.0):
     """Which points (n, 3) in the surface's units lie in front of the surface a Render
     ``r`` saw at their pixel, or where it saw none (the depth test, with a tolerance of
     ``pixels`` pixels of depth so that a point on the surface stays visible)."""
-    import numpy as np
     view = r.view
     bx, by, bz = (pts[:, 0] * box[0], pts[:, 1] * box[1], pts[:, 2] * box[2])
     col, row = view.project(bx, by, bz)

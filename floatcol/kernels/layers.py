@@ -34,7 +34,8 @@ from numba import prange
 
 from ._jit import ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .column import (
-    _column_t_range, _grid_range, _ortho_chord, CLIP_MARGIN_PLANES, CLIP_TOL, store_sample)
+    _column_t_range, _copy, _grid_range, _ortho_chord, CLIP_MARGIN_PLANES, CLIP_TOL,
+    store_sample)
 from .index import ceil_index, floor_index
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
@@ -134,12 +135,6 @@ def _between(rec, p, q, lam, y):
     for k in range(A_SIZE):
         rec[k] = p[k] + (q[k] - p[k]) * lam
     rec[A_Y] = y
-
-
-@ngjit_inline
-def _copy(dst, src):
-    for k in range(A_SIZE):
-        dst[k] = src[k]
 
 
 @ngjit_inline

@@ -2,6 +2,8 @@
 
     render_scene(scene)
       fit       camera.fit: one View per layer, the same camera for all
+      draft      a fresh install's first pictures, while the kernels compile
+                 (passes/draft.py, warmup.py)
       per layer:
         geometry   the column pass (passes/geometry.py)
         horizon    method="horizon": the line drawing (passes/horizon.py)
@@ -18,10 +20,10 @@ import time
 import warnings
 from dataclasses import dataclass
 
-from . import color
+from . import color, warmup
 from .camera import fit
 from .light import as_light
-from .passes import antialias, finish, geometry, horizon, shadow as shadows
+from .passes import antialias, draft, finish, geometry, horizon, shadow as shadows
 from .passes.composite import composite as merge
 from .passes.translucency import render_translucent
 from .result import Render
@@ -66,6 +68,10 @@ def render_scene(scene, stacklevel=2, composite=False) -> Render:
                              "drawing has no layers to blend)")
         return render_translucent(layers, views, drawn, box, quality, background, texture,
                                   t_start)
+    if not many and texture is None and draft.supports(quality, layers[0], views[0]) \
+            and warmup.drafting():
+        return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
+                            stacklevel + 1)
     if not many:
         return _layer(layers[0], views[0], drawn[0], box, quality, background, t_start,
                       stacklevel + 1, texture)
@@ -190,12 +196,33 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
         "derivatives": surface.derivatives,
         "w_limits": w_limits,      # the colormap's height range (column method)
         "box": box,                # aspect's stretch of u, v and w (1, 1, 1: none)
+        "engine": "kernels",       # (a fresh install's first pictures: "draft")
     }
     if texture is not None:
         stats["shadow_seconds"] = t_shadow - t_kernel
         stats["shadow_texels"] = texture.texels
     return Render(rgba, intensity, side, depth, stats, view, geom.gbuf, line_t, seen,
                   (vp, material.interp, amb, lit), box, shadow=shadow)
+
+
+def _draft_layer(p, view, drawn, box, background, t_start, stacklevel):
+    """One layer's draft picture (passes/draft.py): a Render as _layer's."""
+    surface, domain = drawn
+    material = p.material
+    material.check_limits()
+    t_setup = time.perf_counter()
+    rgba, side, intensity, depth, gbuf, evals, w_limits = draft.draft_pass(
+        surface, view, material, p.terms, box, color.to_rgba8(background))
+    t_end = time.perf_counter()
+    if nowhere_finite(surface, domain) and not (side != 0).any():
+        warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,
+                      stacklevel=stacklevel + 1)
+    stats = {"samples": int(evals.sum()), "seconds": t_end - t_start,
+             "kernel_seconds": t_end - t_setup, "setup_seconds": t_setup - t_start,
+             "planes": view.planes, "step": view.step, "scale": view.scale, "lines": 0,
+             "method": "column", "derivatives": surface.derivatives, "w_limits": w_limits,
+             "box": box, "engine": "draft"}
+    return Render(rgba, intensity, side, depth, stats, view, gbuf, box=box)
 
 
 def default_background(method, shading):

@@ -4,6 +4,9 @@ import sys
 import pytest
 
 sys.path.insert(0, os.path.dirname(__file__))
+# Every picture of the suite is the kernels' (reproducible), never a fresh install's
+# draft (floatcol/warmup.py); tests/test_draft.py turns drafts on where it tests them.
+os.environ["FLOATCOL_DRAFT"] = "0"
 
 import floatcol as fc  # noqa: E402
 from reference import numpy_surface, raycast  # noqa: E402

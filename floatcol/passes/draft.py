@@ -1,0 +1,383 @@
+"""The draft pass: the floating column in numpy alone, for the first pictures of a
+fresh install while the kernels compile in the background (floatcol/warmup.py).
+
+The kernels take about a minute to compile on a 2-core machine; numpy needs none.
+The draft draws the same column algorithm (App. A.2) over the same sampling planes,
+vectorised over a block of columns at a time instead of one column after another:
+
+- every sample of every plane at once: orthographic, the column line's point (eq. 3)
+  with the planes clipped to the column's stretch of the domain, so its ends are the
+  domain's edge; perspective, Newton's iteration on Pi (eq. 9, ERRATA 2) from s = 0,
+  all samples together;
+- two successive valid samples of a column span the pixel centres between their
+  screen rows; front to back, the first span over a pixel paints it (what the
+  floating interval [ymin, ymax] decides, holes and several runs included);
+- the painted point interpolates its two samples linearly in screen row (depth, u,
+  v, w, normal, intensity) and is lit and coloured as finish_kernel does (shade.py's
+  _light and _side_rgb, written here in numpy).
+
+What it leaves out, until the kernels are there: the corrections of section 5, the
+bisection of run ends at holes and (perspective) at the domain's edge, folds, the
+antialiasing, adaptive sampling. Against the ray caster it scores about 40 dB where
+the kernels score 63 (tests/test_draft.py measures it). Scenes it does not draw (a
+line drawing, shadows, translucency, several surfaces, a perspective viewpoint over
+the domain) wait for the kernels as before.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..kernels import layout as L
+from ..kernels.sample import DOMAIN_EPS, NEWTON_ITERS, NEWTON_TOL_PX
+from ..kernels.shade import INTERP_INTENSITY
+
+#: Samples (planes x columns) evaluated at once: the columns go in blocks of this size
+BLOCK_SAMPLES = 1 << 20
+
+
+def supports(quality, layer, view):
+    """Whether the draft can draw this layer's picture: a shaded opaque picture
+    without shadows (the caller checks those), and in perspective a viewpoint in
+    front of the whole domain (one ascending pass per column)."""
+    if quality.method != "column":
+        return False
+    if view.orthographic:
+        return True
+    t_eye = -view.d3 * math.cos(view.alpha)       # the viewpoint's t (eqs. 4, 10)
+    return view.t_range[0] > t_eye
+
+
+def _params(view):
+    a, b = view.alpha, view.beta
+    return math.cos(a), math.sin(a), math.cos(b), math.sin(b)
+
+
+def _normal(view, wu, wv):
+    """Eq. (11): the unit upper-side normal in screen coordinates."""
+    ca, sa, cb, sb = _params(view)
+    nx = -wu * cb + wv * sb
+    ny = wu * sa * sb + ca + wv * sa * cb
+    nz = -wu * ca * sb + sa - wv * ca * cb
+    q = 1.0 / np.sqrt(nx * nx + ny * ny + nz * nz)
+    return nx * q, ny * q, nz * q
+
+
+def _column_t(view, x0):
+    """(ta, tb) of each orthographic column: its line's stretch inside the domain
+    (ta > tb where it misses)."""
+    ca, sa, cb, sb = _params(view)
+    cu, cv, _ = view.center
+    (ua, ub), (va, vb) = view.domain
+    lo = np.full(x0.shape, -np.inf)
+    hi = np.full(x0.shape, np.inf)
+    # u = cu + x0 cb + t sb, v = cv - x0 sb + t cb (eq. 3)
+    for base, slope, a, b in ((cu + x0 * cb, sb, ua, ub), (cv - x0 * sb, cb, va, vb)):
+        if abs(slope) < 1e-15:
+            out = (base < a) | (base > b)
+            lo = np.where(out, np.inf, lo)
+        else:
+            l1, l2 = (a - base) / slope, (b - base) / slope
+            lo = np.maximum(lo, np.minimum(l1, l2))
+            hi = np.minimum(hi, np.maximum(l1, l2))
+    return lo, hi
+
+
+def _inside(view, u, v):
+    (ua, ub), (va, vb) = view.domain
+    eu, ev = DOMAIN_EPS * (ub - ua), DOMAIN_EPS * (vb - va)
+    ok = (u >= ua - eu) & (u <= ub + eu) & (v >= va - ev) & (v <= vb + ev)
+    return ok, np.clip(u, ua + eu, ub - eu), np.clip(v, va + ev, vb - ev)
+
+
+FIELDS = ("y", "z", "u", "v", "w", "nx", "ny", "nz", "lam", "t")
+#: Bisections of a run's end (a hole, the domain's edge) between two planes
+EDGE_BISECTIONS = 12
+
+
+def _points(surface, view, x0, t):
+    """Samples on column planes x = x0 and sampling planes t (arrays of one shape): a
+    dict of FIELDS (y the screen row from the bottom, NaN where invalid) and ``ok``
+    (a valid sample), and the evaluations of f."""
+    ca, sa, cb, sb = _params(view)
+    cu, cv, cw = view.center
+    H = view.height
+    if view.orthographic:
+        u = cu + x0 * cb + t * sb                    # eq. (3)
+        v = cv - x0 * sb + t * cb
+        ok, u, v = _inside(view, u, v)
+        w, wu, wv = _evaluate(surface, u, v, ok)
+        evals = int(ok.sum())
+        s = w - cw
+        y1 = s * ca - t * sa                         # eq. (4)
+        z = s * sa + t * ca
+        ypix = y1 * view.scale + (H - 1) * 0.5
+        vx, vy, vz = 0.0, 0.0, -1.0
+    else:
+        d1, d3 = view.d1, view.d3
+        r0 = x0 * (t * ca + d3) / d1                 # eq. (9)
+        k = x0 * sa / d1 + 0.0 * r0                  # dr/ds inside Pi
+        s = np.zeros(r0.shape)
+        done = np.zeros(r0.shape, dtype=bool)
+        w = np.full(r0.shape, np.nan)
+        wu = np.zeros(r0.shape)
+        wv = np.zeros(r0.shape)
+        evals = 0
+        idx = np.arange(r0.size)
+        for _ in range(NEWTON_ITERS):               # ERRATA 2: the exact point on Pi
+            if idx.size == 0:
+                break
+            si = s.flat[idx]
+            ri = r0.flat[idx] + k.flat[idx] * si
+            ti = t.flat[idx]
+            wi, wui, wvi = surface.evaluate(cu + ri * cb + ti * sb,    # eq. (2)
+                                            cv - ri * sb + ti * cb, derivatives=True)
+            evals += idx.size
+            w.flat[idx], wu.flat[idx], wv.flat[idx] = wi, wui, wvi
+            g = (wi - cw) - si
+            ki = k.flat[idx]
+            conv = (np.abs(ki * g) * view.scale <= NEWTON_TOL_PX) | (ki == 0.0)
+            dg = ki * (wui * cb - wvi * sb) - 1.0
+            bad = ~np.isfinite(g) | (dg == 0.0) | ~np.isfinite(dg)
+            done.flat[idx[conv & ~bad]] = True
+            step = ~conv & ~bad
+            s.flat[idx[step]] = si[step] - g[step] / dg[step]
+            idx = idx[step]
+        ok = done & np.isfinite(w)
+        s = np.where(ok, w - cw, 0.0)
+        r = r0 + k * s
+        u = cu + r * cb + t * sb
+        v = cv - r * sb + t * cb
+        inside, _, _ = _inside(view, u, v)
+        ok &= inside
+        y1 = s * ca - t * sa                         # eqs. (4), (10)
+        z = s * sa + t * ca
+        ok &= z + d3 > d1                            # in front of the screen plane: none
+        depth = np.where(ok, z + d3, 1.0)
+        ypix = y1 * d1 / depth * view.scale + (H - 1) * 0.5
+        vx, vy, vz = -r, -y1, -depth                 # toward the viewpoint
+    ok &= np.isfinite(w) & np.isfinite(wu) & np.isfinite(wv) & np.isfinite(ypix)
+    wu = np.where(ok, wu, 0.0)
+    wv = np.where(ok, wv, 0.0)
+    nx, ny, nz = _normal(view, wu, wv)
+    lx, ly, lz = view.light
+    if lx == 0.0 and ly == 0.0 and lz == 0.0:      # eq. (12): the headlight
+        lam = np.abs(vx * nx + vy * ny + vz * nz) / np.sqrt(vx * vx + vy * vy + vz * vz)
+    else:
+        lam = np.abs(lx * nx + ly * ny + lz * nz)
+    return dict(y=np.where(ok, ypix, np.nan), z=z, u=u, v=v, w=w, nx=nx, ny=ny, nz=nz,
+                lam=np.minimum(lam, 1.0), t=t + 0.0 * z, ok=ok), evals
+
+
+def _samples(surface, view, cols, t):
+    """The samples of columns ``cols`` (m,) on planes ``t`` (n,): _points' dict of
+    (n, m) arrays and ``pair`` (n - 1, m), whether the span from each sample to the
+    next is surface; the evaluations of f. Orthographic planes are clipped to the
+    column's stretch of the domain (its ends are the domain's edge); a run's end at
+    a hole (or in perspective the domain's edge) is found by bisection between the
+    planes (the kernels' EDGE_BISECTIONS), its sample put in the invalid one's place."""
+    x0 = (cols - (view.width - 1) * 0.5) / view.scale
+    tt = np.broadcast_to(t[:, None], (t.size, x0.size))
+    if view.orthographic:
+        ta, tb = _column_t(view, x0)
+        tt = np.clip(tt, ta[None, :], tb[None, :])
+        tt = np.where((ta <= tb)[None, :], tt, np.nan)
+    xx = np.broadcast_to(x0[None, :], tt.shape)
+    smp, evals = _points(surface, view, xx, tt)
+    ok = smp["ok"]
+    pair = ok[1:] & ok[:-1]
+    # run ends: (ok, bad) ends a run at the bad sample's place, (bad, ok) starts one
+    # at the bad sample's place, unless that sample also ends the run before it
+    ends = ok[:-1] & ~ok[1:] & np.isfinite(tt[1:])
+    starts = ~ok[:-1] & ok[1:] & np.isfinite(tt[:-1])
+    starts[1:] &= ~ends[:-1]
+    for mask, good, bad in ((ends, 0, 1), (starts, 1, 0)):
+        k, c = np.nonzero(mask)
+        if k.size == 0:
+            continue
+        t_ok, t_bad = tt[k + good, c].copy(), tt[k + bad, c].copy()
+        for _ in range(EDGE_BISECTIONS):
+            tm = 0.5 * (t_ok + t_bad)
+            m, ev = _points(surface, view, x0[c], tm)
+            evals += ev
+            t_ok = np.where(m["ok"], tm, t_ok)
+            t_bad = np.where(m["ok"], t_bad, tm)
+        m, ev = _points(surface, view, x0[c], t_ok)
+        evals += ev
+        kb = k + bad
+        for name in FIELDS:
+            smp[name][kb, c] = m[name]
+        ok[kb, c] = m["ok"]
+        pair[k, c] = m["ok"]
+    return smp, pair, evals
+
+
+def _evaluate(surface, u, v, ok):
+    """(w, f_u, f_v) where ``ok``; NaN, 0, 0 elsewhere."""
+    w = np.full(u.shape, np.nan)
+    wu = np.zeros(u.shape)
+    wv = np.zeros(u.shape)
+    if ok.any():
+        w[ok], wu[ok], wv[ok] = surface.evaluate(u[ok], v[ok], derivatives=True)
+    return w, wu, wv
+
+
+def _planes(view):
+    t0, t1 = view.t_range
+    n = max(int(math.floor((t1 - t0) / view.step + 1e-9)), 0) + 1
+    t = t0 + np.arange(n) * view.step
+    if t[-1] < t1 - 1e-6 * view.step:
+        t = np.append(t, t1)
+    return t
+
+
+def _paint(y, pair, H):
+    """Front to back, the first span of surface (``pair``) between two successive
+    samples (screen rows ``y``, (n, m)) over each pixel centre paints it: (hit (H, m)
+    bool, plane index k of the span's far sample, fraction of the way from its near
+    sample), rows from the bottom."""
+    n, m = y.shape
+    ya, yb = y[:-1], y[1:]
+    lo = np.where(pair, np.ceil(np.minimum(ya, yb)), 1.0)
+    hi = np.where(pair, np.floor(np.maximum(ya, yb)), 0.0)
+    lo = np.maximum(lo, 0.0)
+    hi = np.minimum(hi, H - 1.0)
+    cnt = np.maximum(hi - lo + 1.0, 0.0).astype(np.int64).ravel()
+    seg = np.repeat(np.arange(cnt.size, dtype=np.int64), cnt)   # spans in plane order
+    first = np.cumsum(cnt) - cnt
+    j = lo.ravel().astype(np.int64)[seg] + (np.arange(seg.size, dtype=np.int64) - first[seg])
+    pix = j * m + seg % m
+    best = np.full(H * m, np.iinfo(np.int64).max)
+    np.minimum.at(best, pix, seg)                 # the nearest span over each pixel
+    hit = best != np.iinfo(np.int64).max
+    sel = best[hit]
+    k = sel // m + 1
+    c = sel % m
+    rows = np.flatnonzero(hit) // m
+    y0, y1 = y[k - 1, c], y[k, c]
+    dy = y1 - y0
+    lam = np.where(dy != 0.0, (rows - y0) / np.where(dy != 0.0, dy, 1.0), 0.0)
+    return hit.reshape(H, m), k, c, np.clip(lam, 0.0, 1.0)
+
+
+def draft_geometry(surface, view):
+    """(g (H, W, G_SIZE) float32 rows from the bottom, seen (H, W) bool, evals (W,)):
+    the draft's G-buffer (layout.py's G_* channels) of one layer."""
+    W, H = view.width, view.height
+    t = _planes(view)
+    g = np.zeros((H, W, L.G_SIZE), dtype=np.float32)
+    seen = np.zeros((H, W), dtype=bool)
+    evals = np.zeros(W, dtype=np.int64)
+    block = max(1, BLOCK_SAMPLES // max(t.size, 1))
+    names = ((L.G_DEPTH, "z"), (L.G_U, "u"), (L.G_V, "v"), (L.G_W, "w"), (L.G_NX, "nx"),
+             (L.G_NY, "ny"), (L.G_NZ, "nz"), (L.G_I, "lam"), (L.G_T, "t"))
+    for c0 in range(0, W, block):
+        cols = np.arange(c0, min(W, c0 + block), dtype=np.float64)
+        smp, pair, ev = _samples(surface, view, cols, t)
+        evals[c0:c0 + cols.size] = ev // max(cols.size, 1)
+        hit, k, c, lam = _paint(smp["y"], pair, H)
+        gb = g[:, c0:c0 + cols.size]
+        for ch, name in names:
+            a = smp[name]
+            gb[hit, ch] = a[k - 1, c] + lam * (a[k, c] - a[k - 1, c])
+        seen[:, c0:c0 + cols.size] = hit
+    n = g[..., L.G_NX:L.G_NZ + 1]
+    norm = np.sqrt((n.astype(np.float64) ** 2).sum(-1, keepdims=True))
+    g[..., L.G_NX:L.G_NZ + 1] = np.where(norm > 0, n / np.where(norm > 0, norm, 1.0), 0.0)
+    return g, seen, evals
+
+
+def _toward_viewer(view, H, W, depth):
+    if view.orthographic:
+        return 0.0, 0.0, -1.0
+    x0 = (np.arange(W) - (W - 1) * 0.5) / view.scale
+    y0 = (np.arange(H) - (H - 1) * 0.5)[:, None] / view.scale
+    e = depth + view.d3
+    m = e / view.d1
+    vx, vy, vz = -x0 * m, -y0 * m, -e
+    q = 1.0 / np.sqrt(vx * vx + vy * vy + vz * vz)
+    return vx * q, vy * q, vz * q
+
+
+def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8):
+    """(rgba (H, W, 4) uint8, intensity (H, W) float32), rows from the bottom, of the
+    draft's G-buffer g and seen sides ``side`` (_sides): finish_kernel's colours of a
+    fully covered pixel (shade.py's _light, _side_rgb, pixel_rgba), in numpy."""
+    H, W = side.shape
+    seen = side != 0
+    ambient, specular, shininess = terms
+    depth = g[..., L.G_DEPTH].astype(np.float64)
+    nx, ny, nz = (g[..., ch].astype(np.float64) for ch in (L.G_NX, L.G_NY, L.G_NZ))
+    vx, vy, vz = _toward_viewer(view, H, W, depth)
+    lx, ly, lz = view.light
+    if lx == 0.0 and ly == 0.0 and lz == 0.0:
+        lx, ly, lz = vx, vy, vz
+    nl = lx * nx + ly * ny + lz * nz
+    lam = g[..., L.G_I].astype(np.float64) if material.interp == INTERP_INTENSITY \
+        else np.abs(nl)
+    inten = ambient + (1.0 - ambient) * np.minimum(lam, 1.0)
+    sp = np.zeros((H, W))
+    if specular > 0.0:
+        nv = nx * vx + ny * vy + nz * vz
+        flip = nv < 0.0                       # the seen side's normal
+        nv_s = np.where(flip, -nv, nv)
+        nl_s = np.where(flip, -nl, nl)
+        rv = 2.0 * nl_s * nv_s - (lx * vx + ly * vy + lz * vz)   # R.V
+        ok = (nl_s > 0.0) & (rv > 0.0)
+        sp = np.where(ok, specular * np.power(np.where(ok, rv, 0.0), shininess), 0.0)
+    w = g[..., L.G_W].astype(np.float64)
+    if lut.shape[1] > 3:
+        idx = np.maximum(np.searchsorted(lut[:, 3], w, side="right") - 1, 0)
+    else:
+        span = w_hi - w_lo if w_hi > w_lo else 1.0
+        x = (w - w_lo) / span * (lut.shape[0] - 1)
+        idx = np.clip(np.nan_to_num(x), 0, lut.shape[0] - 1).astype(np.int64)
+    rgb = np.where((side > 0)[..., None], lut[idx, :3], np.asarray(lower_rgb)[:3])
+    rgb = np.minimum(rgb * inten[..., None] + sp[..., None], 1.0)
+    rgba = np.empty((H, W, 4), dtype=np.uint8)
+    rgba[...] = bg8
+    rgba[seen, :3] = (rgb[seen] * 255.0 + 0.5).astype(np.uint8)
+    rgba[seen, 3] = 255
+    return rgba, np.where(seen, inten, np.nan).astype(np.float32)
+
+
+def _sides(view, g, seen):
+    """(H, W) int8 rows from the bottom: +1 where the upper side is seen, -1 the
+    lower, 0 nothing (the side the normal turns toward the viewer)."""
+    H, W = seen.shape
+    vx, vy, vz = _toward_viewer(view, H, W, g[..., L.G_DEPTH].astype(np.float64))
+    nv = g[..., L.G_NX] * vx + g[..., L.G_NY] * vy + g[..., L.G_NZ] * vz
+    return np.where(seen, np.where(nv > 0.0, 1, -1), 0).astype(np.int8)
+
+
+def column_ranges(g, side):
+    """(W, 2) the lowest and highest w seen with the upper side in each column (as
+    column_kernel's ``wrange``; +inf, -inf where none)."""
+    up = side > 0
+    w = g[..., L.G_W].astype(np.float64)
+    return np.stack([np.where(up, w, np.inf).min(axis=0),
+                     np.where(up, w, -np.inf).max(axis=0)], axis=1)
+
+
+def tiled(g):
+    """(H, W, C) -> the G-buffer's tiles (n_tiles, H, TILE, C) (layout.py)."""
+    H, W, C = g.shape
+    n_tiles = -(-W // L.TILE)
+    padded = np.zeros((H, n_tiles * L.TILE, C), dtype=g.dtype)
+    padded[:, :W] = g
+    return np.ascontiguousarray(padded.reshape(H, n_tiles, L.TILE, C).transpose(1, 0, 2, 3))
+
+
+def draft_pass(surface, view, material, terms, box, bg8):
+    """The draft picture of one layer, top row first: (rgba, side, intensity, depth,
+    tiled G-buffer, evaluations per column, w_limits)."""
+    g, seen, evals = draft_geometry(surface, view)
+    side = _sides(view, g, seen)
+    _, lower_rgb = material.colors()
+    lut, w_lo, w_hi, w_limits = material.color_table(column_ranges(g, side), box[2])
+    rgba, intensity = draft_finish(view, g, side, material, terms, lut, w_lo, w_hi,
+                                   lower_rgb, bg8)
+    depth = np.where(seen, g[..., L.G_DEPTH], np.inf).astype(np.float32)
+    return (rgba[::-1], side[::-1], intensity[::-1], depth[::-1], tiled(g), evals,
+            w_limits)

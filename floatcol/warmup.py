@@ -1,0 +1,172 @@
+"""The first pictures of a fresh install: drafts while the kernels compile.
+
+Numba compiles the kernels once, into its disk cache, in about a minute on a 2-core
+machine (most of it the column kernel; kernels/_jit.py says why it is one kernel).
+Rather than wait, a process whose kernels are neither compiled nor cached
+
+- starts one background process, ``python -m floatcol.warmup``, that compiles them
+  into the cache (a lock file next to the cache keeps it to one, across processes;
+  it outlives a short script such as the CLI's), and
+- draws its pictures meanwhile with the draft pass (passes/draft.py: numpy alone,
+  no compile; about a second at 1920x1080), ``Render.stats["engine"] == "draft"``.
+
+Once the cache holds the kernels, every render loads them (a second or two, once a
+process) and draws full-quality pictures, ``stats["engine"] == "kernels"``. A
+scene the draft does not draw (passes/draft.py's ``supports``) compiles in the
+process as before. ``FLOATCOL_DRAFT=0`` in the environment turns drafts off: every
+render waits for its kernels (the test suite does, for reproducible pictures).
+"""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import time
+
+#: The environment variable that turns drafts off ("0")
+ENV = "FLOATCOL_DRAFT"
+#: The lock file in Numba's cache folder of the kernels: the warm-up's process id
+LOCK_NAME = "floatcol-warmup.pid"
+
+_child = None       # the warm-up process this process started (subprocess.Popen)
+
+
+def _dispatchers():
+    """The kernels a default picture runs (what must be compiled or cached)."""
+    from .kernels.column import column_kernel
+    from .kernels.shade import centre_kernel, finish_kernel
+    from .kernels.silhouette import silhouette_kernel
+    return column_kernel, finish_kernel, silhouette_kernel, centre_kernel
+
+
+def kernels_ready():
+    """Whether every kernel of a default picture is compiled in this process or in
+    Numba's disk cache (its index file is there)."""
+    for d in _dispatchers():
+        if d.signatures:
+            continue
+        try:
+            if not os.path.exists(d._cache._cache_file._index_path):
+                return False
+        except AttributeError:          # pragma: no cover - another Numba's layout
+            return True
+    return True
+
+
+def _lock_path():
+    from .kernels.column import column_kernel
+    try:
+        return os.path.join(column_kernel._cache._cache_path, LOCK_NAME)
+    except AttributeError:              # pragma: no cover - another Numba's layout
+        return None
+
+
+def _alive(pid):
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OSError):
+        return True
+    return True
+
+
+def _running_elsewhere(lock):
+    """Whether another process's warm-up (the lock's pid) is running; a stale lock
+    (its process gone) is removed."""
+    try:
+        with open(lock) as fh:
+            pid = int(fh.read().strip() or 0)
+        age = time.time() - os.path.getmtime(lock)
+    except (OSError, ValueError):
+        return False
+    if pid > 0 and _alive(pid) or pid == 0 and age < 30.0:   # (its pid not yet written)
+        return True
+    try:
+        os.unlink(lock)
+    except OSError:
+        pass
+    return False
+
+
+def _spawn(lock):
+    """Start the warm-up process, or find another process's running; False where
+    none can be started."""
+    global _child
+    for _ in range(2):                  # a stale lock (its process gone) is removed once
+        try:
+            fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+            break
+        except FileExistsError:
+            if _running_elsewhere(lock):
+                return True
+        except OSError:                 # a read-only cache folder
+            return False
+    else:
+        return False
+    try:
+        env = dict(os.environ, **{ENV: "0"})
+        _child = subprocess.Popen([sys.executable, "-m", "floatcol.warmup", lock], env=env,
+                                  stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                  stderr=subprocess.DEVNULL, start_new_session=True,
+                                  close_fds=True)
+        os.write(fd, str(_child.pid).encode())
+    except OSError:
+        try:
+            os.unlink(lock)
+        except OSError:
+            pass
+        return False
+    finally:
+        os.close(fd)
+    return True
+
+
+def drafting():
+    """Whether this render should be a draft: drafts are on, the kernels are not
+    ready, and a warm-up process is compiling them (started here if none is). Once
+    this process's own warm-up has ended without leaving the kernels (it failed),
+    renders compile in the process instead."""
+    if os.environ.get(ENV, "1") == "0" or kernels_ready():
+        return False
+    if _child is not None:
+        return _child.poll() is None
+    lock = _lock_path()
+    if lock is None:
+        return False
+    return _spawn(lock)
+
+
+#: What the warm-up renders: the kernels of the default pictures, in both
+#: projections, with the batch evaluator (at least BATCH_MIN_SAMPLES samples) and
+#: without, and the intensity and depth arrays.
+WARM_RENDERS = (
+    dict(size=(800, 600)),
+    dict(size=(64, 48)),
+    dict(size=(64, 48), projection="perspective"),
+)
+
+
+def warm():
+    """Compile (or load) the kernels of WARM_RENDERS into Numba's cache."""
+    import floatcol as fc
+    for kw in WARM_RENDERS:
+        r = fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), **kw)
+        r.intensity
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    os.environ[ENV] = "0"
+    try:
+        warm()
+    finally:
+        if argv:
+            try:
+                os.unlink(argv[0])
+            except OSError:
+                pass
+
+
+if __name__ == "__main__":
+    main()

@@ -32,7 +32,11 @@ import numpy as np
 from ..kernels import layout as L
 from ..kernels.sample import DOMAIN_EPS, NEWTON_ITERS, NEWTON_TOL_PX
 from ..kernels.shade import INTERP_INTENSITY
+from .geometry import check_bytes, too_large
 
+#: Bytes a pixel of a draft holds at most at once: its G-buffer (9 float32) twice
+#: (the tiled copy), the finishing pass's float64 planes, the picture
+DRAFT_BYTES = 160
 #: Samples (planes x columns) evaluated at once: the columns go in blocks of this size
 BLOCK_SAMPLES = 1 << 20
 
@@ -372,7 +376,12 @@ def tiled(g):
 def draft_pass(surface, view, material, terms, box, bg8):
     """The draft picture of one layer, top row first: (rgba, side, intensity, depth,
     tiled G-buffer, evaluations per column, w_limits)."""
-    g, seen, evals = draft_geometry(surface, view)
+    W, H = view.width, view.height
+    check_bytes(W, H, W * H * DRAFT_BYTES)
+    try:
+        g, seen, evals = draft_geometry(surface, view)
+    except MemoryError:
+        raise ValueError(too_large(W, H, W * H * DRAFT_BYTES)) from None
     side = _sides(view, g, seen)
     _, lower_rgb = material.colors()
     lut, w_lo, w_hi, w_limits = material.color_table(column_ranges(g, side), box[2])

@@ -4,11 +4,17 @@
 Axes' true pixel size each time the figure is drawn, so a resized window or
 ``savefig(dpi=300)`` gets a sharp picture of that size, never a resampled one. With
 ``interactive=True`` a mouse drag turns the view (elev/azim, as Axes3D does) and the
-scroll wheel zooms; while the button is held the picture is drawn with sampling planes
-``DRAG_PIXEL_STEP`` pixels apart and without corrections or antialiasing, and at full
-quality on release.
+scroll wheel zooms; while the button is held the picture is a preview: sampling planes
+``DRAG_PIXEL_STEP`` pixels apart, no corrections or antialiasing, and a resolution
+that drops (down to 1 / MAX_SHRINK of the Axes' each way, its pixels enlarged) until
+a frame renders in about PREVIEW_SECONDS (_Preview: measured on the frames before,
+so a loaded machine gets coarser frames rather than fewer); at full quality on
+release. A GUI backend's draw_idle draws once for the events queued since the last
+draw: frames are dropped, never queued.
 """
 from __future__ import annotations
+
+import math
 
 import numpy as np
 from matplotlib.artist import Artist
@@ -16,6 +22,44 @@ from matplotlib.image import AxesImage
 
 DRAG_PIXEL_STEP = 3.0
 ZOOM_PER_STEP = 1.1
+#: A drag's preview frame should render in about this many seconds (with
+#: matplotlib's own drawing, 30 frames a second at 1920x1080 on 2 cores)
+PREVIEW_SECONDS = 0.012
+#: ... at no less than 1 / MAX_SHRINK of the Axes' resolution each way
+MAX_SHRINK = 4
+#: The first preview of a drag larger than this many pixels starts at half resolution
+FIRST_SHRINK_PIXELS = 600_000
+
+
+class _Preview:
+    """The resolution of a drag's preview frames: each frame's render time per pixel
+    (averaged with the frames before) says how far the next must shrink to take
+    PREVIEW_SECONDS."""
+
+    def __init__(self):
+        self.seconds_per_pixel = None
+
+    def shrink(self, W, H):
+        """The factor (1 to MAX_SHRINK) by which a W x H preview shrinks each way."""
+        if self.seconds_per_pixel is None:
+            return 2 if W * H > FIRST_SHRINK_PIXELS else 1
+        f = math.sqrt(W * H * self.seconds_per_pixel / PREVIEW_SECONDS)
+        return int(min(max(math.ceil(f - 0.1), 1), MAX_SHRINK))
+
+    def took(self, seconds, pixels):
+        s = seconds / max(pixels, 1)
+        old = self.seconds_per_pixel
+        self.seconds_per_pixel = s if old is None else 0.5 * (old + s)
+
+
+def _shrunk(size, f):
+    """A size shrunk f times each way (rounded up: the enlarged picture covers it)."""
+    return max(1, -(-size[0] // f)), max(1, -(-size[1] // f))
+
+
+def _enlarged(rgba, f):
+    """Each pixel of rgba an f x f block."""
+    return rgba if f == 1 else np.repeat(np.repeat(rgba, f, axis=0), f, axis=1)
 
 
 class SurfaceImage(AxesImage):
@@ -26,6 +70,7 @@ class SurfaceImage(AxesImage):
         self.plot = plot
         self._drag = None
         self._cids = []
+        self._preview = _Preview()
 
     @classmethod
     def attach(cls, plot, ax, interactive=False):
@@ -49,17 +94,28 @@ class SurfaceImage(AxesImage):
         if not self.get_visible():
             return
         size = self.pixel_size(renderer)
-        r = self.plot.draw(size)
         bb = self.axes.bbox
         if renderer.get_image_magnification() == 1.0 and self.get_alpha() is None:
             # a raster canvas: the render is already the Axes' pixels, so put it
-            # there directly (matplotlib's resampling would only copy it)
+            # there directly (matplotlib's resampling would only copy it); a drag's
+            # preview is rendered smaller and its pixels enlarged
+            f = self._preview.shrink(*size) if self._drag is not None else 1
+            self.plot.shrink = f
+            try:
+                small = _shrunk(size, f)
+                r = self.plot.draw(small)
+            finally:
+                self.plot.shrink = 1
+            if self._drag is not None:
+                self._preview.took(r.stats["seconds"], small[0] * small[1])
+            rgba = _enlarged(r.rgba, f)[:size[1], :size[0]]
             gc = renderer.new_gc()
             gc.set_clip_rectangle(bb)
-            renderer.draw_image(gc, int(round(bb.x0)), int(round(bb.y0)), r.rgba[::-1])
+            renderer.draw_image(gc, int(round(bb.x0)), int(round(bb.y0)), rgba[::-1])
             gc.restore()
             self.stale = False
             return
+        r = self.plot.draw(size)
         x0, x1 = self.axes.get_xlim()
         y0, y1 = self.axes.get_ylim()
         # set the data without the stale callbacks: this is the draw itself
@@ -163,6 +219,7 @@ class Surface3DImage(Artist):
         self.set_zorder(1)
         self.set_clip_box(ax.bbox)
         self.preview = False      # whether the last picture was a drag's preview
+        self._preview = _Preview()
         self.placed = None        # T (2, 3) of the last picture: pixel (col, row) at the
                                   # canvas point T @ (col, row, 1) (axes_camera)
 
@@ -199,24 +256,29 @@ class Surface3DImage(Artist):
         bb = ax.bbox
         W = max(1, int(round(bb.width * mag)))
         H = max(1, int(round(bb.height * mag)))
-        kw, T, size = axes_camera(self.plot, ax, W, H, mag)
         preview = getattr(ax, "button_pressed", None) in getattr(ax, "_rotate_btn", ())
         self.preview = preview
+        # a preview: rendered f times smaller each way (its pixels f times larger)
+        f = self._preview.shrink(W, H) if preview and mag == 1.0 else 1
+        kw, T, size = axes_camera(self.plot, ax, *_shrunk((W, H), f), mag / f)
         self.plot.pixel_step = DRAG_PIXEL_STEP if preview else None
         try:
             r = self.plot.draw_with(size, kw)
         finally:
             self.plot.pixel_step = None
+        if preview:
+            self._preview.took(r.stats["seconds"], size[0] * size[1])
         self.placed = T
+        m = mag / f
         gc = renderer.new_gc()
         gc.set_clip_rectangle(bb)
         if abs(T[0, 1]) <= 1e-12 * abs(T[0, 0]):
-            # pixel (col, row) centred at the canvas point (ox + col / mag, oy - row / mag)
-            renderer.draw_image(gc, T[0, 2] - 0.5 / mag, T[1, 2] - (size[1] - 0.5) / mag,
-                                r.rgba[::-1])
+            # pixel (col, row) centred at the canvas point (ox + col / m, oy - row / m)
+            renderer.draw_image(gc, T[0, 2] - 0.5 / m, T[1, 2] - (size[1] - 0.5) / m,
+                                _enlarged(r.rgba, f)[::-1])
         else:                                     # a roll: the picture turned onto the Axes
             x0, y0 = int(np.floor(bb.x0)), int(np.floor(bb.y0))
-            renderer.draw_image(gc, x0, y0, _turned(r.rgba, T, x0, y0, W, H, mag)[::-1])
+            renderer.draw_image(gc, x0, y0, _turned(r.rgba, T, x0, y0, W, H, m)[::-1])
         gc.restore()
         self.stale = False
 

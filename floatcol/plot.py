@@ -163,6 +163,7 @@ class SurfacePlot(_ScalarMappable):
         self.options = dict(render_options or {})
         self.zoom = 1.0
         self.pixel_step = None         # None: the render default (1 pixel)
+        self.shrink = 1                # a drag's preview: the picture f times smaller
         self.render: Render | None = None
         self.artist = None
 
@@ -320,6 +321,8 @@ class SurfacePlot(_ScalarMappable):
             if kw.get("method", "column") == "column":
                 kw["corrections"] = "none"
                 kw["antialias"] = False
+        if self.shrink != 1 and kw.get("scale") is not None:
+            kw["scale"] = kw["scale"] / self.shrink    # the same view, f times smaller
         if self.zoom != 1.0 and kw.get("scale") is None:
             if self.others:
                 from .camera import joint_box, joint_camera

@@ -301,3 +301,26 @@ def test_objects_far_off_or_not_numbers_are_simply_not_shown():
     assert list(o.visible) == [True, False, False, False]
     with pytest.raises(ValueError, match="numbers"):
         p.scatter(["a"], [0], [0])
+
+
+def test_mplot3d_preview_shrinks_and_stays_in_place():
+    """A preview rendered MAX_SHRINK times smaller each way lands where the full
+    frame of the same view does (its pixels enlarged)."""
+    from floatcol.mpl import MAX_SHRINK
+    X, Y, Z = _data()
+    fig = plt.figure(figsize=(4, 3), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    ax.set_axis_off()
+    p = fc.plot_surface(X, Y, Z, ax=ax)
+    fig.canvas.draw()
+    full = np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
+    full_size = p.render.rgba.shape
+    ax.button_pressed = ax._rotate_btn[0]
+    p.artist._preview.seconds_per_pixel = 1.0
+    fig.canvas.draw()
+    assert p.render.rgba.shape[0] <= full_size[0] // MAX_SHRINK + 2
+    preview = np.asarray(fig.canvas.buffer_rgba())[..., :3]
+    a, b = (preview != 255).any(-1), (full != 255).any(-1)
+    assert (a & b).sum() / (a | b).sum() > 0.9          # measured 0.941
+    ax.button_pressed = None
+    plt.close(fig)

@@ -124,3 +124,45 @@ def test_cursor_data_is_the_surface_point(fig_ax):
     u, v, w = plot.artist.get_cursor_data(ev)
     assert w == pytest.approx(u + 2 * v, abs=1e-4)
     assert "w=" in plot.artist.format_cursor_data((u, v, w))
+
+
+def test_preview_resolution_follows_the_frames_time():
+    """_Preview: no shrink for a frame that renders in time, more for a slower one,
+    never beyond MAX_SHRINK; the first frame of a full-screen drag starts at half."""
+    from floatcol.mpl import FIRST_SHRINK_PIXELS, MAX_SHRINK, PREVIEW_SECONDS, _Preview
+    p = _Preview()
+    assert p.shrink(800, 600) == 1 and p.shrink(1920, 1080) == 2
+    assert 800 * 600 <= FIRST_SHRINK_PIXELS < 1920 * 1080
+    p.took(PREVIEW_SECONDS / 2, 1920 * 1080)           # half the budget at full size
+    assert p.shrink(1920, 1080) == 1
+    p = _Preview()
+    p.took(4 * PREVIEW_SECONDS, 1920 * 1080)           # 4x over: half each way
+    assert p.shrink(1920, 1080) == 2
+    p.took(400 * PREVIEW_SECONDS, 1920 * 1080)         # far over (a loaded machine)
+    assert p.shrink(1920, 1080) == MAX_SHRINK
+
+
+@pytest.mark.parametrize("scale", [None, 30.0])
+def test_a_shrunk_preview_shows_the_same_view(scale):
+    """A drag's preview rendered f times smaller and enlarged covers the canvas where
+    the full-quality frame of the same view does (with the plot's own scale too)."""
+    fig = plt.figure(figsize=(4, 3), dpi=100)
+    ax = fig.add_axes((0, 0, 1, 1))
+    opts = {} if scale is None else {"scale": scale}
+    plot = fc.plot_surface(EXPR, *RNG, ax=ax, interactive=True, **opts)
+    art = plot.artist
+    bb = ax.bbox
+    _mouse(fig, "button_press_event", bb.x0 + 10, bb.y0 + 10)
+    art._preview.seconds_per_pixel = 1.0                  # as slow as can be: MAX_SHRINK
+    fig.canvas.draw()
+    from floatcol.mpl import MAX_SHRINK
+    assert plot.render.rgba.shape[:2] == (300 // MAX_SHRINK, 400 // MAX_SHRINK)
+    preview = np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
+    _mouse(fig, "button_release_event", bb.x0 + 10, bb.y0 + 10)
+    fig.canvas.draw()
+    assert plot.render.rgba.shape[:2] == (300, 400)
+    full = np.asarray(fig.canvas.buffer_rgba())[..., :3]
+    a, b = (preview != 255).any(-1), (full != 255).any(-1)
+    assert a.sum() > 0.1 * a.size
+    assert (a & b).sum() / (a | b).sum() > 0.9          # measured 0.933, 0.919 (its 4x4 blocks)
+    plt.close(fig)

@@ -47,6 +47,22 @@ class Material:
     interpolation : "normal" (nis, per-pixel lighting) or "intensity" (iis, Gouraud).
     opacity : in [0, 1]; below 1 every layer of the surface along a ray shows,
         composited front to back (Gordon 6.5-6.6, passes/translucency.py).
+    texture : an image over the domain (Gordon 6.7, passes/colour.py): an array
+        (h, w, 3|4) of uint8 or floats in [0, 1] indexed as HeightField's heights
+        (``img[j, i]`` the colour at (u_i, v_j)), an image file's path, or a
+        function T(u, v) -> RGB(A) of arrays. Both sides take it; its alpha lays it
+        over the surface's own colour.
+    texture_extent : (u0, u1, v0, v1) the texture (or colour array) spans; default
+        the surface's domain.
+    texture_filter : "mipmap" (trilinear, the default: no shimmer), "linear" or
+        "point".
+    color : colour from data: a second expression of u and v (or a 2-D array indexed
+        as heights) mapped through cmap and norm/vmin/vmax instead of the height.
+    contours : contour lines on the surface (passes/overlays.py): N evenly spaced
+        levels, or the levels; of f, or of ``color`` when it is given.
+    contour_color, contour_width : their colour and width in pixels.
+    wireframe : lines at u = const and v = const: N lines each way, or (nu, nv) (as
+        matplotlib's rcount, ccount); ``edgecolor``, ``linewidth`` (pixels).
     """
     shading: str = "default"
     cmap: Any = "viridis"
@@ -60,6 +76,16 @@ class Material:
     shininess: float | None = None
     interpolation: str = "normal"
     opacity: float = 1.0
+    texture: Any = None
+    texture_extent: Any = None
+    texture_filter: str = "mipmap"
+    color: Any = None
+    contours: Any = None
+    contour_color: Any = "black"
+    contour_width: float = 1.0
+    wireframe: Any = None
+    edgecolor: Any = "black"
+    linewidth: float = 0.75
 
     def check(self):
         """Validate the fields (ValueError naming what to fix); returns self."""
@@ -71,7 +97,24 @@ class Material:
         if isinstance(self.opacity, bool):
             raise ValueError(f"opacity must be a number in [0, 1], got {self.opacity!r}")
         self.opacity = fraction("opacity", self.opacity)
+        from .passes.colour import check_filter
+        check_filter(self.texture_filter)
+        for name in ("contour_width", "linewidth"):
+            x = getattr(self, name)
+            if isinstance(x, bool) or not isinstance(x, numbers.Real) or \
+                    not math.isfinite(x) or not 0.0 < x <= 64.0:
+                raise ValueError(f"{name} must be a number of pixels in (0, 64], got {x!r}")
         return self
+
+    @property
+    def colored(self):
+        """Whether a texture or a colour field colours the surface."""
+        return self.texture is not None or self.color is not None
+
+    @property
+    def overlaid(self):
+        """Whether lines are drawn on the surface."""
+        return self.contours is not None or self.wireframe is not None
 
     @property
     def interp(self):

@@ -34,7 +34,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            corrections=DEFAULT_CORRECTIONS, detect=None, jump_threshold=DEFAULT_JUMP,
            supersample_rate=DEFAULT_RATE, spline_tolerance=None,
            antialias=None, sampling="uniform", aspect="equal", box=None, lightsource=None,
-           shadows=False, opacity=1.0) -> Render:
+           shadows=False, opacity=1.0, texture=None, texture_extent=None,
+           texture_filter="mipmap", color=None, contours=None, contour_color="black",
+           contour_width=1.0, wireframe=None, edgecolor="black", linewidth=0.75) -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -127,6 +129,22 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         pixel. The default shading's antialiasing covers each layer's silhouettes
         (the part of a pixel a layer covers along the column, and 3 sub-columns
         across); 1 (default) is the opaque surface.
+    texture : section 6.7: an image over the domain: an array (h, w, 3|4) of uint8 or
+        floats in [0, 1] indexed as HeightField's heights (``img[j, i]`` the colour at
+        (u_i, v_j)), an image file's path, or a function T(u, v) -> RGB(A) of arrays;
+        both sides take it (lit as the surface), its alpha lays it over the surface's
+        own colour. ``texture_extent`` (u0, u1, v0, v1): where it lies (default: the
+        domain); ``texture_filter``: "mipmap" (trilinear: each pixel averages the
+        texels it covers, no shimmer; default), "linear" or "point".
+    color : colour from data: a second expression of u and v (or a 2-D array indexed
+        as heights over ``texture_extent``) coloured through cmap and norm/vmin/vmax
+        instead of the height (``stats["c_limits"]`` its range on the colormap).
+    contours : contour lines of f (of ``color`` when given): N evenly spaced levels
+        or the levels; ``contour_color``, ``contour_width`` in pixels (default 1).
+        Antialiased, of constant width, hidden where the surface hides them.
+    wireframe : lines at u = const and v = const: N each way or (nu, nv), spread
+        over the domain from edge to edge (matplotlib's rcount, ccount);
+        ``edgecolor``, ``linewidth`` in pixels (default 0.75).
 
     Returns
     -------
@@ -144,7 +162,10 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         [Layer(expr, (u, v), Material(
             shading=shading, cmap=cmap, norm=norm, vmin=vmin, vmax=vmax, upper_color=upper_color,
             lower_color=lower_color, ambient=ambient, specular=specular, shininess=shininess,
-            interpolation=interpolation, opacity=opacity))],
+            interpolation=interpolation, opacity=opacity, texture=texture,
+            texture_extent=texture_extent, texture_filter=texture_filter, color=color,
+            contours=contours, contour_color=contour_color, contour_width=contour_width,
+            wireframe=wireframe, edgecolor=edgecolor, linewidth=linewidth))],
         camera=Camera(size=size, elev=elev, azim=azim, projection=projection, d1=d1, d2=d2,
                       scale=scale, center=center, focal_length=focal_length, aspect=aspect,
                       box=box),

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from . import color, warmup
 from .camera import fit
 from .light import as_light
-from .passes import antialias, draft, finish, geometry, horizon, shadow as shadows
+from .passes import antialias, colour, draft, finish, geometry, horizon, overlays, shadow as shadows
 from .passes.composite import composite as merge
 from .passes.translucency import render_translucent
 from .result import Render
@@ -42,6 +42,7 @@ class _Prepared:
     light: object               # the Light
     light_dir: object
     terms: tuple                # (ambient, specular, shininess)
+    source: object = None       # the texture or colour field (passes/colour.py)
 
 
 def render_scene(scene, stacklevel=2, composite=False) -> Render:
@@ -66,10 +67,13 @@ def render_scene(scene, stacklevel=2, composite=False) -> Render:
         if quality.method != "column":
             raise ValueError("opacity below 1 needs shaded pictures: method='column' (a line "
                              "drawing has no layers to blend)")
+        if any(p.material.colored or p.material.overlaid for p in layers):
+            raise ValueError("opacity below 1 takes the colours of its height colormap: a "
+                             "texture, color field, contours or wireframe need opacity=1")
         return render_translucent(layers, views, drawn, box, quality, background, texture,
                                   t_start)
     if not many and texture is None and draft.supports(quality, layers[0], views[0]) \
-            and warmup.drafting():
+            and not first.colored and not first.overlaid and warmup.drafting():
         return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
                             stacklevel + 1)
     if not many:
@@ -94,7 +98,8 @@ def _prepare(layer, scene):
     light = as_light(scene.light, material.shading)
     view_angles = (scene.camera.elev, scene.camera.azim)
     light_dir = _screen_light(light, *view_angles)
-    return _Prepared(surface, domain, material, light, light_dir, material.light_terms())
+    return _Prepared(surface, domain, material, light, light_dir, material.light_terms(),
+                     colour.prepare(material, domain, scene.vars))
 
 
 def _shadow_texture(light, camera, quality, drawn, view):
@@ -139,6 +144,9 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     hstride = 0
     n_lines = 1
     if method == "horizon":
+        if material.colored or material.overlaid:
+            raise ValueError("a texture, color field, contours or wireframe need shaded "
+                             "pictures: method='column'")
         n_lines = quality.n_lines()
         view, hstride = geometry.horizon_planes(view, n_lines)
     material.check_limits()
@@ -161,6 +169,7 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     t_shadow = time.perf_counter()
     line_t = None
     w_limits = None
+    c_limits = None
     seen = None
     amb, spec, shine = p.terms
     if method == "horizon":
@@ -171,14 +180,25 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
         bg8 = color.to_rgba8(background)
         shade_args = (material.interp, amb, spec, shine)
         intensity = depth = None        # Render computes them when asked (centre_kernel)
+        base = finish.NO_BASE
+        if p.source is not None:
+            if sub_columns > 1:
+                raise ValueError("a texture or color field is antialiased along the columns "
+                                 "and across them by their edges: use antialias=True (not "
+                                 "sub-columns)")
+            base, c_limits = colour.base_colours(material, p.source, geom, W, H, box, lut,
+                                                 w_lo, w_hi, lower_rgb)
         rgba, side = finish.finish_pass(geom, H, W, shade_args, lut, w_lo, w_hi, lower_rgb,
-                                        bg8, lit)
+                                        bg8, lit, base)
         if aa_cov and sub_columns == 1:
             antialias.staircase_pass(geom, side, rgba)
         if sub_columns > 1:
             rgba, ev2 = antialias.subcolumn_pass(surface, geom, sub_columns, rgba, shade_args,
                                                  lut, w_lo, w_hi, lower_rgb, bg8, lit)
             evals += ev2
+        if material.overlaid:
+            overlays.overlay_pass(rgba, material, p.source, geom, W, box, w_limits, c_limits,
+                                  domain)
     t_end = time.perf_counter()
     if nowhere_finite(surface, domain) and not (side != 0 if seen is None else seen).any():
         warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,
@@ -198,6 +218,8 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
         "box": box,                # aspect's stretch of u, v and w (1, 1, 1: none)
         "engine": "kernels",       # (a fresh install's first pictures: "draft")
     }
+    if c_limits is not None:
+        stats["c_limits"] = c_limits   # the colour field's range on the colormap
     if texture is not None:
         stats["shadow_seconds"] = t_shadow - t_kernel
         stats["shadow_texels"] = texture.texels

@@ -124,15 +124,31 @@ def pixel_rgba(s, w, cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp, lut, w_lo, 
     b = 0.0
     if s != 0.0:
         r, g, b = _side_rgb(s, w, lut, w_lo, span, lower_rgb)
+    er = 0.0
+    eg = 0.0
+    eb = 0.0
+    if e_cov > 0.0:
+        er, eg, eb = _side_rgb(e_side, e_w, lut, w_lo, span, lower_rgb)
+    return blend(s, r, g, b, cov0, lam, sp, e_cov, er, eg, eb, e_lam, e_sp, background)
+
+
+@ngjit_inline
+def blend(s, r, g, b, cov0, lam, sp, e_cov, er, eg, eb, e_lam, e_sp, background):
+    """pixel_rgba's colour of a pixel whose surfaces have the colours (r, g, b) at its
+    centre (side s, 0: none) and (er, eg, eb) of the edge surface (coverage e_cov, 0:
+    none), before their light (lam, sp; e_lam, e_sp)."""
+    if s != 0.0:
         r = min(r * lam + sp, 1.0)
         g = min(g * lam + sp, 1.0)
         b = min(b * lam + sp, 1.0)
     else:
+        r = 0.0
+        g = 0.0
+        b = 0.0
         cov0 = 0.0
     cov1 = 0.0
     if e_cov > 0.0:
         cov1 = min(e_cov, 1.0 - cov0)
-        er, eg, eb = _side_rgb(e_side, e_w, lut, w_lo, span, lower_rgb)
         r = r * cov0 + min(er * e_lam + e_sp, 1.0) * cov1
         g = g * cov0 + min(eg * e_lam + e_sp, 1.0) * cov1
         b = b * cov0 + min(eb * e_lam + e_sp, 1.0) * cov1
@@ -164,11 +180,13 @@ def _rgba32(r, g, b, a):
 
 @ngjit_inline
 def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular, shininess,
-                lut, w_lo, span, lower_rgb, background, lit):
+                lut, w_lo, span, lower_rgb, background, lit, textured, tr, tg, tb):
     """Light (_light) and colour (pixel_rgba) row j of the column in lane ``lane`` of
     tile ``tile`` of the G-buffer gbuf and the edge buffer ebuf (layout.py; E_SEEN,
-    and with ``aa`` the coverages, coverage.py). Returns (intensity at the centre, NaN
-    where no surface; r, g, b, alpha)."""
+    and with ``aa`` the coverages, coverage.py). With ``textured`` the surface at the
+    centre has the colour (tr, tg, tb) on both sides (a texture's, passes/colour.py)
+    instead of its side's. Returns (intensity at the centre, NaN where no surface;
+    r, g, b, alpha)."""
     g = gbuf[tile, j, lane]
     x = ebuf[tile, E_SEEN, j, lane]
     s = seen_side(x)
@@ -196,6 +214,15 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular
             e_w = e[E_W]
             e_lam, e_sp = _light(vp, x0, j, e[E_DEPTH], e[E_NX], e[E_NY], e[E_NZ], e[E_I],
                                  interp, ambient, specular, shininess, lit)
+    if textured:
+        er = 0.0
+        eg = 0.0
+        eb = 0.0
+        if e_cov > 0.0:
+            er, eg, eb = _side_rgb(e_side, e_w, lut, w_lo, span, lower_rgb)
+        r, gr, bl, a = blend(s, tr, tg, tb, cov0, lam, sp, e_cov, er, eg, eb, e_lam, e_sp,
+                             background)
+        return lam, r, gr, bl, a
     r, gr, bl, a = pixel_rgba(s, w, cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp,
                               lut, w_lo, span, lower_rgb, background)
     return lam, r, gr, bl, a
@@ -222,7 +249,7 @@ def _block_rows(blk, H):
 
 @ngjit_parallel_nrt_free
 def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lut, w_lo,
-                  w_hi, lower_rgb, background, lit, side, rgba):
+                  w_hi, lower_rgb, background, lit, base, side, rgba):
     """Light, colour and assemble the picture, top row first, in one pass: side and
     rgba (shade_pixel; rgba an (H, W, 4) uint8 picture viewed as (H, W) uint32, one
     store a pixel: _rgba32), from the tiled G-buffer gbuf and edge buffer ebuf
@@ -241,10 +268,14 @@ def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lu
     cache on every store (1920x1080: 5-17 % slower). A tile whose rows (column_kernel's
     ``rows``: where its E_SEEN may be set) miss the block is background there: not
     read at all. ``lit`` (H, W): the part of the light reaching each pixel's point
-    (passes/shadow.py), or an empty array: all of it."""
+    (passes/shadow.py), or an empty array: all of it. ``base`` (H, W, 3) float32: the
+    colour of the surface seen at each pixel's centre, both sides (a texture or a
+    colour field's, passes/colour.py), or an empty array: the side's colour (lut by
+    w, or lower_rgb); the edge surface of an antialiased pixel keeps its side's."""
     n_tiles, H, T, W, n_blocks = _picture_blocks(gbuf, side)
     aa = vp[VP_AA] != 0.0
     shadows = lit.shape[0] > 0
+    textured = base.shape[0] > 0
     span = w_hi - w_lo if w_hi > w_lo else 1.0
     for blk in prange(n_blocks):
         j_lo, j_hi = _block_rows(blk, H)
@@ -283,15 +314,27 @@ def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lu
                                          gbuf[b, j, lane, G_NX], gbuf[b, j, lane, G_NY],
                                          gbuf[b, j, lane, G_NZ], gbuf[b, j, lane, G_I], interp,
                                          ambient, specular, shininess, lt)
-                        r, g, bl = _side_rgb(s, gbuf[b, j, lane, G_W], lut, w_lo, span,
-                                             lower_rgb)
+                        if textured:
+                            r = base[i, c, 0]
+                            g = base[i, c, 1]
+                            bl = base[i, c, 2]
+                        else:
+                            r, g, bl = _side_rgb(s, gbuf[b, j, lane, G_W], lut, w_lo, span,
+                                                 lower_rgb)
                         rgba[i, c] = _rgba32(min(r * lam + sp, 1.0) * 255.0 + 0.5,
                                              min(g * lam + sp, 1.0) * 255.0 + 0.5,
                                              min(bl * lam + sp, 1.0) * 255.0 + 0.5, 255)
                         continue
+                    tr = 0.0
+                    tg = 0.0
+                    tb = 0.0
+                    if textured:
+                        tr = base[i, c, 0]
+                        tg = base[i, c, 1]
+                        tb = base[i, c, 2]
                     _, r, g, bl, a = shade_pixel(gbuf, ebuf, b, lane, j, aa, vp, x0, interp,
                                                  ambient, specular, shininess, lut, w_lo, span,
-                                                 lower_rgb, background, lt)
+                                                 lower_rgb, background, lt, textured, tr, tg, tb)
                     rgba[i, c] = _rgba32(r * 255.0 + 0.5, g * 255.0 + 0.5, bl * 255.0 + 0.5,
                                          a * 255.0 + 0.5)
 

@@ -8,13 +8,19 @@ from .. import _pool
 from ..kernels.shade import finish_kernel
 
 
-def finish_pass(geom, H, W, shade_args, lut, w_lo, w_hi, lower_rgb, bg8, lit):
+#: finish_kernel's ``base`` when the side's colours are the surface's (no texture)
+NO_BASE = np.zeros((0, 0, 3), dtype=np.float32)
+
+
+def finish_pass(geom, H, W, shade_args, lut, w_lo, w_hi, lower_rgb, bg8, lit, base=NO_BASE):
     """(rgba (H, W, 4) uint8, side (H, W) int8). ``shade_args``: (interpolation,
     ambient, specular, shininess) of the material; lut, w_lo, w_hi its colour table
     (Material.color_table); lower_rgb the lower side's colour; bg8 the background; lit
-    (H, W) the part of the light reaching each pixel (passes/shadow.py), or empty."""
+    (H, W) the part of the light reaching each pixel (passes/shadow.py), or empty;
+    base (H, W, 3) float32 the colour of the surface at each pixel (passes/colour.py),
+    or empty (NO_BASE): its side's."""
     side = _pool.empty((H, W), np.int8)
     rgba = _pool.empty((H, W, 4), np.uint8)
     finish_kernel(geom.gbuf, geom.ebuf, geom.rows, geom.vp, *shade_args, lut, w_lo, w_hi,
-                  lower_rgb, bg8, lit, side, rgba.view(np.uint32)[..., 0])
+                  lower_rgb, bg8, lit, base, side, rgba.view(np.uint32)[..., 0])
     return rgba, side

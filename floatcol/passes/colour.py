@@ -1,0 +1,336 @@
+"""The colour pass (Gordon 6.7): the colour of the surface at each pixel from its
+(u, v) in the G-buffer, before the finishing pass lights it.
+
+- A texture T(u, v): an image indexed as HeightField's heights (``img[j, i]`` the
+  colour at (u_i, v_j), nodes spread over the extent, by default the domain), read
+  through a mip-map pyramid with trilinear filtering: each pixel averages about the
+  texels its footprint covers (the footprint from its neighbours' (u, v), the
+  smaller one-sided difference each way, so a silhouette does not blur it), which
+  keeps distant and oblique textures from shimmering as the camera moves
+  (benchmarks/bench_texture.py measures the flicker). ``texture_filter="point"``
+  takes the nearest texel (no filtering), ``"linear"`` the bilinear mix of the four
+  nearest. A texture's alpha lays it over the surface's own colour (a decal). A
+  callable T(u, v) -> RGB(A) is called on the seen pixels' u and v.
+- A colour field: ``color=`` a second expression of u and v, or an array indexed as
+  heights, mapped through the material's cmap and norm/vmin/vmax (its range over the
+  seen pixels by default) instead of f.
+
+Both sides of the surface take the colour. Nothing here runs where a material has
+neither (the finishing pass then colours by height, as before).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kernels import layout as L
+from .tiles import untile
+
+FILTERS = ("mipmap", "linear", "point")
+
+
+def picture_planes(geom, W):
+    """(u, v, w, side) of each pixel, top row first, from a layer's tiled G-buffer
+    and edge buffer (the column pass's): side +1 upper, -1 lower, 0 nothing (NaN
+    u, v, w there)."""
+    x = untile(geom.ebuf[:, L.E_SEEN], W)[::-1]
+    side = np.where(x > 0.5 * L.E_FLAG, x - L.E_FLAG, x)     # coverage.seen_side
+    seen = side != 0.0
+    g = untile(geom.gbuf[..., (L.G_U, L.G_V, L.G_W)], W)[::-1]
+    nan = np.float64(np.nan)
+    planes = [np.where(seen, g[..., k].astype(np.float64), nan) for k in range(3)]
+    return (*planes, side)
+
+
+# -- textures --------------------------------------------------------------------
+
+def read_image(texture):
+    """A texture as an (h, w, 4) float32 array in [0, 1] (alpha 1 where it has none),
+    rows along v, columns along u: an array (h, w, 3|4) of uint8 or floats in [0, 1],
+    or the path of an image file."""
+    import os
+    if isinstance(texture, (str, os.PathLike)):
+        path = os.fspath(texture)
+        try:
+            from PIL import Image
+            with Image.open(path) as im:
+                arr = np.asarray(im.convert("RGBA"))
+        except (OSError, ValueError) as exc:
+            raise ValueError(f"texture {path!r} cannot be read as an image: {exc}") from None
+        return np.ascontiguousarray(arr[::-1] / np.float32(255.0), dtype=np.float32)
+    try:
+        arr = np.asarray(texture)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"texture must be an image array or a file's path: {exc}") from None
+    if arr.ndim != 3 or arr.shape[2] not in (3, 4) or arr.shape[0] < 1 or arr.shape[1] < 1:
+        raise ValueError("texture must be an image array of shape (h, w, 3) or (h, w, 4), "
+                         f"got shape {arr.shape}")
+    if arr.dtype == np.uint8:
+        arr = arr / np.float32(255.0)
+    elif arr.dtype.kind in "fiub":
+        arr = arr.astype(np.float64)
+        if not np.isfinite(arr).all() or arr.min() < 0.0 or arr.max() > 1.0:
+            raise ValueError("texture values must be uint8 or floats in [0, 1]")
+    else:
+        raise ValueError(f"texture must hold numbers, got dtype {arr.dtype}")
+    out = np.ones(arr.shape[:2] + (4,), dtype=np.float32)
+    out[..., :arr.shape[2]] = arr
+    return out
+
+
+def pyramid(img):
+    """The mip-map levels of an (h, w, 4) image: each the 2 x 2 box average of the
+    level before (an odd row or column repeated), down to one texel. Colours are
+    premultiplied by alpha so that transparent texels do not darken."""
+    level = img.copy()
+    level[..., :3] *= level[..., 3:4]
+    levels = [level]
+    while level.shape[0] > 1 or level.shape[1] > 1:
+        if level.shape[0] % 2:
+            level = np.concatenate([level, level[-1:]], axis=0)
+        if level.shape[1] % 2:
+            level = np.concatenate([level, level[:, -1:]], axis=1)
+        level = 0.25 * (level[0::2, 0::2] + level[1::2, 0::2] + level[0::2, 1::2]
+                        + level[1::2, 1::2])
+        levels.append(level.astype(np.float32))
+    return levels
+
+
+def _bilinear(level, x, y):
+    """Bilinear lookup of ``level`` at texel coordinates (x along columns, y along
+    rows; texel k's centre at k), clamped to its edge."""
+    h, w = level.shape[:2]
+    x = np.clip(x, 0.0, w - 1.0)
+    y = np.clip(y, 0.0, h - 1.0)
+    x0 = np.minimum(np.floor(x).astype(np.int64), w - 1)
+    y0 = np.minimum(np.floor(y).astype(np.int64), h - 1)
+    x1 = np.minimum(x0 + 1, w - 1)
+    y1 = np.minimum(y0 + 1, h - 1)
+    fx = (x - x0)[:, None]
+    fy = (y - y0)[:, None]
+    top = level[y0, x0] * (1 - fx) + level[y0, x1] * fx
+    bot = level[y1, x0] * (1 - fx) + level[y1, x1] * fx
+    return top * (1 - fy) + bot * fy
+
+
+def _footprint(x, y, seen):
+    """Texels per pixel at each pixel (the longer of its footprint's two sides): the
+    change of the texel coordinates (x, y) (H, W) to the next pixel across and down,
+    the smaller of the two one-sided differences each way (the one that does not
+    cross a silhouette)."""
+    def side(axis):
+        d = np.full(x.shape, np.inf)
+        for shift in (1, -1):
+            xs = np.roll(x, shift, axis=axis)
+            ys = np.roll(y, shift, axis=axis)
+            ok = np.roll(seen, shift, axis=axis) & seen
+            edge = [slice(None)] * 2
+            edge[axis] = slice(0, 1) if shift == 1 else slice(-1, None)
+            ok[tuple(edge)] = False
+            length = np.where(ok, np.hypot(x - xs, y - ys), np.inf)
+            d = np.minimum(d, length)
+        return d
+    rho = np.maximum(side(0), side(1))
+    return np.where(np.isfinite(rho), rho, 1.0)
+
+
+def texture_colours(tex, u, v, seen, extent, filt):
+    """(n, 4) float32 premultiplied colours (alpha last) of the texture at the seen
+    pixels' (u, v): ``tex`` (levels, or a callable), ``extent`` (u0, u1, v0, v1)."""
+    if callable(tex):
+        return _called(tex, u[seen], v[seen])
+    levels = tex
+    h, w = levels[0].shape[:2]
+    u0, u1, v0, v1 = extent
+    # node-centred as a height field's grid: texel i at u0 + i (u1 - u0) / (w - 1)
+    x = (u - u0) / (u1 - u0) * (w - 1) if w > 1 else np.zeros_like(u)
+    y = (v - v0) / (v1 - v0) * (h - 1) if h > 1 else np.zeros_like(v)
+    xs, ys = x[seen], y[seen]
+    if filt == "point":
+        xi = np.clip(np.rint(xs), 0, w - 1).astype(np.int64)
+        yi = np.clip(np.rint(ys), 0, h - 1).astype(np.int64)
+        return levels[0][yi, xi]
+    if filt == "linear" or len(levels) == 1:
+        return _bilinear(levels[0], xs, ys)
+    lod = np.clip(np.log2(np.maximum(_footprint(x, y, seen)[seen], 1e-12)), 0.0,
+                  len(levels) - 1.0)
+    lo = np.floor(lod).astype(np.int64)
+    frac = (lod - lo)[:, None]
+    out = np.empty((xs.size, 4), dtype=np.float64)
+    for k in np.unique(lo):
+        m = lo == k
+        s = 0.5 ** k
+        # level k's texel j covers level 0's texels 2^k j .. 2^k (j + 1) - 1
+        a = _bilinear(levels[k], (xs[m] + 0.5) * s - 0.5, (ys[m] + 0.5) * s - 0.5)
+        k1 = min(k + 1, len(levels) - 1)
+        s1 = 0.5 ** k1
+        b = _bilinear(levels[k1], (xs[m] + 0.5) * s1 - 0.5, (ys[m] + 0.5) * s1 - 0.5)
+        out[m] = a * (1 - frac[m]) + b * frac[m]
+    return out
+
+
+def _called(fn, u, v):
+    """A callable texture's (n, 4) premultiplied colours at (u, v)."""
+    try:
+        res = fn(u, v)
+    except Exception as exc:        # the user's function: any failure is theirs to fix
+        raise ValueError(f"texture function failed: {type(exc).__name__}: {exc}") from None
+    if isinstance(res, (tuple, list)):
+        res = np.stack([np.broadcast_to(np.asarray(c, dtype=np.float64), u.shape)
+                        for c in res], axis=-1)
+    res = np.asarray(res, dtype=np.float64)
+    if res.shape[:1] != u.shape or res.ndim != 2 or res.shape[1] not in (3, 4):
+        raise ValueError("a texture function must return colours of shape (n, 3) or (n, 4) "
+                         "(or a tuple of 3 or 4 arrays) for n points")
+    res = np.clip(np.nan_to_num(res, nan=0.0), 0.0, 1.0)
+    out = np.ones((u.size, 4))
+    out[:, :res.shape[1]] = res
+    out[:, :3] *= out[:, 3:4]
+    return out
+
+
+# -- colour fields ----------------------------------------------------------------
+
+def field_values(field, u, v, seen, extent):
+    """The colour field at the seen pixels: a Surface (its f), or a 2-D array
+    bilinear over ``extent`` as a height field."""
+    us, vs = u[seen], v[seen]
+    if isinstance(field, np.ndarray):
+        h, w = field.shape
+        u0, u1, v0, v1 = extent
+        x = (us - u0) / (u1 - u0) * (w - 1)
+        y = (vs - v0) / (v1 - v0) * (h - 1)
+        return _bilinear(field[..., None], x, y)[:, 0]
+    return field.evaluate(us, vs)
+
+
+def colour_table_rgb(values, lut, lo, hi):
+    """Colours of ``values`` from a material's colour table (as shade._side_rgb)."""
+    if lut.shape[1] > 3:
+        idx = np.maximum(np.searchsorted(lut[:, 3], values, side="right") - 1, 0)
+    else:
+        span = hi - lo if hi > lo else 1.0
+        x = np.nan_to_num((values - lo) / span * (lut.shape[0] - 1))
+        idx = np.clip(x, 0, lut.shape[0] - 1).astype(np.int64)
+    return lut[idx, :3]
+
+
+def base_colours(material, source, geom, W, H, box, lut, w_lo, w_hi, lower_rgb):
+    """(base (H, W, 3) float32, c_limits or None): the colour of the surface at each
+    pixel (finish_kernel's ``base``) from a material's texture or colour field
+    (``source``, prepare's)."""
+    u, v, w, side = picture_planes(geom, W)
+    seen = side != 0.0
+    a, b, _ = box
+    if (a, b) != (1.0, 1.0):            # the G-buffer's u, v are the box's
+        u, v = u / a, v / b
+    base = np.zeros((H, W, 3), dtype=np.float32)
+    if not seen.any():
+        return base, None
+    limits = None
+    if source.field is not None:
+        vals = field_values(source.field, u, v, seen, source.extent)
+        finite = vals[np.isfinite(vals)]
+        rng = np.array([[finite.min(), finite.max()]]) if finite.size else np.array([[0.0, 1.0]])
+        lut_c, lo, hi, limits = material.color_table(rng)
+        own = colour_table_rgb(vals, lut_c, lo, hi)
+        own[~np.isfinite(vals)] = lower_rgb[:3]
+    else:
+        # the surface's own colour under a texture's transparent parts: its side's
+        # (w and the table's ends both in the box's units)
+        own = colour_table_rgb(w[seen], lut, w_lo, w_hi)
+        own[side[seen] < 0] = lower_rgb[:3]
+    if source.texture is not None:
+        tex = texture_colours(source.texture, u, v, seen, source.extent, source.filter)
+        own = tex[:, :3] + (1.0 - tex[:, 3:4]) * own    # premultiplied over its own colour
+    base[seen] = np.clip(own, 0.0, 1.0)
+    return base, limits
+
+
+@dataclass
+class Source:
+    """A layer's colour source: the texture's mip-map levels (or its function), the
+    colour field (a Surface or an array), the extent (u0, u1, v0, v1) both span, the
+    texture's filter."""
+    texture: object
+    field: object
+    extent: tuple
+    filter: str
+
+
+_LEVELS = {}          # a texture's mip-map levels, by its identity and contents
+
+
+def _levels(texture):
+    import hashlib
+    import os
+    if isinstance(texture, (str, os.PathLike)):
+        path = os.fspath(texture)
+        try:
+            key = ("file", path, os.path.getmtime(path), os.path.getsize(path))
+        except OSError as exc:
+            raise ValueError(f"texture {path!r} cannot be read: {exc.strerror}") from None
+    else:
+        arr = np.asarray(texture) if not isinstance(texture, np.ndarray) else texture
+        key = ("array", arr.shape, str(arr.dtype),
+               hashlib.blake2b(np.ascontiguousarray(arr).tobytes(), digest_size=16).digest())
+    if key not in _LEVELS:
+        if len(_LEVELS) >= 4:
+            _LEVELS.pop(next(iter(_LEVELS)))
+        _LEVELS[key] = pyramid(read_image(texture))
+    return _LEVELS[key]
+
+
+def prepare(material, domain, vars=None):
+    """A layer's Source, or None where its material has no texture and no colour
+    field."""
+    if not material.colored:
+        return None
+    (ua, ub), (va, vb) = domain
+    extent = material.texture_extent
+    if extent is None:
+        extent = (ua, ub, va, vb)
+    else:
+        try:
+            extent = tuple(float(x) for x in extent)
+        except (TypeError, ValueError):
+            raise ValueError("texture_extent must be (u0, u1, v0, v1), four numbers, got "
+                             f"{extent!r}") from None
+        if len(extent) != 4 or not all(math.isfinite(x) for x in extent) or \
+                extent[0] == extent[1] or extent[2] == extent[3]:
+            raise ValueError("texture_extent must be (u0, u1, v0, v1), finite, with u0 != u1 "
+                             f"and v0 != v1, got {material.texture_extent!r}")
+    tex = material.texture
+    if tex is not None and not callable(tex):
+        tex = _levels(tex)
+    field = material.color
+    if field is not None:
+        if isinstance(field, (np.ndarray, list)) and np.ndim(field) == 2:
+            try:
+                field = np.array(field, dtype=np.float64)
+            except (TypeError, ValueError):
+                raise ValueError("color as an array must hold numbers") from None
+            if field.shape[0] < 2 or field.shape[1] < 2:
+                raise ValueError(f"color as an array needs at least 2 x 2 values, got shape "
+                                 f"{field.shape}")
+            field[~np.isfinite(field)] = np.nan
+        else:
+            from ..surface import as_surface
+            field = as_surface(field, vars)
+    return Source(tex, field, extent, material.texture_filter)
+
+
+def check_filter(name):
+    if not isinstance(name, str) or name not in FILTERS:
+        raise ValueError(f"texture_filter must be one of {', '.join(FILTERS)}, got {name!r}")
+    return name
+
+
+def levels_of(n, lo, hi):
+    """N levels evenly inside (lo, hi) (matplotlib's contour picks 'nice' ones; these
+    split the range in N + 1 equal parts)."""
+    if not (math.isfinite(lo) and math.isfinite(hi)) or hi <= lo:
+        return np.zeros(0)
+    return lo + (hi - lo) * np.arange(1, n + 1) / (n + 1)

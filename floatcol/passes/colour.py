@@ -39,8 +39,11 @@ def picture_planes(geom, W):
     side = np.where(x > 0.5 * L.E_FLAG, x - L.E_FLAG, x)     # coverage.seen_side
     seen = side != 0.0
     g = untile(geom.gbuf[..., (L.G_U, L.G_V, L.G_W)], W)[::-1]
-    nan = np.float64(np.nan)
-    planes = [np.where(seen, g[..., k].astype(np.float64), nan) for k in range(3)]
+    planes = []
+    for k in range(3):                  # (unseen pixels' memory is never written)
+        q = np.full(seen.shape, np.nan)
+        q[seen] = g[..., k][seen]
+        planes.append(q)
     return (*planes, side)
 
 

@@ -44,7 +44,9 @@ def _interior(cls, seen):
 
 
 CASES = [
-    # expr, u, v, elev, azim, projection, filter, min agreement (measured)
+    # expr, u, v, elev, azim, projection, filter, min agreement (measured: 100 % in
+    # each, on 2250-10926 pixels; also 100 % on sin(u) cos(v), (u^2 - v^2) / 3 and a
+    # hemisphere not in the suite)
     ("3*sin(u*cos(v))", (-5, 5), (-5, 5), 30, 20, "orthographic", "mipmap", 0.995),
     ("3*sin(u*cos(v))", (-5, 5), (-5, 5), 30, 20, "perspective", "mipmap", 0.995),
     ("exp(-(u*u+v*v))*2", (-2, 2), (-2, 2), 45, -35, "perspective", "point", 0.995),
@@ -130,9 +132,9 @@ def _line_pixels(r, plain):
 
 
 def test_contours_lie_on_the_level_sets_of_f():
-    """Contour pixels' true f (at the ray caster's hit) lies within a pixel's change
-    of f of a level (measured: 99.6 %); most pixels within a quarter pixel of a level
-    are drawn (measured 97 %)."""
+    """Contour pixels' true f (at the ray caster's hit) lies within 1.5 pixels' change
+    of f of a level (measured: 100 % of 2179); the pixels within a quarter pixel of a
+    level are drawn (measured 100 %)."""
     expr, dom = "3*sin(u*cos(v))", (-5, 5)
     kw = dict(u=dom, v=dom, size=(200, 150), elev=50, azim=20, contour_color="white")
     plain = fc.render(expr, **{k: x for k, x in kw.items() if k != "contour_color"})
@@ -166,7 +168,7 @@ def test_wireframe_lines_at_constant_u_and_v():
     near = np.minimum(du / gu, dv / gv)                     # pixels to the nearest line
     ok = line & np.isfinite(near)
     assert ok.sum() > 300
-    assert (near[ok] <= 1.5).mean() >= 0.98
+    assert (near[ok] <= 1.5).mean() >= 0.98                   # measured 100 % of 1030
     assert (r.rgba[line][:, 0] > r.rgba[line][:, 1]).mean() > 0.9      # red lines
 
 

@@ -210,12 +210,15 @@ def test_bad_texture_and_line_options_name_what_to_fix(tmp_path):
         fc.render("u*v", texture=checker(8), opacity=0.5, **kw)
     with pytest.raises(ValueError, match="method='column'"):
         fc.render("u*v", contours=3, method="horizon", **kw)
+    with pytest.raises(ValueError, match="either texture or color"):
+        fc.render("u*v", texture=checker(8), color="u", **kw)
     with pytest.raises(ValueError, match="antialias=True"):
         fc.render("u*v", color="u", antialias=3, **kw)
 
 
 def test_holes_take_no_colour_and_no_lines():
-    r = fc.render("sqrt(1-u*u-v*v)", u=(-1.2, 1.2), v=(-1.2, 1.2), size=(80, 60),
-                  texture=checker(16), contours=4, wireframe=6, color="u*v")
-    empty = _interior(np.zeros(r.side.shape, int), r.side == 0)    # away from its edges
-    assert (r.side != 0).any() and empty.any() and (r.rgba[empty] == 255).all()
+    for kw in (dict(texture=checker(16)), dict(color="u*v")):
+        r = fc.render("sqrt(1-u*u-v*v)", u=(-1.2, 1.2), v=(-1.2, 1.2), size=(80, 60),
+                      contours=4, wireframe=6, **kw)
+        empty = _interior(np.zeros(r.side.shape, int), r.side == 0)  # away from its edges
+        assert (r.side != 0).any() and empty.any() and (r.rgba[empty] == 255).all()

@@ -25,26 +25,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..kernels import layout as L
-from .tiles import untile
+from ..kernels.texture import (
+    FILTER_LINEAR, FILTER_MIPMAP, FILTER_POINT, planes_kernel, texture_kernel,
+)
 
-FILTERS = ("mipmap", "linear", "point")
+#: texture_filter's values and their kernel codes
+FILTERS = {"mipmap": FILTER_MIPMAP, "linear": FILTER_LINEAR, "point": FILTER_POINT}
 
 
-def picture_planes(geom, W):
+def picture_planes(geom, W, box=(1.0, 1.0, 1.0)):
     """(u, v, w, side) of each pixel, top row first, from a layer's tiled G-buffer
-    and edge buffer (the column pass's): side +1 upper, -1 lower, 0 nothing (NaN
-    u, v, w there)."""
-    x = untile(geom.ebuf[:, L.E_SEEN], W)[::-1]
-    side = np.where(x > 0.5 * L.E_FLAG, x - L.E_FLAG, x)     # coverage.seen_side
-    seen = side != 0.0
-    g = untile(geom.gbuf[..., (L.G_U, L.G_V, L.G_W)], W)[::-1]
-    planes = []
-    for k in range(3):                  # (unseen pixels' memory is never written)
-        q = np.full(seen.shape, np.nan)
-        q[seen] = g[..., k][seen]
-        planes.append(q)
-    return (*planes, side)
+    and edge buffer (the column pass's), in the surface's units (the box's stretch
+    divided out): side +1 upper, -1 lower, 0 nothing (NaN u, v, w there)."""
+    H = geom.gbuf.shape[1]
+    u, v, w, side = (np.empty((H, W)) for _ in range(4))
+    planes_kernel(geom.gbuf, geom.ebuf, W, *(float(x) for x in box), u, v, w, side)
+    return u, v, w, side
 
 
 # -- textures --------------------------------------------------------------------
@@ -101,6 +97,17 @@ def pyramid(img):
     return levels
 
 
+class Levels:
+    """A texture's mip-map levels flattened for texture_kernel: ``flat`` float32, level
+    k's (h, w, 4) texels from offsets[k], shapes[k] = (h, w)."""
+
+    def __init__(self, levels):
+        self.shapes = np.array([lv.shape[:2] for lv in levels], dtype=np.int64)
+        sizes = np.array([lv.size for lv in levels], dtype=np.int64)
+        self.offsets = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(np.int64)
+        self.flat = np.concatenate([lv.ravel() for lv in levels]).astype(np.float32)
+
+
 def _bilinear(level, x, y):
     """Bilinear lookup of ``level`` at texel coordinates (x along columns, y along
     rows; texel k's centre at k), clamped to its edge."""
@@ -118,60 +125,23 @@ def _bilinear(level, x, y):
     return top * (1 - fy) + bot * fy
 
 
-def _footprint(x, y, seen):
-    """Texels per pixel at each pixel (the longer of its footprint's two sides): the
-    change of the texel coordinates (x, y) (H, W) to the next pixel across and down,
-    the smaller of the two one-sided differences each way (the one that does not
-    cross a silhouette)."""
-    def side(axis):
-        d = np.full(x.shape, np.inf)
-        for shift in (1, -1):
-            xs = np.roll(x, shift, axis=axis)
-            ys = np.roll(y, shift, axis=axis)
-            ok = np.roll(seen, shift, axis=axis) & seen
-            edge = [slice(None)] * 2
-            edge[axis] = slice(0, 1) if shift == 1 else slice(-1, None)
-            ok[tuple(edge)] = False
-            length = np.where(ok, np.hypot(x - xs, y - ys), np.inf)
-            d = np.minimum(d, length)
-        return d
-    rho = np.maximum(side(0), side(1))
-    return np.where(np.isfinite(rho), rho, 1.0)
-
-
-def texture_colours(tex, u, v, seen, extent, filt):
-    """(n, 4) float32 premultiplied colours (alpha last) of the texture at the seen
-    pixels' (u, v): ``tex`` (levels, or a callable), ``extent`` (u0, u1, v0, v1)."""
-    if callable(tex):
-        return _called(tex, u[seen], v[seen])
-    levels = tex
-    h, w = levels[0].shape[:2]
+def texture_base(tex, geom, W, H, box, extent, filt, lut, w_lo, w_hi, lower_rgb):
+    """base (H, W, 3) float32 of a texture (Levels) over the surface's own colours
+    (kernels/texture.py's texture_kernel)."""
+    h, w = (int(x) for x in tex.shapes[0])
     u0, u1, v0, v1 = extent
-    # node-centred as a height field's grid: texel i at u0 + i (u1 - u0) / (w - 1)
-    x = (u - u0) / (u1 - u0) * (w - 1) if w > 1 else np.zeros_like(u)
-    y = (v - v0) / (v1 - v0) * (h - 1) if h > 1 else np.zeros_like(v)
-    xs, ys = x[seen], y[seen]
-    if filt == "point":
-        xi = np.clip(np.rint(xs), 0, w - 1).astype(np.int64)
-        yi = np.clip(np.rint(ys), 0, h - 1).astype(np.int64)
-        return levels[0][yi, xi]
-    if filt == "linear" or len(levels) == 1:
-        return _bilinear(levels[0], xs, ys)
-    lod = np.clip(np.log2(np.maximum(_footprint(x, y, seen)[seen], 1e-12)), 0.0,
-                  len(levels) - 1.0)
-    lo = np.floor(lod).astype(np.int64)
-    frac = (lod - lo)[:, None]
-    out = np.empty((xs.size, 4), dtype=np.float64)
-    for k in np.unique(lo):
-        m = lo == k
-        s = 0.5 ** k
-        # level k's texel j covers level 0's texels 2^k j .. 2^k (j + 1) - 1
-        a = _bilinear(levels[k], (xs[m] + 0.5) * s - 0.5, (ys[m] + 0.5) * s - 0.5)
-        k1 = min(k + 1, len(levels) - 1)
-        s1 = 0.5 ** k1
-        b = _bilinear(levels[k1], (xs[m] + 0.5) * s1 - 0.5, (ys[m] + 0.5) * s1 - 0.5)
-        out[m] = a * (1 - frac[m]) + b * frac[m]
-    return out
+    a, b = float(box[0]), float(box[1])
+    # node-centred as a height field's grid: texel i at u0 + i (u1 - u0) / (w - 1);
+    # the G-buffer's u is the box's, a u
+    su = (w - 1) / ((u1 - u0) * a) if w > 1 else 0.0
+    sv = (h - 1) / ((v1 - v0) * b) if h > 1 else 0.0
+    base = np.zeros((H, W, 3), dtype=np.float32)
+    tx, ty = np.empty((H, W)), np.empty((H, W))
+    seen = np.empty((H, W), dtype=np.bool_)
+    texture_kernel(geom.gbuf, geom.ebuf, W, u0 * a, su, v0 * b, sv, tex.flat, tex.offsets,
+                   tex.shapes, FILTERS[filt], lut, float(w_lo), float(w_hi),
+                   np.asarray(lower_rgb, dtype=np.float64), tx, ty, seen, base)
+    return base
 
 
 def _called(fn, u, v):
@@ -224,11 +194,11 @@ def base_colours(material, source, geom, W, H, box, lut, w_lo, w_hi, lower_rgb):
     """(base (H, W, 3) float32, c_limits or None): the colour of the surface at each
     pixel (finish_kernel's ``base``) from a material's texture or colour field
     (``source``, prepare's)."""
-    u, v, w, side = picture_planes(geom, W)
+    if source.field is None and not callable(source.texture):
+        return texture_base(source.texture, geom, W, H, box, source.extent, source.filter,
+                            lut, w_lo, w_hi, lower_rgb), None
+    u, v, w, side = picture_planes(geom, W, (box[0], box[1], 1.0))
     seen = side != 0.0
-    a, b, _ = box
-    if (a, b) != (1.0, 1.0):            # the G-buffer's u, v are the box's
-        u, v = u / a, v / b
     base = np.zeros((H, W, 3), dtype=np.float32)
     if not seen.any():
         return base, None
@@ -245,8 +215,8 @@ def base_colours(material, source, geom, W, H, box, lut, w_lo, w_hi, lower_rgb):
         # (w and the table's ends both in the box's units)
         own = colour_table_rgb(w[seen], lut, w_lo, w_hi)
         own[side[seen] < 0] = lower_rgb[:3]
-    if source.texture is not None:
-        tex = texture_colours(source.texture, u, v, seen, source.extent, source.filter)
+    if source.texture is not None:                     # a texture function
+        tex = _called(source.texture, u[seen], v[seen])
         own = tex[:, :3] + (1.0 - tex[:, 3:4]) * own    # premultiplied over its own colour
     base[seen] = np.clip(own, 0.0, 1.0)
     return base, limits
@@ -282,7 +252,7 @@ def _levels(texture):
     if key not in _LEVELS:
         if len(_LEVELS) >= 4:
             _LEVELS.pop(next(iter(_LEVELS)))
-        _LEVELS[key] = pyramid(read_image(texture))
+        _LEVELS[key] = Levels(pyramid(read_image(texture)))
     return _LEVELS[key]
 
 
@@ -291,6 +261,8 @@ def prepare(material, domain, vars=None):
     field."""
     if not material.colored:
         return None
+    if material.texture is not None and material.color is not None:
+        raise ValueError("give either texture or color (colour from data), not both")
     (ua, ub), (va, vb) = domain
     extent = material.texture_extent
     if extent is None:

@@ -15,56 +15,17 @@ from __future__ import annotations
 import numpy as np
 
 from .. import color
+from ..kernels.texture import lines_kernel
 from .colour import field_values, levels_of, picture_planes
 
 
-def _screen_gradient(q, seen):
-    """|grad q| in units of q per pixel: each way the smaller one-sided difference
-    to a seen neighbour (a silhouette's far neighbour is not one), NaN where none."""
-    out = np.zeros(q.shape)
-    for axis in (0, 1):
-        d = np.full(q.shape, np.inf)
-        for shift in (1, -1):
-            qs = np.roll(q, shift, axis=axis)
-            ok = np.roll(seen, shift, axis=axis) & seen
-            edge = [slice(None)] * 2
-            edge[axis] = slice(0, 1) if shift == 1 else slice(-1, None)
-            ok[tuple(edge)] = False
-            d = np.minimum(d, np.where(ok, np.abs(q - qs), np.inf))
-        out += np.where(np.isfinite(d), d * d, np.nan)
-    return np.sqrt(out)
-
-
-def _coverage(q, seen, levels, width, spacing=None):
-    """How much of each pixel the lines q = level cover (0 to 1)."""
-    grad = _screen_gradient(q, seen)
-    if spacing is not None:                         # levels origin + k spacing
-        origin = levels
-        k = np.rint((q - origin) / spacing)
-        dist = np.abs(q - (origin + k * spacing))
-    else:
-        lv = np.sort(np.asarray(levels, dtype=np.float64))
-        if lv.size == 0:
-            return np.zeros(q.shape)
-        i = np.clip(np.searchsorted(lv, q), 1, max(lv.size - 1, 1))
-        dist = np.abs(q - lv[i - 1])
-        if lv.size > 1:
-            dist = np.minimum(dist, np.abs(q - lv[i]))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        px = np.where(grad > 0, dist / grad, np.where(dist == 0, 0.0, np.inf))
-    cov = np.clip(width / 2.0 + 0.5 - px, 0.0, 1.0)
-    return np.where(seen & np.isfinite(cov), cov, 0.0)
-
-
-def _over(rgba, cov, rgb):
-    """Blend the colour rgb (0-1) over rgba (uint8, in place) by cov."""
-    m = cov > 0
-    if not m.any():
-        return
-    a = cov[m][:, None]
-    px = rgba[m, :3] / 255.0
-    rgba[m, :3] = np.clip((px * (1 - a) + np.asarray(rgb)[:3] * a) * 255.0 + 0.5, 0, 255
-                          ).astype(np.uint8)
+def _draw(rgba, q, seen, width, rgb, levels=None, origin=0.0, spacing=0.0):
+    """Lines of q (H, W) at ``levels`` or at origin + k spacing, over rgba in place
+    (kernels/texture.py's lines_kernel)."""
+    lv = np.zeros(0) if levels is None else np.sort(np.asarray(levels, dtype=np.float64))
+    lines_kernel(np.ascontiguousarray(q, dtype=np.float64), np.ascontiguousarray(seen), lv,
+                 float(origin), float(spacing), float(width),
+                 np.asarray(rgb, dtype=np.float64)[:3], rgba)
 
 
 def contour_levels(contours, lo, hi):
@@ -97,18 +58,16 @@ def wire_counts(wireframe):
 
 def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domain):
     """Draw the material's contour and wireframe lines into rgba (in place)."""
-    u, v, w, side = picture_planes(geom, W)
+    u, v, w, side = picture_planes(geom, W, box)
     seen = side != 0.0
     if not seen.any():
         return
-    a, b, c = box
-    u, v, w = u / a, v / b, w / c
     if material.wireframe is not None:
         nu, nv = wire_counts(material.wireframe)
         rgb = color.to_rgb(material.edgecolor, "edgecolor")
         (ua, ub), (va, vb) = domain
         for q, lo, hi, n in ((u, ua, ub, nu), (v, va, vb, nv)):
-            _over(rgba, _coverage(q, seen, lo, material.linewidth, (hi - lo) / (n - 1)), rgb)
+            _draw(rgba, q, seen, material.linewidth, rgb, origin=lo, spacing=(hi - lo) / (n - 1))
     if material.contours is not None:
         if source is not None and source.field is not None:
             q = np.full(u.shape, np.nan)
@@ -119,4 +78,4 @@ def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domai
             lo, hi = w_limits
         levels = contour_levels(material.contours, lo, hi)
         rgb = color.to_rgb(material.contour_color, "contour_color")
-        _over(rgba, _coverage(q, seen & np.isfinite(q), levels, material.contour_width), rgb)
+        _draw(rgba, q, seen & np.isfinite(q), material.contour_width, rgb, levels=levels)

@@ -1,0 +1,231 @@
+"""Per-pixel kernels of the colour and overlay passes (passes/colour.py,
+passes/overlays.py): the G-buffer's planes as pictures, filtered texture lookups, and
+lines on the surface. Rows in parallel; every pixel writes only its own output."""
+import math
+
+import numpy as np
+from numba import prange
+
+from ._jit import ngjit_inline, ngjit_parallel
+from .layout import E_FLAG, E_SEEN, G_U, G_V, G_W
+from .shade import _side_rgb
+
+FILTER_POINT = 0
+FILTER_LINEAR = 1
+FILTER_MIPMAP = 2
+
+
+@ngjit_parallel
+def planes_kernel(gbuf, ebuf, W, a, b, c, u, v, w, side):
+    """u, v, w (H, W) float64, top row first, of the seen point at each pixel (NaN
+    where none; divided by the box's stretch a, b, c) and the side seen there (+1, -1,
+    0), from the tiled G-buffer and edge buffer (layout.py)."""
+    H = gbuf.shape[1]
+    T = gbuf.shape[2]
+    for i in prange(H):
+        j = H - 1 - i
+        for col in range(W):
+            t = col // T
+            lane = col - t * T
+            x = ebuf[t, E_SEEN, j, lane]
+            s = x - E_FLAG if x > 0.5 * E_FLAG else x
+            side[i, col] = s
+            if s == 0.0:
+                u[i, col] = np.nan
+                v[i, col] = np.nan
+                w[i, col] = np.nan
+            else:
+                u[i, col] = gbuf[t, j, lane, G_U] / a
+                v[i, col] = gbuf[t, j, lane, G_V] / b
+                w[i, col] = gbuf[t, j, lane, G_W] / c
+
+
+@ngjit_inline
+def _texel(levels, off, h, w, x, y, ch):
+    """Level texel (x, y) clamped to its edge: channel ch."""
+    xi = min(max(x, 0), w - 1)
+    yi = min(max(y, 0), h - 1)
+    return levels[off + (yi * w + xi) * 4 + ch]
+
+
+@ngjit_inline
+def _bilinear(levels, off, h, w, x, y, out, weight):
+    """Add weight times the bilinear lookup at texel coordinates (x, y) (texel k's
+    centre at k; clamped to the level's edge) to out[0:4]."""
+    x = min(max(x, 0.0), w - 1.0)
+    y = min(max(y, 0.0), h - 1.0)
+    x0 = int(x)
+    y0 = int(y)
+    fx = x - x0
+    fy = y - y0
+    x1 = min(x0 + 1, w - 1)
+    y1 = min(y0 + 1, h - 1)
+    p00 = off + (y0 * w + x0) * 4
+    p01 = off + (y0 * w + x1) * 4
+    p10 = off + (y1 * w + x0) * 4
+    p11 = off + (y1 * w + x1) * 4
+    w00 = (1.0 - fx) * (1.0 - fy) * weight
+    w01 = fx * (1.0 - fy) * weight
+    w10 = (1.0 - fx) * fy * weight
+    w11 = fx * fy * weight
+    for ch in range(4):
+        out[ch] += (levels[p00 + ch] * w00 + levels[p01 + ch] * w01 + levels[p10 + ch] * w10
+                    + levels[p11 + ch] * w11)
+
+
+@ngjit_inline
+def _one_sided(x, y, seen, i, col, di, dc):
+    """The smaller of the two one-sided changes of (x, y) to the neighbours (i - di,
+    col - dc) and (i + di, col + dc) that are seen (inf where neither is)."""
+    H, W = seen.shape
+    best = np.inf
+    for sgn in (-1, 1):
+        i2 = i + sgn * di
+        c2 = col + sgn * dc
+        if 0 <= i2 < H and 0 <= c2 < W and seen[i2, c2]:
+            d = math.hypot(x[i2, c2] - x[i, col], y[i2, c2] - y[i, col])
+            if d < best:
+                best = d
+    return best
+
+
+@ngjit_parallel
+def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt, lut, w_lo,
+                   w_hi, lower_rgb, tx, ty, side, base):
+    """base (H, W, 3) float32, top row first: at each seen pixel the texture's colour
+    over the surface's own (its side's: lut by w, or lower_rgb; the texture's alpha
+    lays it over), from the tiled G-buffer and edge buffer. The texel coordinates of
+    a point are tx = (u - ou) su, ty = (v - ov) sv (texel k's centre at k; u, v the
+    G-buffer's); the mip-map ``levels`` flattened (level k at offsets[k], shapes[k] =
+    (h, w), 4 premultiplied channels each). FILTER_POINT: the nearest texel;
+    FILTER_LINEAR: bilinear; FILTER_MIPMAP: trilinear, the level from the pixel's
+    footprint (the longer of the changes of (tx, ty) to the next pixel across and
+    down, each the smaller one-sided one, so a silhouette's far neighbour does not
+    count). tx, ty (H, W) float64 and side (H, W) bool: scratch."""
+    H = gbuf.shape[1]
+    T = gbuf.shape[2]
+    n_lev = offsets.shape[0]
+    h0 = shapes[0, 0]
+    w0 = shapes[0, 1]
+    span = w_hi - w_lo if w_hi > w_lo else 1.0
+    for i in prange(H):                       # the texel coordinates of every pixel
+        j = H - 1 - i
+        for col in range(W):
+            t = col // T
+            lane = col - t * T
+            x = ebuf[t, E_SEEN, j, lane]
+            sd = x - E_FLAG if x > 0.5 * E_FLAG else x
+            side[i, col] = sd != 0.0
+            if sd != 0.0:
+                tx[i, col] = (gbuf[t, j, lane, G_U] - ou) * su
+                ty[i, col] = (gbuf[t, j, lane, G_V] - ov) * sv
+    for i in prange(H):
+        j = H - 1 - i
+        acc = np.empty(4)
+        for col in range(W):
+            if not side[i, col]:
+                continue
+            x = tx[i, col]
+            y = ty[i, col]
+            for ch in range(4):
+                acc[ch] = 0.0
+            if filt == FILTER_POINT:
+                xi = int(math.floor(min(max(x, 0.0), w0 - 1.0) + 0.5))
+                yi = int(math.floor(min(max(y, 0.0), h0 - 1.0) + 0.5))
+                for ch in range(4):
+                    acc[ch] = _texel(levels, 0, h0, w0, xi, yi, ch)
+            elif filt == FILTER_LINEAR or n_lev == 1:
+                _bilinear(levels, 0, h0, w0, x, y, acc, 1.0)
+            else:
+                rho = max(_one_sided(tx, ty, side, i, col, 0, 1),
+                          _one_sided(tx, ty, side, i, col, 1, 0))
+                lod = math.log2(rho) if math.isfinite(rho) and rho > 1.0 else 0.0
+                lod = min(lod, n_lev - 1.0)
+                k = int(math.floor(lod))
+                f = lod - k
+                k1 = min(k + 1, n_lev - 1)
+                # level k's texel m covers level 0's texels 2^k m .. 2^k (m + 1) - 1
+                sc = 0.5 ** k
+                _bilinear(levels, offsets[k], shapes[k, 0], shapes[k, 1],
+                          (x + 0.5) * sc - 0.5, (y + 0.5) * sc - 0.5, acc, 1.0 - f)
+                if f > 0.0:
+                    s1 = 0.5 ** k1
+                    _bilinear(levels, offsets[k1], shapes[k1, 0], shapes[k1, 1],
+                              (x + 0.5) * s1 - 0.5, (y + 0.5) * s1 - 0.5, acc, f)
+            t = col // T
+            lane = col - t * T
+            e = ebuf[t, E_SEEN, j, lane]
+            sd = e - E_FLAG if e > 0.5 * E_FLAG else e
+            r, g, b = _side_rgb(sd, gbuf[t, j, lane, G_W], lut, w_lo, span, lower_rgb)
+            rest = 1.0 - acc[3]                # premultiplied over the own colour
+            base[i, col, 0] = min(max(acc[0] + rest * r, 0.0), 1.0)
+            base[i, col, 1] = min(max(acc[1] + rest * g, 0.0), 1.0)
+            base[i, col, 2] = min(max(acc[2] + rest * b, 0.0), 1.0)
+
+
+@ngjit_inline
+def _change(q, seen, i, col, di, dc):
+    """The smaller |change| of q to the seen neighbours (i - di, col - dc) and (i + di,
+    col + dc) (inf where neither is seen)."""
+    H, W = seen.shape
+    best = np.inf
+    for sgn in (-1, 1):
+        i2 = i + sgn * di
+        c2 = col + sgn * dc
+        if 0 <= i2 < H and 0 <= c2 < W and seen[i2, c2]:
+            d = abs(q[i2, c2] - q[i, col])
+            if d < best:
+                best = d
+    return best
+
+
+@ngjit_inline
+def _grad(q, seen, i, col):
+    """|grad q| in q per pixel: each way the smaller one-sided difference to a seen
+    neighbour; NaN where a way has none."""
+    gx = _change(q, seen, i, col, 0, 1)
+    gy = _change(q, seen, i, col, 1, 0)
+    if not (math.isfinite(gx) and math.isfinite(gy)):
+        return np.nan
+    return math.sqrt(gx * gx + gy * gy)
+
+
+@ngjit_parallel
+def lines_kernel(q, seen, levels, origin, spacing, width, rgb, rgba):
+    """Blend the lines q = level (the sorted ``levels``, or origin + k spacing where
+    spacing > 0) of colour rgb (0-1) over rgba (H, W, 4) uint8 in place, each
+    covering a pixel by clip(width / 2 + 1/2 - d, 0, 1), d its distance in pixels
+    (|q - level| / |grad q|)."""
+    H, W = seen.shape
+    n = levels.shape[0]
+    for i in prange(H):
+        for col in range(W):
+            x = q[i, col]
+            if not seen[i, col] or x != x:
+                continue
+            if spacing > 0.0:
+                dist = abs(x - (origin + math.floor((x - origin) / spacing + 0.5) * spacing))
+            elif n == 0:
+                continue
+            else:
+                k = np.searchsorted(levels, x)
+                dist = np.inf
+                if k < n:
+                    dist = levels[k] - x
+                if k > 0:
+                    dist = min(dist, x - levels[k - 1])
+            g = _grad(q, seen, i, col)
+            if not g == g:
+                continue
+            if g > 0.0:
+                px = dist / g
+            elif dist == 0.0:
+                px = 0.0
+            else:
+                continue
+            cov = min(max(width * 0.5 + 0.5 - px, 0.0), 1.0)
+            if cov <= 0.0:
+                continue
+            for ch in range(3):
+                val = rgba[i, col, ch] / 255.0 * (1.0 - cov) + rgb[ch] * cov
+                rgba[i, col, ch] = np.uint8(min(max(val * 255.0 + 0.5, 0.0), 255.0))

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import _pool
 from ..kernels.texture import (
     FILTER_LINEAR, FILTER_MIPMAP, FILTER_POINT, planes_kernel, texture_kernel,
 )
@@ -38,7 +39,7 @@ def picture_planes(geom, W, box=(1.0, 1.0, 1.0)):
     and edge buffer (the column pass's), in the surface's units (the box's stretch
     divided out): side +1 upper, -1 lower, 0 nothing (NaN u, v, w there)."""
     H = geom.gbuf.shape[1]
-    u, v, w, side = (np.empty((H, W)) for _ in range(4))
+    u, v, w, side = (np.empty((H, W)) for _ in range(4))     # (the caller keeps them)
     planes_kernel(geom.gbuf, geom.ebuf, W, *(float(x) for x in box), u, v, w, side)
     return u, v, w, side
 
@@ -135,12 +136,16 @@ def texture_base(tex, geom, W, H, box, extent, filt, lut, w_lo, w_hi, lower_rgb)
     # the G-buffer's u is the box's, a u
     su = (w - 1) / ((u1 - u0) * a) if w > 1 else 0.0
     sv = (h - 1) / ((v1 - v0) * b) if h > 1 else 0.0
-    base = np.zeros((H, W, 3), dtype=np.float32)
-    tx, ty = np.empty((H, W)), np.empty((H, W))
-    seen = np.empty((H, W), dtype=np.bool_)
+    # (pooled: fresh memory's page faults cost more than the lookups; every buffer is
+    # read only where the kernel wrote it: where a surface is seen)
+    base = _pool.empty((H, W, 3), np.float32)
+    tx, ty = _pool.empty((H, W), np.float64), _pool.empty((H, W), np.float64)
+    wp = _pool.empty((H, W), np.float64)
+    sides = _pool.empty((H, W), np.int8)
+    seen = _pool.empty((H, W), np.bool_)
     texture_kernel(geom.gbuf, geom.ebuf, W, u0 * a, su, v0 * b, sv, tex.flat, tex.offsets,
                    tex.shapes, FILTERS[filt], lut, float(w_lo), float(w_hi),
-                   np.asarray(lower_rgb, dtype=np.float64), tx, ty, seen, base)
+                   np.asarray(lower_rgb, dtype=np.float64), tx, ty, wp, sides, seen, base)
     return base
 
 

@@ -191,7 +191,23 @@ class SurfacePlot(_ScalarMappable):
 
     def _height_range(self):
         """The colormap's default range: f over the whole domain, as matplotlib takes
-        the range of the mesh (not of what one view happens to show)."""
+        the range of the mesh (not of what one view happens to show); with a colour
+        field (``color_field``), that field's."""
+        field = self.options.get("color_field")
+        if field is not None:
+            from .passes.colour import prepare
+            from .material import Material
+            (ua, ub), (va, vb) = self.domain
+            src = prepare(Material(color=field, texture_extent=self.options.get(
+                "texture_extent")), self.domain, self.surface.variables)
+            gu, gv = np.meshgrid(np.linspace(ua, ub, 129), np.linspace(va, vb, 129))
+            from .passes.colour import field_values
+            c = field_values(src.field, gu, gv, np.ones(gu.shape, bool), src.extent)
+            c = c[np.isfinite(c)]
+            if c.size == 0:
+                return 0.0, 1.0
+            lo, hi = float(c.min()), float(c.max())
+            return (lo, hi) if hi > lo else (lo - 0.5, hi + 0.5)
         los, his = [], []
         for surface, ((ua, ub), (va, vb)) in [(self.surface, self.domain), *self.others]:
             gu, gv = np.meshgrid(np.linspace(ua, ub, 129), np.linspace(va, vb, 129))
@@ -288,6 +304,8 @@ class SurfacePlot(_ScalarMappable):
         """The render() call this plot makes at a pixel size."""
         elev, azim = mpl_to_paper_angles(self.elev, self.azim)
         kw = dict(self.options)
+        if "color_field" in kw:                   # render's colour from data
+            kw["color"] = kw.pop("color_field")
         kw.update(size=tuple(size), elev=elev, azim=azim, projection=self.projection,
                   u=self.domain[0], v=self.domain[1])
         if self.focal_length is not None:
@@ -455,6 +473,15 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     ax : a matplotlib Axes to draw into (re-rendered at its pixel size on every draw).
     interactive : with ``ax``: drag to rotate, scroll to zoom.
     cmap, norm, vmin, vmax, color, shade, lightsource : as matplotlib's plot_surface.
+    facecolors : as matplotlib's: an array of colours, one per point of the mesh (or
+        of the grid over the ranges), drawn as a texture over the surface.
+    edgecolor, linewidth, rcount, ccount, rstride, cstride : as matplotlib's: with an
+        edge colour, the mesh's lines drawn on the exact surface (a wireframe of
+        linewidth points; render's ``wireframe``).
+    color_field : colour from data: a second expression of the variables (or an
+        array over the grid) coloured through cmap, norm/vmin/vmax; the colorbar shows
+        its range (render's ``color``).
+    texture, contours, wireframe : as :func:`floatcol.render`.
     alpha : as matplotlib's: below 1 the surface is translucent, every layer of it
         showing (``opacity`` of :func:`floatcol.render`); with several surfaces, one
         value or a list of one per surface.
@@ -475,18 +502,24 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     -------
     SurfacePlot
     """
-    if _is_mesh(expr, ranges):                # matplotlib's plot_surface(X, Y, Z, ...)
-        expr, ranges = mesh_surface(expr, *ranges), ()
-    for name in _MPL_MESH_OPTIONS & set(options):
-        options.pop(name)                     # the exact surface has no mesh to draw
-    zorder = options.pop("zorder", None)
     facecolors = options.pop("facecolors", None)
     if facecolors is not None:
-        import warnings
-        warnings.warn("plot_surface: facecolors are not drawn yet (floatcol colours the "
-                      "surface by cmap or color); the picture uses the colormap",
-                      UserWarning, stacklevel=2)
-    unknown = sorted(set(options) - _RENDER_OPTIONS - _OWN_OPTIONS)
+        facecolors = _face_colours(facecolors)
+    mesh_shape = None
+    if _is_mesh(expr, ranges):                # matplotlib's plot_surface(X, Y, Z, ...)
+        mesh_shape = np.shape(ranges[1])
+        if facecolors is None:
+            expr = mesh_surface(expr, *ranges)
+        else:
+            expr, facecolors = mesh_surface(expr, *ranges, extra=facecolors)
+        ranges = ()
+    if facecolors is not None:                # the colours of the faces: a texture
+        if "texture" in options or "color_field" in options:
+            raise ValueError("give one of facecolors, texture and color_field")
+        options["texture"] = facecolors
+    _mesh_lines(options, mesh_shape)          # edgecolor: matplotlib's mesh lines
+    zorder = options.pop("zorder", None)
+    unknown = sorted(set(options) - _RENDER_OPTIONS - _OWN_OPTIONS - {"color_field"})
     if unknown:
         known = ", ".join(sorted(_RENDER_OPTIONS | _OWN_OPTIONS))
         raise ValueError(f"unknown option{'s' if len(unknown) > 1 else ''} "
@@ -535,11 +568,55 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     return plot
 
 
-#: Axes3D.plot_surface's keywords about its polygon mesh: accepted, with nothing to do
-#: (floatcol draws the exact surface, antialiased by its own rules: docs/options.md)
+#: Axes3D.plot_surface's keywords about its polygon mesh: the lines of its edges, drawn
+#: as a wireframe on the exact surface where an edge colour is given (_mesh_lines);
+#: antialiasing by floatcol's own rules (docs/options.md)
 _MPL_MESH_OPTIONS = {"rstride", "cstride", "rcount", "ccount", "linewidth", "linewidths",
                      "lw", "edgecolor", "edgecolors", "ec", "antialiased", "antialiaseds",
                      "aa"}
+#: matplotlib's default rcount and ccount
+MPL_MESH_COUNT = 50
+
+
+def _face_colours(facecolors):
+    """matplotlib's facecolors as an (n, m, 3|4) image (a texture)."""
+    arr = np.asarray(facecolors)
+    if arr.ndim == 3 and arr.shape[2] in (3, 4) and arr.dtype.kind in "fiu":
+        return arr
+    if arr.ndim == 2:                            # colour names or specs
+        from matplotlib.colors import to_rgba_array
+        try:
+            return to_rgba_array(arr.ravel()).reshape(arr.shape + (4,))
+        except (ValueError, TypeError) as exc:
+            raise ValueError(f"facecolors must be colours, one per point: {exc}") from None
+    raise ValueError(f"facecolors must be an array of colours of shape (rows, columns, 3|4), "
+                     f"got shape {arr.shape}")
+
+
+def _mesh_lines(options, shape):
+    """matplotlib's mesh keywords: with an edge colour, the mesh's lines (rcount x
+    ccount of them, or every rstride-th / cstride-th row and column of a mesh of
+    ``shape``) as a wireframe of linewidth points; without one they draw nothing."""
+    mesh = {k: options.pop(k) for k in list(options) if k in _MPL_MESH_OPTIONS}
+    ec = next((mesh[k] for k in ("edgecolor", "edgecolors", "ec") if k in mesh), None)
+    if ec is None or (isinstance(ec, str) and ec in ("none", "face")):
+        return
+    lw = next((mesh[k] for k in ("linewidth", "linewidths", "lw") if k in mesh), 1.0)
+    if np.ndim(lw) > 0:
+        lw = np.ravel(lw)[0]
+    if not (isinstance(lw, (int, float, np.number)) and not isinstance(lw, bool)) or lw <= 0:
+        return
+    rows, cols = shape if shape is not None else (MPL_MESH_COUNT, MPL_MESH_COUNT)
+
+    def count(n, key_count, key_stride):
+        if key_stride in mesh and shape is not None:
+            return int(np.ceil((n - 1) / max(int(mesh[key_stride]), 1))) + 1
+        return min(int(mesh.get(key_count, MPL_MESH_COUNT)), n)
+    nv = max(count(rows, "rcount", "rstride"), 2)      # lines at v = const
+    nu = max(count(cols, "ccount", "cstride"), 2)      # lines at u = const
+    options["wireframe"] = (nu, nv)
+    options["edgecolor"] = ec if not isinstance(ec, np.ndarray) else tuple(ec)
+    options["linewidth"] = min(float(lw) * 100.0 / 72.0, 64.0)     # points -> pixels
 
 
 def _is_mesh(expr, ranges):
@@ -556,19 +633,25 @@ def _numeric(a):
         return False
 
 
-def mesh_surface(X, Y, Z):
+def mesh_surface(X, Y, Z, extra=None):
     """The HeightField of matplotlib's plot_surface(X, Y, Z): X and Y a meshgrid (either
     indexing) or 1-D x (along Z's columns) and y (along its rows), evenly spaced,
-    ascending or descending (a north-up raster)."""
+    ascending or descending (a north-up raster). With ``extra`` (an array of Z's
+    shape and more axes: facecolors), (HeightField, extra in the same order)."""
     try:
         X, Y, Z = (np.asarray(a, dtype=float) for a in (X, Y, Z))
     except (TypeError, ValueError):
         raise ValueError("plot_surface(X, Y, Z): X, Y and Z must be arrays of numbers") from None
     if Z.ndim != 2:
         raise ValueError(f"plot_surface(X, Y, Z): Z must be 2-D, got shape {Z.shape}")
+    if extra is not None and np.shape(extra)[:2] != Z.shape:
+        raise ValueError(f"plot_surface(X, Y, Z): facecolors must have Z's shape {Z.shape} "
+                         f"(and colours), got {np.shape(extra)}")
     if X.ndim == 2 and X.shape == Z.shape and Y.shape == Z.shape and \
             np.ptp(X[0]) == 0 and np.ptp(Y[:, 0]) == 0 and Z.shape != (1, 1):
         X, Y, Z = X.T, Y.T, Z.T                    # meshgrid(..., indexing="ij")
+        if extra is not None:
+            extra = np.swapaxes(extra, 0, 1)
     if X.ndim == 2:
         if X.shape != Z.shape or not np.allclose(X, X[:1]):
             raise ValueError("plot_surface(X, Y, Z): X must repeat one row of x values "
@@ -590,9 +673,12 @@ def mesh_surface(X, Y, Z):
                              "(floatcol reads Z as a regular grid)")
     if X[1] < X[0]:
         X, Z = X[::-1], Z[:, ::-1]
+        extra = None if extra is None else extra[:, ::-1]
     if Y[1] < Y[0]:
         Y, Z = Y[::-1], Z[::-1]
-    return HeightField(Z, u=(X[0], X[-1]), v=(Y[0], Y[-1]))
+        extra = None if extra is None else extra[::-1]
+    hf = HeightField(Z, u=(X[0], X[-1]), v=(Y[0], Y[-1]))
+    return hf if extra is None else (hf, np.ascontiguousarray(extra))
 
 
 def _has_ranges(e):

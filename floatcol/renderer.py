@@ -99,7 +99,7 @@ def _prepare(layer, scene):
     view_angles = (scene.camera.elev, scene.camera.azim)
     light_dir = _screen_light(light, *view_angles)
     return _Prepared(surface, domain, material, light, light_dir, material.light_terms(),
-                     colour.prepare(material, domain, scene.vars))
+                     colour.prepare(material, domain, scene.vars or surface.variables))
 
 
 def _shadow_texture(light, camera, quality, drawn, view):
@@ -198,7 +198,7 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
             evals += ev2
         if material.overlaid:
             overlays.overlay_pass(rgba, material, p.source, geom, W, box, w_limits, c_limits,
-                                  domain)
+                                  p.domain)       # (the surface's domain, not the box's)
     t_end = time.perf_counter()
     if nowhere_finite(surface, domain) and not (side != 0 if seen is None else seen).any():
         warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,

@@ -222,3 +222,72 @@ def test_holes_take_no_colour_and_no_lines():
                       contours=4, wireframe=6, **kw)
         empty = _interior(np.zeros(r.side.shape, int), r.side == 0)  # away from its edges
         assert (r.side != 0).any() and empty.any() and (r.rgba[empty] == 255).all()
+
+
+@pytest.mark.parametrize("layout", ["xy", "ij", "y descending"])
+def test_matplotlib_facecolors_follow_the_mesh(layout):
+    """plot_surface(X, Y, Z, facecolors=...): each point's colour lands at its point,
+    whichever way the mesh is laid out (red where x > 0, blue where x < 0; measured
+    100 % of the pixels a tenth of the range away from x = 0)."""
+    x = np.linspace(-2, 2, 41)
+    y = np.linspace(-1, 3, 31)
+    if layout == "y descending":
+        y = y[::-1]
+    X, Y = np.meshgrid(x, y, indexing="ij" if layout == "ij" else "xy")
+    Z = np.sin(X) * np.cos(Y) * 0.5
+    fcol = np.where((X > 0)[..., None], [1.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0])
+    p = fc.plot_surface(X, Y, Z, facecolors=fcol, size=(160, 120), shade=False)
+    r = p.render if p.render is not None else p.draw()
+    seen = _interior(np.zeros(r.side.shape, int), r.side != 0)   # whole pixels
+    right, left = seen & (r.u > 0.2), seen & (r.u < -0.2)
+    assert right.sum() > 500 and left.sum() > 500
+    assert (r.rgba[right][:, 0] > 200).mean() > 0.99 and (r.rgba[right][:, 2] < 60).mean() > 0.99
+    assert (r.rgba[left][:, 2] > 200).mean() > 0.99 and (r.rgba[left][:, 0] < 60).mean() > 0.99
+
+
+def test_matplotlib_edges_are_a_wireframe():
+    x = np.linspace(-3, 3, 60)
+    X, Y = np.meshgrid(x, x)
+    Z = np.sin(X) * np.cos(Y)
+    p = fc.plot_surface(X, Y, Z, edgecolor="k", linewidth=0.72, rcount=15, ccount=10)
+    assert p.options["wireframe"] == (10, 15) and p.options["linewidth"] == pytest.approx(1.0)
+    p = fc.plot_surface(X, Y, Z, edgecolor="k", rstride=5, cstride=10)
+    assert p.options["wireframe"] == (7, 13)          # every 10th of 60 columns, 5th row
+    for kw in (dict(), dict(linewidth=0, edgecolor="k"), dict(edgecolor="none", rcount=5)):
+        assert "wireframe" not in fc.plot_surface(X, Y, Z, **kw).options
+
+
+def test_wireframe_lines_in_a_stretched_box():
+    """In matplotlib's 3-D box (u, v and w stretched) the lines stay at the same u:
+    the picture's line pixels have u near a multiple of 0.5 as in true proportions."""
+    kw = dict(u=(-2, 2), v=(-2, 2), size=(160, 120), wireframe=(9, 9), linewidth=1.0)
+    for aspect in ("equal", (3.0, 1.0, 2.0)):
+        plain = fc.render("u*v/4", **{k: x for k, x in kw.items()
+                                      if k not in ("wireframe", "linewidth")}, aspect=aspect)
+        r = fc.render("u*v/4", aspect=aspect, **kw)
+        line = _line_pixels(r, plain) & (r.side != 0)
+        du = np.abs(r.u - np.rint(r.u / 0.5) * 0.5)
+        dv = np.abs(r.v - np.rint(r.v / 0.5) * 0.5)
+        gu = np.hypot(*np.gradient(r.u))                   # u's change per pixel
+        gv = np.hypot(*np.gradient(r.v))
+        near = np.minimum(du / gu, dv / gv)                # pixels to the nearest line
+        ok = line & np.isfinite(near)
+        assert ok.sum() > 200
+        assert (near[ok] <= 1.5).mean() > 0.97             # measured 100 % both
+
+
+def test_colour_field_in_plot_surface_sets_the_colorbar():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig = plt.figure()
+    ax = fig.add_subplot(projection="3d")
+    p = fc.plot_surface("sin(x)*cos(y)", ("x", -3, 3), ("y", -3, 3), ax=ax,
+                        color_field="sqrt(x**2 + y**2)", cmap="magma")
+    assert p.norm.vmin == pytest.approx(0.0, abs=1e-9)
+    assert p.norm.vmax == pytest.approx(np.sqrt(18), rel=1e-6)
+    cb = fig.colorbar(p, ax=ax)
+    fig.canvas.draw()
+    assert cb.vmax == pytest.approx(np.sqrt(18), rel=1e-6)
+    assert p.render.stats["c_limits"] == pytest.approx((0.0, np.sqrt(18)), rel=1e-6)
+    plt.close(fig)

@@ -54,6 +54,19 @@ def _number(text):
     return constant(text)
 
 
+def _count(name, lo, hi):
+    """An argparse type: a whole number from lo to hi."""
+    def parse(text):
+        try:
+            n = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} must be a whole number, got {text!r}")
+        if not lo <= n <= hi:
+            raise argparse.ArgumentTypeError(f"{name} must be from {lo} to {hi}, got {n}")
+        return n
+    return parse
+
+
 def _value(name):
     """An argparse type: a number or constant expression (floatcol's parser)."""
     def convert(text):
@@ -146,6 +159,15 @@ def _surface_options(p, default_size="800x600", many=False):
     p.add_argument("--opacity", type=_value("opacity"), default=None,
                    help="below 1 the surfaces are translucent, every layer showing (Gordon 6.5), "
                         "e.g. 0.5 (default 1)")
+    p.add_argument("--texture", default=None, metavar="IMAGE",
+                   help="an image file draped over the domain (section 6.7; mip-mapped)")
+    p.add_argument("--color-by", default=None, metavar="EXPR",
+                   help="colour from data: a second formula of the variables, coloured "
+                        "by --cmap instead of the height")
+    p.add_argument("--contours", type=_count("contours", 1, 1000), default=None,
+                   metavar="N", help="N contour lines (of the height, or of --color-by)")
+    p.add_argument("--wireframe", type=_count("wireframe", 2, 10000), default=None,
+                   metavar="N", help="N lines at x = const and N at y = const")
     p.add_argument("--background", default=None, help="background colour, e.g. white or none")
     p.add_argument("--dpi", type=float, default=100.0, help="dots per inch of PDF/SVG output (default 100)")
 
@@ -283,6 +305,14 @@ def _options(args):
         opts["alpha"] = args.opacity
     if args.background is not None:
         opts["background"] = None if args.background.lower() == "none" else args.background
+    if args.texture is not None:
+        opts["texture"] = args.texture
+    if args.color_by is not None:
+        opts["color_field"] = args.color_by
+    if args.contours is not None:
+        opts["contours"] = args.contours
+    if args.wireframe is not None:
+        opts["wireframe"] = args.wireframe
     return opts
 
 

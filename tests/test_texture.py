@@ -291,3 +291,30 @@ def test_colour_field_in_plot_surface_sets_the_colorbar():
     assert cb.vmax == pytest.approx(np.sqrt(18), rel=1e-6)
     assert p.render.stats["c_limits"] == pytest.approx((0.0, np.sqrt(18)), rel=1e-6)
     plt.close(fig)
+
+
+def test_cli_texture_colour_and_lines(tmp_path, capsys, monkeypatch):
+    from PIL import Image
+
+    from floatcol.cli import main
+    Image.fromarray(checker(32)).save(tmp_path / "tex.png")
+    monkeypatch.chdir(tmp_path)
+    base = ["render", "3*sin(x*cos(y))", "--x=-5:5", "--y=-5:5", "--size", "160x120"]
+    assert main(base + ["-o", "plain.png"]) == 0
+    for extra in (["--texture", "tex.png"], ["--color-by", "x*y", "--contours", "6"],
+                  ["--wireframe", "12"]):
+        assert main(base + extra + ["-o", "out.png"]) == 0
+        a = np.asarray(Image.open(tmp_path / "out.png"))
+        b = np.asarray(Image.open(tmp_path / "plain.png"))
+        assert a.shape == b.shape and (np.abs(a.astype(int) - b).max(-1) > 30).mean() > 0.02
+    capsys.readouterr()
+    for extra, match in ((["--texture", "none.png"], "cannot be read"),
+                         (["--contours", "0"], "contours must be from 1"),
+                         (["--color-by", "__import__('os')"], "not allowed")):
+        try:
+            code = main(base + extra + ["-o", "bad.png"])
+        except SystemExit as e:                     # (argparse's own errors)
+            code = e.code
+        err = capsys.readouterr().err.strip()
+        assert code == 2 and match in err and len(err.splitlines()) == 1
+        assert not (tmp_path / "bad.png").exists()

@@ -105,10 +105,25 @@ def shadows():
     Image.fromarray(np.concatenate(pair, axis=1)).save(IMG / "shadows.png", optimize=True)
 
 
+def textures():
+    """A checkerboard texture, colour by a second field with contours, a wireframe."""
+    from PIL import Image
+    kw = dict(u=(-5, 5), v=(-5, 5), size=(300, 225), elev=40, azim=30)
+    k = (np.add.outer(np.arange(256) // 32, np.arange(256) // 32) % 2).astype(np.uint8)
+    checker = np.stack([k * 200 + 40, 255 - k * 140, np.full_like(k, 90)], axis=-1)
+    E = "3*sin(u*cos(v))"
+    three = [fc.render(E, texture=checker, **kw).rgba,
+             fc.render(E, color="sqrt(u**2+v**2)", cmap="plasma", contours=10,
+                       contour_color="white", **kw).rgba,
+             fc.render(E, wireframe=21, linewidth=0.6, cmap="cividis", **kw).rgba]
+    Image.fromarray(np.concatenate(three, axis=1)).save(IMG / "textures.png", optimize=True)
+
+
 if __name__ == "__main__":
     IMG.mkdir(exist_ok=True)
     camera()
     examples()
     shadows()
     translucency()
+    textures()
     mplot3d()

@@ -207,7 +207,9 @@ def test_bad_texture_and_line_options_name_what_to_fix(tmp_path):
     with pytest.raises(ValueError, match="linewidth must be"):
         fc.render("u*v", wireframe=4, linewidth=-1, **kw)
     with pytest.raises(ValueError, match="opacity=1"):
-        fc.render("u*v", texture=checker(8), opacity=0.5, **kw)
+        fc.render("u*v", color="u", opacity=0.5, **kw)
+    with pytest.raises(ValueError, match="opacity=1"):
+        fc.render("u*v", contours=3, opacity=0.5, **kw)
     with pytest.raises(ValueError, match="method='column'"):
         fc.render("u*v", contours=3, method="horizon", **kw)
     with pytest.raises(ValueError, match="either texture or color"):
@@ -318,3 +320,26 @@ def test_cli_texture_colour_and_lines(tmp_path, capsys, monkeypatch):
         err = capsys.readouterr().err.strip()
         assert code == 2 and match in err and len(err.splitlines()) == 1
         assert not (tmp_path / "bad.png").exists()
+
+
+def test_a_translucent_surface_keeps_its_texture():
+    """opacity < 1: each layer takes the texture at its own (u, v) (the mip level from
+    the pixel's footprint at the point). A plane at opacity 0.5 over black is half the
+    opaque textured plane's colour (measured: within 2.5 levels on 100 % of the 5682
+    whole pixels away from the checker's edges), its squares where the opaque one's
+    are."""
+    kw = dict(u=(-2, 2), v=(-2, 2), size=(160, 120), elev=35, azim=25, ambient=1.0,
+              specular=0.0, background="black", texture=checker(64))
+    opaque = fc.render("0*u + 0.2*v", **kw)
+    half = fc.render("0*u + 0.2*v", opacity=0.5, **kw)
+    # whole pixels away from the checker's edges (the two paths filter edges alike but
+    # not identically: the layers' mip level comes from the footprint at the point)
+    squares = np.where(opaque.side != 0, truth_checker(opaque.u, opaque.v, (-2, 2),
+                                                       (-2, 2), 64), -1)
+    inside = _interior(squares, opaque.side != 0)
+    diff = np.abs(half.rgba[..., :3].astype(float) * half.rgba[..., 3:4] / 255.0
+                  - 0.5 * opaque.rgba[..., :3].astype(float))[inside].max(-1)
+    assert inside.sum() > 3000 and (diff <= 2.5).mean() > 0.99
+    # red and green squares, as the opaque one
+    assert (half.rgba[inside][:, 0] > half.rgba[inside][:, 1]).mean() == pytest.approx(
+        (opaque.rgba[inside][:, 0] > opaque.rgba[inside][:, 1]).mean(), abs=0.01)

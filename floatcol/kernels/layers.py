@@ -40,10 +40,11 @@ from .index import ceil_index, floor_index
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIZE, G_T, G_U, G_V, G_W, S_OK,
-    VP_AA, VP_CA, VP_CW, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_T0, VP_T1, VP_W,
+    VP_AA, VP_CA, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_SCALE, VP_T0, VP_T1, VP_W,
 )
 from .sample import column_x0, sample_point
 from .shade import _light, _side_rgb, toward_viewer
+from .texture import layer_texel
 from .shadow import point_shadow
 
 #: transmittance below which nothing behind shows (1/512: under half a level of 8 bits)
@@ -204,7 +205,21 @@ def _emit(vp, x0, j, p, cov, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists, o
                              sh[SH_S0], sh[SH_T0], sh[SH_H], sh[SH_GRAZING], sh[SH_BIAS])
     inten, spec = _light(vp, x0, j, depth, nx, ny, nz, p[A_I], int(mp[M_INTERP]),
                          mp[M_AMBIENT], mp[M_SPECULAR], mp[M_SHININESS], 1.0 - shade)
-    r, g, bl = _side_rgb(side, p[A_W], lut, mp[M_WLO], mp[M_SPAN], lower_rgb)
+    # ``lut`` is the tuple (lut, levels, offsets, shapes, tp) of texture.py's TP_*: the
+    # side's colour table, and a texture (no levels: none) over it
+    r, g, bl = _side_rgb(side, p[A_W], lut[0], mp[M_WLO], mp[M_SPAN], lower_rgb)
+    if lut[1].shape[0] > 0:
+        # the pixel's footprint on the surface: 1 / scale on the screen, at the point's
+        # distance (perspective), stretched by the obliquity (|N.V|, from 0.05)
+        fp = 1.0 / vp[VP_SCALE]
+        if vp[VP_ORTHO] == 0.0:
+            fp *= (depth + vp[VP_D3]) / vp[VP_D1]
+        fp /= max(abs(nx * vx + ny * vy + nz * vz), 0.05)
+        tex = crec[C_SIZE:C_SIZE + 4]
+        layer_texel(lut, p[A_U], p[A_V], fp, tex)
+        r = tex[0] + (1.0 - tex[3]) * r
+        g = tex[1] + (1.0 - tex[3]) * g
+        bl = tex[2] + (1.0 - tex[3]) * bl
     a = mp[M_ALPHA] * min(cov, 1.0)
     crec[C_DEPTH] = depth
     crec[C_R] = a * min(r * inten + spec, 1.0)

@@ -77,6 +77,49 @@ def _bilinear(levels, off, h, w, x, y, out, weight):
 
 
 @ngjit_inline
+def texel_at(levels, offsets, shapes, x, y, lod, out):
+    """out[0:4] = the mip-map's trilinear lookup at level-0 texel coordinates (x, y)
+    and level of detail ``lod`` (0: the full texture; clamped to the pyramid)."""
+    for ch in range(4):
+        out[ch] = 0.0
+    n_lev = offsets.shape[0]
+    lod = min(max(lod, 0.0), n_lev - 1.0)
+    k = int(lod)
+    f = lod - k
+    k1 = min(k + 1, n_lev - 1)
+    sc = 1.0 / (1 << k)
+    _bilinear(levels, offsets[k], shapes[k, 0], shapes[k, 1], (x + 0.5) * sc - 0.5,
+              (y + 0.5) * sc - 0.5, out, 1.0 - f)
+    if f > 0.0:
+        s1 = 1.0 / (1 << k1)
+        _bilinear(levels, offsets[k1], shapes[k1, 0], shapes[k1, 1], (x + 0.5) * s1 - 0.5,
+                  (y + 0.5) * s1 - 0.5, out, f)
+
+
+#: A layer's texture for the translucent layers (kernels/layers.py): the tuple
+#: (lut, levels, offsets, shapes, tp), tp[TP_*] the texel map of the box's (u, v)
+TP_OU = 0        # texel x = (u - ou) su, y = (v - ov) sv
+TP_SU = 1
+TP_OV = 2
+TP_SV = 3
+TP_SIZE = 4
+
+
+@ngjit_inline
+def layer_texel(colours, u, v, footprint, out):
+    """out[0:4]: the texture of ``colours`` (TP_*) at the point (u, v) whose pixel
+    covers ``footprint`` units of the box each way (trilinear, the level from it)."""
+    levels = colours[1]
+    tp = colours[4]
+    su = tp[TP_SU]
+    sv = tp[TP_SV]
+    rho = footprint * max(abs(su), abs(sv))
+    lod = math.log2(rho) if rho > 1.0 else 0.0
+    texel_at(levels, colours[2], colours[3], (u - tp[TP_OU]) * su, (v - tp[TP_OV]) * sv, lod,
+             out)
+
+
+@ngjit_inline
 def _one_sided(x, y, seen, i, col, di, dc):
     """The smaller of the two one-sided changes of (x, y) to the neighbours (i - di,
     col - dc) and (i + di, col + dc) that are seen, squared (inf where neither is)."""
@@ -148,18 +191,7 @@ def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt,
                 rho2 = max(_one_sided(tx, ty, side, i, col, 0, 1),
                            _one_sided(tx, ty, side, i, col, 1, 0))
                 lod = 0.5 * math.log2(rho2) if math.isfinite(rho2) and rho2 > 1.0 else 0.0
-                lod = min(lod, n_lev - 1.0)
-                k = int(math.floor(lod))
-                f = lod - k
-                k1 = min(k + 1, n_lev - 1)
-                # level k's texel m covers level 0's texels 2^k m .. 2^k (m + 1) - 1
-                sc = 1.0 / (1 << k)
-                _bilinear(levels, offsets[k], shapes[k, 0], shapes[k, 1],
-                          (x + 0.5) * sc - 0.5, (y + 0.5) * sc - 0.5, acc, 1.0 - f)
-                if f > 0.0:
-                    s1 = 1.0 / (1 << k1)
-                    _bilinear(levels, offsets[k1], shapes[k1, 0], shapes[k1, 1],
-                              (x + 0.5) * s1 - 0.5, (y + 0.5) * s1 - 0.5, acc, f)
+                texel_at(levels, offsets, shapes, x, y, lod, acc)
             r, g, b = _side_rgb(float(sides[i, col]), wp[i, col], lut, w_lo, span, lower_rgb)
             rest = 1.0 - acc[3]                # premultiplied over the own colour
             base[i, col, 0] = min(max(acc[0] + rest * r, 0.0), 1.0)

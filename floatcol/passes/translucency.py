@@ -66,6 +66,24 @@ def band_columns(W, H, slots, n):
     return int(max(1, min(W, LIST_BYTES // max(per_column, 1))))
 
 
+_NO_TEXTURE = (np.zeros(0, np.float32), np.zeros(1, np.int64), np.ones((1, 2), np.int64),
+               np.zeros(4))
+
+
+def layer_texture(source, box):
+    """(levels, offsets, shapes, tp) of a layer's texture for kernels/layers.py
+    (texture.py's TP_*: the texel map of the box's u, v), or empty levels: none."""
+    if source is None or source.texture is None:
+        return _NO_TEXTURE
+    tex = source.texture
+    h, w = (int(x) for x in tex.shapes[0])
+    u0, u1, v0, v1 = source.extent
+    a, b = float(box[0]), float(box[1])
+    tp = np.array([u0 * a, (w - 1) / ((u1 - u0) * a) if w > 1 else 0.0,
+                   v0 * b, (h - 1) / ((v1 - v0) * b) if h > 1 else 0.0])
+    return tex.flat, tex.offsets, tex.shapes, tp
+
+
 def material_vector(material, terms, lut_range):
     """kernels/layers.py's mp of a layer."""
     amb, spec, shine = terms
@@ -139,7 +157,9 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
         w_limits.append(lim)
         mp = material_vector(p.material, p.terms, (w_lo, w_hi))
         sh, hmax, hmin, hsurf = shadow_vector(texture, view, k)
-        plans.append((surface, vp, mp, np.ascontiguousarray(lut, dtype=np.float64),
+        colours = (np.ascontiguousarray(lut, dtype=np.float64),
+                   *layer_texture(p.source, box))
+        plans.append((surface, vp, mp, colours,
                       np.asarray(lower_rgb, dtype=np.float64), sh, hmax, hmin, hsurf))
     offsets_px, centre = offsets(sub)
     order = [centre] + [i for i in range(sub) if i != centre]

@@ -113,8 +113,13 @@ def test_matplotlib_keywords_accepted():
     p = fc.plot_surface(X, Y, Z, rstride=1, cstride=1, rcount=50, ccount=50, linewidth=0,
                         edgecolor="none", antialiased=False, zorder=3, size=(80, 60))
     assert p.draw().rgba.shape == (60, 80, 4)
-    with pytest.warns(UserWarning, match="facecolors"):
-        fc.plot_surface(X, Y, Z, facecolors=cm.viridis(Z), size=(40, 30))
+    assert "wireframe" not in p.options              # no edge colour: no mesh lines
+    # facecolors are drawn (a texture; tests/test_texture.py checks where), no warning
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        q = fc.plot_surface(X, Y, Z, facecolors=cm.viridis(Z), size=(40, 30))
+    assert q.options["texture"].shape == Z.shape + (4,)
 
 
 @pytest.mark.parametrize("proj", ["persp", "ortho"])

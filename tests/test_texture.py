@@ -343,3 +343,27 @@ def test_a_translucent_surface_keeps_its_texture():
     # red and green squares, as the opaque one
     assert (half.rgba[inside][:, 0] > half.rgba[inside][:, 1]).mean() == pytest.approx(
         (opaque.rgba[inside][:, 0] > opaque.rgba[inside][:, 1]).mean(), abs=0.01)
+
+
+@pytest.mark.parametrize("how", ["texture", "color"])
+def test_silhouette_pixels_take_the_texture_too(how):
+    """An antialiased silhouette pixel blends two surfaces (section 6.4): the one at
+    its centre and the edge surface (the ebuf carries its u, v). With a uniformly red
+    texture (or a colour field of one value through a red colormap), flat colours over
+    white, every pixel is a blend of red and white: no colormap colour anywhere, not
+    even in the edge pixels (before the ebuf carried u, v they kept viridis)."""
+    from matplotlib.colors import ListedColormap
+    red = np.zeros((4, 4, 3), dtype=np.uint8)
+    red[..., 0] = 255
+    kw = dict(u=(-5, 5), v=(-5, 5), size=(200, 150), elev=20, azim=30, ambient=1.0,
+              specular=0.0, background="white", lower_color="red")
+    if how == "texture":
+        r = fc.render("3*sin(u*cos(v))", texture=red, **kw)
+    else:
+        r = fc.render("3*sin(u*cos(v))", color="1 + 0*u", vmin=0, vmax=2,
+                      cmap=ListedColormap([(1, 0, 0)] * 3), **kw)
+    rgb = r.rgba[..., :3].astype(int)
+    partial = (r.rgba[..., 3] == 255) & (rgb[..., 1] < 250) & (rgb[..., 1] > 5)
+    assert partial.sum() > 50                     # antialiased edge pixels exist
+    assert (np.abs(rgb[..., 1] - rgb[..., 2]) <= 2).all()       # red + white only
+    assert (rgb[..., 0] >= rgb[..., 1] - 2).all()

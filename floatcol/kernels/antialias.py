@@ -45,7 +45,7 @@ def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, interp, ambient, spe
                 _, r, g, b, a = shade_pixel(gcol, ecol, 0, 0, j, True, vp, x0, interp, ambient,
                                             specular, shininess, lut, w_lo, span, lower_rgb,
                                             background, lit[i, c] if shadows else 1.0,
-                                            False, 0.0, 0.0, 0.0)
+                                            False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
                 acc[i, c, 0] += r * a
                 acc[i, c, 1] += g * a
                 acc[i, c, 2] += b * a

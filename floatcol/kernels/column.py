@@ -27,7 +27,7 @@ from ._jit import (
 from .index import ceil_index, floor_index, trunc_index
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
-    E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
+    E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_U, E_V, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W, HFP_CW, HFP_IU, HFP_IV,
     DETECT_RIDGE, DETECT_WALL, FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
     SURF_HEIGHTFIELD,
@@ -87,13 +87,13 @@ RUN_WHI = 14       # colormap's range), over all the column's passes
 RUN_JLO = 15       # rows (from the bottom) between which the column's passes may have
 RUN_JHI = 16       # set E_SEEN (the finishing pass reads none outside them)
 RUN_EDGE_J = 17    # antialiasing: the row of the edge surface held back (-1: none), and
-RUN_EDGE = 18      # its E_NX, E_NY, E_NZ, E_W, E_I, E_DEPTH, E_SIDE (_hold_edge)
-RUN_TOP_J = 25     # antialiasing: the top pixel of the run's interval whose coverage
-RUN_TOP_KIND = 26  # is kept here, not yet in ecol (-1: none; _fill, _settle_top), its
-RUN_TOP_COV = 27   # kind (TOP_EDGE, TOP_CENTRE) and coverage; RUN_TOP_ON: whether it
-RUN_TOP_ON = 28    # may (vp's VP_KEEP_TOP)
-RUN_FOLD = 29      # 1.0: a sample's curve folds back in t (fold.py): trace the column
-RUN_SIZE = 30
+RUN_EDGE = 18      # its E_NX, E_NY, E_NZ, E_W, E_I, E_DEPTH, E_SIDE, E_U, E_V (_hold_edge)
+RUN_TOP_J = 27     # antialiasing: the top pixel of the run's interval whose coverage
+RUN_TOP_KIND = 28  # is kept here, not yet in ecol (-1: none; _fill, _settle_top), its
+RUN_TOP_COV = 29   # kind (TOP_EDGE, TOP_CENTRE) and coverage; RUN_TOP_ON: whether it
+RUN_TOP_ON = 30    # may (vp's VP_KEEP_TOP)
+RUN_FOLD = 31      # 1.0: a sample's curve folds back in t (fold.py): trace the column
+RUN_SIZE = 32
 #: RUN_TOP_KIND: the pixel's centre lies outside the interval (an edge surface covers
 #: RUN_TOP_COV of the pixel: its bottom, or where the run began above the centre, a
 #: part above it) or inside it (the surface at the centre covers RUN_TOP_COV of it)
@@ -517,7 +517,7 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
     yp, inv_dy, qp, qc = _span_rows(run, prev, cur, persp, d3, H, lo_f, hi_f)
     # a new edge surface (section 6.4) made by this span, held back (_hold_edge)
     new_j = -1
-    e_nx = e_ny = e_nz = e_w = e_i = e_z = e_side = 0.0
+    e_nx = e_ny = e_nz = e_w = e_i = e_z = e_side = e_u = e_v = 0.0
     if aa:
         # pixels the span covers in part without their centre: the two ends
         for e in range(2):
@@ -563,9 +563,10 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
                 keep_coverages(ecol, jp)
             lw = _chord_weight(0.5 * (a + b), yp, inv_dy, persp, qp, qc)
             if new_j >= 0:              # the span's second: hold the first now
-                _hold_edge(ecol, run, new_j, e_nx, e_ny, e_nz, e_w, e_i, e_z, e_side)
+                _hold_edge(ecol, run, new_j, e_nx, e_ny, e_nz, e_w, e_i, e_z, e_side, e_u,
+                           e_v)
             new_j = jp                  # held back: _hold_edge, below
-            e_nx, e_ny, e_nz, e_w, e_i, e_z = _chord_at(prev, cur, lw)
+            e_nx, e_ny, e_nz, e_w, e_i, e_z, e_u, e_v = _chord_at(prev, cur, lw)
             e_side = side
             if keep_top:
                 _keep_top(run, jp, TOP_EDGE, min(cov, room))
@@ -574,7 +575,7 @@ def _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa):
     _paint(gcol, ecol, run, prev, cur, side, persp, H, yp, inv_dy, qp, qc, lo_f, hi_f, j0, j1,
            aa, False, cont, j_cont, pj, p_cov, j_top)
     if new_j >= 0:
-        _hold_edge(ecol, run, new_j, e_nx, e_ny, e_nz, e_w, e_i, e_z, e_side)
+        _hold_edge(ecol, run, new_j, e_nx, e_ny, e_nz, e_w, e_i, e_z, e_side, e_u, e_v)
 
 
 @ngjit_inline
@@ -596,10 +597,11 @@ def _span_rows(run, prev, cur, persp, d3, H, lo_f, hi_f):
 
 @ngjit_inline
 def _chord_at(prev, cur, lw):
-    """(nx, ny, nz, w, intensity, depth) at weight lw of the chord prev -> cur."""
+    """(nx, ny, nz, w, intensity, depth, u, v) at weight lw of the chord prev -> cur."""
     return (prev[A_NX] + lw * (cur[A_NX] - prev[A_NX]), prev[A_NY] + lw * (cur[A_NY] - prev[A_NY]),
             prev[A_NZ] + lw * (cur[A_NZ] - prev[A_NZ]), prev[A_W] + lw * (cur[A_W] - prev[A_W]),
-            prev[A_I] + lw * (cur[A_I] - prev[A_I]), prev[A_Z] + lw * (cur[A_Z] - prev[A_Z]))
+            prev[A_I] + lw * (cur[A_I] - prev[A_I]), prev[A_Z] + lw * (cur[A_Z] - prev[A_Z]),
+            prev[A_U] + lw * (cur[A_U] - prev[A_U]), prev[A_V] + lw * (cur[A_V] - prev[A_V]))
 
 
 @ngjit_inline
@@ -711,8 +713,8 @@ def _cover_rest(ecol, j, cov, side, lw, prev, cur):
     if cov <= 0.0 or ecov >= room:
         return
     if ecov <= 0.0:
-        nx, ny, nz, w, lam, z = _chord_at(prev, cur, lw)
-        _store_edge(ecol, j, nx, ny, nz, w, lam, z, side)
+        nx, ny, nz, w, lam, z, u, v = _chord_at(prev, cur, lw)
+        _store_edge(ecol, j, nx, ny, nz, w, lam, z, side, u, v)
     ecol[E_COV, j] = min(ecov + cov, room)
 
 
@@ -750,13 +752,13 @@ def _fill_on(gcol, ecol, run, prev, cur, side, persp, d3, H, lo_f, hi_f, j0, j1,
     # the new top's edge surface, for where its centre is not covered, held as
     # _hold_edge holds it (held where the centre is covered as well; where the span
     # stays in pj, the one held before stays)
-    e_nx, e_ny, e_nz, e_w, e_i, e_z = _chord_at(
+    e_nx, e_ny, e_nz, e_w, e_i, e_z, e_u, e_v = _chord_at(
         prev, cur, _chord_weight(0.5 * (a + hi_f), yp, inv_dy, persp, qp, qc))
-    held = (e_nx, e_ny, e_nz, e_w, e_i, e_z, side)
+    held = (e_nx, e_ny, e_nz, e_w, e_i, e_z, side, e_u, e_v)
     if run[RUN_EDGE_J] != j_top:
         _write_edge(ecol, run)
     run[RUN_EDGE_J] = j_top
-    for k in range(7):
+    for k in range(9):
         run[RUN_EDGE + k] = run[RUN_EDGE + k] if same else held[k]
 
 
@@ -785,8 +787,9 @@ def _settle_top(ecol, run):
 
 
 @ngjit_inline
-def _hold_edge(ecol, run, j, nx, ny, nz, w, lam, z, side):
-    """Hold row j's new edge surface (section 6.4: normal, w, intensity, depth, side)
+def _hold_edge(ecol, run, j, nx, ny, nz, w, lam, z, side, u, v):
+    """Hold row j's new edge surface (section 6.4: normal, w, intensity, depth, side,
+    u, v)
     in ``run`` instead of writing it to ecol's planes, after writing out the one held
     before (_write_edge), unless that was row j's. Most edge surfaces are the top of a
     span, which the next span of the run goes on through the pixel's centre and sets
@@ -804,6 +807,8 @@ def _hold_edge(ecol, run, j, nx, ny, nz, w, lam, z, side):
     run[RUN_EDGE + 4] = lam
     run[RUN_EDGE + 5] = z
     run[RUN_EDGE + 6] = side
+    run[RUN_EDGE + 7] = u
+    run[RUN_EDGE + 8] = v
 
 
 @ngjit_inline
@@ -814,13 +819,14 @@ def _write_edge(ecol, run):
     j = int(run[RUN_EDGE_J])
     if j >= 0 and coverages(ecol, j)[1] > 0.0:
         _store_edge(ecol, j, run[RUN_EDGE], run[RUN_EDGE + 1], run[RUN_EDGE + 2],
-                    run[RUN_EDGE + 3], run[RUN_EDGE + 4], run[RUN_EDGE + 5], run[RUN_EDGE + 6])
+                    run[RUN_EDGE + 3], run[RUN_EDGE + 4], run[RUN_EDGE + 5], run[RUN_EDGE + 6],
+                    run[RUN_EDGE + 7], run[RUN_EDGE + 8])
     run[RUN_EDGE_J] = -1.0
 
 
 @ngjit_inline
-def _store_edge(ecol, j, nx, ny, nz, w, lam, z, side):
-    """Write row j's edge surface (normal, w, intensity, depth, side) to ecol's
+def _store_edge(ecol, j, nx, ny, nz, w, lam, z, side, u, v):
+    """Write row j's edge surface (normal, w, intensity, depth, side, u, v) to ecol's
     planes."""
     ecol[E_NX, j] = nx
     ecol[E_NY, j] = ny
@@ -829,6 +835,8 @@ def _store_edge(ecol, j, nx, ny, nz, w, lam, z, side):
     ecol[E_I, j] = lam
     ecol[E_DEPTH, j] = z
     ecol[E_SIDE, j] = side
+    ecol[E_U, j] = u
+    ecol[E_V, j] = v
 
 
 @ngjit_inline

@@ -147,7 +147,9 @@ E_W = 6
 E_I = 7
 E_SIDE = 8
 E_DEPTH = 9
-E_SIZE = 10
+E_U = 10          # ... and its u, v (a texture's colour, passes/colour.py)
+E_V = 11
+E_SIZE = 12
 E_FLAG = 8.0      # added to E_SEEN where E_COV0 and E_COV are kept
 
 # Sample status

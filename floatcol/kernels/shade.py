@@ -180,13 +180,13 @@ def _rgba32(r, g, b, a):
 
 @ngjit_inline
 def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular, shininess,
-                lut, w_lo, span, lower_rgb, background, lit, textured, tr, tg, tb):
+                lut, w_lo, span, lower_rgb, background, lit, textured, tr, tg, tb, er, eg, eb):
     """Light (_light) and colour (pixel_rgba) row j of the column in lane ``lane`` of
     tile ``tile`` of the G-buffer gbuf and the edge buffer ebuf (layout.py; E_SEEN,
     and with ``aa`` the coverages, coverage.py). With ``textured`` the surface at the
     centre has the colour (tr, tg, tb) on both sides (a texture's, passes/colour.py)
-    instead of its side's. Returns (intensity at the centre, NaN where no surface;
-    r, g, b, alpha)."""
+    instead of its side's, and the edge surface (er, eg, eb). Returns (intensity at
+    the centre, NaN where no surface; r, g, b, alpha)."""
     g = gbuf[tile, j, lane]
     x = ebuf[tile, E_SEEN, j, lane]
     s = seen_side(x)
@@ -215,11 +215,6 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular
             e_lam, e_sp = _light(vp, x0, j, e[E_DEPTH], e[E_NX], e[E_NY], e[E_NZ], e[E_I],
                                  interp, ambient, specular, shininess, lit)
     if textured:
-        er = 0.0
-        eg = 0.0
-        eb = 0.0
-        if e_cov > 0.0:
-            er, eg, eb = _side_rgb(e_side, e_w, lut, w_lo, span, lower_rgb)
         r, gr, bl, a = blend(s, tr, tg, tb, cov0, lam, sp, e_cov, er, eg, eb, e_lam, e_sp,
                              background)
         return lam, r, gr, bl, a
@@ -328,13 +323,20 @@ def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lu
                     tr = 0.0
                     tg = 0.0
                     tb = 0.0
+                    er = 0.0
+                    eg = 0.0
+                    eb = 0.0
                     if textured:
                         tr = base[i, c, 0]
                         tg = base[i, c, 1]
                         tb = base[i, c, 2]
+                        er = base[i, c, 3]
+                        eg = base[i, c, 4]
+                        eb = base[i, c, 5]
                     _, r, g, bl, a = shade_pixel(gbuf, ebuf, b, lane, j, aa, vp, x0, interp,
                                                  ambient, specular, shininess, lut, w_lo, span,
-                                                 lower_rgb, background, lt, textured, tr, tg, tb)
+                                                 lower_rgb, background, lt, textured, tr, tg, tb,
+                                                 er, eg, eb)
                     rgba[i, c] = _rgba32(r * 255.0 + 0.5, g * 255.0 + 0.5, bl * 255.0 + 0.5,
                                          a * 255.0 + 0.5)
 

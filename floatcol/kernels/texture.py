@@ -7,7 +7,7 @@ import numpy as np
 from numba import prange
 
 from ._jit import ngjit_inline, ngjit_parallel
-from .layout import E_FLAG, E_SEEN, G_U, G_V, G_W
+from .layout import E_COV, E_FLAG, E_SEEN, E_SIDE, E_U, E_V, E_W, G_U, G_V, G_W
 from .shade import _side_rgb
 
 FILTER_POINT = 0
@@ -16,12 +16,12 @@ FILTER_MIPMAP = 2
 
 
 @ngjit_parallel
-def planes_kernel(gbuf, ebuf, W, a, b, c, u, v, w, side):
+def planes_kernel(gbuf, ebuf, W, a, b, c, u, v, w, side, eu, ev):
     """u, v, w (H, W) float64, top row first, of the seen point at each pixel (NaN
     where none; divided by the box's stretch a, b, c) and the side seen there (+1, -1,
-    0), from the tiled G-buffer and edge buffer (layout.py). Tile by tile (each
-    tile's memory in order: row by row across the tiles was 3x slower, a page a
-    tile)."""
+    0), from the tiled G-buffer and edge buffer (layout.py); eu, ev those of the
+    pixel's edge surface (section 6.4; NaN where none). Tile by tile (each tile's
+    memory in order: row by row across the tiles was 3x slower, a page a tile)."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]
@@ -33,6 +33,12 @@ def planes_kernel(gbuf, ebuf, W, a, b, c, u, v, w, side):
                 x = ebuf[t, E_SEEN, j, lane]
                 s = x - E_FLAG if x > 0.5 * E_FLAG else x
                 side[i, col] = s
+                if x > 0.5 * E_FLAG and ebuf[t, E_COV, j, lane] > 0.0:
+                    eu[i, col] = ebuf[t, E_U, j, lane] / a
+                    ev[i, col] = ebuf[t, E_V, j, lane] / b
+                else:
+                    eu[i, col] = np.nan
+                    ev[i, col] = np.nan
                 if s == 0.0:
                     u[i, col] = np.nan
                     v[i, col] = np.nan
@@ -149,8 +155,11 @@ def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt,
     FILTER_LINEAR: bilinear; FILTER_MIPMAP: trilinear, the level from the pixel's
     footprint (the longer of the changes of (tx, ty) to the next pixel across and
     down, each the smaller one-sided one, so a silhouette's far neighbour does not
-    count). tx, ty, wp (H, W) float64, sides (H, W) int8 and side (H, W) bool:
-    scratch."""
+    count). base[..., 3:6]: likewise the colour of the pixel's edge surface (section
+    6.4: the surface sharing a pixel at a silhouette) where it has one, at its own
+    (u, v) in the ebuf, the level of the pixel's footprint (or, where nothing is seen
+    at its centre, of the seen neighbour's). tx, ty, wp (H, W) float64, sides (H, W)
+    int8 and side (H, W) bool: scratch."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]
@@ -197,6 +206,47 @@ def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt,
             base[i, col, 0] = min(max(acc[0] + rest * r, 0.0), 1.0)
             base[i, col, 1] = min(max(acc[1] + rest * g, 0.0), 1.0)
             base[i, col, 2] = min(max(acc[2] + rest * b, 0.0), 1.0)
+    for t in prange(n_tiles):                 # the edge surfaces' colours
+        acc = np.empty(4)
+        for j in range(H):
+            i = H - 1 - j
+            for lane in range(min(T, W - t * T)):
+                x = ebuf[t, E_SEEN, j, lane]
+                if not (x > 0.5 * E_FLAG and ebuf[t, E_COV, j, lane] > 0.0):
+                    continue
+                col = t * T + lane
+                ex = (ebuf[t, E_U, j, lane] - ou) * su
+                ey = (ebuf[t, E_V, j, lane] - ov) * sv
+                rho2 = np.inf
+                if side[i, col]:
+                    rho2 = max(_one_sided(tx, ty, side, i, col, 0, 1),
+                               _one_sided(tx, ty, side, i, col, 1, 0))
+                else:                          # a seen neighbour's footprint
+                    for di, dc in ((0, 1), (0, -1), (1, 0), (-1, 0)):
+                        i2 = i + di
+                        c2 = col + dc
+                        if 0 <= i2 < H and 0 <= c2 < W and side[i2, c2]:
+                            rho2 = max(_one_sided(tx, ty, side, i2, c2, 0, 1),
+                                       _one_sided(tx, ty, side, i2, c2, 1, 0))
+                            break
+                if filt == FILTER_POINT:
+                    xi = int(math.floor(min(max(ex, 0.0), w0 - 1.0) + 0.5))
+                    yi = int(math.floor(min(max(ey, 0.0), h0 - 1.0) + 0.5))
+                    for ch in range(4):
+                        acc[ch] = _texel(levels, 0, h0, w0, xi, yi, ch)
+                elif filt == FILTER_LINEAR or n_lev == 1:
+                    for ch in range(4):
+                        acc[ch] = 0.0
+                    _bilinear(levels, 0, h0, w0, ex, ey, acc, 1.0)
+                else:
+                    lod = 0.5 * math.log2(rho2) if math.isfinite(rho2) and rho2 > 1.0 else 0.0
+                    texel_at(levels, offsets, shapes, ex, ey, lod, acc)
+                r, g, b = _side_rgb(ebuf[t, E_SIDE, j, lane], ebuf[t, E_W, j, lane], lut, w_lo,
+                                    span, lower_rgb)
+                rest = 1.0 - acc[3]
+                base[i, col, 3] = min(max(acc[0] + rest * r, 0.0), 1.0)
+                base[i, col, 4] = min(max(acc[1] + rest * g, 0.0), 1.0)
+                base[i, col, 5] = min(max(acc[2] + rest * b, 0.0), 1.0)
 
 
 @ngjit_inline

@@ -34,14 +34,15 @@ from ..kernels.texture import (
 FILTERS = {"mipmap": FILTER_MIPMAP, "linear": FILTER_LINEAR, "point": FILTER_POINT}
 
 
-def picture_planes(geom, W, box=(1.0, 1.0, 1.0)):
+def picture_planes(geom, W, box=(1.0, 1.0, 1.0), edges=False):
     """(u, v, w, side) of each pixel, top row first, from a layer's tiled G-buffer
     and edge buffer (the column pass's), in the surface's units (the box's stretch
-    divided out): side +1 upper, -1 lower, 0 nothing (NaN u, v, w there)."""
+    divided out): side +1 upper, -1 lower, 0 nothing (NaN u, v, w there); with
+    ``edges`` also (eu, ev) of each pixel's edge surface (NaN where none)."""
     H = geom.gbuf.shape[1]
-    u, v, w, side = (np.empty((H, W)) for _ in range(4))     # (the caller keeps them)
-    planes_kernel(geom.gbuf, geom.ebuf, W, *(float(x) for x in box), u, v, w, side)
-    return u, v, w, side
+    u, v, w, side, eu, ev = (np.empty((H, W)) for _ in range(6))   # (the caller keeps them)
+    planes_kernel(geom.gbuf, geom.ebuf, W, *(float(x) for x in box), u, v, w, side, eu, ev)
+    return (u, v, w, side, eu, ev) if edges else (u, v, w, side)
 
 
 # -- textures --------------------------------------------------------------------
@@ -138,7 +139,7 @@ def texture_base(tex, geom, W, H, box, extent, filt, lut, w_lo, w_hi, lower_rgb)
     sv = (h - 1) / ((v1 - v0) * b) if h > 1 else 0.0
     # (pooled: fresh memory's page faults cost more than the lookups; every buffer is
     # read only where the kernel wrote it: where a surface is seen)
-    base = _pool.empty((H, W, 3), np.float32)
+    base = _pool.empty((H, W, 6), np.float32)
     tx, ty = _pool.empty((H, W), np.float64), _pool.empty((H, W), np.float64)
     wp = _pool.empty((H, W), np.float64)
     sides = _pool.empty((H, W), np.int8)
@@ -202,9 +203,10 @@ def base_colours(material, source, geom, W, H, box, lut, w_lo, w_hi, lower_rgb):
     if source.field is None and not callable(source.texture):
         return texture_base(source.texture, geom, W, H, box, source.extent, source.filter,
                             lut, w_lo, w_hi, lower_rgb), None
-    u, v, w, side = picture_planes(geom, W, (box[0], box[1], 1.0))
+    u, v, w, side, eu, ev = picture_planes(geom, W, (box[0], box[1], 1.0), edges=True)
     seen = side != 0.0
-    base = np.zeros((H, W, 3), dtype=np.float32)
+    edge = np.isfinite(eu)
+    base = np.zeros((H, W, 6), dtype=np.float32)
     if not seen.any():
         return base, None
     limits = None
@@ -215,6 +217,11 @@ def base_colours(material, source, geom, W, H, box, lut, w_lo, w_hi, lower_rgb):
         lut_c, lo, hi, limits = material.color_table(rng)
         own = colour_table_rgb(vals, lut_c, lo, hi)
         own[~np.isfinite(vals)] = lower_rgb[:3]
+        if edge.any():                                 # the edge surfaces' own values
+            e_vals = field_values(source.field, eu, ev, edge, source.extent)
+            e_own = colour_table_rgb(e_vals, lut_c, lo, hi)
+            e_own[~np.isfinite(e_vals)] = lower_rgb[:3]
+            base[edge, 3:] = np.clip(e_own, 0.0, 1.0)
     else:
         # the surface's own colour under a texture's transparent parts: its side's
         # (w and the table's ends both in the box's units)
@@ -223,7 +230,11 @@ def base_colours(material, source, geom, W, H, box, lut, w_lo, w_hi, lower_rgb):
     if source.texture is not None:                     # a texture function
         tex = _called(source.texture, u[seen], v[seen])
         own = tex[:, :3] + (1.0 - tex[:, 3:4]) * own    # premultiplied over its own colour
-    base[seen] = np.clip(own, 0.0, 1.0)
+        if edge.any():                                 # (over the lower side's colour)
+            e_tex = _called(source.texture, eu[edge], ev[edge])
+            base[edge, 3:] = np.clip(e_tex[:, :3] + (1.0 - e_tex[:, 3:4]) *
+                                     np.asarray(lower_rgb)[:3], 0.0, 1.0)
+    base[seen, :3] = np.clip(own, 0.0, 1.0)
     return base, limits
 
 

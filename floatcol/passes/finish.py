@@ -9,7 +9,7 @@ from ..kernels.shade import finish_kernel
 
 
 #: finish_kernel's ``base`` when the side's colours are the surface's (no texture)
-NO_BASE = np.zeros((0, 0, 3), dtype=np.float32)
+NO_BASE = np.zeros((0, 0, 6), dtype=np.float32)
 
 
 def finish_pass(geom, H, W, shade_args, lut, w_lo, w_hi, lower_rgb, bg8, lit, base=NO_BASE):
@@ -17,8 +17,8 @@ def finish_pass(geom, H, W, shade_args, lut, w_lo, w_hi, lower_rgb, bg8, lit, ba
     ambient, specular, shininess) of the material; lut, w_lo, w_hi its colour table
     (Material.color_table); lower_rgb the lower side's colour; bg8 the background; lit
     (H, W) the part of the light reaching each pixel (passes/shadow.py), or empty;
-    base (H, W, 3) float32 the colour of the surface at each pixel (passes/colour.py),
-    or empty (NO_BASE): its side's."""
+    base (H, W, 6) float32 the colour of the surface at each pixel and of its edge
+    surface (passes/colour.py), or empty (NO_BASE): their sides'."""
     side = _pool.empty((H, W), np.int8)
     rgba = _pool.empty((H, W, 4), np.uint8)
     finish_kernel(geom.gbuf, geom.ebuf, geom.rows, geom.vp, *shade_args, lut, w_lo, w_hi,

@@ -67,11 +67,10 @@ def render_scene(scene, stacklevel=2, composite=False) -> Render:
         if quality.method != "column":
             raise ValueError("opacity below 1 needs shaded pictures: method='column' (a line "
                              "drawing has no layers to blend)")
-        if any(p.material.color is not None or p.material.overlaid or
-               callable(p.material.texture) for p in layers):
-            raise ValueError("opacity below 1 takes a texture image (or its colormap): a "
-                             "color field, a texture function, contours or a wireframe "
-                             "need opacity=1")
+        if any(p.material.overlaid or callable(p.material.texture) for p in layers):
+            raise ValueError("opacity below 1 takes a texture image, a color field or its "
+                             "colormap: a texture function, contours or a wireframe need "
+                             "opacity=1")
         return render_translucent(layers, views, drawn, box, quality, background, texture,
                                   t_start)
     if not many and texture is None and draft.supports(quality, layers[0], views[0]) \

@@ -207,7 +207,7 @@ def test_bad_texture_and_line_options_name_what_to_fix(tmp_path):
     with pytest.raises(ValueError, match="linewidth must be"):
         fc.render("u*v", wireframe=4, linewidth=-1, **kw)
     with pytest.raises(ValueError, match="opacity=1"):
-        fc.render("u*v", color="u", opacity=0.5, **kw)
+        fc.render("u*v", texture=lambda u, v: (u, u, u), opacity=0.5, **kw)
     with pytest.raises(ValueError, match="opacity=1"):
         fc.render("u*v", contours=3, opacity=0.5, **kw)
     with pytest.raises(ValueError, match="method='column'"):
@@ -367,3 +367,17 @@ def test_silhouette_pixels_take_the_texture_too(how):
     assert partial.sum() > 50                     # antialiased edge pixels exist
     assert (np.abs(rgb[..., 1] - rgb[..., 2]) <= 2).all()       # red + white only
     assert (rgb[..., 0] >= rgb[..., 1] - 2).all()
+
+
+def test_a_translucent_surface_keeps_its_colour_field():
+    """opacity < 1 with color=: the field sampled on a 1024 x 1024 grid and read as a
+    texture by every layer. A plane at opacity 0.5 over black is half the opaque
+    plane's colour (measured: within 1 level on 100 % of the 8822 whole pixels)."""
+    kw = dict(u=(-2, 2), v=(-2, 2), size=(160, 120), elev=35, azim=25, ambient=1.0,
+              specular=0.0, background="black", color="u + v", vmin=-4, vmax=4)
+    opaque = fc.render("0*u + 0.2*v", **kw)
+    half = fc.render("0*u + 0.2*v", opacity=0.5, **kw)
+    inside = _interior(np.zeros(opaque.side.shape, int), opaque.side != 0)
+    diff = np.abs(half.rgba[..., :3].astype(float) * half.rgba[..., 3:4] / 255.0
+                  - 0.5 * opaque.rgba[..., :3].astype(float))[inside].max(-1)
+    assert inside.sum() > 3000 and (diff <= 3.0).mean() > 0.99

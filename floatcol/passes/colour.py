@@ -310,7 +310,32 @@ def prepare(material, domain, vars=None):
         else:
             from ..surface import as_surface
             field = as_surface(field, vars)
+    if field is not None and material.opacity < 1.0:
+        # the translucent layers read a texture: the field sampled on a grid, coloured
+        return Source(_field_texture(material, field, extent), None, extent, "mipmap")
     return Source(tex, field, extent, material.texture_filter)
+
+
+#: A colour field on a translucent surface is read as a texture of this many texels a
+#: side (the field sampled at their nodes over the extent)
+FIELD_TEXELS = 1024
+
+
+def _field_texture(material, field, extent):
+    """Levels of the colour field's colours on a FIELD_TEXELS grid (NaN: transparent,
+    the surface's own colour shows)."""
+    n = FIELD_TEXELS
+    u0, u1, v0, v1 = extent
+    gu, gv = np.meshgrid(np.linspace(u0, u1, n), np.linspace(v0, v1, n))
+    vals = field_values(field, gu, gv, np.ones(gu.shape, dtype=bool), extent).reshape(n, n)
+    finite = vals[np.isfinite(vals)]
+    rng = np.array([[finite.min(), finite.max()]]) if finite.size else np.array([[0.0, 1.0]])
+    lut, lo, hi, _ = material.color_table(rng)
+    img = np.zeros((n, n, 4), dtype=np.float32)
+    ok = np.isfinite(vals)
+    img[ok, :3] = colour_table_rgb(vals[ok], lut, lo, hi)
+    img[ok, 3] = 1.0
+    return Levels(pyramid(img))
 
 
 def check_filter(name):

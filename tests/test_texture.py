@@ -193,6 +193,9 @@ def test_bad_texture_and_line_options_name_what_to_fix(tmp_path):
                        (lambda u, v: 1 / 0, "texture function failed")):
         with pytest.raises(ValueError, match=match):
             fc.render("u*v", texture=bad, **kw)
+    big = np.broadcast_to(np.zeros((1, 1, 3), np.uint8), (9000, 8000, 3))   # (no memory)
+    with pytest.raises(ValueError, match="more than 67108864"):
+        fc.render("u*v", texture=big, **kw)
     (tmp_path / "bad.png").write_text("not an image")
     with pytest.raises(ValueError, match="cannot be read as an image"):
         fc.render("u*v", texture=str(tmp_path / "bad.png"), **kw)

@@ -32,6 +32,8 @@ from ..kernels.texture import (
 
 #: texture_filter's values and their kernel codes
 FILTERS = {"mipmap": FILTER_MIPMAP, "linear": FILTER_LINEAR, "point": FILTER_POINT}
+#: The most texels a texture may have (its mip-map pyramid: about 1.4 GB of float32)
+MAX_TEXELS = 1 << 26
 
 
 def picture_planes(geom, W, box=(1.0, 1.0, 1.0), edges=False):
@@ -54,11 +56,14 @@ def read_image(texture):
     import os
     if isinstance(texture, (str, os.PathLike)):
         path = os.fspath(texture)
+        from PIL import Image
         try:
-            from PIL import Image
             with Image.open(path) as im:
+                if im.width * im.height > MAX_TEXELS:
+                    raise ValueError(f"texture {path!r} has {im.width}x{im.height} pixels, "
+                                     f"more than {MAX_TEXELS} (8192x8192): use a smaller image")
                 arr = np.asarray(im.convert("RGBA"))
-        except (OSError, ValueError) as exc:
+        except (OSError, Image.DecompressionBombError, SyntaxError) as exc:
             raise ValueError(f"texture {path!r} cannot be read as an image: {exc}") from None
         return np.ascontiguousarray(arr[::-1] / np.float32(255.0), dtype=np.float32)
     try:
@@ -68,6 +73,9 @@ def read_image(texture):
     if arr.ndim != 3 or arr.shape[2] not in (3, 4) or arr.shape[0] < 1 or arr.shape[1] < 1:
         raise ValueError("texture must be an image array of shape (h, w, 3) or (h, w, 4), "
                          f"got shape {arr.shape}")
+    if arr.shape[0] * arr.shape[1] > MAX_TEXELS:
+        raise ValueError(f"texture has {arr.shape[1]}x{arr.shape[0]} texels, more than "
+                         f"{MAX_TEXELS} (8192x8192): use a smaller image")
     if arr.dtype == np.uint8:
         arr = arr / np.float32(255.0)
     elif arr.dtype.kind in "fiub":
@@ -263,6 +271,8 @@ def _levels(texture):
             raise ValueError(f"texture {path!r} cannot be read: {exc.strerror}") from None
     else:
         arr = np.asarray(texture) if not isinstance(texture, np.ndarray) else texture
+        if arr.ndim == 3 and arr.shape[0] * arr.shape[1] > MAX_TEXELS:
+            return Levels(pyramid(read_image(arr)))     # (read_image says what is wrong)
         key = ("array", arr.shape, str(arr.dtype),
                hashlib.blake2b(np.ascontiguousarray(arr).tobytes(), digest_size=16).digest())
     if key not in _LEVELS:

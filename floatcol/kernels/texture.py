@@ -8,6 +8,7 @@ from numba import prange
 
 from ._jit import ngjit_inline, ngjit_parallel
 from .layout import E_COV, E_FLAG, E_SEEN, E_SIDE, E_U, E_V, E_W, G_U, G_V, G_W
+from .sample import surface_value
 from .shade import _side_rgb
 
 FILTER_POINT = 0
@@ -315,3 +316,56 @@ def lines_kernel(q, seen, levels, origin, spacing, width, rgb, rgba):
             for ch in range(3):
                 val = rgba[i, col, ch] / 255.0 * (1.0 - cov) + rgb[ch] * cov
                 rgba[i, col, ch] = np.uint8(min(max(val * 255.0 + 0.5, 0.0), 255.0))
+
+
+@ngjit_parallel
+def values_kernel(kind, f, fg, fb, hf, hfp, u, v, out):
+    """out[i] = f(u[i], v[i]) (NaN at a hole) for the points in parallel: a colour
+    field at the seen pixels (f alone: no partials)."""
+    n = u.shape[0]
+    chunk = 4096
+    for c in prange((n + chunk - 1) // chunk):
+        for i in range(c * chunk, min(n, (c + 1) * chunk)):
+            out[i] = surface_value(kind, f, hf, hfp, u[i], v[i])
+
+
+@ngjit_parallel
+def field_kernel(gbuf, ebuf, W, a, b, kind, f, fg, fb, hf, hfp, vals, e_vals):
+    """vals (H, W), top row first: the colour field f at the seen point of each pixel
+    (u, v divided by the box's stretch a, b), e_vals at its edge surface's (section
+    6.4); NaN where none. Tile by tile (planes_kernel)."""
+    n_tiles = gbuf.shape[0]
+    H = gbuf.shape[1]
+    T = gbuf.shape[2]
+    for t in prange(n_tiles):
+        for j in range(H):
+            i = H - 1 - j
+            for lane in range(min(T, W - t * T)):
+                col = t * T + lane
+                x = ebuf[t, E_SEEN, j, lane]
+                s = x - E_FLAG if x > 0.5 * E_FLAG else x
+                vals[i, col] = np.nan
+                e_vals[i, col] = np.nan
+                if s != 0.0:
+                    vals[i, col] = surface_value(kind, f, hf, hfp, gbuf[t, j, lane, G_U] / a,
+                                                 gbuf[t, j, lane, G_V] / b)
+                if x > 0.5 * E_FLAG and ebuf[t, E_COV, j, lane] > 0.0:
+                    e_vals[i, col] = surface_value(kind, f, hf, hfp, ebuf[t, E_U, j, lane] / a,
+                                                   ebuf[t, E_V, j, lane] / b)
+
+
+@ngjit_parallel
+def colour_kernel(vals, e_vals, lut, lo, hi, lower_rgb, base):
+    """base (H, W, 6): the colours of vals and e_vals through the colour table lut over
+    [lo, hi] (shade._side_rgb; NaN: lower_rgb)."""
+    H, W = vals.shape
+    span = hi - lo if hi > lo else 1.0
+    for i in prange(H):
+        for col in range(W):
+            for k in range(2):
+                x = vals[i, col] if k == 0 else e_vals[i, col]
+                side = 1.0 if x == x else -1.0
+                r, g, b = _side_rgb(side, x, lut, lo, span, lower_rgb)
+                base[i, col, 3 * k] = r
+                base[i, col, 3 * k + 1] = g
+                base[i, col, 3 * k + 2] = b

@@ -27,7 +27,8 @@ import numpy as np
 
 from .. import _pool
 from ..kernels.texture import (
-    FILTER_LINEAR, FILTER_MIPMAP, FILTER_POINT, planes_kernel, texture_kernel,
+    FILTER_LINEAR, FILTER_MIPMAP, FILTER_POINT, colour_kernel, field_kernel, planes_kernel,
+    texture_kernel, values_kernel,
 )
 
 #: texture_filter's values and their kernel codes
@@ -42,7 +43,8 @@ def picture_planes(geom, W, box=(1.0, 1.0, 1.0), edges=False):
     divided out): side +1 upper, -1 lower, 0 nothing (NaN u, v, w there); with
     ``edges`` also (eu, ev) of each pixel's edge surface (NaN where none)."""
     H = geom.gbuf.shape[1]
-    u, v, w, side, eu, ev = (np.empty((H, W)) for _ in range(6))   # (the caller keeps them)
+    # pooled (fresh memory's page faults were most of the pass; each is written in full)
+    u, v, w, side, eu, ev = (_pool.empty((H, W), np.float64) for _ in range(6))
     planes_kernel(geom.gbuf, geom.ebuf, W, *(float(x) for x in box), u, v, w, side, eu, ev)
     return (u, v, w, side, eu, ev) if edges else (u, v, w, side)
 
@@ -190,7 +192,10 @@ def field_values(field, u, v, seen, extent):
         x = (us - u0) / (u1 - u0) * (w - 1)
         y = (vs - v0) / (v1 - v0) * (h - 1)
         return _bilinear(field[..., None], x, y)[:, 0]
-    return field.evaluate(us, vs)
+    out = np.empty(us.size)
+    values_kernel(*field.kernel_args(), np.ascontiguousarray(us, dtype=np.float64),
+                  np.ascontiguousarray(vs, dtype=np.float64), out)
+    return out
 
 
 def colour_table_rgb(values, lut, lo, hi):
@@ -204,6 +209,23 @@ def colour_table_rgb(values, lut, lo, hi):
     return lut[idx, :3]
 
 
+def field_base(material, field, geom, W, H, box, lower_rgb):
+    """(base (H, W, 6) float32, c_limits) of a colour field given as an expression
+    (kernels/texture.py's field_kernel and colour_kernel)."""
+    vals = _pool.empty((H, W), np.float64)
+    e_vals = _pool.empty((H, W), np.float64)
+    field_kernel(geom.gbuf, geom.ebuf, W, float(box[0]), float(box[1]), *field.kernel_args(),
+                 vals, e_vals)
+    with np.errstate(all="ignore"):
+        lo, hi = np.nanmin(vals) if np.isfinite(vals).any() else 0.0, \
+            np.nanmax(vals) if np.isfinite(vals).any() else 1.0
+    lut, c_lo, c_hi, limits = material.color_table(np.array([[lo, hi]], dtype=np.float64))
+    base = _pool.empty((H, W, 6), np.float32)
+    colour_kernel(vals, e_vals, np.ascontiguousarray(lut, dtype=np.float64), float(c_lo),
+                  float(c_hi), np.asarray(lower_rgb, dtype=np.float64), base)
+    return base, (limits if np.isfinite(vals).any() else None)
+
+
 def base_colours(material, source, geom, W, H, box, lut, w_lo, w_hi, lower_rgb):
     """(base (H, W, 3) float32, c_limits or None): the colour of the surface at each
     pixel (finish_kernel's ``base``) from a material's texture or colour field
@@ -211,6 +233,8 @@ def base_colours(material, source, geom, W, H, box, lut, w_lo, w_hi, lower_rgb):
     if source.field is None and not callable(source.texture):
         return texture_base(source.texture, geom, W, H, box, source.extent, source.filter,
                             lut, w_lo, w_hi, lower_rgb), None
+    if source.field is not None and not isinstance(source.field, np.ndarray):
+        return field_base(material, source.field, geom, W, H, box, lower_rgb)
     u, v, w, side, eu, ev = picture_planes(geom, W, (box[0], box[1], 1.0), edges=True)
     seen = side != 0.0
     edge = np.isfinite(eu)

@@ -21,11 +21,12 @@ def planes_kernel(gbuf, ebuf, W, a, b, c, u, v, w, side, eu, ev):
     """u, v, w (H, W) float64, top row first, of the seen point at each pixel (NaN
     where none; divided by the box's stretch a, b, c) and the side seen there (+1, -1,
     0), from the tiled G-buffer and edge buffer (layout.py); eu, ev those of the
-    pixel's edge surface (section 6.4; NaN where none). Tile by tile (each tile's
+    pixel's edge surface (section 6.4; NaN where none), unless they are empty. Tile by tile (each tile's
     memory in order: row by row across the tiles was 3x slower, a page a tile)."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]
+    edges = eu.shape[0] > 0
     for t in prange(n_tiles):
         for j in range(H):
             i = H - 1 - j
@@ -34,7 +35,9 @@ def planes_kernel(gbuf, ebuf, W, a, b, c, u, v, w, side, eu, ev):
                 x = ebuf[t, E_SEEN, j, lane]
                 s = x - E_FLAG if x > 0.5 * E_FLAG else x
                 side[i, col] = s
-                if x > 0.5 * E_FLAG and ebuf[t, E_COV, j, lane] > 0.0:
+                if not edges:
+                    pass
+                elif x > 0.5 * E_FLAG and ebuf[t, E_COV, j, lane] > 0.0:
                     eu[i, col] = ebuf[t, E_U, j, lane] / a
                     ev[i, col] = ebuf[t, E_V, j, lane] / b
                 else:

@@ -44,7 +44,8 @@ def picture_planes(geom, W, box=(1.0, 1.0, 1.0), edges=False):
     ``edges`` also (eu, ev) of each pixel's edge surface (NaN where none)."""
     H = geom.gbuf.shape[1]
     # pooled (fresh memory's page faults were most of the pass; each is written in full)
-    u, v, w, side, eu, ev = (_pool.empty((H, W), np.float64) for _ in range(6))
+    u, v, w, side = (_pool.empty((H, W), np.float64) for _ in range(4))
+    eu, ev = (_pool.empty((H, W), np.float64) if edges else np.empty((0, 0)) for _ in range(2))
     planes_kernel(geom.gbuf, geom.ebuf, W, *(float(x) for x in box), u, v, w, side, eu, ev)
     return (u, v, w, side, eu, ev) if edges else (u, v, w, side)
 

@@ -90,14 +90,14 @@ def test_unknown_symbol_suggests_vars():
 
 
 def test_a_size_beyond_the_machines_memory_is_a_bad_size(monkeypatch):
-    """30000x30000 needs 67.9 GiB of buffers: a MemoryError halfway through the render
-    before. Here the machine is said to have 1 GiB, and 4000x4000 needs 1.2."""
+    """30000x30000 needs 74.6 GiB of buffers: a MemoryError halfway through the render
+    before. Here the machine is said to have 1 GiB, and 4000x4000 needs 1.3."""
     import os
     import sys
     real = os.sysconf
     monkeypatch.setattr(os, "sysconf", lambda name: 2**18 if name == "SC_PHYS_PAGES"
                         else 4096 if name == "SC_PAGE_SIZE" else real(name))
-    with pytest.raises(ValueError, match=r"size 4000x4000 needs about 1\.2 GiB"):
+    with pytest.raises(ValueError, match=r"size 4000x4000 needs about 1\.3 GiB"):
         fc.render("u", size=(4000, 4000))
     fc.render("u", size=(400, 300))                    # 0.01 GiB: drawn
     # where the machine cannot tell its memory, a MemoryError says the same

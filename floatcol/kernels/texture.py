@@ -21,8 +21,9 @@ def planes_kernel(gbuf, ebuf, W, a, b, c, u, v, w, side, eu, ev):
     """u, v, w (H, W) float64, top row first, of the seen point at each pixel (NaN
     where none; divided by the box's stretch a, b, c) and the side seen there (+1, -1,
     0), from the tiled G-buffer and edge buffer (layout.py); eu, ev those of the
-    pixel's edge surface (section 6.4; NaN where none), unless they are empty. Tile by tile (each tile's
-    memory in order: row by row across the tiles was 3x slower, a page a tile)."""
+    pixel's edge surface (section 6.4; NaN where none), unless they are empty. Tile
+    by tile (each tile's memory in order: row by row across the tiles was 3x slower,
+    a page a tile)."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]

@@ -752,14 +752,15 @@ def _fill_on(gcol, ecol, run, prev, cur, side, persp, d3, H, lo_f, hi_f, j0, j1,
     # the new top's edge surface, for where its centre is not covered, held as
     # _hold_edge holds it (held where the centre is covered as well; where the span
     # stays in pj, the one held before stays)
-    e_nx, e_ny, e_nz, e_w, e_i, e_z, e_u, e_v = _chord_at(
-        prev, cur, _chord_weight(0.5 * (a + hi_f), yp, inv_dy, persp, qp, qc))
-    held = (e_nx, e_ny, e_nz, e_w, e_i, e_z, side, e_u, e_v)
     if run[RUN_EDGE_J] != j_top:
         _write_edge(ecol, run)
     run[RUN_EDGE_J] = j_top
-    for k in range(9):
-        run[RUN_EDGE + k] = run[RUN_EDGE + k] if same else held[k]
+    if not same:
+        e_nx, e_ny, e_nz, e_w, e_i, e_z, e_u, e_v = _chord_at(
+            prev, cur, _chord_weight(0.5 * (a + hi_f), yp, inv_dy, persp, qp, qc))
+        held = (e_nx, e_ny, e_nz, e_w, e_i, e_z, side, e_u, e_v)
+        for k in range(9):
+            run[RUN_EDGE + k] = held[k]
 
 
 @ngjit_inline

@@ -195,13 +195,12 @@ class SurfacePlot(_ScalarMappable):
         field (``color_field``), that field's."""
         field = self.options.get("color_field")
         if field is not None:
-            from .passes.colour import prepare
             from .material import Material
+            from .passes.colour import field_values, prepare
             (ua, ub), (va, vb) = self.domain
             src = prepare(Material(color=field, texture_extent=self.options.get(
                 "texture_extent")), self.domain, self.surface.variables)
             gu, gv = np.meshgrid(np.linspace(ua, ub, 129), np.linspace(va, vb, 129))
-            from .passes.colour import field_values
             c = field_values(src.field, gu, gv, np.ones(gu.shape, bool), src.extent)
             c = c[np.isfinite(c)]
             if c.size == 0:

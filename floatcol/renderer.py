@@ -73,7 +73,7 @@ def render_scene(scene, stacklevel=2, composite=False) -> Render:
                              "opacity=1")
         return render_translucent(layers, views, drawn, box, quality, background, texture,
                                   t_start)
-    if not many and texture is None and draft.supports(quality, layers[0], views[0]) \
+    if not many and texture is None and draft.supports(quality, views[0]) \
             and not first.colored and not first.overlaid and warmup.drafting():
         return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
                             stacklevel + 1)

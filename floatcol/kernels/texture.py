@@ -7,7 +7,8 @@ import numpy as np
 from numba import prange
 
 from ._jit import ngjit_inline, ngjit_parallel
-from .layout import E_COV, E_FLAG, E_SEEN, E_SIDE, E_U, E_V, E_W, G_U, G_V, G_W
+from .coverage import flagged, seen_side
+from .layout import E_COV, E_SEEN, E_SIDE, E_U, E_V, E_W, G_U, G_V, G_W
 from .sample import surface_value
 from .shade import _side_rgb
 
@@ -34,16 +35,12 @@ def planes_kernel(gbuf, ebuf, W, a, b, c, u, v, w, side, eu, ev):
             for lane in range(min(T, W - t * T)):
                 col = t * T + lane
                 x = ebuf[t, E_SEEN, j, lane]
-                s = x - E_FLAG if x > 0.5 * E_FLAG else x
+                s = seen_side(x)
                 side[i, col] = s
-                if not edges:
-                    pass
-                elif x > 0.5 * E_FLAG and ebuf[t, E_COV, j, lane] > 0.0:
-                    eu[i, col] = ebuf[t, E_U, j, lane] / a
-                    ev[i, col] = ebuf[t, E_V, j, lane] / b
-                else:
-                    eu[i, col] = np.nan
-                    ev[i, col] = np.nan
+                if edges:
+                    has = _has_edge(ebuf, t, j, lane)
+                    eu[i, col] = ebuf[t, E_U, j, lane] / a if has else np.nan
+                    ev[i, col] = ebuf[t, E_V, j, lane] / b if has else np.nan
                 if s == 0.0:
                     u[i, col] = np.nan
                     v[i, col] = np.nan
@@ -168,9 +165,6 @@ def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt,
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]
-    n_lev = offsets.shape[0]
-    h0 = shapes[0, 0]
-    w0 = shapes[0, 1]
     span = w_hi - w_lo if w_hi > w_lo else 1.0
     for t in prange(n_tiles):                 # every pixel's texel coordinates, tile by
         for j in range(H):                    # tile (planes_kernel)
@@ -178,7 +172,7 @@ def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt,
             for lane in range(min(T, W - t * T)):
                 col = t * T + lane
                 x = ebuf[t, E_SEEN, j, lane]
-                sd = x - E_FLAG if x > 0.5 * E_FLAG else x
+                sd = seen_side(x)
                 side[i, col] = sd != 0.0
                 sides[i, col] = np.int8(sd)
                 if sd != 0.0:
@@ -190,68 +184,76 @@ def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt,
         for col in range(W):
             if not side[i, col]:
                 continue
-            x = tx[i, col]
-            y = ty[i, col]
-            for ch in range(4):
-                acc[ch] = 0.0
-            if filt == FILTER_POINT:
-                xi = int(math.floor(min(max(x, 0.0), w0 - 1.0) + 0.5))
-                yi = int(math.floor(min(max(y, 0.0), h0 - 1.0) + 0.5))
-                for ch in range(4):
-                    acc[ch] = _texel(levels, 0, h0, w0, xi, yi, ch)
-            elif filt == FILTER_LINEAR or n_lev == 1:
-                _bilinear(levels, 0, h0, w0, x, y, acc, 1.0)
-            else:
-                rho2 = max(_one_sided(tx, ty, side, i, col, 0, 1),
-                           _one_sided(tx, ty, side, i, col, 1, 0))
-                lod = 0.5 * math.log2(rho2) if math.isfinite(rho2) and rho2 > 1.0 else 0.0
-                texel_at(levels, offsets, shapes, x, y, lod, acc)
+            rho2 = _footprint2(tx, ty, side, i, col) if filt == FILTER_MIPMAP else 0.0
+            _lookup(levels, offsets, shapes, filt, tx[i, col], ty[i, col], rho2, acc)
             r, g, b = _side_rgb(float(sides[i, col]), wp[i, col], lut, w_lo, span, lower_rgb)
-            rest = 1.0 - acc[3]                # premultiplied over the own colour
-            base[i, col, 0] = min(max(acc[0] + rest * r, 0.0), 1.0)
-            base[i, col, 1] = min(max(acc[1] + rest * g, 0.0), 1.0)
-            base[i, col, 2] = min(max(acc[2] + rest * b, 0.0), 1.0)
+            _put(base, i, col, 0, acc, r, g, b)
     for t in prange(n_tiles):                 # the edge surfaces' colours
         acc = np.empty(4)
         for j in range(H):
             i = H - 1 - j
             for lane in range(min(T, W - t * T)):
-                x = ebuf[t, E_SEEN, j, lane]
-                if not (x > 0.5 * E_FLAG and ebuf[t, E_COV, j, lane] > 0.0):
+                if not _has_edge(ebuf, t, j, lane):
                     continue
                 col = t * T + lane
-                ex = (ebuf[t, E_U, j, lane] - ou) * su
-                ey = (ebuf[t, E_V, j, lane] - ov) * sv
                 rho2 = np.inf
-                if side[i, col]:
-                    rho2 = max(_one_sided(tx, ty, side, i, col, 0, 1),
-                               _one_sided(tx, ty, side, i, col, 1, 0))
-                else:                          # a seen neighbour's footprint
+                if filt == FILTER_MIPMAP and side[i, col]:
+                    rho2 = _footprint2(tx, ty, side, i, col)
+                elif filt == FILTER_MIPMAP:    # a seen neighbour's footprint
                     for di, dc in ((0, 1), (0, -1), (1, 0), (-1, 0)):
                         i2 = i + di
                         c2 = col + dc
                         if 0 <= i2 < H and 0 <= c2 < W and side[i2, c2]:
-                            rho2 = max(_one_sided(tx, ty, side, i2, c2, 0, 1),
-                                       _one_sided(tx, ty, side, i2, c2, 1, 0))
+                            rho2 = _footprint2(tx, ty, side, i2, c2)
                             break
-                if filt == FILTER_POINT:
-                    xi = int(math.floor(min(max(ex, 0.0), w0 - 1.0) + 0.5))
-                    yi = int(math.floor(min(max(ey, 0.0), h0 - 1.0) + 0.5))
-                    for ch in range(4):
-                        acc[ch] = _texel(levels, 0, h0, w0, xi, yi, ch)
-                elif filt == FILTER_LINEAR or n_lev == 1:
-                    for ch in range(4):
-                        acc[ch] = 0.0
-                    _bilinear(levels, 0, h0, w0, ex, ey, acc, 1.0)
-                else:
-                    lod = 0.5 * math.log2(rho2) if math.isfinite(rho2) and rho2 > 1.0 else 0.0
-                    texel_at(levels, offsets, shapes, ex, ey, lod, acc)
+                _lookup(levels, offsets, shapes, filt, (ebuf[t, E_U, j, lane] - ou) * su,
+                        (ebuf[t, E_V, j, lane] - ov) * sv, rho2, acc)
                 r, g, b = _side_rgb(ebuf[t, E_SIDE, j, lane], ebuf[t, E_W, j, lane], lut, w_lo,
                                     span, lower_rgb)
-                rest = 1.0 - acc[3]
-                base[i, col, 3] = min(max(acc[0] + rest * r, 0.0), 1.0)
-                base[i, col, 4] = min(max(acc[1] + rest * g, 0.0), 1.0)
-                base[i, col, 5] = min(max(acc[2] + rest * b, 0.0), 1.0)
+                _put(base, i, col, 3, acc, r, g, b)
+
+
+@ngjit_inline
+def _has_edge(ebuf, t, j, lane):
+    """Whether the pixel has an edge surface (section 6.4): its coverages are kept
+    (coverage.py) and the edge's is above 0."""
+    return flagged(ebuf[t, E_SEEN, j, lane]) and ebuf[t, E_COV, j, lane] > 0.0
+
+
+@ngjit_inline
+def _footprint2(tx, ty, side, i, col):
+    """The pixel's footprint in texels, squared: the longer of the changes of (tx, ty)
+    to the next pixel across and down (_one_sided)."""
+    return max(_one_sided(tx, ty, side, i, col, 0, 1), _one_sided(tx, ty, side, i, col, 1, 0))
+
+
+@ngjit_inline
+def _lookup(levels, offsets, shapes, filt, x, y, rho2, acc):
+    """acc[0:4] = the texture at texel coordinates (x, y): the nearest texel, bilinear,
+    or trilinear at the level of the squared footprint rho2 (FILTER_*)."""
+    h0 = shapes[0, 0]
+    w0 = shapes[0, 1]
+    if filt == FILTER_POINT:
+        xi = int(math.floor(min(max(x, 0.0), w0 - 1.0) + 0.5))
+        yi = int(math.floor(min(max(y, 0.0), h0 - 1.0) + 0.5))
+        for ch in range(4):
+            acc[ch] = _texel(levels, 0, h0, w0, xi, yi, ch)
+    elif filt == FILTER_LINEAR or offsets.shape[0] == 1:
+        for ch in range(4):
+            acc[ch] = 0.0
+        _bilinear(levels, 0, h0, w0, x, y, acc, 1.0)
+    else:
+        lod = 0.5 * math.log2(rho2) if math.isfinite(rho2) and rho2 > 1.0 else 0.0
+        texel_at(levels, offsets, shapes, x, y, lod, acc)
+
+
+@ngjit_inline
+def _put(base, i, col, k, acc, r, g, b):
+    """base[i, col, k:k + 3] = the premultiplied texel acc over the colour (r, g, b)."""
+    rest = 1.0 - acc[3]
+    base[i, col, k] = min(max(acc[0] + rest * r, 0.0), 1.0)
+    base[i, col, k + 1] = min(max(acc[1] + rest * g, 0.0), 1.0)
+    base[i, col, k + 2] = min(max(acc[2] + rest * b, 0.0), 1.0)
 
 
 @ngjit_inline
@@ -347,13 +349,13 @@ def field_kernel(gbuf, ebuf, W, a, b, kind, f, fg, fb, hf, hfp, vals, e_vals):
             for lane in range(min(T, W - t * T)):
                 col = t * T + lane
                 x = ebuf[t, E_SEEN, j, lane]
-                s = x - E_FLAG if x > 0.5 * E_FLAG else x
+                s = seen_side(x)
                 vals[i, col] = np.nan
                 e_vals[i, col] = np.nan
                 if s != 0.0:
                     vals[i, col] = surface_value(kind, f, hf, hfp, gbuf[t, j, lane, G_U] / a,
                                                  gbuf[t, j, lane, G_V] / b)
-                if x > 0.5 * E_FLAG and ebuf[t, E_COV, j, lane] > 0.0:
+                if _has_edge(ebuf, t, j, lane):
                     e_vals[i, col] = surface_value(kind, f, hf, hfp, ebuf[t, E_U, j, lane] / a,
                                                    ebuf[t, E_V, j, lane] / b)
 

@@ -41,7 +41,7 @@ DRAFT_BYTES = 160
 BLOCK_SAMPLES = 1 << 20
 
 
-def supports(quality, layer, view):
+def supports(quality, view):
     """Whether the draft can draw this layer's picture: a shaded opaque picture
     without shadows (the caller checks those), and in perspective a viewpoint in
     front of the whole domain (one ascending pass per column)."""

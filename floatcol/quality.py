@@ -67,6 +67,11 @@ class Quality:
         """(coverage blending along columns, sub-columns per pixel)."""
         return antialias(self.antialias, self.method, shading)
 
+    @property
+    def area(self):
+        """Exact area sampling along the columns (antialias="area", Cohen-Or 1997)."""
+        return isinstance(self.antialias, str) and self.antialias == "area"
+
     def check_sampling(self):
         if self.sampling not in SAMPLINGS:
             raise ValueError(f"sampling must be 'adaptive' or 'uniform', got {self.sampling!r}")
@@ -108,11 +113,16 @@ def antialias(antialias, method, shading):
         antialias = method == "column" and shading == "default"
     if isinstance(antialias, (bool, np.bool_)):
         return bool(antialias) and method == "column", 1
+    if isinstance(antialias, str) and antialias == "area":
+        if method != "column":
+            raise ValueError("antialias='area' applies to method='column' only")
+        return True, 1
     if isinstance(antialias, (int, np.integer)) and 2 <= antialias <= 4:
         if method != "column":
             raise ValueError("antialias with sub-columns applies to method='column' only")
         return True, int(antialias)
-    raise ValueError(f"antialias must be True, False or 2, 3, 4 sub-columns, got {antialias!r}")
+    raise ValueError("antialias must be True, False, 2, 3, 4 sub-columns or 'area', got "
+                     f"{antialias!r}")
 
 
 def whole(name, x):

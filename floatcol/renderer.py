@@ -23,9 +23,10 @@ from dataclasses import dataclass
 from . import color, warmup
 from .camera import fit
 from .light import as_light
-from .passes import antialias, colour, draft, finish, geometry, horizon, overlays, shadow as shadows
+from .passes import antialias, area, colour, draft, finish, geometry, horizon, overlays, shadow as shadows
 from .passes.composite import composite as merge
 from .passes.translucency import render_translucent
+from .kernels.shade import INTERP_INTENSITY
 from .result import Render
 from .surface import as_surface, check_range
 from .view import nowhere_finite
@@ -71,6 +72,9 @@ def render_scene(scene, stacklevel=2, composite=False) -> Render:
             raise ValueError("opacity below 1 takes a texture image, a color field or its "
                              "colormap: a texture function, contours or a wireframe need "
                              "opacity=1")
+        if quality.area:
+            raise ValueError("antialias='area' needs opaque surfaces: opacity=1 (translucent "
+                             "layers are antialiased by their own coverage)")
         return render_translucent(layers, views, drawn, box, quality, background, texture,
                                   t_start)
     if not many and texture is None and draft.supports(quality, views[0]) \
@@ -159,8 +163,11 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     quality.check_sampling()
     vp = geometry.view_params(view, method, quality.sampling, fixes, aa_cov, surface)
     buffers = geometry.allocate(W, H, n_lines, sub_columns)
-    fb = geometry.batch_evaluator(surface, view, method, quality.sampling)
-    geom = geometry.column_pass(surface, view, vp, buffers, hstride, fb)
+    if quality.area:
+        geom = area.area_pass(surface, view, vp, buffers)
+    else:
+        fb = geometry.batch_evaluator(surface, view, method, quality.sampling)
+        geom = geometry.column_pass(surface, view, vp, buffers, hstride, fb)
     evals = geom.evals
     t_kernel = time.perf_counter()
     shadow = None
@@ -179,7 +186,9 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
         _, lower_rgb = material.colors()
         lut, w_lo, w_hi, w_limits = material.color_table(geom.wrange, box[2])
         bg8 = color.to_rgba8(background)
-        shade_args = (material.interp, amb, spec, shine)
+        # area sampling averages the intensities it sees (kernels/area.py): lit at
+        # the samples, as the paper's iis
+        shade_args = (INTERP_INTENSITY if quality.area else material.interp, amb, spec, shine)
         intensity = depth = None        # Render computes them when asked (centre_kernel)
         base = finish.NO_BASE
         if p.source is not None:
@@ -191,7 +200,7 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
                                                  w_lo, w_hi, lower_rgb)
         rgba, side = finish.finish_pass(geom, H, W, shade_args, lut, w_lo, w_hi, lower_rgb,
                                         bg8, lit, base)
-        if aa_cov and sub_columns == 1:
+        if aa_cov and sub_columns == 1 and not quality.area:
             antialias.staircase_pass(geom, side, rgba)
         if sub_columns > 1:
             rgba, ev2 = antialias.subcolumn_pass(surface, geom, sub_columns, rgba, shade_args,
@@ -225,7 +234,8 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
         stats["shadow_seconds"] = t_shadow - t_kernel
         stats["shadow_texels"] = texture.texels
     return Render(rgba, intensity, side, depth, stats, view, geom.gbuf, line_t, seen,
-                  (vp, material.interp, amb, lit), box, shadow=shadow)
+                  (vp, shade_args[0] if method == "column" else material.interp, amb, lit),
+                  box, shadow=shadow)
 
 
 def _draft_layer(p, view, drawn, box, background, t_start, stacklevel):

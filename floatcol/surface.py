@@ -142,7 +142,10 @@ class HeightField(Surface):
         """The height field stretched by a along u, b along v and c along w (a new
         grid: heights times c over the extent times (a, b))."""
         (ua, ub), (va, vb) = self.default_domain
-        return HeightField(self.hf * c, u=(ua * a, ub * a), v=(va * b, vb * b))
+        out = HeightField(self.hf * c, u=(ua * a, ub * a), v=(va * b, vb * b))
+        source, c0 = getattr(self, "stretched_from", (self, 1.0))
+        out.stretched_from = (source, c0 * c)     # (its level-of-detail pyramid: passes/area.py)
+        return out
 
     def __repr__(self):
         (a, b), (c, d) = self.default_domain

@@ -73,7 +73,8 @@ def bilinear_surface(z, u_rng, v_rng):
     return f, fu, fv
 
 
-def _rays(u_rng, v_rng, size, elev, azim, projection, d1, d2, scale, w_bound, center):
+def _rays(u_rng, v_rng, size, elev, azim, projection, d1, d2, scale, w_bound, center,
+          yscale=None):
     """Each pixel's ray (origin, direction; lam in [lam_lo, lam_hi] inside the domain's
     prism, ``live`` where it meets it) and ``world``: screen (x, y, z) -> (u, w, v, t)."""
     W, H = size
@@ -82,7 +83,7 @@ def _rays(u_rng, v_rng, size, elev, azim, projection, d1, d2, scale, w_bound, ce
     c = np.arange(W)[None, :].repeat(H, 0).astype(float)
     j = (H - 1 - np.arange(H))[:, None].repeat(W, 1).astype(float)
     x0 = (c - (W - 1) / 2) / scale
-    y0 = (j - (H - 1) / 2) / scale
+    y0 = (j - (H - 1) / 2) / (scale if yscale is None else yscale)
     ortho = projection.startswith("ortho")
 
     cu, cv, cw = center
@@ -119,15 +120,16 @@ def _rays(u_rng, v_rng, size, elev, azim, projection, d1, d2, scale, w_bound, ce
 
 def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1=None, d2=None,
             scale=None, steps=1500, bisections=40, w_bound=None, center=(0.0, 0.0, 0.0),
-            wall_normal=None):
+            wall_normal=None, yscale=None):
     """Ray-cast the surface given as numpy (f, f_u, f_v). scale and, in perspective,
     d1 and d2 must be given (take them from the render being checked); ``center`` is
-    the world point (u, v, w) at the screen origin. ``wall_normal(u, v) -> (n_u, n_v)``
+    the world point (u, v, w) at the screen origin; ``yscale`` (default scale) the
+    pixels per unit down the picture. ``wall_normal(u, v) -> (n_u, n_v)``
     shades hits on a discontinuity of f (where f still jumps across the final
     bisection bracket) as a vertical wall with that ground normal."""
     f, fu, fv = funcs
     org, dirn, lam_lo, lam_hi, live, world = _rays(u_rng, v_rng, size, elev, azim, projection,
-                                                   d1, d2, scale, w_bound, center)
+                                                   d1, d2, scale, w_bound, center, yscale)
     ortho = projection.startswith("ortho")
     x0 = org[0]
 
@@ -206,6 +208,22 @@ def raycast_box(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic"
     return inten, cover
 
 
+def raycast_column_box(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic",
+                       d1=None, d2=None, scale=None, k=16, **kw):
+    """The pixels box-filtered along their column (Cohen-Or's area sampling): k rays
+    per pixel at the column's centre, at heights (i + 1/2)/k - 1/2 of a pixel.
+    Returns (mean intensity of the rays that hit, NaN where none; coverage: the part
+    of them that hit), both (H, W)."""
+    W, H = size
+    ref = raycast(funcs, u_rng, v_rng, (W, H * k), elev, azim, projection, d1, d2, scale,
+                  yscale=scale * k, **kw)
+    hit = (ref.side != 0).reshape(H, k, W)
+    inten = np.nan_to_num(ref.intensity).reshape(H, k, W).sum(axis=1)
+    n = hit.sum(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(n > 0, inten / np.maximum(n, 1), np.nan), n / k
+
+
 def shadow_rays(funcs, ref, u_rng, v_rng, light, steps=2000, start=1e-4):
     """Shadows at the reference's hits (Gordon 6.2, independently): a hit is in
     shadow where its seen side faces away from ``light`` (a direction toward the light
@@ -250,7 +268,7 @@ def layer_hits(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic",
     crossing."""
     f, fu, fv = funcs
     org, dirn, lam_lo, lam_hi, live, world = _rays(u_rng, v_rng, size, elev, azim, projection,
-                                                   d1, d2, scale, w_bound, center)
+                                                   d1, d2, scale, w_bound, center, yscale)
     org = org.reshape(3, -1)
     dirn = dirn.reshape(3, -1)
     lam_lo, lam_hi, live = lam_lo.ravel(), lam_hi.ravel(), live.ravel()

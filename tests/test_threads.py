@@ -21,6 +21,10 @@ CASES = [dict(projection="orthographic", method="column"),
          dict(projection="perspective", opacity=0.4, lightsource=(315, 25), shadows=True),
          # columns whose curve folds back, traced (kernels/fold.py)
          dict(projection="perspective", elev=40, azim=-30, dom=(-2.2, 2.2),
+              expr="4.9*(sqrt(4 - u**2 - v**2) + sqrt(u**2 + v**2 - 1) - 2)"),
+         # exact area sampling (kernels/area.py)
+         dict(projection="perspective", antialias="area"),
+         dict(projection="orthographic", antialias="area", elev=50,
               expr="4.9*(sqrt(4 - u**2 - v**2) + sqrt(u**2 + v**2 - 1) - 2)")]
 SCRIPT = """
 import sys, numpy as np, numba, floatcol as fc

@@ -45,7 +45,7 @@ def supports(quality, view):
     """Whether the draft can draw this layer's picture: a shaded opaque picture
     without shadows (the caller checks those), and in perspective a viewpoint in
     front of the whole domain (one ascending pass per column)."""
-    if quality.method != "column":
+    if quality.method != "column" or quality.area:
         return False
     if view.orthographic:
         return True

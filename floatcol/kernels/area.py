@@ -1,0 +1,570 @@
+"""Exact area sampling along the columns (Cohen-Or 1997, section 4.3 and Fig. 12), with
+a height field's level of detail (his multiresolution traversal).
+
+A pixel of column x0 spans the rows [j - 1/2, j + 1/2] (from the bottom). Cohen-Or's
+ray R_i climbs the voxels of pixel i until it reaches R_(i+1), and each voxel it hits
+adds its colour with the weight W_k = H' - H(R) it shows between the two rays (Fig.
+12). Here the column's samples, front to back, are joined by spans on screen; the part
+of a span that no nearer span covers is what it shows, and each pixel takes the
+visible parts that fall in it, each weighted by its length on screen: the same
+weights, on the exact surface instead of voxels, so every visible cell counts and
+only the visible ones. A pixel's attributes (u, v, w, normal, intensity) are these
+weighted means; its coverage is their total weight (the part of the pixel that shows
+a surface), blended with the background by the finishing pass; its depth is the
+nearest piece's.
+
+Where a height field's cells are smaller than a pixel is wide, the column samples a
+pyramid of the heights smoothed and halved level by level (passes/area.py): the
+level whose cells match the pixel's footprint at that distance, blended with the next
+so that no level boundary pops (trilinear, as a mip-map), and the planes step by the
+level's half cell (Cohen-Or 1996's step that grows with the footprint). A function
+surface samples itself with planes a pixel's footprint apart.
+
+The covered part of the column is a set of disjoint intervals of screen rows (a
+hole lets a farther surface show between nearer ones), kept sorted; a column holds
+at most MAX_INTERVALS, and merges its two closest beyond that (the gap between them
+counted as covered).
+"""
+import math
+
+import numpy as np
+from numba import prange
+
+from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
+from .column import _column_t_range, _domain_test, _may_meet_domain, _ortho_chord
+from .layout import (
+    E_COV, E_COV0, E_FLAG, E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W, S_OK,
+    SURF_HEIGHTFIELD, VP_CA, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_SA, VP_SCALE, VP_T0,
+    VP_T1,
+)
+from .sample import column_x0, lambert, sample_point, unit_normal
+
+#: Accumulator of one pixel: total weight, weighted sums of u, v, w, the normal, the
+#: intensity, t and the side, and the nearest depth
+AC_W = 0
+AC_U = 1
+AC_V = 2
+AC_WW = 3
+AC_NX = 4
+AC_NY = 5
+AC_NZ = 6
+AC_I = 7
+AC_T = 8
+AC_SIDE = 9
+AC_Z = 10
+AC_SIZE = 11
+#: A sample: row, depth, u, v, w, normal, intensity, t
+P_Y = 0
+P_Z = 1
+P_U = 2
+P_V = 3
+P_W = 4
+P_NX = 5
+P_NY = 6
+P_NZ = 7
+P_I = 8
+P_T = 9
+P_DEP = 10        # (a refinement stack's entry: how many times it was cut)
+P_SIZE = 11
+MAX_INTERVALS = 64
+#: Level table rows (passes/area.py): offset of the level's heights in the flat
+#: array, rows (along v), columns (along u), cell size (the longer side)
+LV_OFF = 0
+LV_NV = 1
+LV_NU = 2
+LV_CELL = 3
+LV_SIZE = 4
+#: planes per cell of the level sampled
+STEPS_PER_CELL = 2.0
+#: bisections that locate a run's end (a hole, the domain's edge)
+EDGE_BISECTIONS = 14
+#: a span is cut in two (its middle sampled) where it covers more rows than this, or
+#: its intensity changes more than this, up to this many times
+REFINE_ROWS = 1.0
+REFINE_JUMP = 1.0 / 16.0
+REFINE_DEPTH = 6
+#: a coverage this close to 1 is whole
+WHOLE = 1.0 - 1e-6
+
+
+@ngjit_inline
+def _footprint(vp, t, s_guess):
+    """The width of a pixel, in world units, at the surface on plane t (s_guess: the
+    height of the last sample relative to the centre, for its depth)."""
+    if vp[VP_ORTHO] != 0.0:
+        return 1.0 / vp[VP_SCALE]
+    q = s_guess * vp[VP_SA] + t * vp[VP_CA] + vp[VP_D3]
+    return max(q, vp[VP_D1]) / (vp[VP_D1] * vp[VP_SCALE])
+
+
+@ngjit_inline
+def _node_gradient(hf, hfp, i, j):
+    """(f_u, f_v) at node (i, j) of a level by central differences (one-sided at the
+    border); NaN next to a hole."""
+    nv, nu = hf.shape
+    i0 = max(i - 1, 0)
+    i1 = min(i + 1, nu - 1)
+    j0 = max(j - 1, 0)
+    j1 = min(j + 1, nv - 1)
+    du = (hfp[1] - hfp[0]) / (nu - 1)
+    dv = (hfp[3] - hfp[2]) / (nv - 1)
+    return ((hf[j, i1] - hf[j, i0]) / ((i1 - i0) * du),
+            (hf[j1, i] - hf[j0, i]) / ((j1 - j0) * dv))
+
+
+@ngjit_inline
+def _smooth_normal(hf, hfp, vp, x0, u, v, y, z, nx, ny, nz, lam):
+    """The normal and intensity of a smoothed level's point (u, v) from the partials
+    interpolated bilinearly between its cell's nodes (their central differences):
+    continuous across the cells' edges, so a column that moves across a cell does
+    not jump from one facet's light to the next's. Keeps the exact ones by a hole."""
+    nv, nu = hf.shape
+    gx = (u - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)
+    gy = (v - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
+    i = min(max(int(math.floor(gx)), 0), nu - 2)
+    j = min(max(int(math.floor(gy)), 0), nv - 2)
+    fx = min(max(gx - i, 0.0), 1.0)
+    fy = min(max(gy - j, 0.0), 1.0)
+    a_u, a_v = _node_gradient(hf, hfp, i, j)
+    b_u, b_v = _node_gradient(hf, hfp, i + 1, j)
+    c_u, c_v = _node_gradient(hf, hfp, i, j + 1)
+    d_u, d_v = _node_gradient(hf, hfp, i + 1, j + 1)
+    wu = (a_u * (1 - fx) + b_u * fx) * (1 - fy) + (c_u * (1 - fx) + d_u * fx) * fy
+    wv = (a_v * (1 - fx) + b_v * fx) * (1 - fy) + (c_v * (1 - fx) + d_v * fx) * fy
+    if not (math.isfinite(wu) and math.isfinite(wv)):
+        return nx, ny, nz, lam
+    nx, ny, nz = unit_normal(vp, wu, wv)
+    if vp[VP_ORTHO] != 0.0:
+        return nx, ny, nz, lambert(vp, 0.0, 0.0, -1.0, nx, ny, nz)
+    m = (z + vp[VP_D3]) / vp[VP_D1]             # screen point -> the point itself
+    y1 = (y - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE] * m
+    return nx, ny, nz, lambert(vp, -x0 * m, -y1, -(vp[VP_D3] + z), nx, ny, nz)
+
+
+@ngjit
+def _sample(kind, f, fg, flat, lv, hfp, vp, x0, lod, t, guess, out):
+    """The sample of plane t into ``out`` (P_*), at the level of detail of its
+    footprint: blended between two levels of a height field's pyramid. ``guess``
+    (per level: the last solution s and its t, the slope) starts the perspective
+    Newton iterations and is updated. Returns (status, evaluations, step to the next
+    plane)."""
+    n_lv = lv.shape[0]
+    s_last = guess[n_lv, 0]                    # the last sample's height (its depth)
+    fw = _footprint(vp, t, s_last if s_last == s_last else 0.0)
+    k = 0
+    a = 0.0
+    step = fw
+    if kind == SURF_HEIGHTFIELD:
+        lf = math.log2(max(fw * lod / lv[0, LV_CELL], 1.0))
+        if lf >= n_lv - 1:
+            k = n_lv - 1
+        else:
+            k = int(lf)
+            a = lf - k
+        step = min(lv[k, LV_CELL] / STEPS_PER_CELL, fw)
+    step = max(step, vp[VP_DT] * 1e-3)
+    ev = 0
+    for m in range(2):
+        kk = k + m
+        if m == 1 and a <= 0.0:
+            break
+        g = guess[kk]
+        sg = np.nan
+        if g[0] == g[0]:
+            sg = g[0] + g[2] * (t - g[1])
+        o = int(lv[kk, LV_OFF])
+        nv = int(lv[kk, LV_NV])
+        nu = int(lv[kk, LV_NU])
+        hf = flat[o:o + nv * nu].reshape((nv, nu))     # the level's heights (a view)
+        st, e, y, z, u, v, w, nx, ny, nz, lam = sample_point(kind, f, fg, hf, hfp, vp, x0, t, sg)
+        ev += e
+        if st != S_OK:
+            return st, ev, step
+        if kk > 0:
+            nx, ny, nz, lam = _smooth_normal(hf, hfp, vp, x0, u, v, y, z, nx, ny, nz, lam)
+        s = w - vp[VP_CW]
+        if g[0] == g[0] and t != g[1]:
+            g[2] = (s - g[0]) / (t - g[1])
+        g[0] = s
+        g[1] = t
+        if m == 0:
+            out[P_Y] = y
+            out[P_Z] = z
+            out[P_U] = u
+            out[P_V] = v
+            out[P_W] = w
+            out[P_NX] = nx
+            out[P_NY] = ny
+            out[P_NZ] = nz
+            out[P_I] = lam
+        else:                        # the next level's point on the same plane, blended
+            b = 1.0 - a
+            out[P_Y] = b * out[P_Y] + a * y
+            out[P_Z] = b * out[P_Z] + a * z
+            out[P_U] = b * out[P_U] + a * u
+            out[P_V] = b * out[P_V] + a * v
+            out[P_W] = b * out[P_W] + a * w
+            mx = b * out[P_NX] + a * nx
+            my = b * out[P_NY] + a * ny
+            mz = b * out[P_NZ] + a * nz
+            q = math.sqrt(mx * mx + my * my + mz * mz)
+            if q > 0.0:
+                out[P_NX] = mx / q
+                out[P_NY] = my / q
+                out[P_NZ] = mz / q
+            out[P_I] = b * out[P_I] + a * lam
+    if a <= 0.0 and k + 1 < n_lv:
+        guess[k + 1, 0] = np.nan               # (its last solution is stale now)
+    out[P_T] = t
+    guess[n_lv, 0] = out[P_W] - vp[VP_CW]
+    return S_OK, ev, step
+
+
+@ngjit_nrt_free
+def _uncovered(cov, n, lo, hi, gaps):
+    """The parts of [lo, hi] outside the sorted disjoint intervals cov[:n] into gaps
+    (pairs); returns how many."""
+    m = 0
+    a = lo
+    for i in range(n):
+        if cov[i, 1] <= a:
+            continue
+        if cov[i, 0] >= hi:
+            break
+        if cov[i, 0] > a:
+            gaps[m, 0] = a
+            gaps[m, 1] = cov[i, 0]
+            m += 1
+        a = max(a, cov[i, 1])
+        if a >= hi:
+            break
+    if a < hi:
+        gaps[m, 0] = a
+        gaps[m, 1] = hi
+        m += 1
+    return m
+
+
+@ngjit_nrt_free
+def _cover(cov, n, lo, hi):
+    """[lo, hi] added to the sorted disjoint intervals cov[:n]; returns their count.
+    A full list first merges its two closest neighbours (the gap counted covered)."""
+    i = 0
+    while i < n and cov[i, 1] < lo:
+        i += 1
+    j = i
+    while j < n and cov[j, 0] <= hi:
+        j += 1
+    if j == i and n == cov.shape[0]:
+        best = 0
+        gap = np.inf
+        for k in range(n - 1):
+            d = cov[k + 1, 0] - cov[k, 1]
+            if d < gap:
+                gap = d
+                best = k
+        cov[best, 1] = cov[best + 1, 1]
+        for k in range(best + 1, n - 1):
+            cov[k, 0] = cov[k + 1, 0]
+            cov[k, 1] = cov[k + 1, 1]
+        n -= 1
+        i = 0
+        while i < n and cov[i, 1] < lo:
+            i += 1
+        j = i
+        while j < n and cov[j, 0] <= hi:
+            j += 1
+    if j == i:                                  # a new interval at i
+        for k in range(n, i, -1):
+            cov[k, 0] = cov[k - 1, 0]
+            cov[k, 1] = cov[k - 1, 1]
+        cov[i, 0] = lo
+        cov[i, 1] = hi
+        return n + 1
+    lo = min(lo, cov[i, 0])                     # cov[i:j] merge into one
+    hi = max(hi, cov[j - 1, 1])
+    cov[i, 0] = lo
+    cov[i, 1] = hi
+    shift = j - i - 1
+    for k in range(j, n):
+        cov[k - shift, 0] = cov[k, 0]
+        cov[k - shift, 1] = cov[k, 1]
+    return n - shift
+
+
+@ngjit_nrt_free
+def _add_span(acc, cov, n, gaps, prev, cur, sigma, H, share):
+    """The visible parts of the span prev -> cur into the pixels' accumulators, each
+    weighted by its length on screen times ``share`` (the slice's part of the pixel's
+    width); returns the count of covered intervals after it."""
+    ya = prev[P_Y]
+    yb = cur[P_Y]
+    lo = min(ya, yb)
+    hi = max(ya, yb)
+    if not (hi > -0.5 and lo < H - 0.5) or hi <= lo:
+        if hi > lo:
+            return _cover(cov, n, lo, hi)
+        return n
+    side = sigma if yb > ya else -sigma         # rising in the pass: the upper side
+    inv = 1.0 / (yb - ya)
+    m = _uncovered(cov, n, max(lo, -0.5), min(hi, H - 0.5), gaps)
+    for g in range(m):
+        p = gaps[g, 0]
+        q = gaps[g, 1]
+        j = int(math.floor(p + 0.5))
+        while j < H:
+            a = max(p, j - 0.5)
+            b = min(q, j + 0.5)
+            if b <= a:
+                if j + 0.5 >= q:
+                    break
+                j += 1
+                continue
+            wgt = (b - a) * share
+            lam = (0.5 * (a + b) - ya) * inv             # the piece's middle on the span
+            c = acc[j]
+            c[AC_W] += wgt
+            c[AC_U] += wgt * (prev[P_U] + lam * (cur[P_U] - prev[P_U]))
+            c[AC_V] += wgt * (prev[P_V] + lam * (cur[P_V] - prev[P_V]))
+            c[AC_WW] += wgt * (prev[P_W] + lam * (cur[P_W] - prev[P_W]))
+            c[AC_NX] += wgt * (prev[P_NX] + lam * (cur[P_NX] - prev[P_NX]))
+            c[AC_NY] += wgt * (prev[P_NY] + lam * (cur[P_NY] - prev[P_NY]))
+            c[AC_NZ] += wgt * (prev[P_NZ] + lam * (cur[P_NZ] - prev[P_NZ]))
+            c[AC_I] += wgt * (prev[P_I] + lam * (cur[P_I] - prev[P_I]))
+            c[AC_T] += wgt * (prev[P_T] + lam * (cur[P_T] - prev[P_T]))
+            c[AC_SIDE] += wgt * side
+            c[AC_Z] = min(c[AC_Z], prev[P_Z] + lam * (cur[P_Z] - prev[P_Z]))
+            if b >= q:
+                break
+            j += 1
+    return _cover(cov, n, lo, hi)
+
+
+@ngjit_nrt_free
+def _edge(kind, f, fg, flat, lv, hfp, vp, x0, lod, good, t_bad, guess, edge, tmp):
+    """Where a run ends (a hole, the domain's edge): bisect between the sample
+    ``edge`` (valid, at t ``edge[P_T]``) and the failed plane t_bad, EDGE_BISECTIONS
+    times; ``edge`` ends as the last valid sample found. Returns the evaluations."""
+    evals = 0
+    t_good = good
+    for _ in range(EDGE_BISECTIONS):
+        tm = 0.5 * (t_good + t_bad)
+        st, ev, _ = _sample(kind, f, fg, flat, lv, hfp, vp, x0, lod, tm, guess, tmp)
+        evals += ev
+        if st == S_OK:
+            t_good = tm
+            for i in range(P_SIZE):
+                edge[i] = tmp[i]
+        else:
+            t_bad = tm
+    return evals
+
+
+@ngjit_nrt_free
+def _refined_span(kind, f, fg, flat, lv, hfp, vp, x0, lod, acc, cov, n, gaps, guess, prev,
+                  cur, stk, sigma, H, share):
+    """The span prev -> cur, cut at midpoints (up to REFINE_DEPTH times) where it
+    spans more than REFINE_ROWS rows or its intensity changes by more than
+    REFINE_JUMP (a steep or bending stretch that one straight span would misplace or
+    misshade). Returns (covered intervals, evaluations)."""
+    evals = 0
+    left = stk[0]
+    for i in range(P_SIZE):
+        left[i] = prev[i]
+        stk[1, i] = cur[i]
+    sp = 1
+    stk[1, P_DEP] = 0.0
+    while sp > 0:
+        b = stk[sp]
+        d = b[P_DEP]
+        if d < REFINE_DEPTH and (abs(b[P_Y] - left[P_Y]) > REFINE_ROWS
+                                 or abs(b[P_I] - left[P_I]) > REFINE_JUMP):
+            mid = stk[sp + 1]
+            st, ev, _ = _sample(kind, f, fg, flat, lv, hfp, vp, x0, lod,
+                                0.5 * (left[P_T] + b[P_T]), guess, mid)
+            evals += ev
+            if st == S_OK:
+                b[P_DEP] = d + 1.0
+                sp += 1
+                mid[P_DEP] = d + 1.0
+                continue
+        n = _add_span(acc, cov, n, gaps, left, b, sigma, H, share)
+        for i in range(P_SIZE):
+            left[i] = b[i]
+        sp -= 1
+    return n, evals
+
+
+@ngjit_nrt_free
+def _pass(kind, f, fg, flat, lv, hfp, vp, x0, lod, ta, tb, sigma, acc, cov, n, gaps, guess,
+          pts, H, share):
+    """One pass of the column from ta to tb (sigma = +1 ascending, -1 descending).
+    Returns (covered intervals, evaluations)."""
+    prev = pts[0]
+    cur = pts[1]
+    edge = pts[2]
+    tmp = pts[3]
+    stk = pts[4:]
+    evals = 0
+    have = False
+    t_bad = np.nan                             # the failed plane before a run starts
+    t = ta
+    persp = vp[VP_ORTHO] == 0.0
+    guess[:, 0] = np.nan
+    while (t - tb) * sigma <= 0.0:
+        skip = False
+        if persp:
+            known = _domain_test(vp, x0, t)
+            skip = known == 0 or (known < 0 and not _may_meet_domain(vp, x0, t))
+        st = -1
+        if skip:                               # the plane surely misses the domain
+            step = _footprint(vp, t, 0.0)
+            if kind == SURF_HEIGHTFIELD:
+                step = min(step, lv[0, LV_CELL] / STEPS_PER_CELL)
+            step = max(step, vp[VP_DT])
+        else:
+            st, ev, step = _sample(kind, f, fg, flat, lv, hfp, vp, x0, lod, t, guess, cur)
+            evals += ev
+        if st == S_OK:
+            if not have and t_bad == t_bad:    # a run begins: its edge first
+                for i in range(P_SIZE):
+                    edge[i] = cur[i]
+                evals += _edge(kind, f, fg, flat, lv, hfp, vp, x0, lod, t, t_bad, guess, edge, tmp)
+                for i in range(P_SIZE):
+                    prev[i] = edge[i]
+                have = True
+            if have:
+                n, ev = _refined_span(kind, f, fg, flat, lv, hfp, vp, x0, lod, acc, cov, n,
+                                      gaps, guess, prev, cur, stk, sigma, H, share)
+                evals += ev
+            for i in range(P_SIZE):
+                prev[i] = cur[i]
+            have = True
+            t_bad = np.nan
+        else:
+            if have:                           # a run ends: up to its edge
+                for i in range(P_SIZE):
+                    edge[i] = prev[i]
+                evals += _edge(kind, f, fg, flat, lv, hfp, vp, x0, lod, prev[P_T], t, guess, edge,
+                               tmp)
+                n = _add_span(acc, cov, n, gaps, prev, edge, sigma, H, share)
+            have = False
+            t_bad = t
+        if t == tb:
+            break
+        t += sigma * step
+        if (t - tb) * sigma > 0.0:
+            t = tb                             # the last plane on the far end
+    return n, evals
+
+
+@ngjit_nrt_free
+def area_column(kind, f, fg, flat, lv, hfp, vp, x0, slices, lod, gcol, ecol, acc, cov, gaps,
+                guess, pts):
+    """Render one column by area sampling into gcol (H, G_SIZE) and ecol (E_SIZE,
+    H): ``slices`` columns evenly across the pixel's width (each exact along its
+    column, their mean the pixel's box filter), ``lod`` the footprint's multiplier
+    in choosing a level (2**bias). Returns (evaluations, lowest and highest w with
+    the upper side seen, lowest and highest row set)."""
+    H = gcol.shape[0]
+    acc[:, :] = 0.0
+    acc[:, AC_Z] = np.inf
+    evals = 0
+    share = 1.0 / slices
+    for k in range(slices):
+        xk = x0 + ((k + 0.5) * share - 0.5) / vp[VP_SCALE]
+        n = 0
+        if vp[VP_ORTHO] != 0.0:
+            lo, hi = _ortho_chord(vp, xk)
+            if lo <= hi:
+                n, ev = _pass(kind, f, fg, flat, lv, hfp, vp, xk, lod, lo, hi, 1.0, acc, cov, n,
+                              gaps, guess, pts, H, share)
+                evals += ev
+            continue
+        lo, hi = _column_t_range(vp, xk)
+        if lo <= hi:
+            m = 4.0 * vp[VP_DT]
+            lo = max(lo - m, vp[VP_T0])
+            hi = min(hi + m, vp[VP_T1])
+            t_view = -vp[VP_D3] * vp[VP_CA]
+            if hi > t_view:
+                n, ev = _pass(kind, f, fg, flat, lv, hfp, vp, xk, lod, max(lo, t_view), hi, 1.0,
+                              acc, cov, n, gaps, guess, pts, H, share)
+                evals += ev
+            if lo < t_view:
+                n, ev = _pass(kind, f, fg, flat, lv, hfp, vp, xk, lod, min(hi, t_view), lo, -1.0,
+                              acc, cov, n, gaps, guess, pts, H, share)
+                evals += ev
+    w_lo = np.inf
+    w_hi = -np.inf
+    j_lo = H
+    j_hi = -1
+    for j in range(H):
+        c = acc[j]
+        wgt = c[AC_W]
+        if wgt <= 0.0:
+            ecol[E_SEEN, j] = 0.0
+            continue
+        inv = 1.0 / wgt
+        g = gcol[j]
+        g[G_DEPTH] = c[AC_Z]
+        g[G_U] = c[AC_U] * inv
+        g[G_V] = c[AC_V] * inv
+        g[G_W] = c[AC_WW] * inv
+        nx = c[AC_NX]
+        ny = c[AC_NY]
+        nz = c[AC_NZ]
+        q = math.sqrt(nx * nx + ny * ny + nz * nz)
+        q = 1.0 / q if q > 0.0 else 0.0
+        g[G_NX] = nx * q
+        g[G_NY] = ny * q
+        g[G_NZ] = nz * q
+        g[G_I] = c[AC_I] * inv
+        g[G_T] = c[AC_T] * inv
+        side = 1.0 if c[AC_SIDE] >= 0.0 else -1.0
+        if wgt >= WHOLE:
+            ecol[E_SEEN, j] = side
+        else:
+            ecol[E_SEEN, j] = side + E_FLAG
+            ecol[E_COV0, j] = wgt
+            ecol[E_COV, j] = 0.0
+        if side > 0.0:
+            w_lo = min(w_lo, g[G_W])
+            w_hi = max(w_hi, g[G_W])
+        j_lo = min(j_lo, j)
+        j_hi = max(j_hi, j)
+    return evals, w_lo, w_hi, j_lo, j_hi
+
+
+@ngjit_parallel
+def area_kernel(kind, f, fg, flat, lv, hfp, vp, slices, lod, gbuf, ebuf, evals, wrange, rows):
+    """Every column by area sampling (area_column) into the tiled gbuf and ebuf
+    (layout.py), the tiles in parallel, as column_kernel: ``flat`` and ``lv`` the
+    height field's levels (passes/area.py; ignored for a function surface). Each
+    tile's scratch is its own."""
+    n_tiles = gbuf.shape[0]
+    H = gbuf.shape[1]
+    T = gbuf.shape[2]
+    W = evals.shape[0]
+    n_lv = lv.shape[0]
+    for b in prange(n_tiles):
+        acc = np.empty((H, AC_SIZE))
+        cov = np.empty((MAX_INTERVALS, 2))
+        gaps = np.empty((MAX_INTERVALS + 1, 2))
+        guess = np.empty((max(n_lv, 1) + 1, 3))
+        pts = np.empty((4 + REFINE_DEPTH + 2, P_SIZE))
+        rows[b, 0] = H
+        rows[b, 1] = -1
+        for lane in range(T):
+            c = b * T + lane
+            if c >= W:
+                break
+            guess[:, :] = 0.0
+            ev, w_lo, w_hi, j_lo, j_hi = area_column(
+                kind, f, fg, flat, lv, hfp, vp, column_x0(vp, c), slices, lod, gbuf[b, :, lane],
+                ebuf[b, :, :, lane], acc, cov, gaps, guess, pts)
+            evals[c] = ev
+            wrange[c, 0] = w_lo
+            wrange[c, 1] = w_hi
+            rows[b, 0] = min(rows[b, 0], j_lo)
+            rows[b, 1] = max(rows[b, 1], j_hi)

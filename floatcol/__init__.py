@@ -10,6 +10,7 @@ from .scene import Layer, Scene
 from .plot import SurfacePlot, plot_surface
 from .render import Render, render
 from .surface import HeightField, Surface, as_surface
+from .terrain import read_dem, terrain
 from .view import View
 
 __version__ = "0.2.0"
@@ -25,5 +26,5 @@ def __getattr__(name):
 
 __all__ = ["Animation", "Camera", "HeightField", "Layer", "Light", "Material", "Quality",
            "Render", "Scene", "Surface", "SurfacePlot", "SympyBackend", "View", "__version__",
-           "animate", "as_surface", "composite", "plot_surface", "render", "render_many",
-           "render_scene"]
+           "animate", "as_surface", "composite", "plot_surface", "read_dem", "render",
+           "render_many", "render_scene", "terrain"]

@@ -18,7 +18,13 @@ EXAMPLES = """examples:
   floatcol render "sin(x)*cos(y)" --x -pi:pi --y -pi:pi --aspect equal -o waves.png
   floatcol render "x*y/3" "2*exp(-x^2-y^2) - 0.5" --x=-2:2 --y=-2:2 -o two.png
   floatcol animate "exp(-(x^2+y^2)/8)*cos(2*sqrt(x^2+y^2) - t)" --x=-6:6 --y=-6:6 --t 0:6.283 --frames 48 -o wave.gif
+  floatcol terrain dem.tif --vert-exag 2 -o dem.png
   floatcol gallery build -o site/gallery
+"""
+TERRAIN_EXAMPLES = """examples:
+  floatcol terrain dem.tif -o dem.png
+  floatcol terrain heights.png --extent 0:30000:0:20000 --vert-exag 3 --shadows -o relief.png
+  floatcol terrain dem.npz --antialias area --elev 20 --azim -80 -o low.png
 """
 
 RENDER_OUTPUTS = (".png", ".jpg", ".jpeg", ".tif", ".tiff", ".webp", ".pdf", ".svg", ".eps", ".ps")
@@ -95,6 +101,28 @@ def _aspect(text):
     return box
 
 
+def _exaggeration(text):
+    if text == "auto":
+        return text
+    try:
+        x = _number(text)
+    except ValueError:
+        x = -1.0
+    if not 0 < x < float("inf"):
+        raise argparse.ArgumentTypeError(f"vert-exag {text!r} must be auto or a positive number")
+    return x
+
+
+def _four(text):
+    try:
+        vals = tuple(_number(x) for x in text.split(":"))
+    except ValueError:
+        vals = ()
+    if len(vals) != 4:
+        raise argparse.ArgumentTypeError(f"extent {text!r} must be W:E:S:N, e.g. 0:1000:0:800")
+    return vals
+
+
 def _size(text):
     try:
         w, h = (int(x) for x in text.lower().split("x"))
@@ -103,19 +131,24 @@ def _size(text):
     return w, h
 
 
-def _surface_options(p, default_size="800x600", many=False):
-    """Options shared by render and animate; they mirror plot_surface's."""
-    if many:
+def _surface_options(p, default_size="800x600", many=False, terrain=False):
+    """Options shared by render, animate and terrain; they mirror plot_surface's."""
+    if terrain:
+        p.add_argument("file", help="a DEM: .npy, .npz, .png (16-bit grey), .tif/.tiff "
+                       "(GeoTIFF, with the extra floatcol[geotiff])")
+    elif many:
         p.add_argument("expr", nargs="+", help="the height as a formula, e.g. '3*sin(u*cos(v))' "
                        "(^ is power); several: one picture where they hide each other")
     else:
         p.add_argument("expr", help="the height as a formula, e.g. '3*sin(u*cos(v))' (^ is power)")
-    p.add_argument("--u", "--x", dest="u", type=_range, default=None, metavar="LOW:HIGH",
-                   help="range of the first variable (default -10:10)")
-    p.add_argument("--v", "--y", dest="v", type=_range, default=None, metavar="LOW:HIGH",
-                   help="range of the second variable (default -10:10)")
-    p.add_argument("--vars", default=None, metavar="X,Y",
-                   help="the two variables, in order (default: the formula's symbols sorted, as sympy)")
+    if not terrain:
+        p.add_argument("--u", "--x", dest="u", type=_range, default=None, metavar="LOW:HIGH",
+                       help="range of the first variable (default -10:10)")
+        p.add_argument("--v", "--y", dest="v", type=_range, default=None, metavar="LOW:HIGH",
+                       help="range of the second variable (default -10:10)")
+        p.add_argument("--vars", default=None, metavar="X,Y",
+                       help="the two variables, in order (default: the formula's symbols "
+                            "sorted, as sympy)")
     p.add_argument("--size", type=_size, default=_size(default_size), metavar="WxH",
                    help=f"pixels (default {default_size})")
     p.add_argument("--elev", type=float, default=30.0, help="degrees above the surface (default 30, as matplotlib)")
@@ -137,9 +170,11 @@ def _surface_options(p, default_size="800x600", many=False):
                    choices=["none", "spline", "supersample", "adaptive", "spline+supersample",
                             "spline+adaptive"],
                    help="the paper's artifact corrections (default spline+adaptive)")
-    p.add_argument("--antialias", default=None, choices=["on", "off", "2", "3", "4"],
-                   help="on: coverage along columns; 2-4: also that many sub-columns "
-                        "(default on, off with --shading lambert)")
+    p.add_argument("--antialias", default=None, choices=["on", "off", "2", "3", "4", "area"],
+                   help="on: coverage along columns; 2-4: also that many sub-columns; area: "
+                        "exact area sampling along columns, a height field's level of detail "
+                        "(Cohen-Or 1997; no flicker on dense terrain) (default on, off with "
+                        "--shading lambert)")
     p.add_argument("--sampling", default=None, choices=["uniform", "adaptive"],
                    help="adaptive: planes grow with distance and where the normal turns slowly")
     p.add_argument("--lines", type=int, default=None, help="horizon: number of lines (default 160)")
@@ -178,7 +213,7 @@ def build_parser():
                 "column algorithm (Gordon 2001).", epilog=EXAMPLES,
                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--version", action="version", version=f"floatcol {__version__}")
-    sub = p.add_subparsers(dest="command", parser_class=_Parser, metavar="{render,animate,gallery}")
+    sub = p.add_subparsers(dest="command", parser_class=_Parser, metavar="{render,animate,terrain,gallery}")
     r = sub.add_parser("render", help="render an expression to an image (png, jpg, pdf, svg)",
                        epilog=EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
     _surface_options(r, many=True)
@@ -193,6 +228,21 @@ def build_parser():
     a.add_argument("--time-var", default="t", help="name of the time variable (default t)")
     a.add_argument("--frames", type=int, default=60, help="number of frames (default 60)")
     a.add_argument("--fps", type=float, default=20.0, help="frames per second (default 20)")
+    t = sub.add_parser("terrain", help="render a DEM file (a terrain) to an image",
+                       epilog=TERRAIN_EXAMPLES,
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    _surface_options(t, default_size="1000x600", terrain=True)
+    t.set_defaults(elev=35.0, azim=-100.0, aspect="equal", cmap="gist_earth", light=(315.0, 35.0))
+    t.add_argument("--vert-exag", type=_exaggeration, default="auto", metavar="X",
+                   help="heights times X (default auto: the relief 8%% of the longer side)")
+    t.add_argument("--extent", type=_four, default=None, metavar="W:E:S:N",
+                   help="west, east, south, north of the first and last columns and rows "
+                        "(default: the file's, else the indices)")
+    t.add_argument("--nodata", type=_value("nodata"), default=None,
+                   help="a height that means no data (a hole), besides the file's own")
+    t.add_argument("-o", "--output", default="terrain.png",
+                   help="file to write: .png, .jpg, .tif, .webp, .pdf, .svg, .eps or .ps "
+                        "(default terrain.png)")
     g = sub.add_parser("gallery", help="build the example gallery")
     gsub = g.add_subparsers(dest="gallery_command", parser_class=_Parser, metavar="{build}")
     gb = gsub.add_parser("build", help="run the gallery scripts; write images, thumbnails and index.html")
@@ -203,7 +253,8 @@ def build_parser():
 
 
 _RANGES = ("--u", "--v", "--x", "--y", "--t")
-_NEGATIVE_OK = _RANGES + ("--vmin", "--vmax", "--elev", "--azim", "--light")
+_NEGATIVE_OK = _RANGES + ("--vmin", "--vmax", "--elev", "--azim", "--light", "--extent",
+                          "--nodata")
 
 
 def _fix_negative_values(argv):
@@ -215,7 +266,8 @@ def _fix_negative_values(argv):
         a = argv[i]
         nxt = argv[i + 1] if i + 1 < len(argv) else ""
         if a in _NEGATIVE_OK and nxt[:1] == "-" and (nxt[1:2] in "0123456789." or (
-                a in _RANGES and ":" in nxt) or (a == "--light" and "/" in nxt)):  # -5, -pi:pi
+                a in _RANGES + ("--extent",) and ":" in nxt)
+                or (a == "--light" and "/" in nxt)):  # -5, -pi:pi
             out.append(f"{a}={nxt}")
             i += 2
             continue
@@ -245,6 +297,8 @@ def _main(argv):
             return _render(args)
         if args.command == "animate":
             return _animate(args)
+        if args.command == "terrain":
+            return _terrain(args)
         if args.gallery_command is None:
             raise UsageError("say what to do: floatcol gallery build -o DIR")
         return _gallery(args)
@@ -287,7 +341,8 @@ def _options(args):
                 method=args.method, shading=args.shading, interpolation=args.interpolation,
                 dpi=args.dpi, aspect=args.aspect)
     if args.antialias is not None:
-        opts["antialias"] = {"on": True, "off": False, "2": 2, "3": 3, "4": 4}[args.antialias]
+        opts["antialias"] = {"on": True, "off": False, "2": 2, "3": 3, "4": 4,
+                             "area": "area"}[args.antialias]
     for name in ("focal_length", "cmap", "color", "vmin", "vmax", "lines", "corrections",
                  "sampling"):
         value = getattr(args, name)
@@ -334,6 +389,18 @@ def _animate(args):
                       fps=args.fps, output=args.output, **_options(args))
     print(f"wrote {args.output} ({len(anim)} frames, {args.size[0]}x{args.size[1]}, "
           f"{anim.stats['seconds']:.1f} s)")
+    return 0
+
+
+def _terrain(args):
+    _check_output(args.output, RENDER_OUTPUTS)
+    import floatcol as fc
+    plot = fc.terrain(args.file, vert_exag=args.vert_exag, extent=args.extent,
+                      nodata=args.nodata, **_options(args))
+    plot.save(args.output)
+    s = plot.render.stats
+    print(f"wrote {args.output} ({args.size[0]}x{args.size[1]}, heights x{plot.vert_exag:g}, "
+          f"{s['seconds'] * 1e3:.0f} ms)")
     return 0
 
 

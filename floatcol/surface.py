@@ -115,7 +115,10 @@ class HeightField(Surface):
 
     ``z[j, i]`` is the height at ``(u_i, v_j)`` (rows follow v, columns follow u, as
     in matplotlib's ``plot_surface(X, Y, Z)`` with ``meshgrid``); the grid spans
-    ``u = (a, b)`` and ``v = (c, d)``, by default the index ranges. NaN cells are holes.
+    ``u = (a, b)`` and ``v = (c, d)``, by default the index ranges; a range given
+    downward, ``v = (north, south)`` for rows that run north to south as a DEM's, is
+    the same grid read that way. NaN cells are holes. ``read_dem`` (floatcol.terrain)
+    makes one from a DEM file.
     """
 
     kind = SURF_HEIGHTFIELD
@@ -130,6 +133,14 @@ class HeightField(Surface):
                 f"HeightField needs a 2-D array of at least 2 x 2 heights, got shape {z.shape}")
         z[~np.isfinite(z)] = np.nan
         nv, nu = z.shape
+        # a range that runs downward (rows north to south, v = (north, south)) is the
+        # grid flipped: kept ascending
+        u, flip_u = _ascending("u", u)
+        v, flip_v = _ascending("v", v)
+        if flip_u:
+            z = z[:, ::-1]
+        if flip_v:
+            z = z[::-1]
         u = check_range("u", (0.0, nu - 1.0) if u is None else u)
         v = check_range("v", (0.0, nv - 1.0) if v is None else v)
         super().__init__(*_zero_fns(), variables=DEFAULT_VARS,
@@ -150,6 +161,19 @@ class HeightField(Surface):
     def __repr__(self):
         (a, b), (c, d) = self.default_domain
         return f"HeightField({self.hf.shape[0]}x{self.hf.shape[1]}, u=({a}, {b}), v=({c}, {d}))"
+
+
+def _ascending(name, rng):
+    """(range ascending, whether it was given descending) of a HeightField's extent."""
+    if rng is None:
+        return None, False
+    try:
+        a, b = rng
+        if float(b) < float(a):
+            return (b, a), True
+    except (TypeError, ValueError):
+        pass                                  # (check_range says what is wrong)
+    return rng, False
 
 
 def check_range(name, rng):

@@ -1,0 +1,288 @@
+"""Terrains from files: digital elevation models (DEMs) as HeightFields, and their
+picture with landscape defaults in one call.
+
+``read_dem(path)`` reads .npy, .npz (matplotlib's sample DEMs: ``elevation`` with
+``xmin``/``xmax``/``ymin``/``ymax``), 16-bit (or 8-bit) greyscale PNG, and GeoTIFF
+(with the optional extra ``floatcol[geotiff]``: tifffile, a pure-Python reader with
+numpy as its only dependency; rasterio/GDAL would bring a C library stack for what
+is here three tags). Image-like files keep their rows north-up (row 0 the northern
+edge), as DEMs are stored; the HeightField turns them to run south to north.
+Geographic extents (degrees) become metres from the south-west corner, so heights
+and distances share a unit; nodata values become holes.
+
+``terrain(source)`` draws one with defaults that make a DEM look like a landscape:
+true proportions with a vertical exaggeration chosen so the relief shows
+(``vert_exag="auto"``), an earth colormap, a sun from the north-west as matplotlib's
+LightSource and a view from the south.
+"""
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+
+from .surface import HeightField
+
+#: DEM files read_dem takes (suffix -> kind)
+SUFFIXES = {".npy": "npy", ".npz": "npz", ".png": "png", ".tif": "tiff", ".tiff": "tiff"}
+#: vert_exag="auto" stretches the heights until the relief is this part of the longer
+#: side of the extent (and never flattens them)
+AUTO_RELIEF = 0.08
+#: names of the height array in an .npz, in the order they are looked for
+NPZ_NAMES = ("elevation", "z", "dem", "heights", "height", "Z")
+
+
+def read_dem(path, *, extent=None, nodata=None, vert_exag=1.0, geographic=None):
+    """A HeightField from a DEM file (or a 2-D array, north-up).
+
+    extent: (west, east, south, north) of the first and last columns and rows'
+        centres, overriding the file's (default: the file's, else the indices).
+    nodata: a height that means "no data" (besides the file's own and NaN): holes.
+    vert_exag: heights times this (as matplotlib's LightSource's vert_exag).
+    geographic: whether the extent is in degrees of longitude and latitude (then
+        converted to metres from the south-west corner); None: as the file says, or
+        guessed from an extent inside +-180 x +-90 with cells under a tenth of a degree.
+    """
+    if isinstance(path, (str, os.PathLike)):
+        z, meta = _read(os.fspath(path))
+    else:
+        z, meta = _array(path), {}
+    vert_exag = _positive("vert_exag", vert_exag)
+    z = np.array(z, dtype=np.float64)
+    for value in (meta.get("nodata"), nodata):
+        if value is not None:
+            z[z == float(value)] = np.nan
+    if extent is not None:
+        meta["extent"] = _extent(extent)
+    if geographic is not None:
+        meta["geographic"] = bool(geographic)
+    ny, nx = z.shape
+    west, east, south, north = meta.get("extent", (0.0, nx - 1.0, 0.0, ny - 1.0))
+    if meta.get("geographic") is None:
+        meta["geographic"] = (max(abs(west), abs(east)) <= 180 and max(abs(south), abs(north))
+                              <= 90 and abs(east - west) / max(nx - 1, 1) < 0.1
+                              and "extent" in meta)
+    if meta["geographic"]:
+        west, east, south, north = _metres(west, east, south, north)
+    # north-up rows turned to run south to north; a reversed extent flips back
+    hf = HeightField(z[::-1] * vert_exag, u=(west, east), v=(south, north))
+    hf.dem = {"extent": (west, east, south, north), "geographic": meta["geographic"],
+              "vert_exag": vert_exag, "shape": z.shape}
+    return hf
+
+
+def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=None, **kw):
+    """Draw a DEM (a file, a HeightField or a 2-D array north-up) with landscape
+    defaults: ``plot_surface``'s picture and options, with aspect="equal", an earth
+    colormap, a sun at azimuth 315 and altitude 35 degrees, elev 35, azim -100 (from
+    the south), 1000x600 pixels. vert_exag="auto" picks the exaggeration that makes
+    the relief 8 % of the longer side (at least 1); the one used is the plot's
+    ``vert_exag``. Returns plot_surface's SurfacePlot (``.save(path)``, ``.render``)."""
+    from .plot import plot_surface
+    if isinstance(source, HeightField):
+        hf = source
+        if vert_exag != "auto":
+            hf = hf.scaled(1.0, 1.0, _positive("vert_exag", vert_exag))
+    else:
+        hf = read_dem(source, extent=extent, nodata=nodata, geographic=geographic)
+    if isinstance(vert_exag, str):
+        if vert_exag != "auto":
+            raise ValueError(f"vert_exag must be a positive number or 'auto', got {vert_exag!r}")
+        exag = auto_exaggeration(hf)
+        if exag != 1.0:
+            hf = hf.scaled(1.0, 1.0, exag)
+    else:
+        exag = _positive("vert_exag", vert_exag)
+    defaults = dict(aspect="equal", cmap="gist_earth", lightsource=(315, 35), elev=35,
+                    azim=-100, size=(1000, 600))
+    defaults.update(kw)
+    plot = plot_surface(hf, **defaults)
+    plot.vert_exag = exag
+    return plot
+
+
+def auto_exaggeration(hf):
+    """The vertical exaggeration that makes a height field's relief (its 1st to 99th
+    percentile) AUTO_RELIEF of the longer side of its extent; 1 where it already is
+    at least that, or flat. Rounded to two significant digits."""
+    z = hf.hf[np.isfinite(hf.hf)]
+    if z.size == 0:
+        return 1.0
+    lo, hi = np.percentile(z, [1, 99])
+    (ua, ub), (va, vb) = hf.default_domain
+    side = max(ub - ua, vb - va)
+    if not hi > lo:
+        return 1.0
+    k = AUTO_RELIEF * side / (hi - lo)
+    if k <= 1.0:
+        return 1.0
+    digits = 1 - int(math.floor(math.log10(k)))
+    return float(round(k, digits))
+
+
+def _read(path):
+    suffix = os.path.splitext(path)[1].lower()
+    if suffix not in SUFFIXES:
+        raise ValueError(f"DEM file {path!r}: use .npy, .npz, .png, .tif or .tiff")
+    if not os.path.isfile(path):
+        raise ValueError(f"DEM file {path!r} does not exist")
+    kind = SUFFIXES[suffix]
+    try:
+        if kind == "npy":
+            return _array(np.load(path, allow_pickle=False)), {}
+        if kind == "npz":
+            return _npz(path)
+        if kind == "png":
+            return _png(path)
+        return _geotiff(path)
+    except _DemError as exc:
+        raise ValueError(f"DEM file {path!r}: {exc}") from None
+    except Exception as exc:            # (numpy's, PIL's, tifffile's own errors alike)
+        raise ValueError(f"DEM file {path!r} cannot be read: {exc}") from None
+
+
+class _DemError(ValueError):
+    """What is wrong with a DEM file that could be read (its message names it)."""
+
+
+def _array(z):
+    try:
+        z = np.asarray(z)
+    except Exception as exc:                  # (an object numpy cannot take)
+        raise _DemError(f"heights must be a 2-D array of numbers: {exc}") from None
+    if z.ndim != 2 or min(z.shape) < 2 or z.dtype.kind not in "biuf":
+        raise _DemError(f"heights must be a 2-D array of numbers of at least 2 x 2, got "
+                         f"shape {z.shape} of {z.dtype}")
+    return z
+
+
+def _npz(path):
+    with np.load(path, allow_pickle=False) as data:
+        name = next((n for n in NPZ_NAMES if n in data.files), None)
+        if name is None:
+            two_d = [n for n in data.files if data[n].ndim == 2]
+            if len(two_d) != 1:
+                raise _DemError(f"no height array: name it one of {', '.join(NPZ_NAMES)} "
+                                 f"(found {', '.join(data.files) or 'nothing'})")
+            name = two_d[0]
+        z = _array(data[name])
+        meta = {}
+        keys = set(data.files)
+        if {"xmin", "xmax", "ymin", "ymax"} <= keys:
+            # matplotlib's sample DEMs: x of the first and last columns' outer edges,
+            # y of the first and last rows' (jacksboro's rows run north to south: ymin
+            # > ymax); with dx, dy the cells' size, the nodes are the cells' centres
+            x0, x1, y0, y1 = (float(data[k]) for k in ("xmin", "xmax", "ymin", "ymax"))
+            ny, nx = z.shape
+            if {"dx", "dy"} <= keys:
+                dx, dy = abs(float(data["dx"])), abs(float(data["dy"]))
+                if math.isclose(abs(x1 - x0), nx * dx, rel_tol=1e-3):
+                    x0, x1 = x0 + math.copysign(dx / 2, x1 - x0), x1 - math.copysign(dx / 2, x1 - x0)
+                if math.isclose(abs(y1 - y0), ny * dy, rel_tol=1e-3):
+                    y0, y1 = y0 + math.copysign(dy / 2, y1 - y0), y1 - math.copysign(dy / 2, y1 - y0)
+            meta["extent"] = (x0, x1, min(y0, y1), max(y0, y1))
+            if y0 < y1:                       # its first row is the southern one
+                z = z[::-1]
+        elif {"x", "y"} <= keys and data["x"].ndim == 1 and data["y"].ndim == 1:
+            x, y = np.asarray(data["x"], float), np.asarray(data["y"], float)
+            if x.size != z.shape[1] or y.size != z.shape[0]:
+                raise _DemError(f"x and y have {x.size} and {y.size} values for heights of "
+                                 f"shape {z.shape}")
+            if x[0] > x[-1]:
+                z, x = z[:, ::-1], x[::-1]
+            if y[0] < y[-1]:                  # north-up rows, as read_dem keeps them
+                z, y = z[::-1], y[::-1]
+            meta["extent"] = (x[0], x[-1], y[-1], y[0])
+        if "nodata" in keys:
+            meta["nodata"] = float(data["nodata"])
+        return z, meta
+
+
+def _png(path):
+    from PIL import Image
+    with Image.open(path) as im:
+        if im.mode in ("I;16", "I;16B", "I;16L", "I", "F", "L"):
+            z = np.array(im)
+        elif im.mode in ("LA", "La", "P", "PA", "RGB", "RGBA"):
+            raise _DemError(f"a DEM PNG is greyscale (8 or 16 bits), this one is {im.mode}")
+        else:
+            z = np.array(im.convert("I"))
+    return _array(z), {}
+
+
+def _geotiff(path):
+    try:
+        import tifffile
+    except ImportError:
+        raise _DemError("reading GeoTIFF needs the optional extra: pip install "
+                         "'floatcol[geotiff]' (tifffile)") from None
+    with tifffile.TiffFile(path) as tif:
+        page = tif.pages[0]
+        z = page.asarray()
+        if z.ndim == 3 and z.shape[-1] == 1:
+            z = z[..., 0]
+        z = _array(z)
+        tags = {t.code: t.value for t in page.tags.values()}
+    meta = {}
+    if 42113 in tags:                                 # GDAL_NODATA (text)
+        try:
+            meta["nodata"] = float(str(tags[42113]).strip().strip("\x00"))
+        except ValueError:
+            pass
+    keys = _geokeys(tags.get(34735))
+    if 33550 in tags and 33922 in tags:               # ModelPixelScale, ModelTiepoint
+        sx, sy = float(tags[33550][0]), float(tags[33550][1])
+        i, j, _, x, y, _ = (float(a) for a in tags[33922][:6])
+        if keys.get(1025, 1) == 1:                    # RasterPixelIsArea: corner ties
+            i, j = i - 0.5, j - 0.5
+        ny, nx = z.shape
+        west = x - i * sx
+        north = y + j * sy
+        meta["extent"] = (west, west + (nx - 1) * sx, north - (ny - 1) * sy, north)
+        if 1024 in keys:                              # GTModelTypeGeoKey: 2 geographic
+            meta["geographic"] = keys[1024] == 2
+    return z, meta
+
+
+def _geokeys(directory):
+    """{key id: value} of a GeoKeyDirectoryTag's keys held in the directory itself."""
+    out = {}
+    if directory is None:
+        return out
+    d = [int(a) for a in directory]
+    for k in range(d[3] if len(d) >= 4 else 0):
+        key, location, _, value = d[4 + 4 * k: 8 + 4 * k]
+        if location == 0:
+            out[key] = value
+    return out
+
+
+def _metres(west, east, south, north):
+    """A geographic extent in degrees as metres from its south-west corner (the
+    length of a degree at the middle latitude, WGS 84)."""
+    phi = math.radians(0.5 * (south + north))
+    per_lat = 111132.954 - 559.822 * math.cos(2 * phi) + 1.175 * math.cos(4 * phi)
+    per_lon = 111412.84 * math.cos(phi) - 93.5 * math.cos(3 * phi)
+    return 0.0, (east - west) * per_lon, 0.0, (north - south) * per_lat
+
+
+def _extent(extent):
+    try:
+        w, e, s, n = (float(a) for a in extent)
+    except (TypeError, ValueError):
+        raise ValueError(f"extent must be (west, east, south, north), got {extent!r}") from None
+    if not all(math.isfinite(a) for a in (w, e, s, n)) or w == e or s == n:
+        raise ValueError(f"extent must be four finite numbers with west != east and south != "
+                         f"north, got {extent!r}")
+    return w, e, s, n
+
+
+def _positive(name, x):
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a positive number, got {x!r}") from None
+    if not (math.isfinite(x) and x > 0):
+        raise ValueError(f"{name} must be a positive number, got {x!r}")
+    return x

@@ -1,0 +1,147 @@
+"""Terrains from files (floatcol/terrain.py): DEM formats, north-up rows, degrees,
+nodata, vertical exaggeration, the one-call picture and the CLI's terrain command."""
+import os
+
+import numpy as np
+import pytest
+from matplotlib.cbook import get_sample_data
+
+import floatcol as fc
+from floatcol.cli import main
+
+JACKSBORO = get_sample_data("jacksboro_fault_dem.npz", asfileobj=False)
+
+
+def corner_peak(n=41):
+    """North-up heights (row 0 the north) with a peak at the north-east corner."""
+    y, x = np.mgrid[0:n, 0:n]
+    return 100.0 * np.exp(-((x - 0.8 * n) ** 2 + (y - 0.2 * n) ** 2) / 20.0)
+
+
+def test_matplotlibs_sample_dem_in_metres_rows_south_to_north():
+    hf = fc.read_dem(JACKSBORO)
+    with np.load(JACKSBORO) as d:
+        z = d["elevation"].astype(float)
+    assert hf.dem["geographic"]
+    (ua, ub), (va, vb) = hf.default_domain
+    # 402 x 343 cells of 3 arc-seconds at 36.6 N: 30.05 km east-west, 31.81 km north-south
+    assert ua == 0 and va == 0
+    assert ub == pytest.approx(402 * 0.000833333 * 111320 * np.cos(np.radians(36.59)), rel=2e-3)
+    assert vb == pytest.approx(343 * 0.000833333 * 110990, rel=2e-3)
+    assert np.array_equal(hf.hf[0], z[-1]) and np.array_equal(hf.hf[-1], z[0])
+    assert fc.read_dem(JACKSBORO, vert_exag=2).hf.max() == 2 * z.max()
+
+
+def test_a_range_given_downward_is_the_grid_flipped():
+    z = np.arange(12.0).reshape(3, 4) ** 1.5
+    down = fc.HeightField(z, u=(0, 3), v=(2, 0))         # rows north to south
+    up = fc.HeightField(z[::-1], u=(0, 3), v=(0, 2))
+    assert down.default_domain == up.default_domain
+    assert np.array_equal(down.hf, up.hf)
+    left = fc.HeightField(z, u=(3, 0), v=(0, 2))
+    assert np.array_equal(left.hf, z[:, ::-1])
+
+
+def test_npy_png_and_npz_formats(tmp_path):
+    from PIL import Image
+    z = corner_peak().round()
+    z[5, 5] = -9999
+    np.save(tmp_path / "a.npy", z)
+    a = fc.read_dem(tmp_path / "a.npy", extent=(0, 400, 0, 400), nodata=-9999)
+    assert a.default_domain == ((0, 400), (0, 400)) and not a.dem["geographic"]
+    assert np.isnan(a.hf[-6, 5]) and np.isfinite(a.hf).sum() == z.size - 1
+    # a 16-bit greyscale PNG: its values are the heights
+    img = (corner_peak() * 300).astype(np.uint16)
+    Image.fromarray(img).save(tmp_path / "b.png")
+    b = fc.read_dem(tmp_path / "b.png")
+    assert np.array_equal(b.hf, img[::-1].astype(float))
+    # an .npz with coordinate vectors, y ascending (south row first)
+    np.savez(tmp_path / "c.npz", z=z[::-1], x=np.linspace(10, 50, 41), y=np.linspace(0, 40, 41))
+    c = fc.read_dem(tmp_path / "c.npz", nodata=-9999)
+    assert c.default_domain == ((10, 50), (0, 40))
+    assert np.array_equal(np.nan_to_num(c.hf), np.nan_to_num(a.hf))
+
+
+def test_geotiff_extent_nodata_and_degrees(tmp_path):
+    tifffile = pytest.importorskip("tifffile", reason="the optional extra floatcol[geotiff]")
+    z = corner_peak().astype(np.float32)
+    z[0, 0] = -32768
+    # GeoTIFF tags: pixel scale, a tie point (pixel 0, 0 at its corner: PixelIsArea),
+    # GeoKeys (GTModelType 2 geographic, GTRasterType 1 area), GDAL's nodata text
+    keys = [1, 1, 0, 2, 1024, 0, 1, 2, 1025, 0, 1, 1]
+    extra = [(33550, "d", 3, (0.001, 0.001, 0.0), True),
+             (33922, "d", 6, (0, 0, 0, 10.0, 45.0, 0), True),
+             (34735, "H", len(keys), keys, True),
+             (42113, "s", 0, "-32768", True)]
+    tifffile.imwrite(tmp_path / "d.tif", z, extratags=extra)
+    d = fc.read_dem(tmp_path / "d.tif")
+    assert d.dem["geographic"] and np.isnan(d.hf[-1, 0])
+    (ua, ub), (va, vb) = d.default_domain
+    # 40 cells of 0.001 deg at 44.98 N: 3.157 km east-west, 4.444 km north-south
+    assert ub == pytest.approx(40 * 0.001 * 111412.84 * np.cos(np.radians(44.98)), rel=1e-3)
+    assert vb == pytest.approx(40 * 0.001 * 111132.954, rel=2e-3)
+    # projected (GTModelType 1): the coordinates as they are, node centres
+    keys[7] = 1
+    extra[2] = (34735, "H", len(keys), keys, True)
+    tifffile.imwrite(tmp_path / "e.tif", z, extratags=extra[:3])
+    e = fc.read_dem(tmp_path / "e.tif")
+    assert np.ravel(e.default_domain) == pytest.approx([10.0005, 10.0405, 44.9595, 44.9995])
+
+
+def test_north_is_up_from_above():
+    # from straight above (matplotlib's elev 90, azim -90: x right, y up), the peak
+    # at the north-east corner lands top right
+    plot = fc.terrain(corner_peak(), extent=(0, 40, 0, 40), elev=90, azim=-90,
+                      proj_type="ortho", size=(200, 200), lightsource=None)
+    lum = plot.rgba[..., :3].astype(float).sum(axis=2)
+    r = plot.render
+    w = np.where(r.side != 0, np.nan_to_num(r.intensity), np.nan)
+    assert np.isfinite(w).sum() > 10000
+    i, c = np.unravel_index(np.nanargmin(np.where(r.side != 0, r.depth, np.inf)), w.shape)
+    assert i < 100 and c > 100                       # the nearest point: the peak's top
+    assert lum.shape == (200, 200)
+
+
+def test_terrain_defaults_and_auto_exaggeration():
+    plot = fc.terrain(JACKSBORO, size=(200, 120))
+    # relief (1st-99th percentile) about 0.63 km on 31.8 km: 0.08 * 31.8 / 0.63 = 4.0
+    assert 2.5 <= plot.vert_exag <= 6.0
+    assert (plot.render if plot.render is not None else plot.draw()).stats["box"] == (1, 1, 1)
+    assert (plot.rgba[..., 3] > 0).mean() > 0.3
+    flat = fc.terrain(np.zeros((5, 5)) + 3.0, size=(60, 40))
+    assert flat.vert_exag == 1.0
+    with pytest.raises(ValueError, match="vert_exag"):
+        fc.terrain(JACKSBORO, vert_exag=0)
+
+
+def test_bad_files_are_value_errors(tmp_path):
+    with pytest.raises(ValueError, match="does not exist"):
+        fc.read_dem(tmp_path / "none.tif")
+    with pytest.raises(ValueError, match="use .npy"):
+        fc.read_dem(tmp_path / "x.csv")
+    (tmp_path / "bad.npy").write_bytes(b"not numpy")
+    with pytest.raises(ValueError, match="cannot be read"):
+        fc.read_dem(tmp_path / "bad.npy")
+    np.save(tmp_path / "one.npy", np.arange(5.0))
+    with pytest.raises(ValueError, match="2-D array"):
+        fc.read_dem(tmp_path / "one.npy")
+    with pytest.raises(ValueError, match="extent"):
+        fc.read_dem(np.zeros((3, 3)), extent=(0, 0, 1, 2))
+
+
+def test_cli_terrain(tmp_path, capsys):
+    out = tmp_path / "t.png"
+    assert main(["terrain", JACKSBORO, "--size", "160x100", "--vert-exag", "2",
+                 "--antialias", "area", "-o", str(out)]) == 0
+    assert out.is_file() and "heights x2" in capsys.readouterr().out
+    np.save(tmp_path / "h.npy", corner_peak())
+    assert main(["terrain", str(tmp_path / "h.npy"), "--extent", "-84.4:-84.0:36.4:36.7",
+                 "--size", "120x80", "-o", str(tmp_path / "g.png")]) == 0
+    for argv in (["terrain", str(tmp_path / "missing.tif")],
+                 ["terrain", JACKSBORO, "--vert-exag", "-1"],
+                 ["terrain", JACKSBORO, "--extent", "1:2:3"]):
+        bad = tmp_path / "bad.png"
+        assert main(argv + ["-o", str(bad)]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith("floatcol: error:")
+        assert not os.path.exists(bad)

@@ -1,6 +1,6 @@
 """floatcol: shaded pictures of w = f(u, v) by Gordon's floating column algorithm."""
 from .animate import Animation, animate
-from .camera import Camera
+from .camera import Camera, fly
 from .compose import composite, render_many
 from .light import Light
 from .material import Material
@@ -26,5 +26,5 @@ def __getattr__(name):
 
 __all__ = ["Animation", "Camera", "HeightField", "Layer", "Light", "Material", "Quality",
            "Render", "Scene", "Surface", "SurfacePlot", "SympyBackend", "View", "__version__",
-           "animate", "as_surface", "composite", "plot_surface", "read_dem", "render",
+           "animate", "as_surface", "composite", "fly", "plot_surface", "read_dem", "render",
            "render_many", "render_scene", "terrain"]

@@ -201,3 +201,63 @@ def fit(layers, camera, quality, light_dir=None, joint=False):
                                 quality.placement))
         drawn.append((s, dom))
     return views, drawn, box
+
+
+def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
+        above=None, near=None):
+    """A fly-through camera (Guedes 1997): the eye at ``position`` inside the scene,
+    looking along compass ``heading`` (degrees clockwise from +v, "north") and
+    ``pitch`` (degrees, negative down) with a horizontal field of view ``fov``; the
+    view plane is tilted with the pitch (his non-vertical view plane). Returns the
+    keywords of render() that place it: projection, elev, azim, center, d1, d2,
+    scale, size and step.
+
+    position: (u, v, w), or (u, v) with the eye ``above`` (default: 5 % of the
+        domain's longer side) the surface there.
+    near: the near clipping distance (the screen plane, d1; default 1/1000 of the
+        domain's longer side): nearer points are not drawn.
+    The sampling planes start a pixel's footprint apart where the lowest ray of the
+    picture meets the ground under the eye (render's ``step``); with
+    ``antialias="area"`` they grow with distance (kernels/area.py), or use
+    ``sampling="adaptive"``.
+    """
+    from .surface import as_surface
+    from .view import _number, check_size
+    s = as_surface(surface)
+    domain = s.default_domain or ((-10.0, 10.0), (-10.0, 10.0))
+    (ua, ub), (va, vb) = domain
+    side = max(ub - ua, vb - va)
+    try:
+        pos = [_number("position", p) for p in position]
+    except TypeError:
+        raise ValueError(f"position must be (u, v, w) or (u, v), got {position!r}") from None
+    if len(pos) not in (2, 3):
+        raise ValueError(f"position must be (u, v, w) or (u, v), got {position!r}")
+    heading = _number("heading", heading)
+    pitch = _number("pitch", pitch)
+    if not -89.0 <= pitch <= 89.0:
+        raise ValueError(f"pitch must be between -89 and 89 degrees, got {pitch}")
+    fov = _number("fov", fov)
+    if not 1.0 <= fov <= 170.0:
+        raise ValueError(f"fov must be between 1 and 170 degrees, got {fov}")
+    W, H = check_size(size)
+    import numpy as np
+    ground = float(s.evaluate(np.array([pos[0]]), np.array([pos[1]]))[0])
+    if len(pos) == 2:
+        rise = 0.05 * side if above is None else _number("above", above, positive=True)
+        pos.append((ground if np.isfinite(ground) else 0.0) + rise)
+    d1 = 1e-3 * side if near is None else _number("near", near, positive=True)
+    d2 = d1
+    # eqs. (1)-(2): the screen's z axis (the view direction) is (ca sb, ca cb, sa) in
+    # (u, v, w): beta = heading, alpha = pitch (elev = -pitch)
+    a, b = math.radians(pitch), math.radians(heading)
+    view = (math.cos(a) * math.sin(b), math.cos(a) * math.cos(b), math.sin(a))
+    center = tuple(p + (d1 + d2) * c for p, c in zip(pos, view))
+    scale = 0.5 * (W - 1) / (d1 * math.tan(math.radians(fov) / 2))
+    # the footprint of a pixel where the lowest ray meets the ground below the eye
+    height = pos[2] - ground if np.isfinite(ground) else 0.0
+    down = math.radians(-pitch) + math.atan(0.5 * (H - 1) / scale / d1)
+    reach = height / math.sin(down) if height > 0 and down > 0 else side
+    step = max(min(reach, side), d1) / (d1 * scale)
+    return dict(projection="perspective", elev=-pitch, azim=heading, center=center, d1=d1,
+                d2=d2, scale=scale, size=(W, H), step=step)

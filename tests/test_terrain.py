@@ -145,3 +145,41 @@ def test_cli_terrain(tmp_path, capsys):
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and err[0].startswith("floatcol: error:")
         assert not os.path.exists(bad)
+
+
+def test_fly_camera_looks_where_it_says():
+    hf = fc.HeightField(np.zeros((11, 11)), u=(0, 1000), v=(0, 1000))
+    eye = (500.0, 200.0, 30.0)
+    kw = fc.fly(hf, eye, heading=30, pitch=-10, fov=60, size=(201, 101))
+    r = fc.render(hf, **kw)
+    vw = r.view
+    # the viewpoint is the eye: d3 behind the centre along the view direction
+    b, a = np.radians(30), np.radians(-10)
+    ahead = np.array([np.sin(b) * np.cos(a), np.cos(b) * np.cos(a), np.sin(a)])
+    assert np.allclose(np.array(vw.center) - vw.d3 * ahead, eye)
+
+    def seen(heading_off, elev_deg, dist=400.0):
+        h, e = np.radians(30 + heading_off), np.radians(elev_deg)
+        p = np.array(eye) + dist * np.array([np.sin(h) * np.cos(e), np.cos(h) * np.cos(e),
+                                             np.sin(e)])
+        return vw.project(*p[:, None])
+    # straight along the view direction: the centre; 20 deg right of it (at the
+    # pitch): tan 20 / tan 30 of the half width to the right; the horizon at eye
+    # level: tan 10 deg of the focal length above the centre
+    c, row = seen(0, -10)
+    assert c[0] == pytest.approx(100, abs=1e-6) and row[0] == pytest.approx(50, abs=1e-6)
+    col, _ = vw.project(*(np.array(eye) + 400 * np.array(
+        [np.sin(b + np.radians(20)), np.cos(b + np.radians(20)), 0]))[:, None])
+    c_h, row_h = seen(0, 0)
+    assert row_h[0] == pytest.approx(50 - 100 * np.tan(np.radians(10)) / np.tan(np.radians(30)),
+                                     abs=1e-6)
+    # the ground below the horizon is seen, the sky above it is not
+    assert (r.side[70:] != 0).all() and (r.side[:20] == 0).all()
+    assert col[0] > 100
+    # position (u, v): the eye 'above' the ground there
+    kw2 = fc.fly(hf, (500, 200), above=50)
+    assert kw2["center"][2] == pytest.approx(50 + 2 * kw2["d1"] * np.sin(np.radians(-10)))
+    with pytest.raises(ValueError, match="pitch"):
+        fc.fly(hf, eye, pitch=95)
+    with pytest.raises(ValueError, match="position"):
+        fc.fly(hf, (1, 2, 3, 4))

@@ -93,8 +93,9 @@ def _footprint(vp, t, s_guess):
     height of the last sample relative to the centre, for its depth)."""
     if vp[VP_ORTHO] != 0.0:
         return 1.0 / vp[VP_SCALE]
-    q = s_guess * vp[VP_SA] + t * vp[VP_CA] + vp[VP_D3]
-    return max(q, vp[VP_D1]) / (vp[VP_D1] * vp[VP_SCALE])
+    q = s_guess * vp[VP_SA] + t * vp[VP_CA] + vp[VP_D3]     # its depth from the eye
+    # (behind the eye, |q|: the planes there grow apart as fast as in front)
+    return max(abs(q), vp[VP_D1]) / (vp[VP_D1] * vp[VP_SCALE])
 
 
 @ngjit_inline

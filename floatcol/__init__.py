@@ -11,6 +11,7 @@ from .plot import SurfacePlot, plot_surface
 from .render import Render, render
 from .surface import HeightField, Surface, as_surface
 from .terrain import read_dem, terrain
+from .objects import Mesh, box, marker, pole, tree
 from .view import View
 
 __version__ = "0.2.0"
@@ -24,7 +25,7 @@ def __getattr__(name):
     raise AttributeError(f"module 'floatcol' has no attribute {name!r}")
 
 
-__all__ = ["Animation", "Camera", "HeightField", "Layer", "Light", "Material", "Quality",
+__all__ = ["Animation", "Camera", "HeightField", "Layer", "Light", "Material", "Mesh", "Quality",
            "Render", "Scene", "Surface", "SurfacePlot", "SympyBackend", "View", "__version__",
-           "animate", "as_surface", "composite", "fly", "plot_surface", "read_dem", "render",
+           "animate", "as_surface", "box", "composite", "fly", "marker", "pole", "tree", "plot_surface", "read_dem", "render",
            "render_many", "render_scene", "terrain"]

@@ -36,7 +36,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            antialias=None, sampling="uniform", aspect="equal", box=None, lightsource=None,
            shadows=False, opacity=1.0, texture=None, texture_extent=None,
            texture_filter="mipmap", color=None, contours=None, contour_color="black",
-           contour_width=1.0, wireframe=None, edgecolor="black", linewidth=0.75) -> Render:
+           contour_width=1.0, wireframe=None, edgecolor="black", linewidth=0.75,
+           objects=None) -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -145,6 +146,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     wireframe : lines at u = const and v = const: N each way or (nu, nv), spread
         over the domain from edge to edge (matplotlib's rcount, ccount);
         ``edgecolor``, ``linewidth`` in pixels (default 0.75).
+    objects : objects standing on the surface (Szenberg 1997): ``fc.box``,
+        ``fc.pole``, ``fc.tree``, ``fc.marker`` or any ``fc.Mesh``, drawn by a
+        z-buffer against the surface's depth, lit flat by the picture's light.
 
     Returns
     -------
@@ -176,4 +180,4 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
                         detect=detect, jump_threshold=jump_threshold,
                         supersample_rate=supersample_rate, spline_tolerance=spline_tolerance,
                         antialias=antialias),
-        background=background, vars=vars), stacklevel=2)
+        background=background, vars=vars, objects=objects or ()), stacklevel=2)

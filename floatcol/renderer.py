@@ -49,8 +49,30 @@ class _Prepared:
 def render_scene(scene, stacklevel=2, composite=False) -> Render:
     """Run a Scene's passes: one layer is a picture of its own; several (or one with
     ``composite``) are rendered from one camera over a transparent background and
-    composited by depth (Render.stats["surface"]: the layer seen at each pixel)."""
+    composited by depth (Render.stats["surface"]: the layer seen at each pixel); then
+    the scene's objects, by z-buffer (floatcol/objects.py)."""
     t_start = time.perf_counter()
+    out = _render_layers(scene, stacklevel + 1, composite, t_start)
+    if scene.objects:
+        from .objects import objects_pass
+        first = scene.layers[0]
+        if isinstance(scene.objects, (str, bytes)) or not hasattr(scene.objects, "__iter__"):
+            raise ValueError("objects must be a list of fc.box, fc.pole, fc.tree, fc.marker "
+                             "or fc.Mesh")
+        objects = list(scene.objects)
+        from .objects import Mesh
+        if not all(isinstance(o, Mesh) for o in objects):
+            raise ValueError("objects must be a list of fc.box, fc.pole, fc.tree, fc.marker "
+                             "or fc.Mesh")
+        light = as_light(scene.light, first.material.shading)
+        objects_pass(out, objects, as_surface(first.surface, scene.vars),
+                     _screen_light(light, scene.camera.elev, scene.camera.azim))
+        out.stats["seconds"] = time.perf_counter() - t_start
+    return out
+
+
+def _render_layers(scene, stacklevel, composite, t_start) -> Render:
+    """render_scene's layers."""
     quality = scene.quality
     quality.check_method()
     if not scene.layers:

@@ -115,6 +115,29 @@ class Render:
         with np.errstate(invalid="ignore", divide="ignore"):
             return n / np.linalg.norm(n, axis=2, keepdims=True)
 
+    def window_depth(self, near, far):
+        """(H, W) float32: the depth as OpenGL's depth buffer holds it with a
+        perspective projection of ``near`` and ``far`` planes and glDepthRange(0, 1)
+        (Szenberg 1997, eq. 7): (far - far near / e) / (far - near), e the point's
+        distance from the eye along the view axis (depth + d1 + d2); 1 (the cleared
+        buffer) where nothing is seen; clipped to [0, 1]. An orthographic picture's
+        is linear, (e - near) / (far - near), e measured from d1 + d2 in front of the
+        centre. Lets a floatcol picture go under an OpenGL scene (glDrawPixels of both
+        buffers), as Szenberg composes his terrain with OpenGL's objects."""
+        from .view import _number
+        near = _number("near", near, positive=True)
+        far = _number("far", far, positive=True)
+        if not far > near:
+            raise ValueError(f"far must be beyond near, got near={near}, far={far}")
+        e = self.depth.astype(np.float64) + self.view.d3
+        with np.errstate(invalid="ignore", divide="ignore"):
+            if self.view.orthographic:
+                d = (e - near) / (far - near)
+            else:
+                d = (far - far * near / e) / (far - near)      # eq. (7), i = e
+        d = np.where(np.isfinite(self.depth), np.clip(d, 0.0, 1.0), 1.0)
+        return d.astype(np.float32)
+
     def save(self, path):
         """Write ``rgba`` to a PNG (or .jpg, .pdf, .svg), atomically: a temporary file
         renamed at the end."""

@@ -45,6 +45,9 @@ class Scene:
     quality: Quality = field(default_factory=Quality)
     background: Any = None
     vars: Any = None
+    #: objects standing on the first surface (floatcol.objects: box, pole, tree,
+    #: marker or a Mesh), drawn by z-buffer against its depth (Szenberg 1997)
+    objects: Any = ()
 
 
 #: render()'s keywords that are a material's, a camera's and a quality's
@@ -70,6 +73,7 @@ def scene_from_options(surfaces, **options):
         light = as_light(light, material.get("shading", "default"), lightsource, shadows)
     background = options.pop("background", None)
     vars = options.pop("vars", None)
+    objects = options.pop("objects", ())
     if options:
         raise TypeError(f"unexpected options {', '.join(sorted(options))}")
     opacities = _per_surface("opacity", material.pop("opacity", 1.0), len(surfaces))
@@ -84,7 +88,7 @@ def scene_from_options(surfaces, **options):
         else:
             layers.append(Layer(item, None, mat))
     return Scene(layers, camera=Camera(**camera), light=light, quality=Quality(**quality),
-                 background=background, vars=vars)
+                 background=background, vars=vars, objects=objects or ())
 
 
 def _per_surface(name, value, n):

@@ -1,0 +1,247 @@
+"""Objects on a surface (Szenberg 1997): markers, poles, boxes and trees drawn by a
+z-buffer against the surface's depth.
+
+Szenberg renders a terrain by the floating horizon, keeps each pixel's depth, and
+lets a z-buffer (OpenGL's) draw houses, vehicles and power lines into the same
+picture. Here the objects are small triangle meshes standing on the surface (their
+base at f(u, v)); the objects pass projects them with the picture's own camera,
+rasterises each triangle at the pixel centres with perspective-correct depth, keeps
+the nearest of them and of the surface (Render.depth), and lights each face flat by
+the picture's light (ambient 0.35). ``Render.window_depth(near, far)`` (his eq. 7)
+gives the surface's depth as OpenGL's depth buffer holds it, for the opposite way
+round: a floatcol terrain under an OpenGL scene.
+
+>>> import floatcol as fc
+>>> r = fc.render("exp(-(u**2 + v**2) / 8)", u=(-4, 4), v=(-4, 4), size=(160, 120),
+...               objects=[fc.tree(1, 1, 0.8), fc.box(-2, 0, 0.6, 0.6, 0.5)])
+>>> r.stats["objects"]
+2
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import color
+
+#: light of a face turned away from the light (flat shading: ambient + diffuse)
+AMBIENT = 0.35
+#: sides of a pole's and a tree's cone
+ROUND_SIDES = 12
+
+
+@dataclass
+class Mesh:
+    """A triangle mesh standing on the surface: ``vertices`` (n, 3) as (du, dv, h)
+    offsets from its foot (u, v) on the surface (h up from f(u, v), or from ``base``
+    where given), ``triangles`` (m, 3) vertex indices, one ``color`` per triangle or
+    one for all."""
+    u: float
+    v: float
+    vertices: np.ndarray
+    triangles: np.ndarray
+    color: object = "grey"
+    base: float | None = None
+
+    def check(self):
+        try:
+            u, v = float(self.u), float(self.v)
+        except (TypeError, ValueError):
+            raise ValueError(f"an object's position must be numbers, got {self.u!r}, "
+                             f"{self.v!r}") from None
+        verts = np.asarray(self.vertices, dtype=float)
+        tris = np.asarray(self.triangles)
+        if verts.ndim != 2 or verts.shape[1] != 3 or tris.ndim != 2 or tris.shape[1] != 3 \
+                or tris.dtype.kind not in "iu" or tris.size == 0 \
+                or tris.min() < 0 or tris.max() >= len(verts):
+            raise ValueError("an object's mesh must be vertices (n, 3) and triangles (m, 3) of "
+                             "vertex indices")
+        if not (math.isfinite(u) and math.isfinite(v) and np.isfinite(verts).all()):
+            raise ValueError("an object's position and vertices must be finite numbers")
+        cols = self.color
+        if isinstance(cols, (list, tuple)) and len(cols) == len(tris) and len(tris) != 3 \
+                and not isinstance(cols[0], (int, float)):
+            rgb = np.array([color.to_rgb(c, "object color") for c in cols])
+        else:
+            rgb = np.tile(color.to_rgb(cols, "object color"), (len(tris), 1))
+        return u, v, verts, tris, rgb
+
+
+def box(u, v, width, depth, height, color="lightgrey", heading=0.0, base=None):
+    """A box (a house, a vehicle) of ``width`` along u and ``depth`` along v turned by
+    ``heading`` degrees (clockwise from +v), ``height`` tall, its foot centred at (u,
+    v) on the surface."""
+    w, d, h = (_positive(n, x) for n, x in (("width", width), ("depth", depth),
+                                            ("height", height)))
+    c, s = math.cos(math.radians(heading)), math.sin(math.radians(heading))
+    corners = []
+    for z in (0.0, h):
+        for x, y in ((-w / 2, -d / 2), (w / 2, -d / 2), (w / 2, d / 2), (-w / 2, d / 2)):
+            corners.append((x * c + y * s, -x * s + y * c, z))
+    faces = [(0, 1, 2), (0, 2, 3), (4, 6, 5), (4, 7, 6)]
+    for k in range(4):
+        a, b = k, (k + 1) % 4
+        faces += [(a, b, b + 4), (a, b + 4, a + 4)]
+    return Mesh(u, v, np.array(corners), np.array(faces), color, base)
+
+
+def pole(u, v, height, radius=None, color="dimgrey", base=None):
+    """A pole (a mast, a power-line tower) ``height`` tall, ``radius`` thick (default
+    1/40 of its height)."""
+    h = _positive("height", height)
+    r = h / 40 if radius is None else _positive("radius", radius)
+    verts, tris = _cylinder(r, r, 0.0, h)
+    return Mesh(u, v, verts, tris, color, base)
+
+
+def tree(u, v, height, color="forestgreen", trunk="saddlebrown", base=None):
+    """A tree: a cone crown (the upper 3/4 of ``height``, its radius 1/3 of the
+    height) on a trunk."""
+    h = _positive("height", height)
+    tv, tt = _cylinder(h / 25, h / 25, 0.0, 0.3 * h)
+    cv, ct = _cylinder(h / 3, 0.0, 0.25 * h, h)
+    verts = np.vstack([tv, cv])
+    tris = np.vstack([tt, ct + len(tv)])
+    colors = [trunk] * len(tt) + [color] * len(ct)
+    return Mesh(u, v, verts, tris, colors, base)
+
+
+def marker(u, v, size, color="red", above=None, base=None):
+    """A marker: an octahedron ``size`` across floating ``above`` the surface
+    (default: its own size)."""
+    s = _positive("size", size) / 2
+    lift = 2 * s if above is None else float(above) + s
+    verts = np.array([(s, 0, lift), (-s, 0, lift), (0, s, lift), (0, -s, lift),
+                      (0, 0, lift + s), (0, 0, lift - s)])
+    tris = np.array([(4, 0, 2), (4, 2, 1), (4, 1, 3), (4, 3, 0),
+                     (5, 2, 0), (5, 1, 2), (5, 3, 1), (5, 0, 3)])
+    return Mesh(u, v, verts, tris, color, base)
+
+
+def _cylinder(r0, r1, z0, z1):
+    """A closed cylinder or cone (radius r0 at z0, r1 at z1) of ROUND_SIDES sides."""
+    n = ROUND_SIDES
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    ring0 = np.c_[r0 * np.cos(a), r0 * np.sin(a), np.full(n, z0)]
+    ring1 = np.c_[r1 * np.cos(a), r1 * np.sin(a), np.full(n, z1)]
+    verts = np.vstack([ring0, ring1, [(0, 0, z0), (0, 0, z1)]])
+    tris = []
+    for k in range(n):
+        m = (k + 1) % n
+        tris += [(k, m, n + m), (k, n + m, n + k), (2 * n, m, k), (2 * n + 1, n + k, n + m)]
+    return verts, np.array(tris)
+
+
+def _positive(name, x):
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        raise ValueError(f"an object's {name} must be a positive number, got {x!r}") from None
+    if not (math.isfinite(x) and x > 0):
+        raise ValueError(f"an object's {name} must be a positive number, got {x!r}")
+    return x
+
+
+def objects_pass(r, objects, surface, light_dir):
+    """Draw ``objects`` (Mesh) into Render ``r`` in place: its rgba, and its depth
+    where an object is nearer than the surface (side, intensity and the G-buffer stay
+    the surface's); ``stats["objects"]`` and ``stats["object_pixels"]``. They stand
+    on ``surface`` (in its own units; r.box stretches them as the picture); light_dir
+    is the screen direction toward the light (None or zeros: the headlight)."""
+    view = r.view
+    H, W = r.side.shape
+    a, b, c = r.box
+    ortho = view.orthographic
+    surf_depth = np.where(np.isfinite(r.depth), r.depth.astype(np.float64), np.inf)
+    zbuf = surf_depth.copy()
+    rgba = r.rgba
+    drawn = np.zeros((H, W), bool)
+    for obj in objects:
+        u0, v0, verts, tris, rgb = obj.check()
+        if obj.base is None:
+            foot = float(np.asarray(surface.evaluate(np.array([u0]), np.array([v0])))[0])
+            if not math.isfinite(foot):
+                continue                        # (over a hole: nothing to stand on)
+        else:
+            foot = float(obj.base)
+        pu = (u0 + verts[:, 0]) * a
+        pv = (v0 + verts[:, 1]) * b
+        pw = (foot + verts[:, 2]) * c
+        x, y, z = view.to_screen(pu, pv, pw)
+        e = z + view.d3                          # distance along the view axis
+        if ortho:
+            m = np.ones_like(e)
+        else:
+            if (e[tris] <= view.d1).any(axis=1).all():
+                continue                        # wholly in front of the screen plane
+            m = view.d1 / np.where(e > view.d1, e, np.nan)
+        col = x * m * view.scale + (W - 1) / 2
+        row = (H - 1) / 2 - y * m * view.scale
+        pts = np.c_[x, y, z]
+        for k, (i0, i1, i2) in enumerate(tris):
+            if not np.isfinite(col[[i0, i1, i2]]).all():
+                continue                        # (crosses the screen plane: left out)
+            n = np.cross(pts[i1] - pts[i0], pts[i2] - pts[i0])
+            nn = np.linalg.norm(n)
+            if nn == 0:
+                continue
+            n /= nn
+            if ortho:
+                to_eye = np.array([0.0, 0.0, -1.0])
+            else:
+                mid = pts[[i0, i1, i2]].mean(axis=0)
+                to_eye = np.array([0.0, 0.0, -view.d3]) - mid
+                to_eye /= np.linalg.norm(to_eye)
+            if n @ to_eye < 0:
+                n = -n                          # the side facing the eye
+            ld = np.asarray(light_dir if light_dir is not None else (0, 0, 0), float)
+            lv = to_eye if not ld.any() else ld / np.linalg.norm(ld)
+            shade = AMBIENT + (1 - AMBIENT) * max(float(n @ lv), 0.0)
+            _triangle(col[[i0, i1, i2]], row[[i0, i1, i2]], e[[i0, i1, i2]], ortho,
+                      np.clip(rgb[k] * shade, 0, 1), zbuf, rgba, drawn, view.d3)
+    r.stats["objects"] = len(objects)
+    r.stats["object_pixels"] = int(drawn.sum())
+    if drawn.any():
+        d = r.depth.copy()
+        d[drawn] = (zbuf[drawn]).astype(np.float32)
+        r._depth = d
+    return r
+
+
+def _triangle(cx, cy, e, ortho, rgb, zbuf, rgba, drawn, d3):
+    """Rasterise one triangle at the pixel centres: depth (the distance along the
+    view axis e, stored as screen z = e - d3) interpolated perspective-correctly
+    (1/e linear on the screen), nearer than zbuf wins."""
+    H, W = zbuf.shape
+    c0, c1 = int(max(math.floor(cx.min()), 0)), int(min(math.ceil(cx.max()), W - 1))
+    r0, r1 = int(max(math.floor(cy.min()), 0)), int(min(math.ceil(cy.max()), H - 1))
+    if c0 > c1 or r0 > r1:
+        return
+    gy, gx = np.mgrid[r0:r1 + 1, c0:c1 + 1].astype(float)
+    (x0, x1, x2), (y0, y1, y2) = cx, cy
+    det = (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2)
+    if det == 0:
+        return
+    l0 = ((y1 - y2) * (gx - x2) + (x2 - x1) * (gy - y2)) / det
+    l1 = ((y2 - y0) * (gx - x2) + (x0 - x2) * (gy - y2)) / det
+    l2 = 1 - l0 - l1
+    eps = -1e-9
+    inside = (l0 >= eps) & (l1 >= eps) & (l2 >= eps)
+    if not inside.any():
+        return
+    if ortho:
+        depth = l0 * e[0] + l1 * e[1] + l2 * e[2]
+    else:
+        depth = 1.0 / (l0 / e[0] + l1 / e[1] + l2 / e[2])
+    z = depth - d3
+    zb = zbuf[r0:r1 + 1, c0:c1 + 1]
+    win = inside & (z < zb)
+    if not win.any():
+        return
+    zb[win] = z[win]
+    px = rgba[r0:r1 + 1, c0:c1 + 1]
+    px[win, :3] = np.round(rgb * 255).astype(np.uint8)
+    px[win, 3] = 255
+    drawn[r0:r1 + 1, c0:c1 + 1] |= win

@@ -210,7 +210,9 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
     ``pitch`` (degrees, negative down) with a horizontal field of view ``fov``; the
     view plane is tilted with the pitch (his non-vertical view plane). Returns the
     keywords of render() that place it: projection, elev, azim, center, d1, d2,
-    scale, size and step.
+    scale, size, step, and sampling="adaptive" (planes that grow apart with distance:
+    a 640x360 view of matplotlib's Jacksboro DEM took 1.8 s with uniform planes a
+    near pixel apart, 0.2 s adaptive; change it in the dict).
 
     position: (u, v, w), or (u, v) with the eye ``above`` (default: 5 % of the
         domain's longer side) the surface there.
@@ -260,4 +262,4 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
     reach = height / math.sin(down) if height > 0 and down > 0 else side
     step = max(min(reach, side), d1) / (d1 * scale)
     return dict(projection="perspective", elev=-pitch, azim=heading, center=center, d1=d1,
-                d2=d2, scale=scale, size=(W, H), step=step)
+                d2=d2, scale=scale, size=(W, H), step=step, sampling="adaptive")

@@ -232,7 +232,8 @@ def build_parser():
                        epilog=TERRAIN_EXAMPLES,
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     _surface_options(t, default_size="1000x600", terrain=True)
-    t.set_defaults(elev=35.0, azim=-100.0, aspect="equal", cmap="gist_earth", light=(315.0, 35.0))
+    t.set_defaults(elev=35.0, azim=-100.0, aspect="equal", cmap="gist_earth", light=(315.0, 35.0),
+                   antialias="area")
     t.add_argument("--vert-exag", type=_exaggeration, default="auto", metavar="X",
                    help="heights times X (default auto: the relief 8%% of the longer side)")
     t.add_argument("--extent", type=_four, default=None, metavar="W:E:S:N",

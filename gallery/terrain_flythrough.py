@@ -28,14 +28,14 @@ objects += [fc.pole(15200, 9000, 700.0, color="white"),
             fc.box(14600, 7200, 300, 200, 150, color="firebrick", heading=25)]
 
 frames = []
-for k in range(6):
+for k in range(4):
     cam = fc.fly(dem, (15000.0 + 80 * k, 2500.0 + 450 * k), heading=15, pitch=-10, fov=55,
                  size=(320, 180), above=900)
     r = fc.render(dem, **cam, texture=relief, antialias="area", lightsource=(315, 35),
                   shadows=True, objects=objects, background="lightskyblue", ambient=0.4)
     frames.append(r.rgba)
-write_gif(frames, "terrain_flythrough.gif", fps=6)
+write_gif(frames, "terrain_flythrough.gif", fps=4)
 fc.render(dem, **fc.fly(dem, (15000.0, 2500.0), heading=15, pitch=-10, fov=55,
-                        size=(640, 360), above=900),
+                        size=(480, 270), above=900),
           texture=relief, antialias="area", lightsource=(315, 35), shadows=True,
           objects=objects, background="lightskyblue", ambient=0.4).save("terrain_fly.png")

@@ -268,7 +268,7 @@ def layer_hits(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic",
     crossing."""
     f, fu, fv = funcs
     org, dirn, lam_lo, lam_hi, live, world = _rays(u_rng, v_rng, size, elev, azim, projection,
-                                                   d1, d2, scale, w_bound, center, yscale)
+                                                   d1, d2, scale, w_bound, center)
     org = org.reshape(3, -1)
     dirn = dirn.reshape(3, -1)
     lam_lo, lam_hi, live = lam_lo.ravel(), lam_hi.ravel(), live.ravel()

@@ -71,8 +71,11 @@ def test_heightfield_errors():
         fc.HeightField([1.0, 2.0, 3.0])
     with pytest.raises(ValueError, match="2-D array of numbers"):
         fc.HeightField([["a", "b"], ["c", "d"]])
+    # (a range given downward is the grid flipped: test_terrain.py; an empty one is not)
     with pytest.raises(ValueError, match="range u"):
-        fc.HeightField([[0, 1], [1, 0]], u=(1, 0))
+        fc.HeightField([[0, 1], [1, 0]], u=(1, 1))
+    with pytest.raises(ValueError, match="range v"):
+        fc.HeightField([[0, 1], [1, 0]], v=(0, float("nan")))
 
 
 def test_uncompilable_callable_is_a_clear_error():

@@ -54,8 +54,15 @@ def view_params(view, method, sampling, fixes, aa_cov, surface):
         (vp[L.VP_FIX_RIDGE], vp[L.VP_FIX_SHADE], vp[L.VP_DETECT], vp[L.VP_JUMP], vp[L.VP_RATE],
          vp[L.VP_SPLINE_TOL]) = fixes
     vp[L.VP_AA] = 1.0 if aa_cov else 0.0
-    if surface.derivatives not in ("symbolic", "bilinear"):
-        vp[L.VP_FOLD] = 0.0     # (layout.py: central differences tilt normals at jumps)
+    if surface.derivatives != "symbolic":
+        # (layout.py: central differences tilt normals at jumps.) A height field's
+        # facets face away from the eye at every hidden slope of a rough terrain, so
+        # nearly every column of a dense DEM was traced as folding: 64 M evaluations
+        # and 2.8 s for a 320x240 perspective view of a 1025^2 fractal DEM, 0.54 M and
+        # 48 ms without; against the ray caster (160x120) a 257^2 fractal's PSNR 27.44
+        # dB with the tracing, 27.46 without, sides agreeing 99.86 % and 99.92 %;
+        # matplotlib's Jacksboro DEM the same picture (no column folded)
+        vp[L.VP_FOLD] = 0.0
     return vp
 
 

@@ -149,99 +149,66 @@ def objects_pass(r, objects, surface, light_dir):
     where an object is nearer than the surface (side, intensity and the G-buffer stay
     the surface's); ``stats["objects"]`` and ``stats["object_pixels"]``. They stand
     on ``surface`` (in its own units; r.box stretches them as the picture); light_dir
-    is the screen direction toward the light (None or zeros: the headlight)."""
+    is the screen direction toward the light (None or zeros: the headlight). The
+    meshes are projected and lit here (numpy), rasterised by kernels/raster.py."""
+    from .kernels.raster import raster_kernel
     view = r.view
     H, W = r.side.shape
     a, b, c = r.box
     ortho = view.orthographic
-    surf_depth = np.where(np.isfinite(r.depth), r.depth.astype(np.float64), np.inf)
-    zbuf = surf_depth.copy()
-    rgba = r.rgba
-    drawn = np.zeros((H, W), bool)
+    verts, tris, rgbs = [], [], []
+    n = 0
     for obj in objects:
-        u0, v0, verts, tris, rgb = obj.check()
+        u0, v0, vv, tt, rgb = obj.check()
         if obj.base is None:
             foot = float(np.asarray(surface.evaluate(np.array([u0]), np.array([v0])))[0])
             if not math.isfinite(foot):
                 continue                        # (over a hole: nothing to stand on)
         else:
             foot = float(obj.base)
-        pu = (u0 + verts[:, 0]) * a
-        pv = (v0 + verts[:, 1]) * b
-        pw = (foot + verts[:, 2]) * c
-        x, y, z = view.to_screen(pu, pv, pw)
-        e = z + view.d3                          # distance along the view axis
-        if ortho:
-            m = np.ones_like(e)
-        else:
-            if (e[tris] <= view.d1).any(axis=1).all():
-                continue                        # wholly in front of the screen plane
-            m = view.d1 / np.where(e > view.d1, e, np.nan)
-        col = x * m * view.scale + (W - 1) / 2
-        row = (H - 1) / 2 - y * m * view.scale
-        pts = np.c_[x, y, z]
-        for k, (i0, i1, i2) in enumerate(tris):
-            if not np.isfinite(col[[i0, i1, i2]]).all():
-                continue                        # (crosses the screen plane: left out)
-            n = np.cross(pts[i1] - pts[i0], pts[i2] - pts[i0])
-            nn = np.linalg.norm(n)
-            if nn == 0:
-                continue
-            n /= nn
-            if ortho:
-                to_eye = np.array([0.0, 0.0, -1.0])
-            else:
-                mid = pts[[i0, i1, i2]].mean(axis=0)
-                to_eye = np.array([0.0, 0.0, -view.d3]) - mid
-                to_eye /= np.linalg.norm(to_eye)
-            if n @ to_eye < 0:
-                n = -n                          # the side facing the eye
-            ld = np.asarray(light_dir if light_dir is not None else (0, 0, 0), float)
-            lv = to_eye if not ld.any() else ld / np.linalg.norm(ld)
-            shade = AMBIENT + (1 - AMBIENT) * max(float(n @ lv), 0.0)
-            _triangle(col[[i0, i1, i2]], row[[i0, i1, i2]], e[[i0, i1, i2]], ortho,
-                      np.clip(rgb[k] * shade, 0, 1), zbuf, rgba, drawn, view.d3)
+        verts.append(np.c_[(u0 + vv[:, 0]) * a, (v0 + vv[:, 1]) * b, (foot + vv[:, 2]) * c])
+        tris.append(tt + n)
+        rgbs.append(rgb)
+        n += len(vv)
     r.stats["objects"] = len(objects)
-    r.stats["object_pixels"] = int(drawn.sum())
-    if drawn.any():
-        d = r.depth.copy()
-        d[drawn] = (zbuf[drawn]).astype(np.float32)
+    r.stats["object_pixels"] = 0
+    if not verts:
+        return r
+    p = np.vstack(verts)
+    tris = np.vstack(tris).astype(np.int64)
+    rgb = np.vstack(rgbs)
+    x, y, z = view.to_screen(p[:, 0], p[:, 1], p[:, 2])
+    e = z + view.d3                              # distance along the view axis
+    if ortho:
+        m = np.ones_like(e)
+    else:
+        # a triangle with a corner in front of the screen plane is left out
+        m = np.where(e > view.d1, view.d1 / np.where(e > view.d1, e, 1.0), np.nan)
+    col = x * m * view.scale + (W - 1) / 2
+    row = (H - 1) / 2 - y * m * view.scale
+    # flat light: each face's normal turned toward the eye, against the light
+    pts = np.c_[x, y, z]
+    nrm = np.cross(pts[tris[:, 1]] - pts[tris[:, 0]], pts[tris[:, 2]] - pts[tris[:, 0]])
+    length = np.linalg.norm(nrm, axis=1, keepdims=True)
+    nrm = np.where(length > 0, nrm / np.where(length > 0, length, 1.0), 0.0)
+    if ortho:
+        to_eye = np.tile([0.0, 0.0, -1.0], (len(tris), 1))
+    else:
+        to_eye = np.array([0.0, 0.0, -view.d3]) - pts[tris].mean(axis=1)
+        to_eye /= np.linalg.norm(to_eye, axis=1, keepdims=True)
+    nrm *= np.sign(np.sum(nrm * to_eye, axis=1, keepdims=True) + 1e-300)
+    ld = np.zeros(3) if light_dir is None else np.asarray(light_dir, dtype=float)
+    lv = to_eye if not ld.any() else np.tile(ld / np.linalg.norm(ld), (len(tris), 1))
+    shade = AMBIENT + (1 - AMBIENT) * np.clip(np.sum(nrm * lv, axis=1), 0.0, None)
+    rgb = np.clip(rgb * shade[:, None], 0.0, 1.0)
+    depth = r.depth
+    zbuf = np.where(np.isfinite(depth), depth.astype(np.float64), np.inf)
+    drawn = np.zeros((H, W), np.uint8)
+    raster_kernel(col, row, e, tris, rgb, ortho, float(view.d3), zbuf, r.rgba, drawn)
+    hit = drawn.astype(bool)
+    r.stats["object_pixels"] = int(hit.sum())
+    if hit.any():
+        d = depth.copy()
+        d[hit] = zbuf[hit].astype(np.float32)
         r._depth = d
     return r
-
-
-def _triangle(cx, cy, e, ortho, rgb, zbuf, rgba, drawn, d3):
-    """Rasterise one triangle at the pixel centres: depth (the distance along the
-    view axis e, stored as screen z = e - d3) interpolated perspective-correctly
-    (1/e linear on the screen), nearer than zbuf wins."""
-    H, W = zbuf.shape
-    c0, c1 = int(max(math.floor(cx.min()), 0)), int(min(math.ceil(cx.max()), W - 1))
-    r0, r1 = int(max(math.floor(cy.min()), 0)), int(min(math.ceil(cy.max()), H - 1))
-    if c0 > c1 or r0 > r1:
-        return
-    gy, gx = np.mgrid[r0:r1 + 1, c0:c1 + 1].astype(float)
-    (x0, x1, x2), (y0, y1, y2) = cx, cy
-    det = (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2)
-    if det == 0:
-        return
-    l0 = ((y1 - y2) * (gx - x2) + (x2 - x1) * (gy - y2)) / det
-    l1 = ((y2 - y0) * (gx - x2) + (x0 - x2) * (gy - y2)) / det
-    l2 = 1 - l0 - l1
-    eps = -1e-9
-    inside = (l0 >= eps) & (l1 >= eps) & (l2 >= eps)
-    if not inside.any():
-        return
-    if ortho:
-        depth = l0 * e[0] + l1 * e[1] + l2 * e[2]
-    else:
-        depth = 1.0 / (l0 / e[0] + l1 / e[1] + l2 / e[2])
-    z = depth - d3
-    zb = zbuf[r0:r1 + 1, c0:c1 + 1]
-    win = inside & (z < zb)
-    if not win.any():
-        return
-    zb[win] = z[win]
-    px = rgba[r0:r1 + 1, c0:c1 + 1]
-    px[win, :3] = np.round(rgb * 255).astype(np.uint8)
-    px[win, 3] = 255
-    drawn[r0:r1 + 1, c0:c1 + 1] |= win

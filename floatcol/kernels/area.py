@@ -34,7 +34,7 @@ from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .column import _column_t_range, _domain_test, _may_meet_domain, _ortho_chord
 from .layout import (
     E_COV, E_COV0, E_FLAG, E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W, S_OK,
-    SURF_HEIGHTFIELD, VP_CA, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_SA, VP_SCALE, VP_T0,
+    SURF_HEIGHTFIELD, VP_CA, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_WHI, VP_WLO, VP_SA, VP_SCALE, VP_T0,
     VP_T1,
 )
 from .sample import column_x0, lambert, sample_point, unit_normal
@@ -415,8 +415,15 @@ def _pass(kind, f, fg, flat, lv, hfp, vp, x0, lod, ta, tb, sigma, acc, cov, n, g
     while (t - tb) * sigma <= 0.0:
         skip = False
         if persp:
-            known = _domain_test(vp, x0, t)
-            skip = known == 0 or (known < 0 and not _may_meet_domain(vp, x0, t))
+            # the whole plane behind the screen plane (behind the eye: the range of w
+            # puts every point of Pi on it nearer than d1), or surely off the domain
+            s_lo = vp[VP_WLO] - vp[VP_CW]
+            s_hi = vp[VP_WHI] - vp[VP_CW]
+            q_far = max(s_lo * vp[VP_SA], s_hi * vp[VP_SA]) + t * vp[VP_CA] + vp[VP_D3]
+            skip = q_far <= vp[VP_D1]
+            if not skip:
+                known = _domain_test(vp, x0, t)
+                skip = known == 0 or (known < 0 and not _may_meet_domain(vp, x0, t))
         st = -1
         if skip:                               # the plane surely misses the domain
             step = _footprint(vp, t, 0.0)

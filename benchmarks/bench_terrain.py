@@ -167,7 +167,6 @@ def guedes_table():
     print("| variant | ms/frame | fps | cells off: median | 90 % | > 1 cell | Guedes (Pentium 133) |")
     print("|---|---|---|---|---|---|---|")
     small = (320, 180)
-    exact, _ = None, None
     _, exact, _ = guedes(hf, pos, size=small, variant="brute", **cam)
     for v in ("standard", "naive", "uncorrected", "corrected", "brute"):
         guedes(hf, pos, size=(640, 360), variant=v, **cam)

@@ -61,8 +61,10 @@ class Mesh:
         if not (math.isfinite(u) and math.isfinite(v) and np.isfinite(verts).all()):
             raise ValueError("an object's position and vertices must be finite numbers")
         cols = self.color
-        if isinstance(cols, (list, tuple)) and len(cols) == len(tris) and len(tris) != 3 \
-                and not isinstance(cols[0], (int, float)):
+        if isinstance(cols, np.ndarray) and cols.ndim == 2 and len(cols) == len(tris):
+            cols = list(cols)                   # (one RGB row a triangle)
+        if isinstance(cols, (list, tuple)) and len(cols) == len(tris) \
+                and not isinstance(cols[0], (int, float, np.number)):
             rgb = np.array([color.to_rgb(c, "object color") for c in cols])
         else:
             rgb = np.tile(color.to_rgb(cols, "object color"), (len(tris), 1))

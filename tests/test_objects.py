@@ -73,3 +73,18 @@ def test_bad_objects():
         fc.tree(0, 0, -1)
     with pytest.raises(ValueError, match="mesh"):
         fc.render("u*v", size=(40, 30), objects=[fc.Mesh(0, 0, [[0, 0, 0]], [[0, 1, 2]])])
+
+
+def test_a_mesh_of_one_colour_a_triangle():
+    # a square of two triangles standing upright, red and blue, seen from the front
+    verts = [(-1, 0, 0), (1, 0, 0), (1, 0, 2), (-1, 0, 2)]
+    mesh = fc.Mesh(0, 0, verts, [(0, 1, 2), (0, 2, 3)], ["red", "blue"])
+    r = fc.render("0*u", u=(-3, 3), v=(-3, 3), size=(120, 90), elev=0.0, azim=0,
+                  scale=15.0, center=(0, 0, 1), objects=[mesh], upper_color="white")
+    red = (r.rgba[..., 0] > 80) & (r.rgba[..., 2] < 40)
+    blue = (r.rgba[..., 2] > 80) & (r.rgba[..., 0] < 40)
+    # the lower-right half red, the upper-left blue: 30 x 30 pixels between them
+    assert red.sum() > 300 and blue.sum() > 300
+    assert red.sum() + blue.sum() == pytest.approx(900, abs=40)
+    rows, cols = np.nonzero(red)
+    assert np.mean(cols) > 59.5 and np.mean(rows) > 44.5

@@ -96,7 +96,11 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         sub-columns per pixel, averaged (instead of the staircases' pass); False:
         off. Default: True for shading="default", False for "lambert" and the
         horizon. Only ``rgba`` is blended; ``intensity``, ``side``, ``depth`` and the
-        G-buffer describe the surface at each pixel centre.
+        G-buffer describe the surface at each pixel centre. "area": Cohen-Or's exact
+        area sampling along the columns (kernels/area.py): every visible part of the
+        surface in a pixel weighted by the part of the pixel it covers, a height
+        field sampled through a level-of-detail pyramid; then ``intensity`` and the
+        G-buffer are those weighted means (docs/terrain.md).
     focal_length : perspective only, instead of d1/d2: matplotlib's focal length
         (the surface's bounding sphere fills a field of view of 2 atan(1/f)).
     center : world point (u, v, w) at the image centre. None: the middle of the

@@ -68,12 +68,14 @@ P_DEP = 10        # (a refinement stack's entry: how many times it was cut)
 P_SIZE = 11
 MAX_INTERVALS = 64
 #: Level table rows (passes/area.py): offset of the level's heights in the flat
-#: array, rows (along v), columns (along u), cell size (the longer side)
+#: array, rows (along v), columns (along u), cell size (the longer side), heights
 LV_OFF = 0
 LV_NV = 1
 LV_NU = 2
 LV_CELL = 3
-LV_SIZE = 4
+LV_ZMIN = 4       # the level's lowest and highest height (NaN: unknown, a function)
+LV_ZMAX = 5
+LV_SIZE = 6
 #: planes per cell of the level sampled
 STEPS_PER_CELL = 2.0
 #: bisections that locate a run's end (a hole, the domain's edge)
@@ -396,6 +398,22 @@ def _refined_span(kind, f, fg, flat, lv, hfp, vp, x0, lod, acc, cov, n, gaps, gu
     return n, evals
 
 
+@ngjit_inline
+def _below_picture(vp, t, s_lo, s_hi):
+    """Do all points of plane t on a column plane Pi, over the heights s in [s_lo,
+    s_hi] (relative to the centre), fall more than a pixel below the picture? (Screen
+    y is monotone in s there, eq. 10, where both ends lie beyond the screen plane.)"""
+    for s in (s_lo, s_hi):
+        q = s * vp[VP_SA] + t * vp[VP_CA] + vp[VP_D3]
+        if q <= vp[VP_D1]:
+            return False
+        y = (s * vp[VP_CA] - t * vp[VP_SA]) * vp[VP_D1] / q * vp[VP_SCALE] \
+            + (vp[VP_H] - 1.0) * 0.5
+        if y >= -1.5:
+            return False
+    return True
+
+
 @ngjit_nrt_free
 def _pass(kind, f, fg, flat, lv, hfp, vp, x0, lod, ta, tb, sigma, acc, cov, n, gaps, guess,
           pts, H, share):
@@ -412,8 +430,10 @@ def _pass(kind, f, fg, flat, lv, hfp, vp, x0, lod, ta, tb, sigma, acc, cov, n, g
     t = ta
     persp = vp[VP_ORTHO] == 0.0
     guess[:, 0] = np.nan
+    t_below = np.nan                           # the last plane wholly below the picture
     while (t - tb) * sigma <= 0.0:
         skip = False
+        below = False
         if persp:
             # the whole plane behind the screen plane (behind the eye: the range of w
             # puts every point of Pi on it nearer than d1), or surely off the domain
@@ -424,13 +444,29 @@ def _pass(kind, f, fg, flat, lv, hfp, vp, x0, lod, ta, tb, sigma, acc, cov, n, g
             if not skip:
                 known = _domain_test(vp, x0, t)
                 skip = known == 0 or (known < 0 and not _may_meet_domain(vp, x0, t))
+            # before a run: the planes whose points all fall below the picture (the
+            # ground under a fly camera, out of view) are not sampled, only the last
+            # of them, as the run's first sample
+            if not skip and not have and lv[0, LV_ZMAX] == lv[0, LV_ZMAX]:
+                below = _below_picture(vp, t, lv[0, LV_ZMIN] - vp[VP_CW],
+                                       lv[0, LV_ZMAX] - vp[VP_CW])
         st = -1
-        if skip:                               # the plane surely misses the domain
+        if skip or below:
             step = _footprint(vp, t, 0.0)
             if kind == SURF_HEIGHTFIELD:
                 step = min(step, lv[0, LV_CELL] / STEPS_PER_CELL)
             step = max(step, vp[VP_DT])
+            if below:
+                t_below = t
         else:
+            if t_below == t_below and not have:
+                st, ev, _ = _sample(kind, f, fg, flat, lv, hfp, vp, x0, lod, t_below, guess,
+                                    prev)
+                evals += ev
+                if st == S_OK:
+                    have = True
+                    t_bad = np.nan
+            t_below = np.nan
             st, ev, step = _sample(kind, f, fg, flat, lv, hfp, vp, x0, lod, t, guess, cur)
             evals += ev
         if st == S_OK:

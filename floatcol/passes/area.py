@@ -9,7 +9,8 @@ import math
 
 import numpy as np
 
-from ..kernels.area import LV_CELL, LV_NU, LV_NV, LV_OFF, LV_SIZE, area_kernel
+from ..kernels.area import (LV_CELL, LV_NU, LV_NV, LV_OFF, LV_SIZE, LV_ZMAX, LV_ZMIN,
+                            area_kernel)
 from ..kernels.layout import SURF_HEIGHTFIELD
 from .geometry import Geometry
 
@@ -27,7 +28,7 @@ SLICES = 1
 MAX_LEVELS = 16
 #: a function surface's level table: no heights, no cell
 _NO_HEIGHTS = np.zeros(0)
-_NO_LEVELS = np.array([[0.0, 0.0, 0.0, np.inf]])
+_NO_LEVELS = np.array([[0.0, 0.0, 0.0, np.inf, np.nan, np.nan]])
 
 
 def area_pass(surface, view, vp, buffers):
@@ -74,6 +75,7 @@ def levels(surface):
         lv[k, LV_NV] = nv
         lv[k, LV_NU] = nu
         lv[k, LV_CELL] = max((ub - ua) / (nu - 1), (vb - va) / (nv - 1))
+        lv[k, LV_ZMIN], lv[k, LV_ZMAX] = _height_range(source, c, k, z)
         off += z.size
     key = ("flat", c)
     flat = source.__dict__.get("_flat")
@@ -81,6 +83,20 @@ def levels(surface):
         flat = (key, np.concatenate([z.ravel() for z in grids]))
         source.__dict__["_flat"] = flat
     return flat[1], lv
+
+
+def _height_range(source, c, k, z):
+    """(lowest, highest) finite height of level k of a pyramid (NaN, NaN: none),
+    kept on the source with it."""
+    ranges = source.__dict__.setdefault("_height_ranges", {})
+    if (c, k) not in ranges:
+        if len(ranges) > 64:
+            ranges.clear()
+        if np.isfinite(z).any():
+            ranges[(c, k)] = (float(np.nanmin(z)), float(np.nanmax(z)))
+        else:
+            ranges[(c, k)] = (np.nan, np.nan)
+    return ranges[(c, k)]
 
 
 def _pyramid(z):

@@ -52,23 +52,31 @@ def render_scene(scene, stacklevel=2, composite=False) -> Render:
     composited by depth (Render.stats["surface"]: the layer seen at each pixel); then
     the scene's objects, by z-buffer (floatcol/objects.py)."""
     t_start = time.perf_counter()
+    objects = _objects(scene.objects)            # (checked before the work)
     out = _render_layers(scene, stacklevel + 1, composite, t_start)
-    if scene.objects:
+    if objects:
         from .objects import objects_pass
         first = scene.layers[0]
-        if isinstance(scene.objects, (str, bytes)) or not hasattr(scene.objects, "__iter__"):
-            raise ValueError("objects must be a list of fc.box, fc.pole, fc.tree, fc.marker "
-                             "or fc.Mesh")
-        objects = list(scene.objects)
-        from .objects import Mesh
-        if not all(isinstance(o, Mesh) for o in objects):
-            raise ValueError("objects must be a list of fc.box, fc.pole, fc.tree, fc.marker "
-                             "or fc.Mesh")
         light = as_light(scene.light, first.material.shading)
         objects_pass(out, objects, as_surface(first.surface, scene.vars),
                      _screen_light(light, scene.camera.elev, scene.camera.azim))
         out.stats["seconds"] = time.perf_counter() - t_start
     return out
+
+
+def _objects(objects):
+    """A scene's objects as a list of Mesh, or ValueError."""
+    from .objects import Mesh
+    if objects is None or (hasattr(objects, "__len__") and len(objects) == 0):
+        return []
+    bad = ValueError("objects must be a list of fc.box, fc.pole, fc.tree, fc.marker or "
+                     "fc.Mesh")
+    if isinstance(objects, (str, bytes, Mesh)) or not hasattr(objects, "__iter__"):
+        raise bad
+    objects = list(objects)
+    if not all(isinstance(o, Mesh) for o in objects):
+        raise bad
+    return objects
 
 
 def _render_layers(scene, stacklevel, composite, t_start) -> Render:

@@ -29,23 +29,24 @@ import statistics
 import sys
 import time
 
+import os
+
 import numpy as np
 
 import floatcol as fc
 
-QUICK = "--quick" in sys.argv
-#: rays a pixel that find the visible cells V (a picture is at most 32768 rows)
-VREF = 80
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests"))
+from reference import bilinear_surface, fractal as _fractal, raycast  # noqa: E402
 
 
 def fractal(n, beta=2.4, seed=11):
-    rng = np.random.default_rng(seed)
-    k = np.fft.fftfreq(n)[:, None] ** 2 + np.fft.fftfreq(n)[None, :] ** 2
-    k[0, 0] = 1.0
-    spec = (rng.normal(size=(n, n)) + 1j * rng.normal(size=(n, n))) * k ** (-beta / 4)
-    spec[0, 0] = 0.0
-    z = np.fft.ifft2(spec).real
-    return (z - z.mean()) / z.std()
+    """The benchmark's DEMs: tests/reference.py's fractal, another seed by default."""
+    return _fractal(n, beta, seed)
+
+
+QUICK = "--quick" in sys.argv
+#: rays a pixel that find the visible cells V (a picture is at most 32768 rows)
+VREF = 80
 
 
 def grey(rgba):
@@ -150,10 +151,6 @@ def guedes_table():
     the exact ray's hit; his variants against the brute-force ray caster of the same
     voxel model, floatcol against tests/reference.py's ray caster on the bilinear
     surface (320x180)."""
-    import os
-    sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests"))
-    from reference import bilinear_surface, raycast
-
     from floatcol.terrain import guedes
     from matplotlib.cbook import get_sample_data
     hf = fc.read_dem(get_sample_data("jacksboro_fault_dem.npz", asfileobj=False), vert_exag=2)

@@ -1,6 +1,7 @@
 import os
 import sys
 
+import numpy as np
 import pytest
 
 sys.path.insert(0, os.path.dirname(__file__))
@@ -40,6 +41,30 @@ def matplotlib_agrees(view, world, box_points, limits, elev, azim):
     ours = (ours - ours.mean(0)) / np.linalg.norm(ours - ours.mean(0))
     theirs = (theirs - theirs.mean(0)) / np.linalg.norm(theirs - theirs.mean(0))
     return np.abs(ours - theirs).max() < 1e-9
+
+
+def plane(antialias, scale=42.3):
+    """w = 0 on [-1, 1]^2, orthographic, elev 30, azim 0, origin at the image centre:
+    the far edge v = 1 projects to screen y = 0.5, the near edge to -0.5, the side
+    edges to x = -1 and 1."""
+    return fc.render("0*u", u=(-1, 1), v=(-1, 1), size=(121, 121), elev=30, azim=0,
+                     scale=scale, center=(0, 0, 0), background=(0, 0, 0, 0), antialias=antialias,
+                     upper_color="white")
+
+
+def assert_plane_edges(r):
+    """plane()'s far and near edges cover their pixels by the analytic fraction. Far
+    edge: y = 0.5 * 42.3 + 60 = 81.15 rows from the bottom; pixel 81 spans [80.5, 81.5]
+    and is covered up to 81.15: 0.65. Near edge: y = 38.85, pixel 39 is covered from
+    38.85 to 39.5: 0.65 too. Returns the columns checked."""
+    alpha = r.rgba[..., 3] / 255.0
+    top, bot = 120 - 81, 120 - 39
+    cols = slice(30, 90)
+    assert np.allclose(alpha[top, cols], 0.65, atol=1 / 255)
+    assert np.allclose(alpha[bot, cols], 0.65, atol=1 / 255)
+    assert np.all(alpha[top + 1:bot, cols] == 1.0)
+    assert np.all(alpha[:top, cols] == 0.0) and np.all(alpha[bot + 1:, cols] == 0.0)
+    return cols
 
 
 def render_with_switch_off(monkeypatch, index, expr, **kw):

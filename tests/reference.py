@@ -186,6 +186,18 @@ def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1
                      u=np.where(found, u, nan), v=np.where(found, v, nan))
 
 
+def fractal(n, beta=2.4, seed=7):
+    """A test terrain: an n x n fractal DEM by spectral synthesis (power spectrum
+    ~ k^-beta, random phases of ``seed``), mean 0, std 1."""
+    rng = np.random.default_rng(seed)
+    k = np.fft.fftfreq(n)[:, None] ** 2 + np.fft.fftfreq(n)[None, :] ** 2
+    k[0, 0] = 1.0
+    spec = (rng.normal(size=(n, n)) + 1j * rng.normal(size=(n, n))) * k ** (-beta / 4)
+    spec[0, 0] = 0.0
+    z = np.fft.ifft2(spec).real
+    return (z - z.mean()) / z.std()
+
+
 def psnr(a, b):
     """PSNR in dB of two intensity images in [0, 1], background (NaN) counted as 0."""
     a = np.nan_to_num(np.asarray(a, float))

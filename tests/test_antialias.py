@@ -5,47 +5,29 @@ import numpy as np
 import pytest
 
 import floatcol as fc
-from conftest import reference_for, render_with_switch_off
+from conftest import assert_plane_edges, plane, reference_for, render_with_switch_off
 from reference import numpy_surface, raycast, raycast_box
 
 
-def _plane(antialias, scale=42.3):
-    """w = 0 on [-1, 1]^2, orthographic, elev 30, azim 0, origin at the image centre:
-    the far edge v = 1 projects to screen y = 0.5, the near edge to -0.5, the side
-    edges to x = -1 and 1."""
-    return fc.render("0*u", u=(-1, 1), v=(-1, 1), size=(121, 121), elev=30, azim=0,
-                     scale=scale, center=(0, 0, 0), background=(0, 0, 0, 0), antialias=antialias,
-                     upper_color="white")
-
-
 def test_silhouette_pixel_coverage_is_the_analytic_fraction():
-    r = _plane(True)
-    alpha = r.rgba[..., 3] / 255.0
-    # far edge: y = 0.5 * 42.3 + 60 = 81.15 rows from the bottom; pixel 81 spans
-    # [80.5, 81.5] and is covered up to 81.15: 0.65. Near edge: y = 38.85, pixel 39
-    # is covered from 38.85 to 39.5: 0.65 too.
-    top, bot = 120 - 81, 120 - 39
-    cols = slice(30, 90)
-    assert np.allclose(alpha[top, cols], 0.65, atol=1 / 255)
-    assert np.allclose(alpha[bot, cols], 0.65, atol=1 / 255)
-    assert np.all(alpha[top + 1:bot, cols] == 1.0)
-    assert np.all(alpha[:top, cols] == 0.0) and np.all(alpha[bot + 1:, cols] == 0.0)
+    r = plane(True)
+    cols = assert_plane_edges(r)       # 0.65 of the edge pixels (conftest.py)
     # without antialiasing the same pixels are all or nothing
-    hard = _plane(False).rgba[..., 3]
+    hard = plane(False).rgba[..., 3]
     assert set(np.unique(hard[:, cols])) <= {0, 255}
     # the centre's arrays are the point-sampled ones in both
-    assert np.array_equal(r.side, _plane(False).side)
+    assert np.array_equal(r.side, plane(False).side)
 
 
 def test_sub_columns_cover_vertical_edges():
     """The side edge x = 1 falls at column 60 + 42.3 = 102.3; 4 sub-columns at
     offsets -3/8, -1/8, 1/8, 3/8 put 3 of 4 inside."""
-    alpha = _plane(4).rgba[..., 3] / 255.0
+    alpha = plane(4).rgba[..., 3] / 255.0
     rows = slice(45, 75)
     assert np.allclose(alpha[rows, 102], 0.75, atol=1 / 255)
     assert np.allclose(alpha[rows, 18], 0.75, atol=1 / 255)   # x = -1: 17.7, mirrored
     assert np.all(alpha[rows, 19:102] == 1.0)
-    assert np.allclose(_plane(True).rgba[rows, 102, 3], 255)   # coverage alone: point test
+    assert np.allclose(plane(True).rgba[rows, 102, 3], 255)   # coverage alone: point test
 
 
 def _clipped_area(poly, x0, x1, y0, y1):

@@ -7,34 +7,14 @@ import pytest
 
 import floatcol as fc
 from floatcol.passes.area import _halve, levels
-from reference import numpy_surface, raycast_column_box
-
-
-def fractal(n, beta=2.4, seed=7):
-    """A fractal DEM (spectral synthesis, power spectrum ~ k^-beta), unit std."""
-    rng = np.random.default_rng(seed)
-    k = np.fft.fftfreq(n)[:, None] ** 2 + np.fft.fftfreq(n)[None, :] ** 2
-    k[0, 0] = 1.0
-    spec = (rng.normal(size=(n, n)) + 1j * rng.normal(size=(n, n))) * k ** (-beta / 4)
-    spec[0, 0] = 0.0
-    z = np.fft.ifft2(spec).real
-    return (z - z.mean()) / z.std()
+from conftest import assert_plane_edges, plane
+from reference import fractal, numpy_surface, raycast_column_box
 
 
 def test_plane_edges_cover_the_analytic_fraction():
-    # w = 0 on [-1, 1]^2 seen at elev 30: the far edge at screen y = 0.5 (81.15 rows
-    # from the bottom at scale 42.3), the near one at -0.5 (38.85): pixels 81 and 39
-    # are covered 0.65 each (as test_antialias's coverage test)
-    r = fc.render("0*u", u=(-1, 1), v=(-1, 1), size=(121, 121), elev=30, azim=0, scale=42.3,
-                  center=(0, 0, 0), background=(0, 0, 0, 0), antialias="area",
-                  upper_color="white")
-    alpha = r.rgba[..., 3] / 255.0
-    top, bot = 120 - 81, 120 - 39
-    cols = slice(30, 90)
-    assert np.allclose(alpha[top, cols], 0.65, atol=1 / 255)
-    assert np.allclose(alpha[bot, cols], 0.65, atol=1 / 255)
-    assert np.all(alpha[top + 1:bot, cols] == 1.0)
-    assert np.all(alpha[:top, cols] == 0.0) and np.all(alpha[bot + 1:, cols] == 0.0)
+    # w = 0 on [-1, 1]^2 seen at elev 30: the far edge at screen y = 0.5, the near one
+    # at -0.5: their pixels are covered 0.65 each (as test_antialias's coverage test)
+    assert_plane_edges(plane("area"))
 
 
 @pytest.mark.parametrize("expr, dom, projection, elev, azim", [

@@ -248,16 +248,24 @@ def _uncovered(cov, n, lo, hi, gaps):
     return m
 
 
-@ngjit_nrt_free
-def _cover(cov, n, lo, hi):
-    """[lo, hi] added to the sorted disjoint intervals cov[:n]; returns their count.
-    A full list first merges its two closest neighbours (the gap counted covered)."""
+@ngjit_inline
+def _overlapping(cov, n, lo, hi):
+    """(i, j): the intervals cov[i:j] of the sorted cov[:n] that [lo, hi] meets (i = j:
+    none, and i is where it goes)."""
     i = 0
     while i < n and cov[i, 1] < lo:
         i += 1
     j = i
     while j < n and cov[j, 0] <= hi:
         j += 1
+    return i, j
+
+
+@ngjit_nrt_free
+def _cover(cov, n, lo, hi):
+    """[lo, hi] added to the sorted disjoint intervals cov[:n]; returns their count.
+    A full list first merges its two closest neighbours (the gap counted covered)."""
+    i, j = _overlapping(cov, n, lo, hi)
     if j == i and n == cov.shape[0]:
         best = 0
         gap = np.inf
@@ -271,12 +279,7 @@ def _cover(cov, n, lo, hi):
             cov[k, 0] = cov[k + 1, 0]
             cov[k, 1] = cov[k + 1, 1]
         n -= 1
-        i = 0
-        while i < n and cov[i, 1] < lo:
-            i += 1
-        j = i
-        while j < n and cov[j, 0] <= hi:
-            j += 1
+        i, j = _overlapping(cov, n, lo, hi)
     if j == i:                                  # a new interval at i
         for k in range(n, i, -1):
             cov[k, 0] = cov[k - 1, 0]

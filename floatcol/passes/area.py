@@ -12,7 +12,7 @@ import numpy as np
 from ..kernels.area import (LV_CELL, LV_NU, LV_NV, LV_OFF, LV_SIZE, LV_ZMAX, LV_ZMIN,
                             area_kernel)
 from ..kernels.layout import SURF_HEIGHTFIELD
-from .geometry import Geometry
+from .geometry import Geometry, pass_outputs
 
 #: how much coarser than a pixel's footprint the level sampled is, in levels (a
 #: mip-map's bias), and columns per pixel: measured by benchmarks/bench_terrain.py's
@@ -34,11 +34,7 @@ _NO_LEVELS = np.array([[0.0, 0.0, 0.0, np.inf, np.nan, np.nan]])
 def area_pass(surface, view, vp, buffers):
     """Run the area kernel of one layer into ``buffers`` (geometry.allocate's)."""
     gbuf, ebuf, hrec = buffers
-    W = view.width
-    n_tiles = gbuf.shape[0]
-    evals = np.zeros(W, dtype=np.int64)
-    wrange = np.empty((W, 2))
-    rows = np.empty((n_tiles, 2), dtype=np.int64)
+    evals, wrange, rows = pass_outputs(view.width, gbuf.shape[0])
     flat, lv = levels(surface)
     kind, f, fg, _, hf, hfp = surface.kernel_args(None)
     area_kernel(kind, f, fg, flat, lv, hfp, vp, SLICES, 2.0 ** LOD_BIAS, gbuf, ebuf, evals,

@@ -84,15 +84,18 @@ def allocate(W, H, n_lines, sub_columns):
 def column_pass(surface, view, vp, buffers, hstride, fb):
     """Run the column kernel of one layer into ``buffers`` (allocate's)."""
     gbuf, ebuf, hrec = buffers
-    W = view.width
-    n_tiles = gbuf.shape[0]
-    evals = np.zeros(W, dtype=np.int64)
-    wrange = np.empty((W, 2))
-    rows = np.empty((n_tiles, 2), dtype=np.int64)
+    evals, wrange, rows = pass_outputs(view.width, gbuf.shape[0])
     vp[L.VP_BATCH] = 0.0 if fb is None else 1.0
     column_kernel(*surface.kernel_args(fb), vp, gbuf, ebuf, hrec, hstride, evals, wrange,
                   rows)
     return Geometry(gbuf, ebuf, hrec, rows, wrange, evals, vp, fb, hstride)
+
+
+def pass_outputs(W, n_tiles):
+    """A geometry pass's per-column outputs: (evals (W,), wrange (W, 2), rows (n_tiles,
+    2)), as Geometry holds them."""
+    return (np.zeros(W, dtype=np.int64), np.empty((W, 2)),
+            np.empty((n_tiles, 2), dtype=np.int64))
 
 
 def batch_evaluator(surface, view, method, sampling):

@@ -24,6 +24,8 @@ import time
 
 import numpy as np
 
+# the kernels' pictures, not a fresh process's draft (passes/draft.py) while they compile
+os.environ.setdefault("FLOATCOL_DRAFT", "0")
 EXPR = "3*sin(u*cos(v))"
 DOM = dict(u=(-5, 5), v=(-5, 5))
 SCENES = [((1920, 1080), "orthographic"), ((1920, 1080), "perspective"),

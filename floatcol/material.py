@@ -7,20 +7,22 @@ ambient, specular and shininess terms and the interpolation (nis/iis). Every lay
 a :class:`~floatcol.scene.Scene` carries its own, so two surfaces in one picture can
 have two colormaps. ``render`` and ``render_many`` build them from their flat keywords.
 
-Adding a field: give it a default here, validate it in ``__post_init__``, and read it
-in the pass that needs it (``resolve`` hands the kernels their values); nothing else
-changes (docs/architecture.md).
+Adding a field: give it a default here, validate it in ``check``, and read it in the
+pass that needs it; a value the kernels read gets a slot of the material vector
+(kernels/layout.py ``M_*``), filled in :meth:`Material.table`, and is read there by the
+kernel: no kernel signature changes (docs/architecture.md).
 """
 from __future__ import annotations
 
 import math
 import numbers
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from . import color
+from .kernels import layout as L
 from .kernels.shade import INTERP_INTENSITY, INTERP_NORMAL
 
 SHADINGS = ("default", "lambert")
@@ -175,6 +177,39 @@ class Material:
                 lut = lut.copy()
                 lut[:, 3] *= c_w
         return lut, w_lo, w_hi, w_limits
+
+    def table(self, wrange, c_w=1.0, interp=None):
+        """The kernels' colours of this material (:class:`Colours`): its material
+        vector, colour table and heights for the column pass's seen range ``wrange``
+        (color_table's arguments); ``interp`` overrides the interpolation (area
+        sampling averages intensities)."""
+        lut, w_lo, w_hi, w_limits = self.color_table(wrange, c_w)
+        _, lower_rgb = self.colors()
+        amb, spec, shine = self.light_terms()
+        mp = np.zeros(L.M_SIZE)
+        mp[L.M_ALPHA] = self.opacity
+        mp[L.M_INTERP] = self.interp if interp is None else interp
+        mp[L.M_AMBIENT] = amb
+        mp[L.M_SPECULAR] = spec
+        mp[L.M_SHININESS] = shine
+        mp[L.M_WLO] = w_lo
+        mp[L.M_SPAN] = w_hi - w_lo if w_hi > w_lo else 1.0
+        mp[L.M_LOWER:L.M_LOWER + 3] = np.asarray(lower_rgb, dtype=np.float64)[:3]
+        return Colours(mp, np.ascontiguousarray(lut, dtype=np.float64), w_lo, w_hi, w_limits,
+                       np.asarray(lower_rgb, dtype=np.float64))
+
+
+class Colours(NamedTuple):
+    """What the kernels colour one layer with (Material.table): ``mp`` the material
+    vector (kernels/layout.py M_*), ``lut`` the upper side's colour table, ``w_lo`` and
+    ``w_hi`` its heights' ends in the box's units, ``w_limits`` the same in the
+    surface's (Render.stats["w_limits"]), ``lower_rgb`` the lower side's colour."""
+    mp: np.ndarray
+    lut: np.ndarray
+    w_lo: float
+    w_hi: float
+    w_limits: tuple
+    lower_rgb: np.ndarray
 
 
 def fraction(name, x):

@@ -209,32 +209,30 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     w_limits = None
     c_limits = None
     seen = None
-    amb, spec, shine = p.terms
+    light_args = None
     if method == "horizon":
         rgba, side, intensity, depth, seen, line_t = horizon.line_pass(geom, W, H, background)
     else:
-        _, lower_rgb = material.colors()
-        lut, w_lo, w_hi, w_limits = material.color_table(geom.wrange, box[2])
-        bg8 = color.to_rgba8(background)
         # area sampling averages the intensities it sees (kernels/area.py): lit at
         # the samples, as the paper's iis
-        shade_args = (INTERP_INTENSITY if quality.area else material.interp, amb, spec, shine)
+        colours = material.table(geom.wrange, box[2], INTERP_INTENSITY if quality.area else None)
+        w_limits = colours.w_limits
+        bg8 = color.to_rgba8(background)
         intensity = depth = None        # Render computes them when asked (centre_kernel)
+        light_args = (vp, colours.mp, lit)
         base = finish.NO_BASE
         if p.source is not None:
             if sub_columns > 1:
                 raise ValueError("a texture or color field is antialiased along the columns "
                                  "and across them by their edges: use antialias=True (not "
                                  "sub-columns)")
-            base, c_limits = colour.base_colours(material, p.source, geom, W, H, box, lut,
-                                                 w_lo, w_hi, lower_rgb)
-        rgba, side = finish.finish_pass(geom, H, W, shade_args, lut, w_lo, w_hi, lower_rgb,
-                                        bg8, lit, base)
+            base, c_limits = colour.base_colours(material, p.source, geom, W, H, box, colours)
+        rgba, side = finish.finish_pass(geom, H, W, colours, bg8, lit, base)
         if aa_cov and sub_columns == 1 and not quality.area:
             antialias.staircase_pass(geom, side, rgba)
         if sub_columns > 1:
-            rgba, ev2 = antialias.subcolumn_pass(surface, geom, sub_columns, rgba, shade_args,
-                                                 lut, w_lo, w_hi, lower_rgb, bg8, lit)
+            rgba, ev2 = antialias.subcolumn_pass(surface, geom, sub_columns, rgba, colours,
+                                                 bg8, lit)
             evals += ev2
         if material.overlaid:
             overlays.overlay_pass(rgba, material, p.source, geom, W, box, w_limits, c_limits,
@@ -264,8 +262,7 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
         stats["shadow_seconds"] = t_shadow - t_kernel
         stats["shadow_texels"] = texture.texels
     return Render(rgba, intensity, side, depth, stats, view, geom.gbuf, line_t, seen,
-                  (vp, shade_args[0] if method == "column" else material.interp, amb, lit),
-                  box, shadow=shadow)
+                  light_args, box, shadow=shadow)
 
 
 def _draft_layer(p, view, drawn, box, background, t_start, stacklevel):

@@ -40,7 +40,7 @@ class Render:
     line_t: np.ndarray = field(default=None, repr=False)
     #: (H, W) bool, where a surface is seen, when ``side`` does not say it (horizon)
     _seen: np.ndarray = field(default=None, repr=False)
-    #: (vp, interpolation, ambient, lit): how centre_kernel lights the G-buffer while
+    #: (vp, material vector, lit): how centre_kernel lights the G-buffer while
     #: intensity and depth are still None
     _light_args: tuple = field(default=None, repr=False)
     #: render's ``aspect``: the stretch (a, b, c) of u, v and w in the picture's box
@@ -54,10 +54,10 @@ class Render:
 
     def _centres(self):
         if self._intensity is None or self._depth is None:
-            vp, interp, ambient, lit = self._light_args
+            vp, mp, lit = self._light_args
             intensity = _pool.empty(self.side.shape, np.float32)
             depth = _pool.empty(self.side.shape, np.float32)
-            centre_kernel(self._gbuf, vp, interp, ambient, lit, self.side, intensity, depth)
+            centre_kernel(self._gbuf, vp, mp, lit, self.side, intensity, depth)
             self._intensity, self._depth = intensity, depth
 
     @property

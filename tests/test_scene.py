@@ -36,6 +36,25 @@ def test_two_colormaps_in_one_picture():
     assert np.array_equal(r2.rgba, r.rgba)
 
 
+def test_the_kernels_read_a_material_from_its_vector():
+    """Material.table packs what the kernels read (kernels/layout.py M_*): the lower
+    side's colour there is the one the picture shows where the lower side is seen
+    under a flat light (ambient 1: the colour itself)."""
+    from floatcol.kernels import layout as L
+    m = fc.Material(lower_color=(0.2, 0.4, 0.6), ambient=1.0, specular=0.0, opacity=0.5)
+    t = m.table(np.array([[-1.0, 2.0]]))
+    assert t.mp.shape == (L.M_SIZE,)
+    assert t.mp[L.M_LOWER:L.M_LOWER + 3].tolist() == [0.2, 0.4, 0.6]
+    assert (t.mp[L.M_AMBIENT], t.mp[L.M_SPECULAR], t.mp[L.M_ALPHA]) == (1.0, 0.0, 0.5)
+    assert (t.mp[L.M_WLO], t.mp[L.M_SPAN]) == (-1.0, 3.0)
+    # a saddle seen from below shows its lower side: the colour given, exactly
+    r = fc.render("u*v", (-1, 1), (-1, 1), size=(60, 40), elev=-30, lower_color=(0.2, 0.4, 0.6),
+                  ambient=1.0, specular=0.0, antialias=False)
+    lower = r.side == -1
+    assert lower.sum() > 200
+    assert (r.rgba[lower, :3] == np.array([51, 102, 153])).all()
+
+
 def test_a_layers_order_changes_only_which_index_it_has():
     a = fc.Layer("u*v/3", DOM, fc.Material(cmap="Reds"))
     b = fc.Layer("2*exp(-u**2-v**2) - 0.5", DOM, fc.Material(cmap="Blues"))

@@ -17,18 +17,19 @@ from .shade import shade_pixel
 
 
 @ngjit_parallel
-def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, interp, ambient, specular,
-                     shininess, lut, w_lo, w_hi, lower_rgb, background, lit, acc, evals):
+def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, mp, lut, background, lit, acc,
+                     evals):
     """For every pixel column c and every offset o (in pixels), render the column at
     c + o with coverage antialiasing, colour it (shade_pixel) and add the colour,
     premultiplied by its alpha, and the alpha into acc (H, W, 4) float64, top row first.
     evals[c] receives the evaluations of f. Each thread has its own one-column scratch.
     ``lit`` (H, W): the part of the light reaching each pixel (its centre's point, for
-    every sub-column; passes/shadow.py), or an empty array: all of it."""
+    every sub-column; passes/shadow.py), or an empty array: all of it. mp: the
+    material vector (layout.py M_*), lut its colour table (Material.table)."""
     H = acc.shape[0]
     shadows = lit.shape[0] > 0
     W = acc.shape[1]
-    span = w_hi - w_lo if w_hi > w_lo else 1.0
+    no_base = np.zeros((0, 0, 6), dtype=np.float32)     # the sides' own colours
     for c in prange(W):
         # one column in column_kernel's layouts (and array types: one compilation)
         gcol = np.empty((1, H, 1, G_SIZE), dtype=np.float32)
@@ -42,10 +43,9 @@ def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, interp, ambient, spe
             x0 = column_x0(vp, col)
             for j in range(H):
                 i = H - 1 - j
-                _, r, g, b, a = shade_pixel(gcol, ecol, 0, 0, j, True, vp, x0, interp, ambient,
-                                            specular, shininess, lut, w_lo, span, lower_rgb,
+                _, r, g, b, a = shade_pixel(gcol, ecol, 0, 0, j, True, vp, x0, mp, lut,
                                             background, lit[i, c] if shadows else 1.0,
-                                            False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+                                            no_base, i, c)
                 acc[i, c, 0] += r * a
                 acc[i, c, 1] += g * a
                 acc[i, c, 2] += b * a

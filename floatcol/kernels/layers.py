@@ -39,7 +39,8 @@ from .column import (
 from .index import ceil_index, floor_index
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
-    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIZE, G_T, G_U, G_V, G_W, S_OK,
+    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIZE, G_T, G_U, G_V, G_W,
+    M_ALPHA, M_LOWER, M_SPAN, M_WLO, S_OK,
     VP_AA, VP_CA, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_SCALE, VP_T0, VP_T1, VP_W,
 )
 from .sample import column_x0, sample_point
@@ -72,16 +73,6 @@ C_A = 5           # alpha
 C_SIDE = 6        # +1 upper side, -1 lower side (of the front record, once folded)
 C_SHADOW = 7      # 1 in shadow, 0 lit (likewise)
 C_SIZE = 8
-
-# The material vector mp (float64): what the crossings are lit and coloured with
-M_ALPHA = 0       # opacity
-M_INTERP = 1      # shade.py's INTERP_*
-M_AMBIENT = 2
-M_SPECULAR = 3
-M_SHININESS = 4
-M_WLO = 5         # the colour table's heights: w_lo and w_hi - w_lo
-M_SPAN = 6
-M_SIZE = 7
 
 # The shadow vector sh (float64): passes/shadow.py's Texture of the light, or SH_ON 0
 SH_LX = 0         # the light's direction in screen coordinates (point_shadow's light)
@@ -182,7 +173,7 @@ def _keep(lists, b, j, off, K, n, rec):
 
 
 @ngjit_nrt_free
-def _emit(vp, x0, j, p, cov, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists, off, K,
+def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, lists, off, K,
           counts, trans, gfirst, hits, b, crec):
     """The crossing of row j's ray at the point p (A_SIZE), covering ``cov`` of the
     pixel: lit, coloured and kept in the pixel's list."""
@@ -203,11 +194,10 @@ def _emit(vp, x0, j, p, cov, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists, o
         shade = point_shadow(side, p[A_U], p[A_V], p[A_W], nx, ny, nz, sh, hmax, hmin,
                              hsurf, int(sh[SH_LAYER]), sh[SH_GU], sh[SH_GV], sh[SH_TAN],
                              sh[SH_S0], sh[SH_T0], sh[SH_H], sh[SH_GRAZING], sh[SH_BIAS])
-    inten, spec = _light(vp, x0, j, depth, nx, ny, nz, p[A_I], int(mp[M_INTERP]),
-                         mp[M_AMBIENT], mp[M_SPECULAR], mp[M_SHININESS], 1.0 - shade)
+    inten, spec = _light(vp, x0, j, depth, nx, ny, nz, p[A_I], mp, 1.0 - shade)
     # ``lut`` is the tuple (lut, levels, offsets, shapes, tp) of texture.py's TP_*: the
     # side's colour table, and a texture (no levels: none) over it
-    r, g, bl = _side_rgb(side, p[A_W], lut[0], mp[M_WLO], mp[M_SPAN], lower_rgb)
+    r, g, bl = _side_rgb(side, p[A_W], lut[0], mp[M_WLO], mp[M_SPAN], mp[M_LOWER:])
     if lut[1].shape[0] > 0:
         # the pixel's footprint on the surface: 1 / scale on the screen, at the point's
         # distance (perspective), stretched by the obliquity (|N.V|, from 0.05)
@@ -244,7 +234,7 @@ def _emit(vp, x0, j, p, cov, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists, o
 
 
 @ngjit_nrt_free
-def _flush(vp, x0, wk, pend, end_y, aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists,
+def _flush(vp, x0, wk, pend, end_y, aa, mp, lut, sh, hmax, hmin, hsurf, lists,
            off, K, counts, trans, gfirst, hits, b, crec):
     """The waiting pixel's crossing, its stretch ending (or leaving it) at end_y."""
     j = wk[W_PJ]
@@ -257,7 +247,7 @@ def _flush(vp, x0, wk, pend, end_y, aa, mp, lut, lower_rgb, sh, hmax, hmin, hsur
         cov = abs(min(max(end_y, lo), hi) - min(max(wk[W_PSTART], lo), hi))
     else:
         cov = 1.0 if wk[W_PCEN] != 0.0 else 0.0
-    _emit(vp, x0, int(j), pend, cov, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists, off,
+    _emit(vp, x0, int(j), pend, cov, mp, lut, sh, hmax, hmin, hsurf, lists, off,
           K, counts, trans, gfirst, hits, b, crec)
 
 
@@ -270,7 +260,7 @@ def _wait(wk, pend, j, start, rec, centre):
 
 
 @ngjit_inline
-def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf,
+def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, sh, hmax, hmin, hsurf,
              lists, off, K, counts, trans, gfirst, hits, b, crec):
     """The crossings between successive samples p and q of a run (section 6.5)."""
     H = trans.shape[0]
@@ -280,7 +270,7 @@ def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin
     d = 1.0 if dy > 0.0 else -1.0
     if wk[W_DIR] != 0.0 and d != wk[W_DIR]:
         # the curve turns at p: the stretch before ends there, a new one begins
-        _flush(vp, x0, wk, pend, p[A_Y], aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf,
+        _flush(vp, x0, wk, pend, p[A_Y], aa, mp, lut, sh, hmax, hmin, hsurf,
                lists, off, K, counts, trans, gfirst, hits, b, crec)
         _wait(wk, pend, _round_row(p[A_Y]), p[A_Y], p, False)
     wk[W_DIR] = d
@@ -301,15 +291,15 @@ def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin
             _copy(pend, tmp)
             wk[W_PCEN] = 1.0
             continue
-        _flush(vp, x0, wk, pend, wk[W_PJ] + 0.5 * d, aa, mp, lut, lower_rgb, sh, hmax, hmin,
+        _flush(vp, x0, wk, pend, wk[W_PJ] + 0.5 * d, aa, mp, lut, sh, hmax, hmin,
                hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
         if j == jq:                      # the stretch is still in this pixel at q
             _wait(wk, pend, j, j - 0.5 * d, tmp, True)
         else:
-            _emit(vp, x0, j, tmp, 1.0, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists, off,
+            _emit(vp, x0, j, tmp, 1.0, mp, lut, sh, hmax, hmin, hsurf, lists, off,
                   K, counts, trans, gfirst, hits, b, crec)
     if jq != wk[W_PJ]:                   # q lies in a pixel whose centre it has not reached
-        _flush(vp, x0, wk, pend, wk[W_PJ] + 0.5 * d, aa, mp, lut, lower_rgb, sh, hmax, hmin,
+        _flush(vp, x0, wk, pend, wk[W_PJ] + 0.5 * d, aa, mp, lut, sh, hmax, hmin,
                hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
         _wait(wk, pend, jq, jq - 0.5 * d, q, False)
 
@@ -330,7 +320,7 @@ def _sample(kind, f, fg, hf, hfp, vp, x0, t, out, guess):
 
 @ngjit_inline
 def _refined(kind, f, fg, hf, hfp, vp, x0, p, q, scr, evals, wk, pend, tmp, aa, mp, lut,
-             lower_rgb, sh, hmax, hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b,
+             sh, hmax, hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b,
              crec):
     """_segment from p to q, the span halved where it needs it (REFINE_*), the halves
     in order (a stack of right ends in scr's rows from SCR_STACK). Returns evals plus
@@ -361,7 +351,7 @@ def _refined(kind, f, fg, hf, hfp, vp, x0, p, q, scr, evals, wk, pend, tmp, aa, 
                 mid[A_BUMP] = depth + 1.0
                 top += 1
                 continue
-        _segment(vp, x0, left, right, wk, pend, tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin,
+        _segment(vp, x0, left, right, wk, pend, tmp, aa, mp, lut, sh, hmax, hmin,
                  hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
         _copy(left, right)
         top -= 1
@@ -376,7 +366,7 @@ def _start(wk, pend, p):
 
 
 @ngjit_nrt_free
-def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, lower_rgb, sh, hmax, hmin,
+def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, sh, hmax, hmin,
                 hsurf, lists, off, K, counts, trans, gfirst, hits, b, scr):
     """One pass over the planes from ta to tb (front to back along the column's rays:
     the grid's planes t0 + k dt between them, as the opaque column's); returns the
@@ -433,35 +423,35 @@ def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, lower_rgb, sh, hm
                 _start(wk, pend, edge if found else cur)
                 if found:
                     evals = _refined(kind, f, fg, hf, hfp, vp, x0, edge, cur, scr, evals, wk, pend,
-                                     tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists,
+                                     tmp, aa, mp, lut, sh, hmax, hmin, hsurf, lists,
                                      off, K, counts, trans, gfirst, hits, b, crec)
             else:
                 last = prev
                 if found:
                     evals = _refined(kind, f, fg, hf, hfp, vp, x0, prev, edge, scr, evals, wk, pend,
-                                     tmp, aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists,
+                                     tmp, aa, mp, lut, sh, hmax, hmin, hsurf, lists,
                                      off, K, counts, trans, gfirst, hits, b, crec)
                     last = edge
-                _flush(vp, x0, wk, pend, last[A_Y], aa, mp, lut, lower_rgb, sh, hmax, hmin,
+                _flush(vp, x0, wk, pend, last[A_Y], aa, mp, lut, sh, hmax, hmin,
                        hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
         elif ok and i == 0:
             _start(wk, pend, cur)
         elif ok:
             evals = _refined(kind, f, fg, hf, hfp, vp, x0, prev, cur, scr, evals, wk, pend, tmp,
-                             aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf, lists, off, K,
+                             aa, mp, lut, sh, hmax, hmin, hsurf, lists, off, K,
                              counts, trans, gfirst, hits, b, crec)
         if ok:
             _copy(prev, cur)
         prev_ok = ok
         prev_t = t
     if prev_ok:
-        _flush(vp, x0, wk, pend, prev[A_Y], aa, mp, lut, lower_rgb, sh, hmax, hmin, hsurf,
+        _flush(vp, x0, wk, pend, prev[A_Y], aa, mp, lut, sh, hmax, hmin, hsurf,
                lists, off, K, counts, trans, gfirst, hits, b, crec)
     return evals
 
 
 @ngjit_nrt_free
-def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, lower_rgb, sh, hmax, hmin, hsurf,
+def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf,
                    lists, off, K, counts, trans, gfirst, hits, b, scr):
     """Every crossing of one column (column.py's _column_passes: ascending t in
     orthographic; in perspective from the viewpoint's t outward, both ways, over the
@@ -470,7 +460,7 @@ def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, lower_rgb, sh, hmax, h
         lo, hi = _ortho_chord(vp, x0)
         if not lo <= hi:
             return 0
-        return _layer_pass(kind, f, fg, hf, hfp, vp, x0, lo, hi, mp, lut, lower_rgb, sh, hmax,
+        return _layer_pass(kind, f, fg, hf, hfp, vp, x0, lo, hi, mp, lut, sh, hmax,
                            hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b, scr)
     lo, hi = _column_t_range(vp, x0)
     if not lo <= hi:
@@ -482,17 +472,17 @@ def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, lower_rgb, sh, hmax, h
     evals = 0
     if t_hi > t_view and t_hi >= t_lo:
         evals += _layer_pass(kind, f, fg, hf, hfp, vp, x0, max(t_lo, t_view), t_hi, mp, lut,
-                             lower_rgb, sh, hmax, hmin, hsurf, lists, off, K, counts, trans,
+                             sh, hmax, hmin, hsurf, lists, off, K, counts, trans,
                              gfirst, hits, b, scr)
     if t_lo < t_view and t_hi >= t_lo:
         evals += _layer_pass(kind, f, fg, hf, hfp, vp, x0, min(t_hi, t_view), t_lo, mp, lut,
-                             lower_rgb, sh, hmax, hmin, hsurf, lists, off, K, counts, trans,
+                             sh, hmax, hmin, hsurf, lists, off, K, counts, trans,
                              gfirst, hits, b, scr)
     return evals
 
 
 @ngjit_parallel
-def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, lower_rgb, sh, hmax, hmin, hsurf,
+def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf,
                   lists, off, K, counts, gfirst, hits, evals):
     """One surface's crossings in the band of columns c0 .. c0 + B - 1 (B =
     lists.shape[0]; columns from vp's VP_W on are left alone): into lists[b, j, off:off
@@ -510,7 +500,7 @@ def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, lower_rgb, sh, hmax, hm
         trans = np.ones(H)
         scr = np.zeros((SCR_STACK + REFINE_DEPTH + 3, A_SIZE))
         x0 = column_x0(vp, c)
-        evals[b] += _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, lower_rgb, sh, hmax,
+        evals[b] += _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax,
                                    hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b,
                                    scr)
 

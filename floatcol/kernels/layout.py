@@ -152,6 +152,19 @@ E_V = 11
 E_SIZE = 12
 E_FLAG = 8.0      # added to E_SEEN where E_COV0 and E_COV are kept
 
+# The material vector mp (float64), one per layer (material.py Material.table): what
+# the finishing, sub-column and layer kernels light and colour a surface with. A new
+# material field is a slot here, filled in Material.table and read by its kernel.
+M_ALPHA = 0       # opacity
+M_INTERP = 1      # shade.py's INTERP_*
+M_AMBIENT = 2
+M_SPECULAR = 3
+M_SHININESS = 4
+M_WLO = 5         # the colour table's heights: w_lo and w_hi - w_lo (the lut's span)
+M_SPAN = 6
+M_LOWER = 7       # the lower side's colour: r, g, b in slots 7-9
+M_SIZE = 10
+
 # Sample status
 S_OK = 0
 S_HOLE = 1        # f is NaN, infinite or complex there

@@ -8,8 +8,8 @@ from numba import prange
 from ._jit import ngjit_inline, ngjit_parallel_nrt_free
 from .layout import (
     E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
-    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_W, VP_AA, VP_D1, VP_D3, VP_H, VP_LX, VP_LY,
-    VP_LZ, VP_ORTHO, VP_SCALE,
+    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_W, M_AMBIENT, M_INTERP, M_LOWER, M_SHININESS, M_SPAN,
+    M_SPECULAR, M_WLO, VP_AA, VP_D1, VP_D3, VP_H, VP_LX, VP_LY, VP_LZ, VP_ORTHO, VP_SCALE,
 )
 from .coverage import flagged, implied_coverages, seen_side
 from .sample import column_x0
@@ -53,15 +53,18 @@ def toward_viewer(vp, x0, j, depth):
 
 
 @ngjit_inline
-def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shininess,
-           lit):
+def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, mp, lit):
     """(I, specular) of one pixel: I = ambient + (1 - ambient) |L.N| / (|L| |N|), and
     Phong's specular * max(R.V, 0)^shininess (the paper has none), with V toward the
     viewpoint, N turned toward the viewer (the side that is seen) and R the
     reflection of L about N; zero where the light is behind the seen side. The light
     is vp's directional light (a unit vector), or the viewpoint when that is zero
-    (eq. 12). ``lit`` in [0, 1]: the part of the light that reaches the point (0 in a
-    shadow: ambient only; 1 without shadows, which leaves every value as it was)."""
+    (eq. 12). The material vector mp (layout.py M_*) holds the interpolation, ambient,
+    specular and shininess. ``lit`` in [0, 1]: the part of the light that reaches the
+    point (0 in a shadow: ambient only; 1 without shadows, which leaves every value as
+    it was)."""
+    ambient = mp[M_AMBIENT]
+    specular = mp[M_SPECULAR]
     vx, vy, vz = toward_viewer(vp, x0, j, depth)
     if vp[VP_LX] == 0.0 and vp[VP_LY] == 0.0 and vp[VP_LZ] == 0.0:
         lx = vx
@@ -74,7 +77,7 @@ def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shi
     nn2 = nx * nx + ny * ny + nz * nz
     q = 1.0 / math.sqrt(nn2) if nn2 > 0.0 else 0.0
     nl = (lx * nx + ly * ny + lz * nz) * q        # N.L / |N|, L a unit vector
-    lam = lam_iis if interp == INTERP_INTENSITY else abs(nl)
+    lam = lam_iis if mp[M_INTERP] == INTERP_INTENSITY else abs(nl)
     inten = ambient + (1.0 - ambient) * min(lam, 1.0) * lit
     sp = 0.0
     if specular > 0.0 and nn2 > 0.0:
@@ -85,7 +88,7 @@ def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, interp, ambient, specular, shi
         if nl > 0.0:
             rv = 2.0 * nl * nv - (lx * vx + ly * vy + lz * vz)   # R.V, R = 2 (N.L) N - L
             if rv > 0.0:
-                sp = specular * _power(rv, shininess) * lit
+                sp = specular * _power(rv, mp[M_SHININESS]) * lit
     return inten, sp
 
 
@@ -107,15 +110,28 @@ def _side_rgb(side, w, lut, w_lo, span, lower_rgb):
 
 
 @ngjit_inline
-def pixel_rgba(s, w, cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp, lut, w_lo, span, lower_rgb,
-               background):
+def held(mp):
+    """The material vector mp (layout.py M_*) as a tuple: the kernels read its values
+    from registers instead of memory that the picture's stores may alias (the
+    finishing kernel 2 % faster). _light and _colour take either."""
+    return (mp[0], mp[1], mp[2], mp[3], mp[4], mp[5], mp[6], mp[7], mp[8], mp[9])
+
+
+@ngjit_inline
+def _colour(side, w, mp, lut):
+    """_side_rgb with the material vector mp's heights and lower side."""
+    return _side_rgb(side, w, lut, mp[M_WLO], mp[M_SPAN], mp[M_LOWER:])
+
+
+@ngjit_inline
+def pixel_rgba(s, w, cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp, mp, lut, background):
     """One pixel's colour (r, g, b, alpha) in [0, 1], straight alpha.
 
     The surface at the pixel's centre has side s (0: none), height w, coverage cov0
     (1 without antialiasing), shade lam and specular term sp; the edge surface of
     section 6.4 (coverage e_cov, 0: none) likewise. The upper side takes its colour
-    from ``lut`` indexed by w over [w_lo, w_lo + span] (a one-row lut is a flat
-    colour), the lower side ``lower_rgb``; both multiplied by the shade, plus the
+    from ``lut`` indexed by w over the material vector mp's [w_lo, w_lo + span] (a
+    one-row lut is a flat colour), the lower side mp's lower colour; both multiplied by the shade, plus the
     white specular term. The colour is the coverage-weighted mean of the two surfaces
     and the background (uint8 RGBA).
     """
@@ -123,12 +139,12 @@ def pixel_rgba(s, w, cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp, lut, w_lo, 
     g = 0.0
     b = 0.0
     if s != 0.0:
-        r, g, b = _side_rgb(s, w, lut, w_lo, span, lower_rgb)
+        r, g, b = _colour(s, w, mp, lut)
     er = 0.0
     eg = 0.0
     eb = 0.0
     if e_cov > 0.0:
-        er, eg, eb = _side_rgb(e_side, e_w, lut, w_lo, span, lower_rgb)
+        er, eg, eb = _colour(e_side, e_w, mp, lut)
     return blend(s, r, g, b, cov0, lam, sp, e_cov, er, eg, eb, e_lam, e_sp, background)
 
 
@@ -179,14 +195,14 @@ def _rgba32(r, g, b, a):
 
 
 @ngjit_inline
-def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular, shininess,
-                lut, w_lo, span, lower_rgb, background, lit, textured, tr, tg, tb, er, eg, eb):
+def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, mp, lut, background, lit, base, i, c):
     """Light (_light) and colour (pixel_rgba) row j of the column in lane ``lane`` of
     tile ``tile`` of the G-buffer gbuf and the edge buffer ebuf (layout.py; E_SEEN,
-    and with ``aa`` the coverages, coverage.py). With ``textured`` the surface at the
-    centre has the colour (tr, tg, tb) on both sides (a texture's, passes/colour.py)
-    instead of its side's, and the edge surface (er, eg, eb). Returns (intensity at
-    the centre, NaN where no surface; r, g, b, alpha)."""
+    and with ``aa`` the coverages, coverage.py), with the material vector mp and its
+    colour table lut. ``base`` (H, W, 6): the colours of the surface at the centre
+    of pixel (i, c), both sides (a texture's, passes/colour.py), and of its edge
+    surface, instead of their sides'; or an empty array. Returns (intensity at the
+    centre, NaN where no surface; r, g, b, alpha)."""
     g = gbuf[tile, j, lane]
     x = ebuf[tile, E_SEEN, j, lane]
     s = seen_side(x)
@@ -195,8 +211,7 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular
     w = 0.0
     if s != 0.0:
         w = g[G_W]
-        lam, sp = _light(vp, x0, j, g[G_DEPTH], g[G_NX], g[G_NY], g[G_NZ], g[G_I], interp,
-                         ambient, specular, shininess, lit)
+        lam, sp = _light(vp, x0, j, g[G_DEPTH], g[G_NX], g[G_NY], g[G_NZ], g[G_I], mp, lit)
     cov0 = 1.0
     e_cov = 0.0
     e_side = 0.0
@@ -213,13 +228,14 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, interp, ambient, specular
             e_side = e[E_SIDE]
             e_w = e[E_W]
             e_lam, e_sp = _light(vp, x0, j, e[E_DEPTH], e[E_NX], e[E_NY], e[E_NZ], e[E_I],
-                                 interp, ambient, specular, shininess, lit)
-    if textured:
-        r, gr, bl, a = blend(s, tr, tg, tb, cov0, lam, sp, e_cov, er, eg, eb, e_lam, e_sp,
+                                 mp, lit)
+    if base.shape[0] > 0:
+        r, gr, bl, a = blend(s, base[i, c, 0], base[i, c, 1], base[i, c, 2], cov0, lam, sp,
+                             e_cov, base[i, c, 3], base[i, c, 4], base[i, c, 5], e_lam, e_sp,
                              background)
         return lam, r, gr, bl, a
-    r, gr, bl, a = pixel_rgba(s, w, cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp,
-                              lut, w_lo, span, lower_rgb, background)
+    r, gr, bl, a = pixel_rgba(s, w, cov0, lam, sp, e_cov, e_side, e_w, e_lam, e_sp, mp, lut,
+                              background)
     return lam, r, gr, bl, a
 
 
@@ -243,8 +259,7 @@ def _block_rows(blk, H):
 
 
 @ngjit_parallel_nrt_free
-def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lut, w_lo,
-                  w_hi, lower_rgb, background, lit, base, side, rgba):
+def finish_kernel(gbuf, ebuf, rows, vp, mp, lut, background, lit, base, side, rgba):
     """Light, colour and assemble the picture, top row first, in one pass: side and
     rgba (shade_pixel; rgba an (H, W, 4) uint8 picture viewed as (H, W) uint32, one
     store a pixel: _rgba32), from the tiled G-buffer gbuf and edge buffer ebuf
@@ -263,15 +278,16 @@ def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lu
     cache on every store (1920x1080: 5-17 % slower). A tile whose rows (column_kernel's
     ``rows``: where its E_SEEN may be set) miss the block is background there: not
     read at all. ``lit`` (H, W): the part of the light reaching each pixel's point
-    (passes/shadow.py), or an empty array: all of it. ``base`` (H, W, 3) float32: the
-    colour of the surface seen at each pixel's centre, both sides (a texture or a
-    colour field's, passes/colour.py), or an empty array: the side's colour (lut by
-    w, or lower_rgb); the edge surface of an antialiased pixel keeps its side's."""
+    (passes/shadow.py), or an empty array: all of it. mp: the material vector
+    (layout.py M_*), lut its colour table (Material.table). ``base`` (H, W, 6)
+    float32: the colour of the surface seen at each pixel's centre, both sides, and of
+    its edge surface (a texture or a colour field's, passes/colour.py), or an empty
+    array: their sides' colours (lut by w, or the lower side's)."""
     n_tiles, H, T, W, n_blocks = _picture_blocks(gbuf, side)
     aa = vp[VP_AA] != 0.0
     shadows = lit.shape[0] > 0
     textured = base.shape[0] > 0
-    span = w_hi - w_lo if w_hi > w_lo else 1.0
+    mt = held(mp)
     for blk in prange(n_blocks):
         j_lo, j_hi = _block_rows(blk, H)
         bg = _rgba32(background[0], background[1], background[2], background[3])
@@ -307,42 +323,25 @@ def finish_kernel(gbuf, ebuf, rows, vp, interp, ambient, specular, shininess, lu
                         # without the blend
                         lam, sp = _light(vp, x0, j, gbuf[b, j, lane, G_DEPTH],
                                          gbuf[b, j, lane, G_NX], gbuf[b, j, lane, G_NY],
-                                         gbuf[b, j, lane, G_NZ], gbuf[b, j, lane, G_I], interp,
-                                         ambient, specular, shininess, lt)
+                                         gbuf[b, j, lane, G_NZ], gbuf[b, j, lane, G_I], mt, lt)
                         if textured:
                             r = base[i, c, 0]
                             g = base[i, c, 1]
                             bl = base[i, c, 2]
                         else:
-                            r, g, bl = _side_rgb(s, gbuf[b, j, lane, G_W], lut, w_lo, span,
-                                                 lower_rgb)
+                            r, g, bl = _colour(s, gbuf[b, j, lane, G_W], mt, lut)
                         rgba[i, c] = _rgba32(min(r * lam + sp, 1.0) * 255.0 + 0.5,
                                              min(g * lam + sp, 1.0) * 255.0 + 0.5,
                                              min(bl * lam + sp, 1.0) * 255.0 + 0.5, 255)
                         continue
-                    tr = 0.0
-                    tg = 0.0
-                    tb = 0.0
-                    er = 0.0
-                    eg = 0.0
-                    eb = 0.0
-                    if textured:
-                        tr = base[i, c, 0]
-                        tg = base[i, c, 1]
-                        tb = base[i, c, 2]
-                        er = base[i, c, 3]
-                        eg = base[i, c, 4]
-                        eb = base[i, c, 5]
-                    _, r, g, bl, a = shade_pixel(gbuf, ebuf, b, lane, j, aa, vp, x0, interp,
-                                                 ambient, specular, shininess, lut, w_lo, span,
-                                                 lower_rgb, background, lt, textured, tr, tg, tb,
-                                                 er, eg, eb)
+                    _, r, g, bl, a = shade_pixel(gbuf, ebuf, b, lane, j, aa, vp, x0, mt, lut,
+                                                 background, lt, base, i, c)
                     rgba[i, c] = _rgba32(r * 255.0 + 0.5, g * 255.0 + 0.5, bl * 255.0 + 0.5,
                                          a * 255.0 + 0.5)
 
 
 @ngjit_parallel_nrt_free
-def centre_kernel(gbuf, vp, interp, ambient, lit, side, intensity, depth):
+def centre_kernel(gbuf, vp, mp, lit, side, intensity, depth):
     """intensity (ambient + diffuse, NaN where nothing is seen) and depth (+inf where
     nothing is seen) at the pixel centres, top row first, from the tiled G-buffer
     gbuf where ``side`` (finish_kernel's) says a surface is seen: the values
@@ -366,7 +365,6 @@ def centre_kernel(gbuf, vp, interp, ambient, lit, side, intensity, depth):
                         continue
                     g = gbuf[b, j, lane]
                     lam, _ = _light(vp, column_x0(vp, c), j, g[G_DEPTH], g[G_NX], g[G_NY],
-                                    g[G_NZ], g[G_I], interp, ambient, 0.0, 1.0,
-                                    lit[i, c] if shadows else 1.0)
+                                    g[G_NZ], g[G_I], mp, lit[i, c] if shadows else 1.0)
                     intensity[i, c] = lam
                     depth[i, c] = g[G_DEPTH]

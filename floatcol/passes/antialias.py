@@ -16,11 +16,11 @@ def staircase_pass(geom, side, rgba):
                       rgba.view(np.uint32)[..., 0])
 
 
-def subcolumn_pass(surface, geom, sub_columns, rgba, shade_args, lut, w_lo, w_hi, lower_rgb,
-                   bg8, lit):
+def subcolumn_pass(surface, geom, sub_columns, rgba, colours, bg8, lit):
     """The picture averaged over ``sub_columns`` columns at even offsets inside each
     pixel (premultiplied), one column of scratch per thread; the G-buffer and the
-    arrays other than rgba stay those of the pixel centres. Returns (rgba, evals)."""
+    arrays other than rgba stay those of the pixel centres; ``colours`` the material's
+    (Material.table). Returns (rgba, evals)."""
     H, W = rgba.shape[:2]
     offsets = (np.arange(sub_columns) + 0.5) / sub_columns - 0.5
     acc = np.zeros((H, W, 4))
@@ -30,8 +30,8 @@ def subcolumn_pass(surface, geom, sub_columns, rgba, shade_args, lut, w_lo, w_hi
         acc[..., 3:4] += a
         offsets = offsets[offsets != 0.0]
     ev2 = np.zeros(W, dtype=np.int64)
-    subcolumn_kernel(*surface.kernel_args(geom.fb), geom.vp, offsets, *shade_args, lut, w_lo,
-                     w_hi, lower_rgb, bg8, lit, acc, ev2)
+    subcolumn_kernel(*surface.kernel_args(geom.fb), geom.vp, offsets, colours.mp, colours.lut,
+                     bg8, lit, acc, ev2)
     a = acc[..., 3:4]
     rgb = np.where(a > 0, acc[..., :3] / np.maximum(a, 1e-12), 0.0)
     out = np.empty((H, W, 4), dtype=np.uint8)

@@ -227,10 +227,12 @@ def field_base(material, field, geom, W, H, box, lower_rgb):
     return base, (limits if np.isfinite(vals).any() else None)
 
 
-def base_colours(material, source, geom, W, H, box, lut, w_lo, w_hi, lower_rgb):
-    """(base (H, W, 3) float32, c_limits or None): the colour of the surface at each
-    pixel (finish_kernel's ``base``) from a material's texture or colour field
-    (``source``, prepare's)."""
+def base_colours(material, source, geom, W, H, box, colours):
+    """(base (H, W, 6) float32, c_limits or None): the colour of the surface at each
+    pixel and of its edge surface (finish_kernel's ``base``) from a material's texture
+    or colour field (``source``, prepare's) over its own colours (``colours``,
+    Material.table)."""
+    lut, w_lo, w_hi, lower_rgb = colours.lut, colours.w_lo, colours.w_hi, colours.lower_rgb
     if source.field is None and not callable(source.texture):
         return texture_base(source.texture, geom, W, H, box, source.extent, source.filter,
                             lut, w_lo, w_hi, lower_rgb), None

@@ -12,15 +12,14 @@ from ..kernels.shade import finish_kernel
 NO_BASE = np.zeros((0, 0, 6), dtype=np.float32)
 
 
-def finish_pass(geom, H, W, shade_args, lut, w_lo, w_hi, lower_rgb, bg8, lit, base=NO_BASE):
-    """(rgba (H, W, 4) uint8, side (H, W) int8). ``shade_args``: (interpolation,
-    ambient, specular, shininess) of the material; lut, w_lo, w_hi its colour table
-    (Material.color_table); lower_rgb the lower side's colour; bg8 the background; lit
+def finish_pass(geom, H, W, colours, bg8, lit, base=NO_BASE):
+    """(rgba (H, W, 4) uint8, side (H, W) int8). ``colours``: the material's
+    (Material.table: its material vector and colour table); bg8 the background; lit
     (H, W) the part of the light reaching each pixel (passes/shadow.py), or empty;
     base (H, W, 6) float32 the colour of the surface at each pixel and of its edge
     surface (passes/colour.py), or empty (NO_BASE): their sides'."""
     side = _pool.empty((H, W), np.int8)
     rgba = _pool.empty((H, W, 4), np.uint8)
-    finish_kernel(geom.gbuf, geom.ebuf, geom.rows, geom.vp, *shade_args, lut, w_lo, w_hi,
-                  lower_rgb, bg8, lit, base, side, rgba.view(np.uint32)[..., 0])
+    finish_kernel(geom.gbuf, geom.ebuf, geom.rows, geom.vp, colours.mp, colours.lut, bg8, lit,
+                  base, side, rgba.view(np.uint32)[..., 0])
     return rgba, side

@@ -84,21 +84,6 @@ def layer_texture(source, box):
     return tex.flat, tex.offsets, tex.shapes, tp
 
 
-def material_vector(material, terms, lut_range):
-    """kernels/layers.py's mp of a layer."""
-    amb, spec, shine = terms
-    w_lo, w_hi = lut_range
-    mp = np.zeros(K.M_SIZE)
-    mp[K.M_ALPHA] = material.opacity
-    mp[K.M_INTERP] = material.interp
-    mp[K.M_AMBIENT] = amb
-    mp[K.M_SPECULAR] = spec
-    mp[K.M_SHININESS] = shine
-    mp[K.M_WLO] = w_lo
-    mp[K.M_SPAN] = w_hi - w_lo if w_hi > w_lo else 1.0
-    return mp
-
-
 def shadow_vector(texture, view, layer):
     """kernels/layers.py's sh (and the texture's planes) of a layer."""
     sh = np.zeros(K.SH_SIZE)
@@ -152,15 +137,11 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
     for k, (p, view, (surface, _)) in enumerate(zip(layers, views, drawn)):
         vp = geometry.view_params(view, "column", "uniform", (0.0,) * 6, aa_cov, surface)
         vp[VP_AA] = 1.0 if aa_cov else 0.0
-        lut, w_lo, w_hi, lim = p.material.color_table(np.array([view.f_range]), box[2])
-        _, lower_rgb = p.material.colors()
-        w_limits.append(lim)
-        mp = material_vector(p.material, p.terms, (w_lo, w_hi))
+        table = p.material.table(np.array([view.f_range]), box[2])
+        w_limits.append(table.w_limits)
         sh, hmax, hmin, hsurf = shadow_vector(texture, view, k)
-        colours = (np.ascontiguousarray(lut, dtype=np.float64),
-                   *layer_texture(p.source, box))
-        plans.append((surface, vp, mp, colours,
-                      np.asarray(lower_rgb, dtype=np.float64), sh, hmax, hmin, hsurf))
+        colours = (table.lut, *layer_texture(p.source, box))
+        plans.append((surface, vp, table.mp, colours, sh, hmax, hmin, hsurf))
     offsets_px, centre = offsets(sub)
     order = [centre] + [i for i in range(sub) if i != centre]
     # (lists and gfirst are read only below counts, gbuf only where a layer is seen,
@@ -184,13 +165,13 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
             counts[:] = 0
             hits[:] = 0
             evals[:] = 0
-            for k, (surface, vp, mp, lut, lower_rgb, sh, hmax, hmin, hsurf) in enumerate(plans):
+            for k, (surface, vp, mp, lut, sh, hmax, hmin, hsurf) in enumerate(plans):
                 if ks[k] == 0:
                     continue
                 vpk = vp.copy()
                 vpk[VP_XOFF] = offsets_px[m]
                 kind, f, fg, _, hf, hfp = surface.kernel_args(None)
-                K.layers_kernel(kind, f, fg, hf, hfp, vpk, c0, mp, lut, lower_rgb, sh, hmax,
+                K.layers_kernel(kind, f, fg, hf, hfp, vpk, c0, mp, lut, sh, hmax,
                                 hmin, hsurf, lists, offs[k], ks[k], counts[k], gfirst[k], hits,
                                 evals)
             total_evals += int(evals.sum())

@@ -191,6 +191,9 @@ def _surface_options(p, default_size="800x600", many=False, terrain=False):
                         "in degrees, as matplotlib's LightSource (e.g. 315/25)")
     p.add_argument("--shadows", action="store_true",
                    help="the light casts shadows (Gordon 6.2): with --light, or the default light")
+    p.add_argument("--light-radius", type=_value("light-radius"), default=None, metavar="DEG",
+                   help="soft shadows from a light of this angular radius in degrees (the sun: "
+                        "0.27); with --shadows")
     p.add_argument("--opacity", type=_value("opacity"), default=None,
                    help="below 1 the surfaces are translucent, every layer showing (Gordon 6.5), "
                         "e.g. 0.5 (default 1)")
@@ -357,6 +360,8 @@ def _options(args):
         opts["lightsource"] = args.light
     if args.shadows:
         opts["shadows"] = True
+    if args.light_radius is not None:
+        opts["light_radius"] = args.light_radius
     if args.opacity is not None:
         opts["alpha"] = args.opacity
     if args.background is not None:

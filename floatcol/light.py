@@ -31,11 +31,18 @@ class Light:
     direction: tuple | None = None
     #: cast and attached shadows (Gordon section 6.2; passes/shadow.py)
     shadows: bool = False
+    #: the light's angular radius in degrees (a disk: the sun's is 0.27): soft shadows,
+    #: whose penumbra behind an edge at distance D is about 2 D tan(radius) wide; 0 a
+    #: point at infinity (hard shadows, antialiased)
+    radius: float = 0.0
 
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ValueError(f"a light's kind must be one of {', '.join(KINDS)}, got {self.kind!r}")
         object.__setattr__(self, "shadows", bool(self.shadows))
+        object.__setattr__(self, "radius", _radius(self.radius))
+        if self.radius > 0.0 and not self.shadows:
+            raise ValueError("light_radius gives soft shadows: use it with shadows=True")
         if self.kind == "headlight":
             if self.direction is not None:
                 raise ValueError("a headlight lights from the viewpoint: it takes no direction")
@@ -50,22 +57,22 @@ class Light:
         return cls("headlight")
 
     @classmethod
-    def key(cls, direction=DEFAULT_LIGHT, shadows=False):
-        return cls("key", direction, shadows)
+    def key(cls, direction=DEFAULT_LIGHT, shadows=False, radius=0.0):
+        return cls("key", direction, shadows, radius)
 
     @classmethod
-    def directional(cls, direction, shadows=False):
-        return cls("directional", direction, shadows)
+    def directional(cls, direction, shadows=False, radius=0.0):
+        return cls("directional", direction, shadows, radius)
 
     @classmethod
-    def sun(cls, azdeg=315.0, altdeg=45.0, shadows=False):
+    def sun(cls, azdeg=315.0, altdeg=45.0, shadows=False, radius=0.0):
         """A world-fixed light as matplotlib's ``LightSource(azdeg, altdeg)``: azimuth
         clockwise from north (+v), altitude above the (u, v) plane, in degrees."""
         from .view import _number
         az = math.radians(90.0 - _number("azdeg", azdeg))
         alt = math.radians(_number("altdeg", altdeg))
         return cls("directional", (math.cos(az) * math.cos(alt), math.sin(az) * math.cos(alt),
-                                   math.sin(alt)), shadows)
+                                   math.sin(alt)), shadows, radius)
 
     def world_direction(self, elev, azim):
         """The direction toward the light in world (u, v, w) for render()'s angles
@@ -101,6 +108,23 @@ def _direction(d, kind):
     return (x, y, z)
 
 
+#: the largest angular radius of a light, degrees
+MAX_RADIUS = 30.0
+
+
+def _radius(r):
+    if isinstance(r, bool):
+        r = None
+    try:
+        r = float(r)
+    except (TypeError, ValueError):
+        raise ValueError(f"light_radius must be an angle in degrees (the sun's is 0.27), "
+                         f"got {r!r}") from None
+    if not 0.0 <= r <= MAX_RADIUS:
+        raise ValueError(f"light_radius must be in [0, {MAX_RADIUS:g}] degrees, got {r}")
+    return r
+
+
 def world_to_screen_direction(d, elev, azim):
     """A direction in world (u, v, w) -> screen (x, y, z) for render()'s angles."""
     a, b = -math.radians(elev), math.radians(azim)
@@ -125,12 +149,12 @@ _LAMBERT = ("shading='lambert' lights from the viewpoint; leave light=None or us
             "shading='default'")
 
 
-def as_light(light, shading, lightsource=None, shadows=False):
+def as_light(light, shading, lightsource=None, shadows=False, light_radius=0.0):
     """render()'s ``light`` keyword as a Light: None is the shading's own (the key
     light for "default", the headlight for "lambert"), a Light as is, and a triple a
     key light's screen direction (render's convention since 0.1). ``lightsource``
     (azdeg, altdeg) or a matplotlib LightSource: a sun instead; ``shadows``: the light
-    casts shadows."""
+    casts shadows, soft ones from a disk of ``light_radius`` degrees."""
     if lightsource is not None:
         if light is not None:
             raise ValueError("give either lightsource or light, not both")
@@ -143,7 +167,10 @@ def as_light(light, shading, lightsource=None, shadows=False):
             light = Light("key", DEFAULT_LIGHT)
         elif not isinstance(light, Light):
             light = Light("key", light)
-        light = Light(light.kind, light.direction, True)
+        light = Light(light.kind, light.direction, True, light_radius or light.radius)
+    elif light_radius:
+        _radius(light_radius)
+        raise ValueError("light_radius gives soft shadows: use it with shadows=True")
     if isinstance(light, Light):
         if shading == "lambert" and light.kind != "headlight":
             raise ValueError(_LAMBERT)

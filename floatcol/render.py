@@ -34,7 +34,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            corrections=DEFAULT_CORRECTIONS, detect=None, jump_threshold=DEFAULT_JUMP,
            supersample_rate=DEFAULT_RATE, spline_tolerance=None,
            antialias=None, sampling="uniform", aspect="equal", box=None, lightsource=None,
-           shadows=False, opacity=1.0, texture=None, texture_extent=None,
+           shadows=False, light_radius=0.0, opacity=1.0, texture=None, texture_extent=None,
            texture_filter="mipmap", color=None, contours=None, contour_color="black",
            contour_width=1.0, wireframe=None, edgecolor="black", linewidth=0.75,
            objects=None) -> Render:
@@ -125,6 +125,10 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         light). ``Render.shadow`` says where (1 shadow, 0 lit, between at the
         antialiased edges, NaN where nothing is seen). The light is ``lightsource``,
         ``light`` or the default key light.
+    light_radius : the light's angular radius in degrees (the sun's: 0.27): soft
+        shadows, the part of the light's disk each point sees (penumbrae about 2 D
+        tan(radius) wide behind an edge at distance D); 0 (the default) hard,
+        antialiased shadows. Needs shadows=True.
     opacity : sections 6.5-6.6: below 1 the surface is translucent: every layer of it
         along each pixel's ray (its hidden folds, its lower side) shows, lit and
         coloured as the opaque surface would be, composited front to back.
@@ -177,8 +181,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         camera=Camera(size=size, elev=elev, azim=azim, projection=projection, d1=d1, d2=d2,
                       scale=scale, center=center, focal_length=focal_length, aspect=aspect,
                       box=box),
-        light=light if lightsource is None and not shadows else
-        as_light(light, shading, lightsource, shadows),
+        light=light if lightsource is None and not shadows and not light_radius else
+        as_light(light, shading, lightsource, shadows, light_radius),
         quality=Quality(method=method, lines=lines, step=step, pixel_step=pixel_step,
                         sampling=sampling, placement=placement, corrections=corrections,
                         detect=detect, jump_threshold=jump_threshold,

@@ -105,6 +105,9 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
         if quality.area:
             raise ValueError("antialias='area' needs opaque surfaces: opacity=1 (translucent "
                              "layers are antialiased by their own coverage)")
+        if texture is not None and texture.rho > 0.0:
+            raise ValueError("opacity below 1 casts hard shadows: use light_radius=0 (soft "
+                             "shadows need opaque surfaces)")
         return render_translucent(layers, views, drawn, box, quality, background, texture,
                                   t_start)
     if not many and texture is None and draft.supports(quality, views[0]) \
@@ -147,7 +150,7 @@ def _shadow_texture(light, camera, quality, drawn, view):
                          "has no light)")
     from .view import _number
     direction = light.world_direction(_number("elev", camera.elev), _number("azim", camera.azim))
-    return shadows.Texture(drawn, view, direction)
+    return shadows.Texture(drawn, view, direction, light.radius)
 
 
 def _screen_light(light, elev, azim):

@@ -68,9 +68,11 @@ def scene_from_options(surfaces, **options):
     light = options.pop("light", None)
     lightsource = options.pop("lightsource", None)
     shadows = options.pop("shadows", False)
-    if lightsource is not None or shadows:
+    radius = options.pop("light_radius", 0.0)
+    if lightsource is not None or shadows or radius:
         from .light import as_light
-        light = as_light(light, material.get("shading", "default"), lightsource, shadows)
+        light = as_light(light, material.get("shading", "default"), lightsource, shadows,
+                         radius)
     background = options.pop("background", None)
     vars = options.pop("vars", None)
     objects = options.pop("objects", ())

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import math
+
 import numpy as np
 import sympy as sp
 
@@ -236,12 +238,15 @@ def raycast_column_box(funcs, u_rng, v_rng, size, elev, azim, projection="orthog
         return np.where(n > 0, inten / np.maximum(n, 1), np.nan), n / k
 
 
-def shadow_rays(funcs, ref, u_rng, v_rng, light, steps=2000, start=1e-4):
+def shadow_rays(funcs, ref, u_rng, v_rng, light, steps=2000, start=1e-4, radius=0.0,
+                n_disk=48):
     """Shadows at the reference's hits (Gordon 6.2, independently): a hit is in
     shadow where its seen side faces away from ``light`` (a direction toward the light
     in world (u, v, w)), or where the ray from it toward the light crosses the surface
     (w_ray - f changes sign) before it leaves the domain. Returns (H, W) float: 1
-    shadow, 0 lit, NaN where nothing is seen."""
+    shadow, 0 lit, NaN where nothing is seen. With ``radius`` (degrees) the light is a
+    disk of that angular radius: the cast part is the fraction of ``n_disk`` rays,
+    spread evenly over the disk (a sunflower spiral), that the surface stops."""
     f, fu, fv = funcs
     L = np.asarray(light, float)
     L = L / np.linalg.norm(L)
@@ -251,7 +256,29 @@ def shadow_rays(funcs, ref, u_rng, v_rng, light, steps=2000, start=1e-4):
     side = ref.side[seen].astype(float)
     n = np.stack([-fu(u, v), -fv(u, v), np.ones_like(u)], axis=1)
     attached = side * (n @ L) <= 0.0
-    # the ray's length to the domain's edge along the ground
+    if radius > 0.0:
+        e1 = np.cross(L, [0.0, 0.0, 1.0] if abs(L[2]) < 0.9 else [1.0, 0.0, 0.0])
+        e1 /= np.linalg.norm(e1)
+        e2 = np.cross(L, e1)
+        k = np.arange(n_disk) + 0.5
+        r = math.tan(math.radians(radius)) * np.sqrt(k / n_disk)
+        a = k * math.pi * (3.0 - math.sqrt(5.0))
+        rays = L + r[:, None] * (np.cos(a)[:, None] * e1 + np.sin(a)[:, None] * e2)
+        rays /= np.linalg.norm(rays, axis=1, keepdims=True)
+    else:
+        rays = L[None]
+    cast = np.zeros(u.shape)
+    for Lk in rays:
+        cast += _cast(f, u, v, w, side, Lk, u_rng, v_rng, steps, start)
+    cast /= len(rays)
+    out = np.full(ref.side.shape, np.nan)
+    out[seen] = np.where(attached, 1.0, cast)
+    return out
+
+
+def _cast(f, u, v, w, side, L, u_rng, v_rng, steps, start):
+    """Whether the ray from each point (u, v, w) toward L crosses the surface before
+    it leaves the domain."""
     s_max = np.full(u.shape, np.inf)
     for o, d, (lo, hi) in ((u, L[0], u_rng), (v, L[1], v_rng)):
         if abs(d) > 1e-14:
@@ -265,9 +292,7 @@ def shadow_rays(funcs, ref, u_rng, v_rng, light, steps=2000, start=1e-4):
             live = s <= s_max
             g = (w + s * L[2]) - f(u + s * L[0], v + s * L[1])
             cast |= live & np.isfinite(g) & (side * g < 0)
-    out = np.full(ref.side.shape, np.nan)
-    out[seen] = (attached | cast).astype(float)
-    return out
+    return cast
 
 
 def layer_hits(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1=None,

@@ -12,6 +12,11 @@ box's (u, v, w)):
   of ground makes along the light's ray, antialiases the shadow's edge: a value
   between 0 and 1 where the edge crosses the pixel.
 
+A light of angular radius rho (``Light.radius``, degrees: the sun's 0.27) casts soft
+shadows: from each texel's horizon toward the light (kernels/shadow.py
+horizon_slopes), the part of the light's disk that the horizon hides; the penumbra
+behind an edge at distance D is about 2 rho D wide on the ground.
+
 Returns ``shadow`` (H, W) float32: 1 in shadow, 0 lit, between at edges, NaN where
 nothing is seen; and ``lit`` = 1 - shadow (1 where nothing is seen), which the
 finishing pass multiplies the diffuse and specular light by.
@@ -23,7 +28,7 @@ import math
 import numpy as np
 
 from ..kernels.layout import SURF_FUNCTION
-from ..kernels.shadow import horizon_sweeps, shadow_lookup
+from ..kernels.shadow import horizon_slopes, horizon_sweeps, shadow_lookup
 from .geometry import BATCH_MIN_SAMPLES
 
 #: most texels of a shadow texture (its memory: three float64 planes a layer, 92 MiB)
@@ -51,8 +56,12 @@ class Texture:
     is shadowed by its own layer's horizon, and by another layer where the ray crosses
     it (kernels/shadow.py shadow_lookup), so layers shadow each other."""
 
-    def __init__(self, drawn, view, light_world):
+    def __init__(self, drawn, view, light_world, radius=0.0):
         lw = np.asarray(light_world, dtype=np.float64)
+        #: the light's angular radius in radians (0: a point at infinity, hard shadows)
+        self.rho = math.radians(radius)
+        #: soft shadows' horizon slopes (2 layers, lines, samples), or empty
+        self.slopes = np.zeros((0, 1, 1))
         self.light = lw / np.linalg.norm(lw)
         ground = math.hypot(self.light[0], self.light[1])
         self.texels = 0
@@ -94,6 +103,10 @@ class Texture:
             kind, f, _, fb, hf, hfp = surface.kernel_args(fb)
             horizon_sweeps(kind, f, fb, hf, hfp, domain, self.gu, self.gv, self.tan_theta,
                            self.s0, self.t0, h, self.hmax, self.hmin, self.hsurf, layer)
+        if self.rho > 0.0:
+            self.slopes = np.empty((2 * len(drawn), n_tau, n_sig))
+            for layer in range(len(drawn)):
+                horizon_slopes(self.hsurf, layer, h, self.slopes)
         self.texels = n_sig * n_tau * len(drawn)
 
 
@@ -106,10 +119,11 @@ def shadow_pass(texture, view, geom, W, H, layer=0):
     light = np.asarray(view.light, dtype=np.float64)
     if texture.zenith:
         none = np.zeros((0, 1, 1))
-        shadow_lookup(geom.gbuf, geom.ebuf, W, light, none, none, none, layer, 0.0, 0.0, 0.0,
-                      0.0, 0.0, 1.0, GRAZING, BIAS_TEXELS, shadow, lit)
+        shadow_lookup(geom.gbuf, geom.ebuf, W, light, none, none, none, none, layer, 0.0, 0.0,
+                      0.0, 0.0, 0.0, 1.0, GRAZING, BIAS_TEXELS, 0.0, shadow, lit)
     else:
         shadow_lookup(geom.gbuf, geom.ebuf, W, light, texture.hmax, texture.hmin,
-                      texture.hsurf, layer, texture.gu, texture.gv, texture.tan_theta,
-                      texture.s0, texture.t0, texture.h, GRAZING, BIAS_TEXELS, shadow, lit)
+                      texture.hsurf, texture.slopes, layer, texture.gu, texture.gv,
+                      texture.tan_theta, texture.s0, texture.t0, texture.h, GRAZING,
+                      BIAS_TEXELS, texture.rho, shadow, lit)
     return shadow, lit

@@ -1,10 +1,11 @@
 """Shadows (Gordon 6.2, issue 28): cost and agreement.
 
-    python benchmarks/bench_shadow.py
+    python benchmarks/bench_shadow.py [--cost | --agreement]
 
-Prints (1) the cost of shadows at 1920x1080 and 1024x768: render time without and
-with shadows=True (best and median of N after a warm-up), the shadow pass's own time
-and the shadow texture's texels and memory; (2) the agreement of the lit/shadow state
+Prints (1) the cost of shadows at 1920x1080 and 1024x768: render time without
+shadows and with each method (the texture of 6.2.1, the sweep on the fly of 6.2.2;
+hard and soft), best and median of N after a warm-up, the shadow pass's own time and
+the memory it keeps; (2) the agreement of the lit/shadow state
 with the reference ray caster's shadow rays (tests/reference.py) on surfaces, views and
 lights that are not in tests/test_shadow.py, both projections.
 """
@@ -24,38 +25,62 @@ DOM = dict(u=(-5, 5), v=(-5, 5))
 N = 11
 
 
-def timed_pair(**kw):
-    """(best, median) ms without and with shadows, the two interleaved so that a drift
-    of the machine's speed hits both alike; and the last render with shadows."""
-    ts = ([], [])
-    r = None
+VARIANTS = [("none", dict()),
+            ("texture (6.2.1)", dict(shadows=True)),
+            ("on the fly (6.2.2)", dict(shadows="on-the-fly")),
+            ("texture, soft 0.27 deg", dict(shadows=True, light_radius=0.27)),
+            ("on the fly, soft 0.27 deg", dict(shadows="on-the-fly", light_radius=0.27))]
+
+
+def timed(**kw):
+    """{variant: (best ms, median ms, last Render)}, the variants interleaved so that a
+    drift of the machine's speed hits all alike."""
+    ts = {name: [] for name, _ in VARIANTS}
+    last = {}
     for _ in range(N):
-        for k, shadows in enumerate((False, True)):
+        for name, extra in VARIANTS:
             t = time.perf_counter()
-            r1 = fc.render(EXPR, **DOM, **kw, shadows=shadows)
-            ts[k].append(time.perf_counter() - t)
-            if shadows:
-                r = r1
-    out = []
-    for x in ts:
-        x.sort()
-        out += [x[0] * 1e3, x[N // 2] * 1e3]
-    return (*out, r)
+            last[name] = fc.render(EXPR, **DOM, **kw, **extra)
+            ts[name].append(time.perf_counter() - t)
+    return {name: (min(x) * 1e3, sorted(x)[N // 2] * 1e3, last[name]) for name, x in ts.items()}
+
+
+def memory(name, r):
+    """MiB the shadows keep: the texture's planes (three float64 a texel, two more for
+    soft shadows), or the sweep's pixel cells and order (int32 each) and its fronts
+    (per band of lines: two samples of five planes; soft: each line's heights and two
+    hull stacks over the samples, per thread)."""
+    H, W = r.side.shape
+    if "texture" in name:
+        planes = 5 if "soft" in name else 3
+        return r.stats["shadow_texels"] * 8 * planes / 2**20
+    from floatcol.kernels.shadow import BAND
+    seen = int((r.side != 0).sum())
+    front = (BAND + 1) * 2 * 5 * 8
+    if "soft" in name:
+        # (the samples along a line: the domain's extent over a pixel's footprint)
+        front += (BAND + 1) * 3 * 8 * max(H, W) * 2
+    return (H * W * 4 + seen * 4 + front * os.cpu_count()) / 2**20
 
 
 def cost():
-    print("| size | projection | without ms (best / median) | with shadows ms | + % (best) "
-          "| shadow lookup ms | texels | texture MiB |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| size | projection | shadows | ms (best / median) | + % (best) | shadow pass ms "
+          "| memory MiB |")
+    print("|---|---|---|---|---|---|---|")
     for size in ((1920, 1080), (1024, 768)):
         for proj in ("orthographic", "perspective"):
             kw = dict(size=size, projection=proj, lightsource=(315, 35))
-            fc.render(EXPR, **DOM, **kw, shadows=True)          # warm up
-            b0, m0, b1, m1, r = timed_pair(**kw)
-            texels = r.stats["shadow_texels"]
-            print(f"| {size[0]}x{size[1]} | {proj} | {b0:.1f} / {m0:.1f} | {b1:.1f} / {m1:.1f} "
-                  f"| {100 * (b1 / b0 - 1):+.0f} % | {r.stats['shadow_seconds'] * 1e3:.1f} "
-                  f"| {texels} | {texels * 24 / 2**20:.1f} |")
+            for _, extra in VARIANTS:
+                fc.render(EXPR, **DOM, **kw, **extra)          # warm up
+            got = timed(**kw)
+            b0 = got["none"][0]
+            for name, (b, m, r) in got.items():
+                if name == "none":
+                    print(f"| {size[0]}x{size[1]} | {proj} | none | {b:.1f} / {m:.1f} | | | |")
+                    continue
+                print(f"| | | {name} | {b:.1f} / {m:.1f} | {100 * (b / b0 - 1):+.0f} % "
+                      f"| {r.stats['shadow_seconds'] * 1e3:.1f} | {memory(name, r):.1f} |",
+                      flush=True)
 
 
 CASES = [("2*exp(-((u-1)**2+v**2)) + exp(-((u+1.5)**2+(v-1)**2)/0.5)", (-4, 4), (-4, 4)),
@@ -80,12 +105,18 @@ def agreement():
                 rs = shadow_rays(numpy_surface(expr), ref, U, V, fc.Light.sun(az, alt).direction)
                 both = (r.side != 0) & (ref.side == r.side)
                 a = ((r.shadow[both] >= 0.5) == (rs[both] >= 0.5)).mean()
-                worst = min(worst, a)
-                row.append(f"{100 * a:.2f} %")
+                r2 = fc.render(expr, u=U, v=V, lightsource=(az, alt), shadows="on-the-fly",
+                               **kw)
+                a2 = ((r2.shadow[both] >= 0.5) == (rs[both] >= 0.5)).mean()
+                worst = min(worst, a, a2)
+                row.append(f"{100 * a:.2f} %" + ("" if a2 == a else f" ({100 * a2:.2f} %)"))
             print(f"| {expr} | {proj[:5]} | " + " | ".join(row) + " |")
-    print(f"\nworst agreement: {100 * worst:.2f} %")
+    print(f"\nworst agreement: {100 * worst:.2f} % (on the fly in brackets where it differs "
+          "from the texture)")
 
 
 if __name__ == "__main__":
-    cost()
-    agreement()
+    if "--agreement" not in sys.argv[1:]:
+        cost()
+    if "--cost" not in sys.argv[1:]:
+        agreement()

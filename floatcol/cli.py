@@ -191,6 +191,9 @@ def _surface_options(p, default_size="800x600", many=False, terrain=False):
                         "in degrees, as matplotlib's LightSource (e.g. 315/25)")
     p.add_argument("--shadows", action="store_true",
                    help="the light casts shadows (Gordon 6.2): with --light, or the default light")
+    p.add_argument("--shadow-method", choices=("texture", "on-the-fly"), default=None,
+                   help="how cast shadows are found: a shadow texture (Gordon 6.2.1, the "
+                        "default) or on the fly (6.2.2: no texture; one surface); with --shadows")
     p.add_argument("--light-radius", type=_value("light-radius"), default=None, metavar="DEG",
                    help="soft shadows from a light of this angular radius in degrees (the sun: "
                         "0.27); with --shadows")
@@ -359,7 +362,9 @@ def _options(args):
     if args.light is not None:
         opts["lightsource"] = args.light
     if args.shadows:
-        opts["shadows"] = True
+        opts["shadows"] = args.shadow_method or True
+    elif args.shadow_method is not None:
+        raise ValueError("--shadow-method says how shadows are cast: give --shadows too")
     if args.light_radius is not None:
         opts["light_radius"] = args.light_radius
     if args.opacity is not None:

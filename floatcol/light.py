@@ -20,6 +20,8 @@ from dataclasses import dataclass
 #: the key light of the default shading: from the upper left, toward the viewer
 DEFAULT_LIGHT = (-0.45, 0.55, -1.0)
 KINDS = ("headlight", "key", "directional")
+#: Gordon's two ways to cast shadows (passes/shadow.py)
+SHADOW_METHODS = ("texture", "on-the-fly")
 
 
 @dataclass(frozen=True)
@@ -35,12 +37,19 @@ class Light:
     #: whose penumbra behind an edge at distance D is about 2 D tan(radius) wide; 0 a
     #: point at infinity (hard shadows, antialiased)
     radius: float = 0.0
+    #: how cast shadows are found: "texture" (section 6.2.1, the default: one shadow
+    #: texture for every surface) or "on-the-fly" (6.2.2: no texture, one surface)
+    shadow_method: str = "texture"
 
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ValueError(f"a light's kind must be one of {', '.join(KINDS)}, got {self.kind!r}")
         object.__setattr__(self, "shadows", bool(self.shadows))
         object.__setattr__(self, "radius", _radius(self.radius))
+        if self.shadow_method not in SHADOW_METHODS:
+            raise ValueError("shadows must be True, False, " +
+                             ", ".join(repr(m) for m in SHADOW_METHODS) +
+                             f", got {self.shadow_method!r}")
         if self.radius > 0.0 and not self.shadows:
             raise ValueError("light_radius gives soft shadows: use it with shadows=True")
         if self.kind == "headlight":
@@ -159,6 +168,9 @@ def as_light(light, shading, lightsource=None, shadows=False, light_radius=0.0):
         if light is not None:
             raise ValueError("give either lightsource or light, not both")
         light = _sun(lightsource)
+    if isinstance(shadows, str) and shadows not in SHADOW_METHODS:
+        raise ValueError("shadows must be True, False, " +
+                         ", ".join(repr(m) for m in SHADOW_METHODS) + f", got {shadows!r}")
     if shadows:
         if shading == "lambert":
             raise ValueError("shading='lambert' lights from the viewpoint, where nothing seen "
@@ -167,7 +179,8 @@ def as_light(light, shading, lightsource=None, shadows=False, light_radius=0.0):
             light = Light("key", DEFAULT_LIGHT)
         elif not isinstance(light, Light):
             light = Light("key", light)
-        light = Light(light.kind, light.direction, True, light_radius or light.radius)
+        method = shadows if isinstance(shadows, str) else light.shadow_method
+        light = Light(light.kind, light.direction, True, light_radius or light.radius, method)
     elif light_radius:
         _radius(light_radius)
         raise ValueError("light_radius gives soft shadows: use it with shadows=True")

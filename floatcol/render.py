@@ -124,7 +124,10 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         it gets ambient light only; cast: a point with the surface between it and the
         light). ``Render.shadow`` says where (1 shadow, 0 lit, between at the
         antialiased edges, NaN where nothing is seen). The light is ``lightsource``,
-        ``light`` or the default key light.
+        ``light`` or the default key light. ``True`` (or "texture") finds cast
+        shadows in a shadow texture over the domain (section 6.2.1: one for every
+        surface, so several surfaces shadow each other); "on-the-fly" by section
+        6.2.2's sweep without a texture (O(lines) memory; one surface).
     light_radius : the light's angular radius in degrees (the sun's: 0.27): soft
         shadows, the part of the light's disk each point sees (penumbrae about 2 D
         tan(radius) wide behind an edge at distance D); 0 (the default) hard,

@@ -150,7 +150,7 @@ def _shadow_texture(light, camera, quality, drawn, view):
                          "has no light)")
     from .view import _number
     direction = light.world_direction(_number("elev", camera.elev), _number("azim", camera.azim))
-    return shadows.Texture(drawn, view, direction, light.radius)
+    return shadows.Texture(drawn, view, direction, light.radius, light.shadow_method)
 
 
 def _screen_light(light, elev, azim):

@@ -16,6 +16,10 @@ CASES = [dict(projection="orthographic", method="column"),
          # shadows: the sweeps (a line per thread) and the lookup (a column per thread)
          dict(projection="orthographic", lightsource=(315, 25), shadows=True),
          dict(projection="perspective", lightsource=(120, 10), shadows=True, antialias=3),
+         # soft shadows (the hulls, a line per thread); on the fly (a band of lines per
+         # thread, each pixel answered by one)
+         dict(projection="orthographic", lightsource=(315, 25), shadows=True, light_radius=3),
+         dict(projection="perspective", lightsource=(200, 20), shadows="on-the-fly"),
          # translucency: every layer, a column per thread, lists a band at a time
          dict(projection="orthographic", opacity=0.5),
          dict(projection="perspective", opacity=0.4, lightsource=(315, 25), shadows=True),

@@ -19,16 +19,18 @@ maximum and minimum (no shared scratch).
 Soft shadows (a light of angular radius rho, a disk): the steepest rise of H from each
 texel to its line's texels beyond it (horizon_slopes, by the line's upper convex hull
 kept on a stack from the light's side: O(n) a line) gives the angle phi of the
-horizon toward the light above the point; the part of the disk below it is
-_blocked((phi - theta) / rho). The horizon is taken along the light's azimuth alone
-(horizon mapping, Max 1988): across the disk's width in azimuth it is assumed the same.
+horizon toward the light above the point and the distance D of what makes it; the
+part of the disk below it is _blocked((phi - theta) / rho) (horizon mapping, Max
+1988). Across the light's direction the disk is cut in strips, each taking the
+horizon of the point displaced by D times its angle (soft_shadow): the lateral
+penumbra grows with the occluder's distance as the other.
 """
 import math
 
 import numpy as np
 from numba import prange
 
-from ._jit import array_ptr, ngjit_inline, ngjit_parallel
+from ._jit import array_ptr, ngjit, ngjit_inline, ngjit_parallel
 from .index import floor_index
 from .layout import E_FLAG, E_SEEN, G_NX, G_NY, G_NZ, G_U, G_V, G_W, HFP_CW, HFP_IU, HFP_IV
 from .sample import surface_value
@@ -38,6 +40,9 @@ NONE = 1e300
 #: horizon_slopes' "nothing beyond": a rise no surface makes (steeper than 89.99994
 #: degrees), finite for the lookup's averages
 SLOPE_NONE = 1e6
+#: texels whose heights differ by more than this many texels of ground (a slope
+#: steeper than 84 degrees) have a wall between them
+WALL = 10.0
 
 
 @ngjit_inline
@@ -58,19 +63,31 @@ def _bilinear(a, k, y, x):
 
 
 @ngjit_inline
-def _own_depth(hext, hsurf, k, y, x, upper):
+def _own_depth(hext, hsurf, k, y, x, upper, hp, h):
     """How far below its own layer's horizon the surface lies around (y, x): the
     texels' own depths (hmax - H for the upper side, H - hmin for the lower) averaged
     bilinearly over the neighbours where the surface is (NaN where none is). Depths,
     not horizons, are interpolated: a lit slope's neighbours are all above their own
-    horizons, whatever their heights."""
+    horizons, whatever their heights. Where a wall stands between the texels (their
+    heights differ by more than WALL texels of ground: its top and its foot) only
+    those on the point's side of it count (H within half the wall of the point's hp):
+    the top edge of a cliff is not darkened by its foot's shadow."""
     i, j, fy, fx = _cell(hsurf, y, x)
+    lo = np.inf
+    hi = -np.inf
+    for di in range(2):
+        for dj in range(2):
+            hs = hsurf[k, i + di, j + dj]
+            if hs == hs:
+                lo = min(lo, hs)
+                hi = max(hi, hs)
+    near = 0.5 * (hi - lo) if hi - lo > WALL * h else np.inf
     acc = 0.0
     wsum = 0.0
     for di in range(2):
         for dj in range(2):
             hs = hsurf[k, i + di, j + dj]
-            if hs == hs:
+            if hs == hs and abs(hs - hp) <= near:
                 wgt = (fy if di else 1.0 - fy) * (fx if dj else 1.0 - fx)
                 d = hext[k, i + di, j + dj] - hs if upper else hs - hext[k, i + di, j + dj]
                 acc += wgt * d
@@ -100,7 +117,7 @@ def point_shadow(s, u, v, w, nx, ny, nz, light, hmax, hmin, hsurf, layer, gu, gv
     ps = (along - s0) / h
     pt = (-u * gv + v * gu - t0) / h
     hp = w - along * tan_theta
-    margin = _own_depth(hmax if s > 0.0 else hmin, hsurf, layer, pt, ps, s > 0.0)
+    margin = _own_depth(hmax if s > 0.0 else hmin, hsurf, layer, pt, ps, s > 0.0, hp, h)
     if margin != margin:            # no texel of the surface around: the horizon
         if s > 0.0:
             margin = _bilinear(hmax, layer, pt, ps) - hp
@@ -130,6 +147,34 @@ def _blocked(x):
 
 
 @ngjit_inline
+def _half_chords(x):
+    """The integral of sqrt(1 - x^2) from 0 to x (x in [-1, 1])."""
+    x = min(max(x, -1.0), 1.0)
+    return 0.5 * (x * math.sqrt(1.0 - x * x) + math.asin(x))
+
+
+@ngjit_inline
+def _strip_blocked(x0, x1, y):
+    """The area of the unit disk's strip x0 <= x <= x1 below the line at height y."""
+    if y >= 1.0:
+        return 2.0 * (_half_chords(x1) - _half_chords(x0))
+    if y <= -1.0:
+        return 0.0
+    c = math.sqrt(1.0 - y * y)        # the line cuts the disk's edge at x = +-c
+    a = max(x0, -c)
+    b = min(x1, c)
+    area = 0.0
+    if b > a:                         # chords from -s(x) to y
+        area += y * (b - a) + _half_chords(b) - _half_chords(a)
+    if y > 0.0:                       # beyond +-c the whole chord lies below
+        if x0 < -c:
+            area += 2.0 * (_half_chords(min(x1, -c)) - _half_chords(x0))
+        if x1 > c:
+            area += 2.0 * (_half_chords(x1) - _half_chords(max(x0, c)))
+    return area
+
+
+@ngjit_inline
 def _own_slope(slopes, k, hsurf, layer, y, x):
     """slopes[k] averaged bilinearly over the texels around (y, x) where layer's
     surface is (NaN where none is)."""
@@ -146,12 +191,65 @@ def _own_slope(slopes, k, hsurf, layer, y, x):
 
 
 @ngjit_inline
+def _occluder(slopes, k, hsurf, layer, y, x):
+    """(H, D): the height H = f - sigma tan(theta) and the ground distance of what
+    makes the horizon (slopes[k], horizon_slopes') of the texels around (y, x),
+    averaged bilinearly over those of layer's surface with something beyond; (NaN, 0)
+    where none has."""
+    i, j, fy, fx = _cell(hsurf, y, x)
+    acc_h = 0.0
+    acc_d = 0.0
+    wsum = 0.0
+    for di in range(2):
+        for dj in range(2):
+            hs = hsurf[layer, i + di, j + dj]
+            d = slopes[k + 2, i + di, j + dj]
+            if hs == hs and d > 0.0:
+                wgt = (fy if di else 1.0 - fy) * (fx if dj else 1.0 - fx)
+                acc_h += wgt * (hs + slopes[k, i + di, j + dj] * d)
+                acc_d += wgt * d
+                wsum += wgt
+    if wsum > 1e-9:
+        return acc_h / wsum, acc_d / wsum
+    return np.nan, 0.0
+
+
+@ngjit_inline
+def _wall(hsurf, layer, y, x, h):
+    """Whether the texels of layer's surface around (y, x) straddle a wall."""
+    i, j, _, _ = _cell(hsurf, y, x)
+    lo = np.inf
+    hi = -np.inf
+    for di in range(2):
+        for dj in range(2):
+            hs = hsurf[layer, i + di, j + dj]
+            if hs == hs:
+                lo = min(lo, hs)
+                hi = max(hi, hs)
+    return hi - lo > WALL * h
+
+
+#: vertical strips of the light's disk, each with its own horizon, where the
+#: penumbra is wider than a texel across the light's direction
+STRIPS = 8
+#: the lateral spread (texels) below which the disk takes one horizon
+STRIP_SPREAD = 0.5
+
+
+@ngjit_inline
 def soft_shadow(s, u, v, w, nx, ny, nz, light, hmax, hmin, hsurf, slopes, layer, gu, gv,
                 tan_theta, s0, t0, h, grazing, bias, rho):
     """point_shadow for a light of angular radius rho (radians): the part of the
-    light's disk that its own layer's horizon toward the light hides (horizon_slopes),
-    at least another layer's (hard) crossing. Attached shadows stay those of the
-    disk's centre (the diffuse light goes to zero there anyway)."""
+    light's disk that its own layer's horizons hide, at least another layer's (hard,
+    antialiased) crossing. Along the light's direction the horizon's elevation phi
+    (horizon_slopes) against the disk's: the part below it. Across, the disk is cut
+    in STRIPS vertical strips: the rays toward strip x (in disk radii) pass the
+    occluder's distance D displaced x D tan(rho) / cos(theta) across the light's
+    direction, where the line through the point so displaced has its own occluder
+    (_occluder): the strip's horizon is the elevation of that occluder seen from the
+    point (the lateral penumbra, growing with D as the other). A displaced line whose
+    occluder is much nearer than D (its own slope) keeps the point's horizon. Attached shadows stay those of the disk's centre
+    (the diffuse light goes to zero there anyway)."""
     nn = math.sqrt(nx * nx + ny * ny + nz * nz)
     facing = s * (nx * light[0] + ny * light[1] + nz * light[2]) / nn if nn > 0.0 else 0.0
     if not facing > 0.0:
@@ -159,13 +257,36 @@ def soft_shadow(s, u, v, w, nx, ny, nz, light, hmax, hmin, hsurf, slopes, layer,
     along = u * gu + v * gv
     ps = (along - s0) / h
     pt = (-u * gv + v * gu - t0) / h
-    m = _own_slope(slopes, 2 * layer + (0 if s > 0.0 else 1), hsurf, layer, pt, ps)
-    if m != m:                      # no texel of the surface around: the hard answer
+    side = 0 if s > 0.0 else 1
+    m = _own_slope(slopes, 4 * layer + side, hsurf, layer, pt, ps)
+    if m != m or _wall(hsurf, layer, pt, ps, h):
+        # no texel of the surface around, or a wall between them (its top and its
+        # foot: the point's horizon is neither's): the hard answer
         return point_shadow(s, u, v, w, nx, ny, nz, light, hmax, hmin, hsurf, layer, gu, gv,
                             tan_theta, s0, t0, h, grazing, bias)
     theta = math.atan(tan_theta)
-    phi = math.atan(tan_theta + m)  # the horizon's elevation toward the light
-    val = _blocked((phi - theta) / rho if s > 0.0 else (theta - phi) / rho)
+    sgn = 1.0 if s > 0.0 else -1.0
+    spread = (_own_slope(slopes, 4 * layer + 2 + side, hsurf, layer, pt, ps) * math.tan(rho)
+              / (math.cos(theta) * h))
+    if not spread > STRIP_SPREAD:
+        val = _blocked(sgn * (math.atan(tan_theta + m) - theta) / rho)
+    else:
+        area = 0.0
+        dx = 2.0 / STRIPS
+        D = spread * math.cos(theta) * h / math.tan(rho)
+        hp = w - along * tan_theta
+        for k in range(STRIPS):
+            x0 = -1.0 + k * dx
+            hk, dk = _occluder(slopes, 4 * layer + side, hsurf, layer,
+                               pt + (x0 + 0.5 * dx) * spread, ps)
+            if hk != hk:
+                mk = -sgn * SLOPE_NONE                   # nothing beyond: the strip is lit
+            elif dk < 0.5 * D:
+                mk = m
+            else:
+                mk = (hk - hp) / dk
+            area += _strip_blocked(x0, x0 + dx, sgn * (math.atan(tan_theta + mk) - theta) / rho)
+        val = min(area / math.pi, 1.0)
     if hmax.shape[0] > 1:           # other layers: their hard, antialiased crossings
         hp = w - along * tan_theta
         margin = _crossed(hmax, hmin, layer, pt, ps, hp, -NONE)
@@ -263,55 +384,186 @@ def horizon_sweeps(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h,
 
 @ngjit_parallel
 def horizon_slopes(hsurf, layer, h, slopes):
-    """slopes[2 layer, k, i]: the steepest rise of H from texel i of line k to the
-    texels beyond it toward the light, max over q > i of (H_q - H_i) / ((q - i) h)
-    (the horizon's elevation toward the light: tan(phi) = tan(theta) + rise);
-    slopes[2 layer + 1, k, i] the steepest descent (min; the lower side's). By the
-    line's upper (lower) convex hull, kept on a stack from the light's side: a point
-    under the chord from texel i to the next hull point is under the hull of every
-    texel nearer still, so each is pushed and popped once. NaN where hsurf is (outside
-    the domain, holes: a hole casts nothing); -SLOPE_NONE (+SLOPE_NONE) where nothing
-    lies beyond."""
+    """The horizons toward the light for soft shadows, from the texture's own heights
+    hsurf[layer] (H = f - sigma tan(theta)): slopes[4 layer + 0, k, i] the steepest
+    rise of H from texel i of line k to the texels beyond it toward the light, max over
+    q > i of (H_q - H_i) / ((q - i) h) (the horizon's elevation above the light's:
+    tan(phi) = tan(theta) + rise), and slopes[4 layer + 2, k, i] the ground distance to
+    that texel (the occluder's); slopes[4 layer + 1] and [4 layer + 3] the same of the
+    steepest descent (the lower side's). By the line's upper (lower) convex hull, kept
+    on a stack from the light's side: a texel under the chord from texel i to the next
+    hull texel is under the hull of every texel nearer still, so each is pushed and
+    popped once: O(n) a line. NaN where hsurf is (outside the domain, holes: a hole
+    casts nothing); a rise of -SLOPE_NONE (descent +SLOPE_NONE) at distance 0 where
+    nothing lies beyond."""
     n_lines = hsurf.shape[1]
     n = hsurf.shape[2]
-    up = 2 * layer
-    lo = up + 1
     for k in prange(n_lines):
+        hline = hsurf[layer, k]
         su = np.empty(n, dtype=np.int64)
         sl = np.empty(n, dtype=np.int64)
         nu = 0
         nl = 0
         for i in range(n - 1, -1, -1):
-            H = hsurf[layer, k, i]
+            H = hline[i]
             if H != H:
-                slopes[up, k, i] = np.nan
-                slopes[lo, k, i] = np.nan
+                for m in range(4):
+                    slopes[4 * layer + m, k, i] = np.nan
                 continue
-            while nu >= 2:          # rise to the top no steeper than to the one below it
-                a = su[nu - 1]
-                b = su[nu - 2]
-                if (hsurf[layer, k, a] - H) * (b - i) <= (hsurf[layer, k, b] - H) * (a - i):
-                    nu -= 1
-                else:
-                    break
-            if nu > 0:
-                a = su[nu - 1]
-                slopes[up, k, i] = (hsurf[layer, k, a] - H) / ((a - i) * h)
-            else:
-                slopes[up, k, i] = -SLOPE_NONE
-            su[nu] = i
-            nu += 1
-            while nl >= 2:
-                a = sl[nl - 1]
-                b = sl[nl - 2]
-                if (hsurf[layer, k, a] - H) * (b - i) >= (hsurf[layer, k, b] - H) * (a - i):
-                    nl -= 1
-                else:
-                    break
-            if nl > 0:
-                a = sl[nl - 1]
-                slopes[lo, k, i] = (hsurf[layer, k, a] - H) / ((a - i) * h)
-            else:
-                slopes[lo, k, i] = SLOPE_NONE
-            sl[nl] = i
-            nl += 1
+            rise, d, nu = _hull_step(hline, su, nu, i, H, h, 1.0)
+            slopes[4 * layer, k, i] = rise
+            slopes[4 * layer + 2, k, i] = d
+            rise, d, nl = _hull_step(hline, sl, nl, i, H, h, -1.0)
+            slopes[4 * layer + 1, k, i] = rise
+            slopes[4 * layer + 3, k, i] = d
+
+
+@ngjit_inline
+def _hull_step(hline, stack, n, i, H, h, sign):
+    """horizon_slopes' step at sample i of height H: (the steepest rise (sign 1; the
+    steepest descent with sign -1) to the samples beyond on the hull stack[:n], the
+    ground distance to that sample, the stack's new size with i pushed)."""
+    while n >= 2:
+        a = stack[n - 1]
+        b = stack[n - 2]
+        if sign * (hline[a] - H) * (b - i) <= sign * (hline[b] - H) * (a - i):
+            n -= 1
+        else:
+            break
+    if n > 0:
+        a = stack[n - 1]
+        rise = (hline[a] - H) / ((a - i) * h)
+        d = (a - i) * h
+    else:
+        rise = -sign * SLOPE_NONE
+        d = 0.0
+    stack[n] = i
+    return rise, d, n + 1
+
+
+# -- section 6.2.2: shadows on the fly ------------------------------------------------
+#: lines of the sweep's front per band (one thread's); a band keeps two samples a line
+BAND = 64
+
+
+@ngjit_parallel
+def sweep_cells(gbuf, ebuf, width, gu, gv, s0, t0, h, n_sig, n_tau, cell):
+    """cell[i, c] (top row first): the step of the on-the-fly sweep that answers the
+    seen pixel (i, c), band * n_sig + sample (the sample below the point's sigma, whose
+    next sample toward the light is the other end of its interpolation); -1 where
+    nothing is seen."""
+    H = gbuf.shape[1]
+    T = gbuf.shape[2]
+    for c in prange(width):
+        b = c // T
+        lane = c - b * T
+        for j in range(H):
+            i = H - 1 - j
+            x = ebuf[b, E_SEEN, j, lane]
+            if (x - E_FLAG if x > 0.5 * E_FLAG else x) == 0.0:    # (as shadow_lookup)
+                cell[i, c] = -1
+                continue
+            u = gbuf[b, j, lane, G_U]
+            v = gbuf[b, j, lane, G_V]
+            ps = (u * gu + v * gv - s0) / h          # as point_shadow's
+            pt = (-u * gv + v * gu - t0) / h
+            k = min(max(floor_index(pt), 0), n_tau - 2)
+            m = min(max(floor_index(ps), 0), n_sig - 2)
+            cell[i, c] = (k // BAND) * n_sig + m
+
+
+@ngjit
+def sweep_order(cell, n_cells, start, order):
+    """A counting sort of the seen pixels (flat indices into cell) by their cell:
+    cell k's pixels are order[start[k]:start[k + 1]]."""
+    flat = cell.ravel()
+    for k in range(n_cells + 1):
+        start[k] = 0
+    for p in range(flat.size):
+        if flat[p] >= 0:
+            start[flat[p] + 1] += 1
+    for k in range(n_cells):
+        start[k + 1] += start[k]
+    fill = start[:n_cells].copy()
+    for p in range(flat.size):
+        k = flat[p]
+        if k >= 0:
+            order[fill[k]] = p
+            fill[k] += 1
+
+
+@ngjit_parallel
+def shadow_sweep(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, t0, h, n_sig, n_tau,
+                 gbuf, ebuf, width, light, start, order, grazing, bias, shadow, lit):
+    """Section 6.2.2: the shadows of the seen pixels of one surface, computed while
+    the planes through the light sweep the domain, without a texture. The planes
+    advance from the light's side (sample n_sig - 1 down to 0, a sample h of ground
+    apart); the lines, BAND to a thread, keep their running extremes of H = f - sigma
+    tan(theta) (horizon_sweeps') and only their last two samples: the front, O(lines)
+    memory. When the front holds samples m and m + 1, the pixels of that step
+    (sweep_order's cells) are answered from it as from the texture (point_shadow: the
+    same interpolation). Pixels not seen are left as they are."""
+    H = gbuf.shape[1]
+    T = gbuf.shape[2]
+    n_bands = (n_tau - 2) // BAND + 1
+    ua, ub, va, vb = domain[0], domain[1], domain[2], domain[3]
+    iu = hfp[HFP_IU]
+    iv = hfp[HFP_IV]
+    cw = hfp[HFP_CW]
+    for bd in prange(n_bands):
+        k0 = bd * BAND
+        nl = min(BAND + 1, n_tau - k0)
+        hmax = np.empty((1, nl, 2))
+        hmin = np.empty((1, nl, 2))
+        hsurf = np.empty((1, nl, 2))
+        run_max = np.full(nl, -NONE)
+        run_min = np.full(nl, NONE)
+        us = np.empty(nl)
+        vs = np.empty(nl)
+        out = np.empty(3 * nl)
+        for i in range(n_sig - 1, -1, -1):
+            sigma = s0 + i * h
+            for q in range(nl):
+                tau = t0 + (k0 + q) * h
+                us[q] = (sigma * gu - tau * gv) * iu
+                vs[q] = (sigma * gv + tau * gu) * iv
+                hmax[0, q, 1] = hmax[0, q, 0]
+                hmin[0, q, 1] = hmin[0, q, 0]
+                hsurf[0, q, 1] = hsurf[0, q, 0]
+            fb(array_ptr(us, 0), array_ptr(vs, 0), hfp[0], array_ptr(out, 0), nl)
+            for q in range(nl):
+                hmax[0, q, 0] = run_max[q]
+                hmin[0, q, 0] = run_min[q]
+                hsurf[0, q, 0] = np.nan
+                tau = t0 + (k0 + q) * h
+                u = sigma * gu - tau * gv
+                v = sigma * gv + tau * gu
+                if u < ua or u > ub or v < va or v > vb:
+                    continue
+                w = out[q] * cw
+                if not math.isfinite(w):
+                    w = surface_value(kind, f, hf, hfp, u, v)
+                    if not math.isfinite(w):
+                        continue                  # a hole casts no shadow
+                Hq = w - sigma * tan_theta
+                hsurf[0, q, 0] = Hq
+                run_max[q] = max(run_max[q], Hq)
+                run_min[q] = min(run_min[q], Hq)
+            if i > n_sig - 2:
+                continue
+            cell = bd * n_sig + i
+            for p in range(start[cell], start[cell + 1]):
+                pix = order[p]
+                r = pix // width
+                c = pix - r * width
+                j = H - 1 - r
+                b = c // T
+                lane = c - b * T
+                x = ebuf[b, E_SEEN, j, lane]
+                s = x - E_FLAG if x > 0.5 * E_FLAG else x
+                g = gbuf[b, j, lane]
+                val = point_shadow(s, g[G_U], g[G_V], g[G_W], g[G_NX], g[G_NY], g[G_NZ],
+                                   light, hmax, hmin, hsurf, 0, gu, gv, tan_theta, sigma,
+                                   t0 + k0 * h, h, grazing, bias)
+                shadow[r, c] = val
+                lit[r, c] = 1.0 - val

@@ -17,6 +17,13 @@ shadows: from each texel's horizon toward the light (kernels/shadow.py
 horizon_slopes), the part of the light's disk that the horizon hides; the penumbra
 behind an edge at distance D is about 2 rho D wide on the ground.
 
+Section 6.2.2, ``method="on-the-fly"``: no texture; the same planes through the light
+sweep the domain from the light's side keeping only their front (each line's running
+extremes and last two samples), and each seen pixel is answered when the front
+passes it (kernels/shadow.py shadow_sweep), with the same interpolation: O(lines)
+memory instead of the texture's O(lines x samples). One surface at a time (the
+texture lets several shadow each other).
+
 Returns ``shadow`` (H, W) float32: 1 in shadow, 0 lit, between at edges, NaN where
 nothing is seen; and ``lit`` = 1 - shadow (1 where nothing is seen), which the
 finishing pass multiplies the diffuse and specular light by.
@@ -28,7 +35,9 @@ import math
 import numpy as np
 
 from ..kernels.layout import SURF_FUNCTION
-from ..kernels.shadow import horizon_slopes, horizon_sweeps, shadow_lookup
+from ..kernels.shadow import (
+    BAND, horizon_slopes, horizon_sweeps, shadow_lookup, shadow_sweep, sweep_cells, sweep_order,
+)
 from .geometry import BATCH_MIN_SAMPLES
 
 #: most texels of a shadow texture (its memory: three float64 planes a layer, 92 MiB)
@@ -56,12 +65,14 @@ class Texture:
     is shadowed by its own layer's horizon, and by another layer where the ray crosses
     it (kernels/shadow.py shadow_lookup), so layers shadow each other."""
 
-    def __init__(self, drawn, view, light_world, radius=0.0):
+    def __init__(self, drawn, view, light_world, radius=0.0, method="texture"):
         lw = np.asarray(light_world, dtype=np.float64)
         #: the light's angular radius in radians (0: a point at infinity, hard shadows)
         self.rho = math.radians(radius)
-        #: soft shadows' horizon slopes (2 layers, lines, samples), or empty
+        #: soft shadows' horizons (4 layers, lines, samples: horizon_slopes'), or empty
         self.slopes = np.zeros((0, 1, 1))
+        #: section 6.2.2: no texture, the sweep runs with the lookup (shadow_pass)
+        self.on_the_fly = method == "on-the-fly"
         self.light = lw / np.linalg.norm(lw)
         ground = math.hypot(self.light[0], self.light[1])
         self.texels = 0
@@ -81,13 +92,24 @@ class Texture:
             h *= max(view.q_near / view.d1, 1.0)
         n_sig = int(math.ceil((sig.max() - sig.min()) / h)) + 3
         n_tau = int(math.ceil((tau.max() - tau.min()) / h)) + 3
-        if n_sig * n_tau > MAX_TEXELS:
+        if n_sig * n_tau > MAX_TEXELS and not self.on_the_fly:
             h *= math.sqrt(n_sig * n_tau / MAX_TEXELS)
             n_sig = int(math.ceil((sig.max() - sig.min()) / h)) + 3
             n_tau = int(math.ceil((tau.max() - tau.min()) / h)) + 3
         self.h = h
         self.s0 = sig.min() - h
         self.t0 = tau.min() - h
+        self.n_sig, self.n_tau = n_sig, n_tau
+        if self.on_the_fly:
+            if self.rho > 0.0:
+                raise ValueError("soft shadows (light_radius) need the shadow texture, their "
+                                 "penumbrae reaching across its lines: use shadows=True")
+            if len(drawn) > 1:
+                raise ValueError("shadows='on-the-fly' draws the shadows of one surface: "
+                                 "use shadows=True (the shadow texture) for several")
+            self.drawn = drawn
+            self.texels = 0
+            return
         # one texture per layer: a layer's own surface is a height field under which
         # nothing of it lies (its horizon's maximum decides), while another layer
         # shadows a point only where the ray crosses it (it may pass under a plate)
@@ -104,7 +126,7 @@ class Texture:
             horizon_sweeps(kind, f, fb, hf, hfp, domain, self.gu, self.gv, self.tan_theta,
                            self.s0, self.t0, h, self.hmax, self.hmin, self.hsurf, layer)
         if self.rho > 0.0:
-            self.slopes = np.empty((2 * len(drawn), n_tau, n_sig))
+            self.slopes = np.empty((4 * len(drawn), n_tau, n_sig))
             for layer in range(len(drawn)):
                 horizon_slopes(self.hsurf, layer, h, self.slopes)
         self.texels = n_sig * n_tau * len(drawn)
@@ -117,6 +139,8 @@ def shadow_pass(texture, view, geom, W, H, layer=0):
     shadow = np.empty((H, W), dtype=np.float32)
     lit = np.empty((H, W), dtype=np.float32)
     light = np.asarray(view.light, dtype=np.float64)
+    if texture.on_the_fly and not texture.zenith:
+        return _on_the_fly(texture, geom, W, H, light, shadow, lit)
     if texture.zenith:
         none = np.zeros((0, 1, 1))
         shadow_lookup(geom.gbuf, geom.ebuf, W, light, none, none, none, none, layer, 0.0, 0.0,
@@ -126,4 +150,27 @@ def shadow_pass(texture, view, geom, W, H, layer=0):
                       texture.hsurf, texture.slopes, layer, texture.gu, texture.gv,
                       texture.tan_theta, texture.s0, texture.t0, texture.h, GRAZING,
                       BIAS_TEXELS, texture.rho, shadow, lit)
+    return shadow, lit
+
+
+def _on_the_fly(sweep, geom, W, H, light, shadow, lit):
+    """shadow_pass by section 6.2.2 (kernels/shadow.py shadow_sweep)."""
+    n_sig, n_tau, h = sweep.n_sig, sweep.n_tau, sweep.h
+    cell = np.empty((H, W), dtype=np.int32)
+    sweep_cells(geom.gbuf, geom.ebuf, W, sweep.gu, sweep.gv, sweep.s0, sweep.t0, h, n_sig,
+                n_tau, cell)
+    n_cells = ((n_tau - 2) // BAND + 1) * n_sig
+    start = np.empty(n_cells + 1, dtype=np.int64)
+    seen = cell >= 0
+    order = np.empty(int(seen.sum()), dtype=np.int32)
+    sweep_order(cell, n_cells, start, order)
+    shadow[~seen] = np.nan
+    lit[~seen] = 1.0
+    surface, ((ua, ub), (va, vb)) = sweep.drawn[0]
+    fb = (surface.batch() if n_sig * n_tau >= BATCH_MIN_SAMPLES
+          and surface.kind == SURF_FUNCTION else None)
+    kind, f, _, fb, hf, hfp = surface.kernel_args(fb)
+    shadow_sweep(kind, f, fb, hf, hfp, np.array([ua, ub, va, vb], dtype=np.float64), sweep.gu,
+                 sweep.gv, sweep.tan_theta, sweep.s0, sweep.t0, h, n_sig, n_tau, geom.gbuf,
+                 geom.ebuf, W, light, start, order, GRAZING, BIAS_TEXELS, shadow, lit)
     return shadow, lit

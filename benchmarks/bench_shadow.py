@@ -28,8 +28,7 @@ N = 11
 VARIANTS = [("none", dict()),
             ("texture (6.2.1)", dict(shadows=True)),
             ("on the fly (6.2.2)", dict(shadows="on-the-fly")),
-            ("texture, soft 0.27 deg", dict(shadows=True, light_radius=0.27)),
-            ("on the fly, soft 0.27 deg", dict(shadows="on-the-fly", light_radius=0.27))]
+            ("texture, soft 0.27 deg", dict(shadows=True, light_radius=0.27))]
 
 
 def timed(**kw):
@@ -46,20 +45,16 @@ def timed(**kw):
 
 
 def memory(name, r):
-    """MiB the shadows keep: the texture's planes (three float64 a texel, two more for
-    soft shadows), or the sweep's pixel cells and order (int32 each) and its fronts
-    (per band of lines: two samples of five planes; soft: each line's heights and two
-    hull stacks over the samples, per thread)."""
+    """MiB the shadows keep: the texture's planes, or the sweep's pixel cells and
+    order (int32 each) and its fronts (per band of lines and thread: two samples of
+    three planes, the running extremes, the batch's coordinates)."""
     H, W = r.side.shape
     if "texture" in name:
-        planes = 5 if "soft" in name else 3
-        return r.stats["shadow_texels"] * 8 * planes / 2**20
+        # three float32 planes; soft shadows four float64 more
+        return r.stats["shadow_texels"] * (12 + (32 if "soft" in name else 0)) / 2**20
     from floatcol.kernels.shadow import BAND
     seen = int((r.side != 0).sum())
-    front = (BAND + 1) * 2 * 5 * 8
-    if "soft" in name:
-        # (the samples along a line: the domain's extent over a pixel's footprint)
-        front += (BAND + 1) * 3 * 8 * max(H, W) * 2
+    front = (BAND + 1) * 2 * 3 * 4 + (BAND + 1) * 2 * 8 + (BAND + 1) * 3 * 8
     return (H * W * 4 + seen * 4 + front * os.cpu_count()) / 2**20
 
 

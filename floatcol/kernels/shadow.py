@@ -36,7 +36,7 @@ from .layout import E_FLAG, E_SEEN, G_NX, G_NY, G_NZ, G_U, G_V, G_W, HFP_CW, HFP
 from .sample import surface_value
 
 #: "no horizon": finite, so that interpolating it with a real height stays finite
-NONE = 1e300
+NONE = 1e30
 #: horizon_slopes' "nothing beyond": a rise no surface makes (steeper than 89.99994
 #: degrees), finite for the lookup's averages
 SLOPE_NONE = 1e6
@@ -513,9 +513,9 @@ def shadow_sweep(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, t0, h, n_s
     for bd in prange(n_bands):
         k0 = bd * BAND
         nl = min(BAND + 1, n_tau - k0)
-        hmax = np.empty((1, nl, 2))
-        hmin = np.empty((1, nl, 2))
-        hsurf = np.empty((1, nl, 2))
+        hmax = np.empty((1, nl, 2), dtype=np.float32)
+        hmin = np.empty((1, nl, 2), dtype=np.float32)
+        hsurf = np.empty((1, nl, 2), dtype=np.float32)
         run_max = np.full(nl, -NONE)
         run_min = np.full(nl, NONE)
         us = np.empty(nl)

@@ -113,9 +113,9 @@ class Texture:
         # one texture per layer: a layer's own surface is a height field under which
         # nothing of it lies (its horizon's maximum decides), while another layer
         # shadows a point only where the ray crosses it (it may pass under a plate)
-        self.hmax = np.empty((len(drawn), n_tau, n_sig))
-        self.hmin = np.empty((len(drawn), n_tau, n_sig))
-        self.hsurf = np.empty((len(drawn), n_tau, n_sig))
+        self.hmax = np.empty((len(drawn), n_tau, n_sig), dtype=np.float32)
+        self.hmin = np.empty((len(drawn), n_tau, n_sig), dtype=np.float32)
+        self.hsurf = np.empty((len(drawn), n_tau, n_sig), dtype=np.float32)
         for layer, (surface, ((ua, ub), (va, vb))) in enumerate(drawn):
             domain = np.array([ua, ub, va, vb], dtype=np.float64)
             # f a line at a time in SIMD code where the texture repays the evaluator's
@@ -142,7 +142,7 @@ def shadow_pass(texture, view, geom, W, H, layer=0):
     if texture.on_the_fly and not texture.zenith:
         return _on_the_fly(texture, geom, W, H, light, shadow, lit)
     if texture.zenith:
-        none = np.zeros((0, 1, 1))
+        none = np.zeros((0, 1, 1), dtype=np.float32)
         shadow_lookup(geom.gbuf, geom.ebuf, W, light, none, none, none, none, layer, 0.0, 0.0,
                       0.0, 0.0, 0.0, 1.0, GRAZING, BIAS_TEXELS, 0.0, shadow, lit)
     else:

@@ -87,7 +87,7 @@ def layer_texture(source, box):
 def shadow_vector(texture, view, layer):
     """kernels/layers.py's sh (and the texture's planes) of a layer."""
     sh = np.zeros(K.SH_SIZE)
-    none = np.zeros((0, 1, 1))
+    none = np.zeros((0, 1, 1), dtype=np.float32)
     if texture is None:
         return sh, none, none, none
     sh[K.SH_LX:K.SH_LZ + 1] = view.light

@@ -135,14 +135,15 @@ def _time_range(t):
 
 
 def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
-            endpoint=False, progress=True, **options) -> Animation:
+            endpoint=False, progress=True, client=None, **options) -> Animation:
     """Render w = f(u, v, t) at ``frames`` times in ``t`` = (low, high) or
     (symbol, low, high) (the symbol defaults to t). ``endpoint=False`` leaves out
     t = high, so a periodic clip loops without a repeated frame. ``output``: a .gif or
     .mp4 file to write. Other options as :func:`floatcol.plot_surface`; ``lightsource``
     may be a function of t giving (azdeg, altdeg) (a moving sun, with ``shadows=True``
-    its shadows move). Returns an
-    :class:`Animation`.
+    its shadows move). ``client``: a dask.distributed Client: the frames are rendered
+    as its tasks (each worker compiles the expression once; floatcol/cluster.py), the
+    same pictures in the same order. Returns an :class:`Animation`.
     """
     import time as _time
 
@@ -159,7 +160,8 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     names, bounds = parse_ranges(expr, ranges, extra=(t_name,))
     if t_name in names:
         raise ValueError(f"{t_name} is the time; the surface's variables must be two others")
-    base = as_surface(sympy_expression(expr, names + (t_name,)), names, time=t_name)
+    sym = sympy_expression(expr, names + (t_name,))
+    base = as_surface(sym, names, time=t_name)
     domain = tuple(check_range(n, b if b is not None else (-10.0, 10.0))
                    for n, b in zip(names, bounds))
     times = np.linspace(t_lo, t_hi, frames, endpoint=endpoint and frames > 1)
@@ -196,8 +198,18 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
         fixed["vmax"] = (w_hi if w_hi > w_lo else w_lo + 1.0) if vmax is None else vmax
     out = []
     samples = 0
-    for s, sun_k in tqdm(list(zip(surfaces, suns)), desc="floatcol animate", unit="frame",
-                         delay=1.0, disable=not progress, leave=False):
+    if client is not None:
+        from .cluster import _check_client, render_frames
+        _check_client(client)
+        tasks = [(sym, names, t_name, float(tk), ranges_,
+                  dict(options, **fixed, **({} if sun_k is None else {"lightsource": sun_k})))
+                 for tk, sun_k in zip(times, suns)]
+        for rgba, n in render_frames(tasks, client):
+            out.append(rgba)
+            samples += n
+    here = [] if client is not None else list(zip(surfaces, suns))
+    for s, sun_k in tqdm(here, desc="floatcol animate", unit="frame", delay=1.0,
+                         disable=not progress, leave=False):
         if sun_k is not None:
             options["lightsource"] = sun_k
         r = plot_surface(s, *ranges_, **options, **fixed).draw()

@@ -40,6 +40,9 @@ class Camera:
     focal_length: float | None = None
     aspect: Any = "equal"
     box: Any = None
+    #: (first, count): draw only these columns of the picture (a band of a tiled
+    #: poster, floatcol/cluster.py): the camera is fitted to the whole size
+    columns: Any = None
 
 
 def box_factors(aspect, surface, domain, w_range=None):

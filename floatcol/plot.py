@@ -34,7 +34,7 @@ PROJ_TYPES = {"persp": "perspective", "perspective": "perspective",
 #: render() options that plot_surface passes through under their own names
 _RENDER_OPTIONS = set(inspect.signature(render).parameters) - {
     "expr", "u", "v", "size", "elev", "azim", "projection", "vars", "cmap", "vmin",
-    "vmax", "upper_color", "light", "ambient", "focal_length"}
+    "vmax", "upper_color", "light", "ambient", "focal_length", "tiles", "client"}
 _OWN_OPTIONS = {"cmap", "norm", "vmin", "vmax", "color", "shade", "lightsource", "elev",
                 "azim", "proj_type", "focal_length", "size", "dpi", "ambient", "light",
                 "upper_color", "projection", "alpha"}

@@ -37,7 +37,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            shadows=False, light_radius=0.0, opacity=1.0, texture=None, texture_extent=None,
            texture_filter="mipmap", color=None, contours=None, contour_color="black",
            contour_width=1.0, wireframe=None, edgecolor="black", linewidth=0.75,
-           objects=None) -> Render:
+           objects=None, tiles=None, client=None) -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -160,6 +160,10 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     objects : objects standing on the surface (Szenberg 1997): ``fc.box``,
         ``fc.pole``, ``fc.tree``, ``fc.marker`` or any ``fc.Mesh``, drawn by a
         z-buffer against the surface's depth, lit flat by the picture's light.
+    tiles, client : a poster in ``tiles`` bands of columns, drawn one after the other,
+        or as tasks on ``client`` (a dask.distributed Client; ``pip install
+        'floatcol[dask]'``), assembled into the same picture, array for array, as
+        without (floatcol/cluster.py). A client alone: two bands a worker.
 
     Returns
     -------
@@ -173,6 +177,11 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     >>> r.rgba.shape, r.side.dtype
     ((120, 160, 4), dtype('int8'))
     """
+    if tiles is not None or client is not None:
+        options = {k: x for k, x in locals().items()
+                   if k not in ("expr", "u", "v", "tiles", "client")}
+        from .cluster import render_tiled
+        return render_tiled([(expr, u, v)], options, tiles, client)
     return render_scene(Scene(
         [Layer(expr, (u, v), Material(
             shading=shading, cmap=cmap, norm=norm, vmin=vmin, vmax=vmax, upper_color=upper_color,

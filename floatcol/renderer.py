@@ -89,6 +89,8 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
     many = composite or len(layers) > 1
     views, drawn, box = fit([(p.surface, p.domain) for p in layers], scene.camera, quality,
                             layers[0].light_dir, joint=many)
+    if scene.camera.columns is not None:
+        views = _band(views, scene.camera.columns)
     first = layers[0].material
     background = scene.background
     if background is None:
@@ -111,6 +113,7 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
         return render_translucent(layers, views, drawn, box, quality, background, texture,
                                   t_start)
     if not many and texture is None and draft.supports(quality, views[0]) \
+            and scene.camera.columns is None \
             and not first.colored and not first.overlaid and warmup.drafting():
         return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
                             stacklevel + 1)
@@ -151,6 +154,24 @@ def _shadow_texture(light, camera, quality, drawn, view):
     from .view import _number
     direction = light.world_direction(_number("elev", camera.elev), _number("azim", camera.azim))
     return shadows.Texture(drawn, view, direction, light.radius, light.shadow_method)
+
+
+def _band(views, columns):
+    """The views of columns (first, count) of theirs (a band of a tiled poster,
+    floatcol/cluster.py): the same camera, ``count`` columns wide, column c of the band
+    at column first + c of the picture (kernels/sample.py column_x0: exactly, the
+    offsets being whole and half numbers)."""
+    import dataclasses
+    try:
+        first, count = (int(c) for c in columns)
+    except (TypeError, ValueError):
+        raise ValueError(f"columns must be (first, count), got {columns!r}") from None
+    width = views[0].width
+    if not (0 <= first and 1 <= count and first + count <= width):
+        raise ValueError(f"columns {first}..{first + count - 1} must lie in the picture's "
+                         f"0..{width - 1}")
+    return [dataclasses.replace(v, width=count, x_offset=first + 0.5 * (count - width))
+            for v in views]
 
 
 def _screen_light(light, elev, azim):

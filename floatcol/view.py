@@ -45,6 +45,9 @@ class View:
     #: perspective, a surface with holes: hole_map's (n, u0, v0, cells per unit u,
     #: per unit v, summed-area table); None: no map
     holes: tuple = field(default=None, compare=False, repr=False)
+    #: the picture's first column in a wider one (a band of a tiled poster,
+    #: floatcol/cluster.py): column c is column x_offset + c of that picture
+    x_offset: float = 0.0
 
     @property
     def alpha(self):
@@ -88,6 +91,7 @@ class View:
         vp[L.VP_CLIP] = 1.0
         vp[L.VP_KEEP_TOP] = 1.0
         vp[L.VP_FOLD] = 0.0 if self.placement == "paper" else 1.0
+        vp[L.VP_XOFF] = self.x_offset
         if self.holes is not None:
             n, u0, v0, su, sv, sat = self.holes
             vp[L.VP_HOLE_N], vp[L.VP_HOLE_U0], vp[L.VP_HOLE_V0] = n, u0, v0
@@ -115,7 +119,7 @@ class View:
             ok = depth > self.d1
             m = np.where(ok, self.d1 / np.where(ok, depth, 1.0), np.nan)
             x, y = x * m, y * m
-        col = x * self.scale + (self.width - 1) / 2
+        col = x * self.scale + (self.width - 1) / 2 - self.x_offset
         row = (self.height - 1) / 2 - y * self.scale
         return col, row
 

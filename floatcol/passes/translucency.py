@@ -169,7 +169,7 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
                 if ks[k] == 0:
                     continue
                 vpk = vp.copy()
-                vpk[VP_XOFF] = offsets_px[m]
+                vpk[VP_XOFF] = vp[VP_XOFF] + offsets_px[m]
                 kind, f, fg, _, hf, hfp = surface.kernel_args(None)
                 K.layers_kernel(kind, f, fg, hf, hfp, vpk, c0, mp, lut, sh, hmax,
                                 hmin, hsurf, lists, offs[k], ks[k], counts[k], gfirst[k], hits,

@@ -1,0 +1,186 @@
+"""Beyond one machine: posters and animation frames on Dask (issue 34).
+
+Columns are independent (Gordon sections 1, 6.1) and so are frames. With a
+``dask.distributed`` client (the optional extra ``floatcol[dask]``):
+
+- ``render(..., tiles=N, client=client)`` draws the picture as N bands of columns,
+  one task each, and assembles them: every band fits the camera to the whole picture
+  (camera.Camera.columns) and draws its columns at exactly the screen positions the
+  whole picture's would have (kernels/sample.py column_x0), with MARGIN columns more on
+  each side for the passes that read a neighbouring column (the staircases, texture
+  and line widths), which are cut off. The colormap's heights are the whole picture's:
+  where they are left to the seen range, a band whose own range is not the picture's
+  is drawn again with the picture's (vmin, vmax). The poster is the same, array for
+  array, as one render() of it.
+- ``animate(..., client=client)`` renders the frames as tasks (each worker compiles
+  the expression once) and writes them in order.
+
+Without a client (``client=None``) the bands are drawn one after the other in this
+process: a poster larger than the memory of one render's buffers.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+#: columns drawn beyond a band's own on each side (the passes that read neighbours)
+MARGIN = 4
+#: the most bands of a poster
+MAX_TILES = 4096
+
+
+def _check_client(client):
+    if client is None:
+        return None
+    if not (hasattr(client, "submit") and hasattr(client, "gather")):
+        raise ValueError("client must be a dask.distributed Client (pip install "
+                         f"'floatcol[dask]'), got {client!r}")
+    return client
+
+
+def _check_tiles(tiles, width):
+    if tiles is None:
+        return 1
+    if isinstance(tiles, bool) or not isinstance(tiles, (int, np.integer)) or \
+            not 1 <= tiles <= MAX_TILES:
+        raise ValueError(f"tiles must be a whole number of bands in 1..{MAX_TILES}, "
+                         f"got {tiles!r}")
+    return int(min(tiles, width))
+
+
+def bands(width, tiles):
+    """The bands' columns: [(first, end), ...] of nearly equal widths."""
+    edges = np.linspace(0, width, tiles + 1).round().astype(int)
+    return [(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:]) if b > a]
+
+
+def _band_task(items, options, first, end, width):
+    """One band: columns first..end - 1 of a ``width`` wide picture, drawn with MARGIN
+    columns more each side. Returns its arrays cut to its own columns and what the
+    colormap's heights need."""
+    from .passes.tiles import untile
+    from .renderer import render_scene
+    from .scene import scene_from_options
+    a0 = max(0, first - MARGIN)
+    a1 = min(width, end + MARGIN)
+    scene = scene_from_options(list(items), **options, columns=(a0, a1 - a0))
+    r = render_scene(scene, composite=len(items) > 1)
+    cut = slice(first - a0, end - a0)
+    gbuf = untile(r._gbuf, a1 - a0)[:, cut] if r._gbuf is not None else None
+    out = {"rgba": r.rgba[:, cut].copy(), "side": r.side[:, cut].copy(),
+           "intensity": r.intensity[:, cut].copy(), "depth": r.depth[:, cut].copy(),
+           "shadow": None if r.shadow is None else r.shadow[:, cut].copy(),
+           "gbuf": None if gbuf is None else np.ascontiguousarray(gbuf),
+           "seen": r._mask()[:, cut].copy(), "stats": dict(r.stats), "view": r.view,
+           "box": r.box, "upper": bool((r.side == 1).any())}
+    surface = out["stats"].pop("surface", None)
+    if surface is not None:
+        out["surface"] = surface[:, cut].copy()
+    out["stats"].pop("layers", None)
+    return out
+
+
+def render_tiled(items, options, tiles=None, client=None):
+    """render()'s picture of ``items`` ((expr, u, v) triples, one or several
+    surfaces) with render's ``options``, in ``tiles`` bands of columns on ``client``
+    (dask.distributed) or here. Returns a Render."""
+    import time
+
+    from .view import check_size
+    t0 = time.perf_counter()
+    client = _check_client(client)
+    W, H = check_size(options.get("size", (400, 300)))
+    n = _check_tiles(tiles, W) if tiles is not None else (
+        2 * max(len(client.scheduler_info().get("workers", {})), 1) if client else 1)
+    spans = bands(W, min(n, W))
+    items = list(items)
+    auto = (options.get("vmin") is None or options.get("vmax") is None) \
+        and options.get("norm") is None
+    got = _run(items, options, spans, W, client)
+    if auto:
+        ranges = [g["stats"].get("w_limits") for g in got if g["upper"]]
+        ranges = [r for r in ranges if r is not None and np.ndim(r) == 1]
+        if ranges:
+            lo = min(r[0] for r in ranges)
+            hi = max(r[1] for r in ranges)
+            vmin = lo if options.get("vmin") is None else options["vmin"]
+            vmax = hi if options.get("vmax") is None else options["vmax"]
+            again = [k for k, g in enumerate(got)
+                     if tuple(g["stats"].get("w_limits") or ()) != (vmin, vmax)]
+            if again:
+                fixed = dict(options, vmin=vmin, vmax=vmax)
+                for k, g in zip(again, _run(items, fixed, [spans[k] for k in again], W,
+                                            client)):
+                    got[k] = g
+    return _assemble(got, W, H, t0, len(spans))
+
+
+def _run(items, options, spans, W, client):
+    if client is None:
+        return [_band_task(items, options, a, b, W) for a, b in spans]
+    futures = [client.submit(_band_task, items, options, a, b, W, pure=False)
+               for a, b in spans]
+    return client.gather(futures)
+
+
+def _assemble(got, W, H, t0, n_bands):
+    """The Render of the bands' arrays side by side."""
+    import time
+
+    from .kernels.layout import TILE
+    from .result import Render
+
+    def cat(key):
+        return np.concatenate([g[key] for g in got], axis=1)
+
+    view = got[0]["view"]
+    import dataclasses
+    view = dataclasses.replace(view, width=W, x_offset=0.0)
+    gbuf = None
+    if got[0]["gbuf"] is not None:
+        flat = cat("gbuf")
+        n_tiles = -(-W // TILE)
+        padded = np.zeros((H, n_tiles * TILE) + flat.shape[2:], dtype=flat.dtype)
+        padded[:, :W] = flat
+        gbuf = np.ascontiguousarray(
+            padded.reshape(H, n_tiles, TILE, *flat.shape[2:]).transpose(1, 0, 2, 3))
+    stats = dict(got[0]["stats"])
+    stats["samples"] = sum(int(g["stats"]["samples"]) for g in got)
+    stats["seconds"] = time.perf_counter() - t0
+    stats["bands"] = n_bands
+    for key in ("kernel_seconds", "setup_seconds", "shadow_seconds"):
+        stats.pop(key, None)
+    if "surface" in got[0]:
+        stats["surface"] = cat("surface")
+    side = cat("side")
+    seen = cat("seen")
+    r = Render(cat("rgba"), cat("intensity"), side, cat("depth"), stats, view, gbuf, None,
+               None if np.array_equal(seen, side != 0) else seen, None, got[0]["box"],
+               shadow=None if got[0]["shadow"] is None else cat("shadow"))
+    return r
+
+
+def render_frames(tasks, client):
+    """Animation frames on ``client``: each task (frame_task's arguments) a future, the
+    pictures gathered in order."""
+    futures = [client.submit(frame_task, *task, pure=False) for task in tasks]
+    return client.gather(futures)
+
+
+_SURFACES = {}
+
+
+def frame_task(expr, names, t_name, tk, ranges, options):
+    """One frame of animate(): the surface at time tk (compiled once per worker and
+    expression) drawn by plot_surface with the clip's fixed camera and colours.
+    Returns (rgba, samples)."""
+    from .plot import plot_surface
+    from .surface import as_surface
+    key = (str(expr), tuple(names), t_name)
+    base = _SURFACES.get(key)
+    if base is None:
+        from .surface import sympy_expression
+        base = as_surface(sympy_expression(expr, tuple(names) + (t_name,)), tuple(names),
+                          time=t_name)
+        _SURFACES[key] = base
+    r = plot_surface(base.at(tk), *ranges, **options).draw()
+    return r.rgba, int(r.stats["samples"])

@@ -1,0 +1,102 @@
+"""Posters in bands of columns and animation frames on Dask (floatcol/cluster.py).
+
+A band fits the camera to the whole picture and draws its columns at the whole
+picture's screen positions, so a tiled poster is the same, array for array, as one
+render() of it; frames rendered by the workers of a LocalCluster are the same as
+those rendered here."""
+import numpy as np
+import pytest
+
+import floatcol as fc
+
+EXPR = "3*sin(u*cos(v))"
+DOM = dict(u=(-5, 5), v=(-5, 5))
+ARRAYS = ("rgba", "side", "intensity", "depth", "u", "v", "w")
+
+
+def _same(a, b):
+    for name in ARRAYS:
+        assert np.array_equal(getattr(a, name), getattr(b, name), equal_nan=True), name
+    if a.shadow is not None:
+        assert np.array_equal(a.shadow, b.shadow, equal_nan=True)
+    assert a.stats["w_limits"] == b.stats["w_limits"]
+
+
+TEX = np.random.default_rng(1).integers(0, 255, (32, 32, 3), dtype=np.uint8)
+
+
+@pytest.mark.parametrize("kw", [
+    dict(),
+    dict(projection="perspective", lightsource=(315, 25), shadows=True),
+    dict(antialias=3),
+    dict(texture=TEX, contours=8),
+    dict(antialias="area", projection="perspective"),
+    dict(opacity=0.5),
+    dict(vmin=-1.0, vmax=2.0, shading="lambert"),
+], ids=["default", "persp-shadows", "subcolumns", "texture-contours", "area", "translucent",
+        "limits"])
+def test_a_tiled_poster_is_the_same_picture(kw):
+    whole = fc.render(EXPR, **DOM, size=(203, 150), **kw)
+    tiled = fc.render(EXPR, **DOM, size=(203, 150), tiles=5, **kw)
+    assert tiled.stats["bands"] == 5
+    _same(whole, tiled)
+
+
+def test_the_bands_colormap_is_the_pictures():
+    """Each band alone would stretch the colormap over its own heights: the poster's
+    bands take the picture's, and a band that saw other heights is drawn again."""
+    whole = fc.render("u", u=(-4, 4), v=(-1, 1), size=(120, 60), elev=90)
+    tiled = fc.render("u", u=(-4, 4), v=(-1, 1), size=(120, 60), elev=90, tiles=3)
+    _same(whole, tiled)
+    # the bands' own heights differ (u from -4 to 4 across the picture)
+    from floatcol.cluster import _band_task
+    from floatcol.scene import scene_from_options  # noqa: F401  (the task's own door)
+    band = _band_task([("u", (-4, 4), (-1, 1))], dict(size=(120, 60), elev=90), 0, 40, 120)
+    assert band["stats"]["w_limits"][1] < whole.stats["w_limits"][1] - 4
+
+
+@pytest.mark.parametrize("kw,message", [
+    (dict(tiles=0), "tiles must be a whole number"),
+    (dict(tiles="4"), "tiles must be a whole number"),
+    (dict(client="localhost"), "client must be a dask.distributed Client"),
+])
+def test_tiles_and_client_say_what_to_fix(kw, message):
+    with pytest.raises(ValueError, match=message):
+        fc.render(EXPR, **DOM, size=(40, 30), **kw)
+
+
+def test_columns_say_what_to_fix():
+    from floatcol.renderer import render_scene
+    from floatcol.scene import scene_from_options
+    with pytest.raises(ValueError, match="columns 30..49 must lie in the picture's 0..39"):
+        render_scene(scene_from_options([(EXPR, (-5, 5), (-5, 5))], size=(40, 30),
+                                        columns=(30, 20)))
+
+
+@pytest.fixture(scope="module")
+def client():
+    distributed = pytest.importorskip("distributed", reason="the dask extra (in the test "
+                                      "extras): pip install 'floatcol[dask]'")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as c:
+        yield c
+
+
+def test_a_poster_on_two_workers(client):
+    kw = dict(size=(300, 200), lightsource=(315, 25), shadows=True)
+    whole = fc.render(EXPR, **DOM, **kw)
+    tiled = fc.render(EXPR, **DOM, client=client, **kw)
+    assert tiled.stats["bands"] == 4                  # two a worker
+    _same(whole, tiled)
+
+
+def test_sixty_frames_on_two_workers(client):
+    kw = dict(t=(0, 6.28), frames=60, size=(64, 48), progress=False,
+              lightsource=lambda t: (t * 57.3, 30), shadows=True)
+    here = fc.animate("sin(x*y + t)", ("x", -2, 2), ("y", -2, 2), **kw)
+    there = fc.animate("sin(x*y + t)", ("x", -2, 2), ("y", -2, 2), client=client, **kw)
+    assert len(there.frames) == 60
+    for a, b in zip(here.frames, there.frames):
+        assert np.array_equal(np.asarray(a), np.asarray(b))
+    assert here.stats["samples"] == there.stats["samples"]

@@ -308,28 +308,30 @@ def shadow_lookup(gbuf, ebuf, width, light, hmax, hmin, hsurf, slopes, layer, gu
     ``slopes`` horizon_slopes')."""
     H = gbuf.shape[1]
     T = gbuf.shape[2]
-    for c in prange(width):
-        b = c // T
-        lane = c - b * T
+    # tile by tile, a row's lanes innermost: the G-buffer's reads and the pictures'
+    # writes both run along memory (a column at a time wrote a cache line a pixel)
+    for b in prange(gbuf.shape[0]):
         for j in range(H):
             i = H - 1 - j
-            x = ebuf[b, E_SEEN, j, lane]
-            s = x - E_FLAG if x > 0.5 * E_FLAG else x
-            if s == 0.0:
-                shadow[i, c] = np.nan
-                lit[i, c] = 1.0
-                continue
-            g = gbuf[b, j, lane]
-            if rho > 0.0:
-                val = soft_shadow(s, g[G_U], g[G_V], g[G_W], g[G_NX], g[G_NY], g[G_NZ], light,
-                                  hmax, hmin, hsurf, slopes, layer, gu, gv, tan_theta, s0, t0,
-                                  h, grazing, bias, rho)
-            else:
-                val = point_shadow(s, g[G_U], g[G_V], g[G_W], g[G_NX], g[G_NY], g[G_NZ], light,
-                                   hmax, hmin, hsurf, layer, gu, gv, tan_theta, s0, t0, h,
-                                   grazing, bias)
-            shadow[i, c] = val
-            lit[i, c] = 1.0 - val
+            for lane in range(min(T, width - b * T)):
+                c = b * T + lane
+                x = ebuf[b, E_SEEN, j, lane]
+                s = x - E_FLAG if x > 0.5 * E_FLAG else x
+                if s == 0.0:
+                    shadow[i, c] = np.nan
+                    lit[i, c] = 1.0
+                    continue
+                g = gbuf[b, j, lane]
+                if rho > 0.0:
+                    val = soft_shadow(s, g[G_U], g[G_V], g[G_W], g[G_NX], g[G_NY], g[G_NZ],
+                                      light, hmax, hmin, hsurf, slopes, layer, gu, gv,
+                                      tan_theta, s0, t0, h, grazing, bias, rho)
+                else:
+                    val = point_shadow(s, g[G_U], g[G_V], g[G_W], g[G_NX], g[G_NY], g[G_NZ],
+                                       light, hmax, hmin, hsurf, layer, gu, gv, tan_theta, s0,
+                                       t0, h, grazing, bias)
+                shadow[i, c] = val
+                lit[i, c] = 1.0 - val
 
 
 @ngjit_parallel
@@ -454,22 +456,22 @@ def sweep_cells(gbuf, ebuf, width, gu, gv, s0, t0, h, n_sig, n_tau, cell):
     nothing is seen."""
     H = gbuf.shape[1]
     T = gbuf.shape[2]
-    for c in prange(width):
-        b = c // T
-        lane = c - b * T
+    for b in prange(gbuf.shape[0]):              # (in memory order, as shadow_lookup)
         for j in range(H):
             i = H - 1 - j
-            x = ebuf[b, E_SEEN, j, lane]
-            if (x - E_FLAG if x > 0.5 * E_FLAG else x) == 0.0:    # (as shadow_lookup)
-                cell[i, c] = -1
-                continue
-            u = gbuf[b, j, lane, G_U]
-            v = gbuf[b, j, lane, G_V]
-            ps = (u * gu + v * gv - s0) / h          # as point_shadow's
-            pt = (-u * gv + v * gu - t0) / h
-            k = min(max(floor_index(pt), 0), n_tau - 2)
-            m = min(max(floor_index(ps), 0), n_sig - 2)
-            cell[i, c] = (k // BAND) * n_sig + m
+            for lane in range(min(T, width - b * T)):
+                c = b * T + lane
+                x = ebuf[b, E_SEEN, j, lane]
+                if (x - E_FLAG if x > 0.5 * E_FLAG else x) == 0.0:
+                    cell[i, c] = -1
+                    continue
+                u = gbuf[b, j, lane, G_U]
+                v = gbuf[b, j, lane, G_V]
+                ps = (u * gu + v * gv - s0) / h          # as point_shadow's
+                pt = (-u * gv + v * gu - t0) / h
+                k = min(max(floor_index(pt), 0), n_tau - 2)
+                m = min(max(floor_index(ps), 0), n_sig - 2)
+                cell[i, c] = (k // BAND) * n_sig + m
 
 
 @ngjit

@@ -34,6 +34,7 @@ import math
 
 import numpy as np
 
+from .. import _pool
 from ..kernels.layout import SURF_FUNCTION
 from ..kernels.shadow import (
     BAND, horizon_slopes, horizon_sweeps, shadow_lookup, shadow_sweep, sweep_cells, sweep_order,
@@ -113,9 +114,9 @@ class Texture:
         # one texture per layer: a layer's own surface is a height field under which
         # nothing of it lies (its horizon's maximum decides), while another layer
         # shadows a point only where the ray crosses it (it may pass under a plate)
-        self.hmax = np.empty((len(drawn), n_tau, n_sig), dtype=np.float32)
-        self.hmin = np.empty((len(drawn), n_tau, n_sig), dtype=np.float32)
-        self.hsurf = np.empty((len(drawn), n_tau, n_sig), dtype=np.float32)
+        self.hmax = _pool.empty((len(drawn), n_tau, n_sig), np.float32)
+        self.hmin = _pool.empty((len(drawn), n_tau, n_sig), np.float32)
+        self.hsurf = _pool.empty((len(drawn), n_tau, n_sig), np.float32)
         for layer, (surface, ((ua, ub), (va, vb))) in enumerate(drawn):
             domain = np.array([ua, ub, va, vb], dtype=np.float64)
             # f a line at a time in SIMD code where the texture repays the evaluator's
@@ -126,7 +127,7 @@ class Texture:
             horizon_sweeps(kind, f, fb, hf, hfp, domain, self.gu, self.gv, self.tan_theta,
                            self.s0, self.t0, h, self.hmax, self.hmin, self.hsurf, layer)
         if self.rho > 0.0:
-            self.slopes = np.empty((4 * len(drawn), n_tau, n_sig))
+            self.slopes = _pool.empty((4 * len(drawn), n_tau, n_sig), np.float64)
             for layer in range(len(drawn)):
                 horizon_slopes(self.hsurf, layer, h, self.slopes)
         self.texels = n_sig * n_tau * len(drawn)
@@ -136,8 +137,9 @@ def shadow_pass(texture, view, geom, W, H, layer=0):
     """(shadow, lit) of one layer: ``texture`` the light's (Texture), ``view`` the
     layer's View (its light: the same one, in screen coordinates), ``geom`` its
     Geometry (kernels/shadow.py shadow_lookup, in parallel over the columns)."""
-    shadow = np.empty((H, W), dtype=np.float32)
-    lit = np.empty((H, W), dtype=np.float32)
+    # (pooled: fresh pages cost their faults; every pixel is written below)
+    shadow = _pool.empty((H, W), np.float32)
+    lit = _pool.empty((H, W), np.float32)
     light = np.asarray(view.light, dtype=np.float64)
     if texture.on_the_fly and not texture.zenith:
         return _on_the_fly(texture, geom, W, H, light, shadow, lit)
@@ -156,7 +158,7 @@ def shadow_pass(texture, view, geom, W, H, layer=0):
 def _on_the_fly(sweep, geom, W, H, light, shadow, lit):
     """shadow_pass by section 6.2.2 (kernels/shadow.py shadow_sweep)."""
     n_sig, n_tau, h = sweep.n_sig, sweep.n_tau, sweep.h
-    cell = np.empty((H, W), dtype=np.int32)
+    cell = _pool.empty((H, W), np.int32)
     sweep_cells(geom.gbuf, geom.ebuf, W, sweep.gu, sweep.gv, sweep.s0, sweep.t0, h, n_sig,
                 n_tau, cell)
     n_cells = ((n_tau - 2) // BAND + 1) * n_sig

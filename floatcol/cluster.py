@@ -96,8 +96,10 @@ def render_tiled(items, options, tiles=None, client=None):
     auto = (options.get("vmin") is None or options.get("vmax") is None) \
         and options.get("norm") is None
     got = _run(items, options, spans, W, client)
+    # the colormap's values: the heights of the upper side seen, or a colour field's
+    key = "w_limits" if options.get("color") is None else "c_limits"
     if auto:
-        ranges = [g["stats"].get("w_limits") for g in got if g["upper"]]
+        ranges = [g["stats"].get(key) for g in got if g["upper"] or key == "c_limits"]
         ranges = [r for r in ranges if r is not None and np.ndim(r) == 1]
         if ranges:
             lo = min(r[0] for r in ranges)
@@ -105,7 +107,7 @@ def render_tiled(items, options, tiles=None, client=None):
             vmin = lo if options.get("vmin") is None else options["vmin"]
             vmax = hi if options.get("vmax") is None else options["vmax"]
             again = [k for k, g in enumerate(got)
-                     if tuple(g["stats"].get("w_limits") or ()) != (vmin, vmax)]
+                     if tuple(g["stats"].get(key) or ()) != (vmin, vmax)]
             if again:
                 fixed = dict(options, vmin=vmin, vmax=vmax)
                 for k, g in zip(again, _run(items, fixed, [spans[k] for k in again], W,
@@ -134,7 +136,7 @@ def _assemble(got, W, H, t0, n_bands):
 
     view = got[0]["view"]
     import dataclasses
-    view = dataclasses.replace(view, width=W, x_offset=0.0)
+    view = dataclasses.replace(view, width=W, first_column=0, x_offset=0.0)
     gbuf = None
     if got[0]["gbuf"] is not None:
         flat = cat("gbuf")

@@ -186,7 +186,7 @@ def objects_pass(r, objects, surface, light_dir):
     else:
         # a triangle with a corner in front of the screen plane is left out
         m = np.where(e > view.d1, view.d1 / np.where(e > view.d1, e, 1.0), np.nan)
-    col = x * m * view.scale + (W - 1) / 2
+    col = view.column(x * m)
     row = (H - 1) / 2 - y * m * view.scale
     # flat light: each face's normal turned toward the eye, against the light
     pts = np.c_[x, y, z]

@@ -170,8 +170,8 @@ def _band(views, columns):
     if not (0 <= first and 1 <= count and first + count <= width):
         raise ValueError(f"columns {first}..{first + count - 1} must lie in the picture's "
                          f"0..{width - 1}")
-    return [dataclasses.replace(v, width=count, x_offset=first + 0.5 * (count - width))
-            for v in views]
+    return [dataclasses.replace(v, width=count, first_column=first,
+                                x_offset=first + 0.5 * (count - width)) for v in views]
 
 
 def _screen_light(light, elev, azim):

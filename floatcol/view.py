@@ -45,9 +45,17 @@ class View:
     #: perspective, a surface with holes: hole_map's (n, u0, v0, cells per unit u,
     #: per unit v, summed-area table); None: no map
     holes: tuple = field(default=None, compare=False, repr=False)
-    #: the picture's first column in a wider one (a band of a tiled poster,
-    #: floatcol/cluster.py): column c is column x_offset + c of that picture
+    #: a band of a wider picture (a tiled poster, floatcol/cluster.py): its first
+    #: column there, and the kernels' offset of the columns (kernels/sample.py
+    #: column_x0: first + (width - the picture's width) / 2)
+    first_column: int = 0
     x_offset: float = 0.0
+
+    def column(self, x):
+        """The column (a float) of screen x: the whole picture's, less the band's
+        first column (exactly: a whole number off a float no larger)."""
+        return x * self.scale + ((self.width - 1) / 2 - self.x_offset
+                                 + self.first_column) - self.first_column
 
     @property
     def alpha(self):
@@ -119,7 +127,7 @@ class View:
             ok = depth > self.d1
             m = np.where(ok, self.d1 / np.where(ok, depth, 1.0), np.nan)
             x, y = x * m, y * m
-        col = x * self.scale + (self.width - 1) / 2 - self.x_offset
+        col = self.column(x)
         row = (self.height - 1) / 2 - y * self.scale
         return col, row
 

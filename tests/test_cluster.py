@@ -42,6 +42,23 @@ def test_a_tiled_poster_is_the_same_picture(kw):
     _same(whole, tiled)
 
 
+def test_a_tiled_poster_of_lines_fields_and_objects():
+    """A line drawing; a colour field with a wireframe (the field's range is the
+    picture's); a height field with objects standing on it (their triangles
+    rasterised at the whole picture's columns)."""
+    yy, xx = np.mgrid[0:80, 0:90]
+    hf = fc.HeightField(np.sin(xx / 7.0) * np.cos(yy / 9.0) * 3, u=(0, 10), v=(0, 10))
+    for expr, kw in (("sin(u)*v", dict(u=(-3, 3), v=(-3, 3), method="horizon")),
+                     ("sin(u)*v", dict(u=(-3, 3), v=(-3, 3), color="u - v", wireframe=8)),
+                     (hf, dict(objects=[fc.tree(5, 5, 1.5), fc.box(2, 3, 1, 1, 1)]))):
+        whole = fc.render(expr, size=(157, 110), **kw)
+        tiled = fc.render(expr, size=(157, 110), tiles=4, **kw)
+        assert np.array_equal(whole.rgba, tiled.rgba)
+        assert np.array_equal(whole.side, tiled.side)
+        if kw.get("color") is not None:
+            assert whole.stats["c_limits"] == tiled.stats["c_limits"]
+
+
 def test_the_bands_colormap_is_the_pictures():
     """Each band alone would stretch the colormap over its own heights: the poster's
     bands take the picture's, and a band that saw other heights is drawn again."""

@@ -367,21 +367,28 @@ def horizon_sweeps(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h,
         for i in range(n - 1, -1, -1):          # from the light's side
             hmax[layer, k, i] = run_max
             hmin[layer, k, i] = run_min
-            hsurf[layer, k, i] = np.nan
-            sigma = s0 + i * h
-            u = sigma * gu - tau * gv
-            v = sigma * gv + tau * gu
-            if u < ua or u > ub or v < va or v > vb:
-                continue
-            w = out[i] * cw
-            if not math.isfinite(w):
-                w = surface_value(kind, f, hf, hfp, u, v)
-                if not math.isfinite(w):
-                    continue                      # a hole casts no shadow
-            H = w - sigma * tan_theta
+            H = _texel_height(kind, f, hf, hfp, ua, ub, va, vb, gu, gv, tan_theta,
+                              s0 + i * h, tau, out[i] * cw)
             hsurf[layer, k, i] = H
-            run_max = max(run_max, H)
-            run_min = min(run_min, H)
+            if H == H:
+                run_max = max(run_max, H)
+                run_min = min(run_min, H)
+
+
+@ngjit_inline
+def _texel_height(kind, f, hf, hfp, ua, ub, va, vb, gu, gv, tan_theta, sigma, tau, w):
+    """H = f - sigma tan(theta) of the texel at (sigma, tau), f there ``w`` (the batch
+    evaluator's; f alone decides where it left NaN); NaN outside the domain ua..ub,
+    va..vb and at holes (a hole casts no shadow)."""
+    u = sigma * gu - tau * gv
+    v = sigma * gv + tau * gu
+    if u < ua or u > ub or v < va or v > vb:
+        return np.nan
+    if not math.isfinite(w):
+        w = surface_value(kind, f, hf, hfp, u, v)
+        if not math.isfinite(w):
+            return np.nan
+    return w - sigma * tan_theta
 
 
 @ngjit_parallel
@@ -536,21 +543,12 @@ def shadow_sweep(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, t0, h, n_s
             for q in range(nl):
                 hmax[0, q, 0] = run_max[q]
                 hmin[0, q, 0] = run_min[q]
-                hsurf[0, q, 0] = np.nan
-                tau = t0 + (k0 + q) * h
-                u = sigma * gu - tau * gv
-                v = sigma * gv + tau * gu
-                if u < ua or u > ub or v < va or v > vb:
-                    continue
-                w = out[q] * cw
-                if not math.isfinite(w):
-                    w = surface_value(kind, f, hf, hfp, u, v)
-                    if not math.isfinite(w):
-                        continue                  # a hole casts no shadow
-                Hq = w - sigma * tan_theta
+                Hq = _texel_height(kind, f, hf, hfp, ua, ub, va, vb, gu, gv, tan_theta, sigma,
+                                   t0 + (k0 + q) * h, out[q] * cw)
                 hsurf[0, q, 0] = Hq
-                run_max[q] = max(run_max[q], Hq)
-                run_min[q] = min(run_min[q], Hq)
+                if Hq == Hq:
+                    run_max[q] = max(run_max[q], Hq)
+                    run_min[q] = min(run_min[q], Hq)
             if i > n_sig - 2:
                 continue
             cell = bd * n_sig + i

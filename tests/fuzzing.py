@@ -96,7 +96,11 @@ def case(rng: random.Random) -> dict:
     if rng.random() < 0.1:
         kw["vmin"], kw["vmax"] = rng.choice([[0, 1], [1, 0], [math.nan, 1], [-1e300, 1e300]])
     if rng.random() < 0.25:
-        kw["shadows"] = True
+        kw["shadows"] = rng.choice([True, True, "on-the-fly", "texture", "soft"])
+        if rng.random() < 0.3:
+            kw["light_radius"] = rng.choice([0.27, 3.0, 0.0, -1.0, math.nan, 45.0])
+        if rng.random() < 0.05:
+            kw["tiles"] = rng.choice([1, 3, 0])
         if rng.random() < 0.8:
             kw["lightsource"] = rng.choice([[rng.uniform(0, 360), rng.uniform(-10, 90)],
                                             [0, 90], [45, 0], [math.nan, 30], [10, -90]])

@@ -63,7 +63,7 @@ def _band_task(items, options, first, end, width):
     a0 = max(0, first - MARGIN)
     a1 = min(width, end + MARGIN)
     scene = scene_from_options(list(items), **options, columns=(a0, a1 - a0))
-    r = render_scene(scene, composite=len(items) > 1)
+    r = render_scene(scene)
     cut = slice(first - a0, end - a0)
     gbuf = untile(r._gbuf, a1 - a0)[:, cut] if r._gbuf is not None else None
     out = {"rgba": r.rgba[:, cut].copy(), "side": r.side[:, cut].copy(),
@@ -72,17 +72,16 @@ def _band_task(items, options, first, end, width):
            "gbuf": None if gbuf is None else np.ascontiguousarray(gbuf),
            "seen": r._mask()[:, cut].copy(), "stats": dict(r.stats), "view": r.view,
            "box": r.box, "upper": bool((r.side == 1).any())}
-    surface = out["stats"].pop("surface", None)
-    if surface is not None:
-        out["surface"] = surface[:, cut].copy()
-    out["stats"].pop("layers", None)
+    layers = out["stats"].pop("layers", None)      # (translucent: a count a pixel)
+    if isinstance(layers, np.ndarray) and layers.ndim == 2:
+        out["layers"] = layers[:, cut].copy()
     return out
 
 
 def render_tiled(items, options, tiles=None, client=None):
-    """render()'s picture of ``items`` ((expr, u, v) triples, one or several
-    surfaces) with render's ``options``, in ``tiles`` bands of columns on ``client``
-    (dask.distributed) or here. Returns a Render."""
+    """render()'s picture of ``items`` (one (expr, u, v) triple: the colormap's
+    limits are settled for one surface) with render's ``options``, in ``tiles`` bands
+    of columns on ``client`` (dask.distributed) or here. Returns a Render."""
     import time
 
     from .view import check_size
@@ -93,6 +92,9 @@ def render_tiled(items, options, tiles=None, client=None):
         2 * max(len(client.scheduler_info().get("workers", {})), 1) if client else 1)
     spans = bands(W, min(n, W))
     items = list(items)
+    if len(items) != 1:
+        raise ValueError("tiles and client draw one surface (render); several surfaces "
+                         "in one poster are not built")
     auto = (options.get("vmin") is None or options.get("vmax") is None) \
         and options.get("norm") is None
     got = _run(items, options, spans, W, client)
@@ -151,8 +153,8 @@ def _assemble(got, W, H, t0, n_bands):
     stats["bands"] = n_bands
     for key in ("kernel_seconds", "setup_seconds", "shadow_seconds"):
         stats.pop(key, None)
-    if "surface" in got[0]:
-        stats["surface"] = cat("surface")
+    if "layers" in got[0]:
+        stats["layers"] = cat("layers")
     side = cat("side")
     seen = cat("seen")
     r = Render(cat("rgba"), cat("intensity"), side, cat("depth"), stats, view, gbuf, None,

@@ -59,6 +59,12 @@ def test_a_tiled_poster_of_lines_fields_and_objects():
             assert whole.stats["c_limits"] == tiled.stats["c_limits"]
 
 
+def test_a_translucent_posters_layer_counts():
+    whole = fc.render(EXPR, **DOM, size=(120, 90), opacity=0.5)
+    tiled = fc.render(EXPR, **DOM, size=(120, 90), opacity=0.5, tiles=3)
+    assert np.array_equal(whole.stats["layers"], tiled.stats["layers"])
+
+
 def test_the_bands_colormap_is_the_pictures():
     """Each band alone would stretch the colormap over its own heights: the poster's
     bands take the picture's, and a band that saw other heights is drawn again."""
@@ -67,7 +73,6 @@ def test_the_bands_colormap_is_the_pictures():
     _same(whole, tiled)
     # the bands' own heights differ (u from -4 to 4 across the picture)
     from floatcol.cluster import _band_task
-    from floatcol.scene import scene_from_options  # noqa: F401  (the task's own door)
     band = _band_task([("u", (-4, 4), (-1, 1))], dict(size=(120, 60), elev=90), 0, 40, 120)
     assert band["stats"]["w_limits"][1] < whole.stats["w_limits"][1] - 4
 

@@ -41,7 +41,8 @@ from ..kernels.shadow import (
 )
 from .geometry import BATCH_MIN_SAMPLES
 
-#: most texels of a shadow texture (its memory: three float64 planes a layer, 92 MiB)
+#: most texels of a shadow texture (its memory: three float32 planes a layer, 46 MiB;
+#: soft shadows four float64 planes more)
 MAX_TEXELS = 4_000_000
 #: texels per pixel of the picture along each axis
 TEXELS_PER_PIXEL = 1.0

@@ -121,14 +121,14 @@ def _direction(d, kind):
 MAX_RADIUS = 30.0
 
 
-def _radius(r):
-    if isinstance(r, bool):
-        r = None
+def _radius(given):
     try:
-        r = float(r)
+        if isinstance(given, (bool, str, bytes)):
+            raise TypeError
+        r = float(given)
     except (TypeError, ValueError):
         raise ValueError(f"light_radius must be an angle in degrees (the sun's is 0.27), "
-                         f"got {r!r}") from None
+                         f"got {given!r}") from None
     if not 0.0 <= r <= MAX_RADIUS:
         raise ValueError(f"light_radius must be in [0, {MAX_RADIUS:g}] degrees, got {r}")
     return r

@@ -20,6 +20,9 @@ process: a poster larger than the memory of one render's buffers.
 """
 from __future__ import annotations
 
+import dataclasses
+import time
+
 import numpy as np
 
 #: columns drawn beyond a band's own on each side (the passes that read neighbours)
@@ -82,8 +85,6 @@ def render_tiled(items, options, tiles=None, client=None):
     """render()'s picture of ``items`` (one (expr, u, v) triple: the colormap's
     limits are settled for one surface) with render's ``options``, in ``tiles`` bands
     of columns on ``client`` (dask.distributed) or here. Returns a Render."""
-    import time
-
     from .view import check_size
     t0 = time.perf_counter()
     client = _check_client(client)
@@ -128,17 +129,13 @@ def _run(items, options, spans, W, client):
 
 def _assemble(got, W, H, t0, n_bands):
     """The Render of the bands' arrays side by side."""
-    import time
-
     from .kernels.layout import TILE
     from .result import Render
 
     def cat(key):
         return np.concatenate([g[key] for g in got], axis=1)
 
-    view = got[0]["view"]
-    import dataclasses
-    view = dataclasses.replace(view, width=W, first_column=0, x_offset=0.0)
+    view = dataclasses.replace(got[0]["view"], width=W, first_column=0, x_offset=0.0)
     gbuf = None
     if got[0]["gbuf"] is not None:
         flat = cat("gbuf")
@@ -157,10 +154,9 @@ def _assemble(got, W, H, t0, n_bands):
         stats["layers"] = cat("layers")
     side = cat("side")
     seen = cat("seen")
-    r = Render(cat("rgba"), cat("intensity"), side, cat("depth"), stats, view, gbuf, None,
-               None if np.array_equal(seen, side != 0) else seen, None, got[0]["box"],
-               shadow=None if got[0]["shadow"] is None else cat("shadow"))
-    return r
+    return Render(cat("rgba"), cat("intensity"), side, cat("depth"), stats, view, gbuf, None,
+                  None if np.array_equal(seen, side != 0) else seen, None, got[0]["box"],
+                  shadow=None if got[0]["shadow"] is None else cat("shadow"))
 
 
 def render_frames(tasks, client):

@@ -63,6 +63,21 @@ def _bilinear(a, k, y, x):
 
 
 @ngjit_inline
+def _texels_rise(hsurf, k, i, j):
+    """The highest less the lowest H of the surface's texels (i..i+1, j..j+1) of
+    hsurf[k] (-inf where none is the surface's)."""
+    lo = np.inf
+    hi = -np.inf
+    for di in range(2):
+        for dj in range(2):
+            hs = hsurf[k, i + di, j + dj]
+            if hs == hs:
+                lo = min(lo, hs)
+                hi = max(hi, hs)
+    return hi - lo
+
+
+@ngjit_inline
 def _own_depth(hext, hsurf, k, y, x, upper, hp, h):
     """How far below its own layer's horizon the surface lies around (y, x): the
     texels' own depths (hmax - H for the upper side, H - hmin for the lower) averaged
@@ -73,15 +88,8 @@ def _own_depth(hext, hsurf, k, y, x, upper, hp, h):
     those on the point's side of it count (H within half the wall of the point's hp):
     the top edge of a cliff is not darkened by its foot's shadow."""
     i, j, fy, fx = _cell(hsurf, y, x)
-    lo = np.inf
-    hi = -np.inf
-    for di in range(2):
-        for dj in range(2):
-            hs = hsurf[k, i + di, j + dj]
-            if hs == hs:
-                lo = min(lo, hs)
-                hi = max(hi, hs)
-    near = 0.5 * (hi - lo) if hi - lo > WALL * h else np.inf
+    rise = _texels_rise(hsurf, k, i, j)
+    near = 0.5 * rise if rise > WALL * h else np.inf
     acc = 0.0
     wsum = 0.0
     for di in range(2):
@@ -218,15 +226,7 @@ def _occluder(slopes, k, hsurf, layer, y, x):
 def _wall(hsurf, layer, y, x, h):
     """Whether the texels of layer's surface around (y, x) straddle a wall."""
     i, j, _, _ = _cell(hsurf, y, x)
-    lo = np.inf
-    hi = -np.inf
-    for di in range(2):
-        for dj in range(2):
-            hs = hsurf[layer, i + di, j + dj]
-            if hs == hs:
-                lo = min(lo, hs)
-                hi = max(hi, hs)
-    return hi - lo > WALL * h
+    return _texels_rise(hsurf, layer, i, j) > WALL * h
 
 
 #: vertical strips of the light's disk, each with its own horizon, where the
@@ -266,14 +266,13 @@ def soft_shadow(s, u, v, w, nx, ny, nz, light, hmax, hmin, hsurf, slopes, layer,
                             tan_theta, s0, t0, h, grazing, bias)
     theta = math.atan(tan_theta)
     sgn = 1.0 if s > 0.0 else -1.0
-    spread = (_own_slope(slopes, 4 * layer + 2 + side, hsurf, layer, pt, ps) * math.tan(rho)
-              / (math.cos(theta) * h))
+    D = _own_slope(slopes, 4 * layer + 2 + side, hsurf, layer, pt, ps)   # the occluder's
+    spread = D * math.tan(rho) / (math.cos(theta) * h)      # across the light, in texels
     if not spread > STRIP_SPREAD:
         val = _blocked(sgn * (math.atan(tan_theta + m) - theta) / rho)
     else:
         area = 0.0
         dx = 2.0 / STRIPS
-        D = spread * math.cos(theta) * h / math.tan(rho)
         hp = w - along * tan_theta
         for k in range(STRIPS):
             x0 = -1.0 + k * dx

@@ -25,7 +25,8 @@ import time
 
 import numpy as np
 
-#: columns drawn beyond a band's own on each side (the passes that read neighbours)
+#: columns drawn beyond a band's own on each side (the passes that read neighbours): a
+#: whole number of tiles (bands)
 MARGIN = 4
 #: the most bands of a poster
 MAX_TILES = 4096
@@ -51,8 +52,14 @@ def _check_tiles(tiles, width):
 
 
 def bands(width, tiles):
-    """The bands' columns: [(first, end), ...] of nearly equal widths."""
-    edges = np.linspace(0, width, tiles + 1).round().astype(int)
+    """The bands' columns: [(first, end), ...] of nearly equal widths, each starting at
+    a whole tile (kernels/layout.py TILE; MARGIN is one): the columns of a tile run in
+    order and start their perspective Newton iterations from the ones before
+    (kernels/column.py guesses_for), so a band draws a tile's columns as the whole
+    picture does."""
+    from .kernels.layout import TILE
+    n = -(-width // TILE)
+    edges = np.minimum(np.linspace(0, n, tiles + 1).round().astype(int) * TILE, width)
     return [(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:]) if b > a]
 
 

@@ -10,7 +10,7 @@ import numpy as np
 from numba import prange
 
 from ._jit import ngjit_parallel
-from .column import H_SIZE, render_column
+from .column import H_SIZE, guesses_for, render_column
 from .layout import E_SIZE, G_SIZE
 from .sample import column_x0
 from .shade import shade_pixel
@@ -35,11 +35,12 @@ def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, mp, lut, background,
         gcol = np.empty((1, H, 1, G_SIZE), dtype=np.float32)
         ecol = np.empty((1, E_SIZE, H, 1), dtype=np.float32)
         hrec = np.empty((1, H_SIZE))
+        sg = guesses_for(vp)            # (the sub-columns of c, in order)
         ev = 0
         for k in range(offsets.shape[0]):
             col = c + offsets[k]
             ev += render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol[0, :, 0],
-                                ecol[0, :, :, 0], hrec, 0)[0]
+                                ecol[0, :, :, 0], hrec, 0, sg, k)[0]
             x0 = column_x0(vp, col)
             for j in range(H):
                 i = H - 1 - j

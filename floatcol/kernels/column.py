@@ -34,16 +34,17 @@ from .layout import (
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1,
     VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR, VP_BATCH, VP_SIZE, VP_INV_D1, VP_UA, VP_UB,
-    VP_VA, VP_VB, VP_H, VP_CLIP, VP_KEEP_TOP, VP_FOLD,
+    VP_VA, VP_VB, VP_H, VP_CLIP, VP_KEEP_TOP, VP_FOLD, VP_SCALE, VP_HOLE_N,
 )
 from .coverage import coverages, flagged, keep_coverages, seen_side
 from .fold import FOLD_NEAR, fold_test, trace_column
 from .correct import (
-    WALL_DEPTH, hermite_extremum, lambert_at, probe, probe_ortho, ridge_between, shading_problem,
-    wall_between, wall_normal,
+    WALL_DEPTH, hermite_extremum, lambert_at, probe, probe_ortho, probe_persp, ridge_between,
+    shading_problem, wall_between, wall_normal,
 )
 from .sample import (
-    _clip_line, column_x0, in_domain, into_domain, ortho_point, sample_point, surface_eval,
+    NEWTON_TOL_PX, _clip_line, _g_at, _r_interval, column_x0, in_domain, in_known_hole,
+    into_domain, lambert, ortho_point, sample_point, scan_range, surface_eval, unit_normal,
 )
 
 
@@ -130,7 +131,28 @@ BAT_BUMP = 13
 BAT_SLOPE = 14
 BAT_US = 15       # u and v of f where the surface is box-scaled (HFP_IU, HFP_IV)
 BAT_VS = 16
-BAT_SIZE = 17
+BAT_T = 17        # perspective (_batch_planes_persp): each plane's t, r0 (eq. 9), the
+BAT_R0 = 18       # Newton iterate s, the solution s = w - cw, the final w
+BAT_SI = 19
+BAT_S = 20
+BAT_WF = 21
+BAT_PT = 22       # 1.0: an S_OUTSIDE plane's point (BAT_U, BAT_V) lies where its root is
+BAT_ACT = 23      # 1.0: the plane is still iterating; 1.0: it has converged
+BAT_DONE = 24
+BAT_WUF = 25      # f_u and f_v there
+BAT_WVF = 26
+BAT_LAZY = 27     # 1.0: its normal, intensity and probe()'s values are still to come
+BAT_SIZE = 28
+#: a perspective plane the batch leaves to the scalar path (_sample_at): its domain
+#: test was not sure, Newton did not converge in BATCH_NEWTON vector steps, or the
+#: point is not a plain one (a hole, the domain's edge, in front of the screen)
+S_RETRY = 4
+BATCH_NEWTON = 4
+#: how far (in pixels) a batched perspective sample's point may lie off its column plane
+BATCH_TOL_PX = 0.01
+#: a batched perspective solution is taken where it lies within this many pixels of
+#: the scalar path's Newton start (_newton_start): the root that path would find
+BATCH_ACCEPT_PX = 0.5
 
 
 @ngjit_inline
@@ -209,11 +231,12 @@ def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, main, bat, kb):
     iteration starts from ``run``'s last solutions (_newton_start): every sample's
     solution updates the line, only those of the pass's own planes (``main``) the
     parabola (the samples of corrections, edges and slivers go back and forth in t
-    between two planes). Orthographic planes sampled ahead by _batch_planes come as
-    number kb >= 0 of bat."""
+    between two planes). Planes sampled ahead by _batch_planes (_batch_planes_persp)
+    come as number kb >= 0 of bat."""
     if kb >= 0:
         st = int(bat[BAT_ST * BATCH + kb])
-        ev = 0 if st == S_OUTSIDE else 1
+        # (a perspective batch counts its evaluations itself: _batch_planes_persp)
+        ev = 0 if st == S_OUTSIDE or vp[VP_ORTHO] == 0.0 else 1
         u = bat[BAT_U * BATCH + kb]
         v = bat[BAT_V * BATCH + kb]
         y = bat[BAT_Y * BATCH + kb]
@@ -1160,6 +1183,239 @@ def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0,
                 probe_ortho(vt, ny, nz)
 
 
+@ngjit_nrt_free
+def _batch_planes_persp(kind, f, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0, ka,
+                        kb, dt, sigma, run, sg, rot):
+    """Sample a perspective column's planes i_lo to i_hi - 1 ahead into bat, as
+    _batch_planes does in orthographic: Newton's iteration on each plane's line inside
+    Pi (sample_point's, eqs. 2, 9) run for all the planes at once, f, f_u, f_v of all
+    of them from one call of the batch evaluator fb (SIMD code) a step, until every
+    plane has converged or BATCH_NEWTON steps (a plane that has converged keeps its s,
+    and so its values). Each plane starts from the previous columns' solutions on it
+    (_guess: the line through the last two columns', or the last column's; the
+    columns of a tile run one after another on one thread), else from the run's line
+    (_newton_start), else at Gordon's point s = 0. A plane that converges to a plain
+    point (finite, strictly inside the domain, outside the known holes, behind the
+    screen) gets its sample (_batch_point: status, row, depth, the solution BAT_S; its
+    normal, intensity and probe()'s values when it is used, _finish_batched). A plane
+    whose root lies outside the domain is S_OUTSIDE where g = f - cw - s has no sign
+    change over the part of its line inside the domain (the scalar path's test:
+    sample._root_inside), as it is where the domain test is sure; the others are
+    S_RETRY, for the scalar path. Returns the evaluations of f."""
+    m = i_hi - i_lo
+    ca = vp[VP_CA]
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    cu = vp[VP_CU]
+    cv = vp[VP_CV]
+    cw = vp[VP_CW]
+    d1 = vp[VP_D1]
+    d3 = vp[VP_D3]
+    scale = vp[VP_SCALE]
+    kp = x0 * vp[VP_SA] / d1                  # dr/ds inside Pi
+    iu = hfp[HFP_IU]
+    iv = hfp[HFP_IV]
+    c = hfp[HFP_CW]
+    o = BAT_W * BATCH
+    na = 0
+    for j in range(m):
+        t, kg = _pass_plane(i_lo + j, n, ta, tb, t0, ka, kb, dt, sigma)
+        bat[BAT_T * BATCH + j] = t
+        bat[BAT_PT * BATCH + j] = 0.0
+        bat[BAT_R0 * BATCH + j] = x0 * (t * ca + d3) / d1      # eq. (9)
+        s = 0.0
+        if _domain_test(vp, x0, t) == 0:
+            bat[BAT_ST * BATCH + j] = S_OUTSIDE
+            bat[BAT_ACT * BATCH + j] = 0.0
+        else:
+            bat[BAT_ST * BATCH + j] = S_RETRY
+            bat[BAT_ACT * BATCH + j] = 1.0
+            na += 1
+            s = _guess(sg, rot, kg)
+            if not math.isfinite(s):
+                lin, quad = _newton_start(run, t)
+                s = lin if math.isfinite(lin) else 0.0
+        bat[BAT_SI * BATCH + j] = s
+        bat[BAT_DONE * BATCH + j] = 0.0
+    evals = 0
+    if na == 0:
+        return evals
+    for _ in range(BATCH_NEWTON):
+        for j in range(m):
+            t = bat[BAT_T * BATCH + j]
+            r = bat[BAT_R0 * BATCH + j] + kp * bat[BAT_SI * BATCH + j]
+            u = cu + r * cb + t * sb                            # eq. (2)
+            v = cv - r * sb + t * cb
+            bat[BAT_U * BATCH + j] = u
+            bat[BAT_V * BATCH + j] = v
+            bat[BAT_US * BATCH + j] = u * iu
+            bat[BAT_VS * BATCH + j] = v * iv
+        fb(array_ptr(bat, BAT_US * BATCH), array_ptr(bat, BAT_VS * BATCH), hfp[0],
+           array_ptr(bat, o), m)
+        evals += m
+        left = 0
+        for j in range(m):
+            # (branch-free: the loop is SIMD code) a plane still iterating that
+            # converges is done; one whose values or step are not finite stops (S_RETRY)
+            w = bat[o + j] * c
+            wu = bat[o + m + j] * (c * iu)
+            wv = bat[o + 2 * m + j] * (c * iv)
+            s = bat[BAT_SI * BATCH + j]
+            g = (w - cw) - s
+            dg = kp * (wu * cb - wv * sb) - 1.0
+            s_next = s - g / dg
+            act = bat[BAT_ACT * BATCH + j] != 0.0
+            fin = math.isfinite(w) and math.isfinite(wu) and math.isfinite(wv)
+            conv = abs(kp * g) * scale <= BATCH_TOL_PX or kp == 0.0
+            done = act and fin and conv
+            go = act and fin and not conv and math.isfinite(s_next)
+            bat[BAT_DONE * BATCH + j] = 1.0 if done else bat[BAT_DONE * BATCH + j]
+            bat[BAT_WF * BATCH + j] = w if done else bat[BAT_WF * BATCH + j]
+            bat[BAT_WUF * BATCH + j] = wu if done else bat[BAT_WUF * BATCH + j]
+            bat[BAT_WVF * BATCH + j] = wv if done else bat[BAT_WVF * BATCH + j]
+            bat[BAT_SI * BATCH + j] = s_next if go else s
+            bat[BAT_ACT * BATCH + j] = 1.0 if go else 0.0
+            left += 1 if go else 0
+        if left == 0:
+            break
+    for j in range(m):
+        if bat[BAT_DONE * BATCH + j] != 0.0:
+            # (u, v): where f was evaluated last, at the plane's final s
+            if not _batch_point(vp, x0, bat, j):
+                evals += _outside_test(kind, f, hf, hfp, vp, bat, j, kp)
+    return evals
+
+
+@ngjit_inline
+def _batch_point(vp, x0, bat, j):
+    """Batched perspective plane j's converged point (u, v, w): its sample into bat
+    where it is a plain one, as sample_point computes it (status, screen row, depth,
+    the solution s, w, and with VP_DETECT the sign of V.N, for the hidden samples'
+    ridge test); the rest when the sample is used (_finish_batched). Else it stays
+    S_RETRY. Returns whether the point lies in the domain."""
+    u = bat[BAT_U * BATCH + j]
+    v = bat[BAT_V * BATCH + j]
+    if not in_domain(vp, u, v):
+        return False
+    ui, vi = into_domain(vp, u, v)
+    if ui != u or vi != v or (vp[VP_HOLE_N] != 0.0 and in_known_hole(vp, u, v)):
+        return True
+    t = bat[BAT_T * BATCH + j]
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    d1 = vp[VP_D1]
+    d3 = vp[VP_D3]
+    w = bat[BAT_WF * BATCH + j]
+    s = w - vp[VP_CW]
+    y1 = s * ca - t * sa                         # eqs. (4), (10)
+    z1 = s * sa + t * ca
+    if z1 + d3 <= d1:
+        return True
+    y0 = y1 * d1 / (z1 + d3)
+    ypix = y0 * vp[VP_SCALE] + (vp[VP_H] - 1.0) * 0.5
+    if not (math.isfinite(ypix) and math.isfinite(z1)):
+        return True
+    bat[BAT_ST * BATCH + j] = S_OK
+    bat[BAT_S * BATCH + j] = s
+    bat[BAT_W * BATCH + j] = w
+    bat[BAT_Y * BATCH + j] = ypix
+    bat[BAT_Z * BATCH + j] = z1
+    bat[BAT_LAZY * BATCH + j] = 1.0
+    # the normal (eq. 11) not yet of unit length: fold_test's and the ridge test's
+    # signs do not need it
+    wu = bat[BAT_WUF * BATCH + j]
+    wv = bat[BAT_WVF * BATCH + j]
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    nx = -wu * cb + wv * sb
+    ny = wu * sa * sb + ca + wv * sa * cb
+    nz = -wu * ca * sb + sa - wv * ca * cb
+    bat[BAT_NX * BATCH + j] = nx
+    bat[BAT_NY * BATCH + j] = ny
+    bat[BAT_NZ * BATCH + j] = nz
+    if vp[VP_DETECT] != 0.0:
+        y0 = (ypix - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]   # (probe_persp's V)
+        bat[BAT_VN * BATCH + j] = -x0 * nx - y0 * ny - d1 * nz
+    return True
+
+
+@ngjit_inline
+def _finish_batched(vp, x0, bat, j):
+    """The rest of batched perspective sample j, where it is used: its unit normal,
+    intensity (eq. 12) and probe()'s values, as sample_point and probe compute them."""
+    if bat[BAT_LAZY * BATCH + j] == 0.0:
+        return
+    bat[BAT_LAZY * BATCH + j] = 0.0
+    nx = bat[BAT_NX * BATCH + j]
+    ny = bat[BAT_NY * BATCH + j]
+    nz = bat[BAT_NZ * BATCH + j]
+    q = 1.0 / math.sqrt(nx * nx + ny * ny + nz * nz)         # (unit_normal)
+    nx *= q
+    ny *= q
+    nz *= q
+    u = bat[BAT_U * BATCH + j]
+    v = bat[BAT_V * BATCH + j]
+    t = bat[BAT_T * BATCH + j]
+    s = bat[BAT_S * BATCH + j]
+    z1 = bat[BAT_Z * BATCH + j]
+    r = (u - vp[VP_CU]) * vp[VP_CB] - (v - vp[VP_CV]) * vp[VP_SB]
+    y1 = s * vp[VP_CA] - t * vp[VP_SA]
+    bat[BAT_NX * BATCH + j] = nx
+    bat[BAT_NY * BATCH + j] = ny
+    bat[BAT_NZ * BATCH + j] = nz
+    bat[BAT_I * BATCH + j] = lambert(vp, -r, -y1, -(vp[VP_D3] + z1), nx, ny, nz)
+    if vp[VP_DETECT] != 0.0:
+        bat[BAT_VN * BATCH + j], bat[BAT_BUMP * BATCH + j], bat[BAT_SLOPE * BATCH + j] = \
+            probe_persp(vp, x0, bat[BAT_Y * BATCH + j], z1, nx, ny, nz)
+
+
+@ngjit_nrt_free
+def _outside_test(kind, f, hf, hfp, vp, bat, j, kp):
+    """Batched perspective plane j, whose root lies outside the domain: S_OUTSIDE
+    where g has no sign change between the ends of its line's part inside the domain
+    (and the scan range), as sample._root_inside decides; else it stays S_RETRY (a
+    root inside: the scalar path finds it). Returns the evaluations of f."""
+    t = bat[BAT_T * BATCH + j]
+    ra, rb = _r_interval(vp, t)
+    if ra > rb or kp == 0.0:
+        bat[BAT_ST * BATCH + j] = S_OUTSIDE
+        return 0
+    r0 = bat[BAT_R0 * BATCH + j]
+    s1 = (ra - r0) / kp
+    s2 = (rb - r0) / kp
+    s_lo, s_hi = scan_range(vp)
+    a = max(min(s1, s2), s_lo)
+    b = min(max(s1, s2), s_hi)
+    if not a < b:
+        bat[BAT_ST * BATCH + j] = S_OUTSIDE
+        return 0
+    evals = 0
+    ga = 1.0
+    if a > s_lo:
+        ga, ev = _g_at(kind, f, hf, hfp, vp, r0, kp, t, a)
+        evals += ev
+    gb = -1.0
+    if b < s_hi:
+        gb, ev = _g_at(kind, f, hf, hfp, vp, r0, kp, t, b)
+        evals += ev
+    if math.isfinite(ga) and math.isfinite(gb) and (ga >= 0.0) == (gb >= 0.0):
+        bat[BAT_ST * BATCH + j] = S_OUTSIDE
+        bat[BAT_PT * BATCH + j] = 1.0
+    return evals
+
+
+@ngjit_inline
+def _batch_taken(vp, x0, run, bat, kb, t):
+    """Whether batched perspective sample kb (plane t) is the one the scalar path would
+    find: its solution within BATCH_ACCEPT_PX of that path's Newton start."""
+    lin, quad = _newton_start(run, t)
+    guess = quad if quad == quad else lin
+    if not math.isfinite(guess):
+        return True
+    return abs(x0 * vp[VP_SA] / vp[VP_D1] * (bat[BAT_S * BATCH + kb] - guess)) * vp[VP_SCALE] \
+        <= BATCH_ACCEPT_PX
+
+
 @ngjit_inline
 def _prev_from_batch(prev, bat, kb, t, detect):
     """Write batched sample kb (plane t) into ``prev`` as _sample_at writes it."""
@@ -1181,10 +1437,12 @@ def _prev_from_batch(prev, bat, kb, t, detect):
 
 @ngjit_nrt_free
 def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hrec, hstride,
-                 prev, cur, edge, tmp, run, stk, sdepth, left, mid, bat):
+                 prev, cur, edge, tmp, run, stk, sdepth, left, mid, bat, sg, rot):
     """One front-to-back pass over t from ta to tb (sigma = +1 ascending, -1
-    descending). Returns the number of evaluations of f. Orthographic planes are
-    evaluated BATCH at a time into bat (_batch_planes) where vp's VP_BATCH says so."""
+    descending). Returns the number of evaluations of f. The planes are evaluated
+    BATCH at a time into bat (_batch_planes, _batch_planes_persp) where vp's VP_BATCH
+    says so; in perspective sg holds the solutions s of the tile's last columns by
+    the grid's plane number, where this column's are written."""
     H = gcol.shape[0]
     persp = vp[VP_ORTHO] == 0.0
     aa = vp[VP_AA] != 0.0
@@ -1215,9 +1473,9 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
         if i >= i_end:
             return 0                    # the column meets nothing
         t, k = _pass_plane(i, n, ta, tb, t0, ka, kb, dt, sigma)
-    # the orthographic planes evaluated ahead, BATCH at a time: planes b_lo to b_hi - 1
-    batched = (vp[VP_BATCH] != 0.0 and not persp and not adaptive and sigma > 0.0
-               and kind != SURF_HEIGHTFIELD)
+    # the planes evaluated ahead, BATCH at a time: planes b_lo to b_hi - 1
+    batched = (vp[VP_BATCH] != 0.0 and not adaptive and (persp or sigma > 0.0)
+               and kind != SURF_HEIGHTFIELD and hi > lo)
     b_lo = 0
     b_hi = 0
     # perspective: the failed sample before (where its point lies), and a plane put
@@ -1237,25 +1495,47 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
     detect = vp[VP_DETECT] != 0.0
     prev_kb = -1
     while True:
-        if batched:
+        kb_i = -1
+        if batched and not resume:
             if i >= b_hi:
                 if prev_kb >= 0:
+                    if persp:
+                        _finish_batched(vp, x0, bat, prev_kb)
                     _prev_from_batch(prev, bat, prev_kb, prev_t, detect)
                     prev_kb = -1
                 b_lo = i
-                b_hi = min(n, i + BATCH)
-                _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, b_lo, b_hi, n, ta, tb, t0, ka,
-                              dt)
+                b_hi = min(i_end, i + BATCH)
+                if persp:
+                    evals += _batch_planes_persp(kind, f, fg, fb, hf, hfp, vp, x0, bat, b_lo,
+                                                 b_hi, n, ta, tb, t0, ka, kb, dt, sigma, run, sg,
+                                                 rot)
+                else:
+                    _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, b_lo, b_hi, n, ta, tb, t0,
+                                  ka, dt)
             kb_i = i - b_lo
-            if hidden_ok and prev_st == S_OK and run[RUN_OPEN] != 0.0 and \
-                    bat[BAT_ST * BATCH + kb_i] == S_OK:
+            st_b = bat[BAT_ST * BATCH + kb_i]
+            if persp and (st_b == S_RETRY or (st_b == S_OK
+                                               and not _batch_taken(vp, x0, run, bat, kb_i, t))):
+                kb_i = -1                    # the scalar path's sample instead
+                st_b = S_RETRY
+            if hidden_ok and prev_st == S_OK and run[RUN_OPEN] != 0.0 and st_b == S_OK:
                 y = bat[BAT_Y * BATCH + kb_i]
                 hidden = run[RUN_YMIN] < y < run[RUN_YMAX]
                 if hidden and detect:
                     vn_prev = bat[BAT_VN * BATCH + prev_kb] if prev_kb >= 0 else prev[A_VN]
                     hidden = not vn_prev * bat[BAT_VN * BATCH + kb_i] < 0.0
                 if hidden:
-                    evals += 1
+                    if persp:
+                        # what _sample_at does with a perspective sample
+                        s_b = bat[BAT_S * BATCH + kb_i]
+                        _keep_solution(run, s_b, t, True)
+                        if vp[VP_FOLD] != 0.0 and fold_test(vp, x0, bat[BAT_NX * BATCH + kb_i],
+                                                            bat[BAT_NY * BATCH + kb_i],
+                                                            bat[BAT_NZ * BATCH + kb_i], 0.0):
+                            run[RUN_FOLD] = 1.0
+                        _keep_guess(sg, rot, k, s_b)
+                    else:
+                        evals += 1
                     prev_kb = kb_i
                     prev_t = t
                     i += 1                   # the next plane, as below
@@ -1264,12 +1544,22 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                     t, k = _pass_plane(i, n, ta, tb, t0, ka, kb, dt, sigma)
                     continue
             if prev_kb >= 0:
+                if persp:
+                    _finish_batched(vp, x0, bat, prev_kb)
                 _prev_from_batch(prev, bat, prev_kb, prev_t, detect)
                 prev_kb = -1
+            if persp and kb_i >= 0 and st_b == S_OK:
+                _finish_batched(vp, x0, bat, kb_i)
             st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True, bat, kb_i)
         else:
             st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True, bat, -1)
         evals += ev
+        if persp and kb_i >= 0 and bat[BAT_PT * BATCH + kb_i] != 0.0:
+            cur[A_U] = bat[BAT_U * BATCH + kb_i]       # where the batch's root lies (for
+            cur[A_V] = bat[BAT_V * BATCH + kb_i]       # the slivers below)
+            ev = 1
+        if persp and st == S_OK:
+            _keep_guess(sg, rot, k, cur[A_W] - vp[VP_CW])  # the next columns' start
         if persp and st != S_OK and not resume:
             # A sliver: the surface's curve in Pi may enter the domain and leave it
             # between two planes whose points both lie outside (near a corner, or a
@@ -1401,13 +1691,17 @@ SCR_WIDTH = max(A_SIZE, RUN_SIZE)
 
 
 @ngjit
-def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
+def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride, sg, rot):
     """Render pixel column ``col`` into gcol (H, G_SIZE) and ecol (E_SIZE, H): gcol
     only where ecol's E_SEEN row, cleared here, is not 0 (coverage.py). Returns
     (evaluations of f, the lowest and highest w where the upper side is seen: inf,
     -inf where it is not, the lowest and highest row where E_SEEN may be set: H, -1
-    where none is)."""
+    where none is). sg: the perspective solutions of the last columns by plane
+    (guesses_for; row rot % 3 gets this column's), or empty; rot: the columns
+    rendered into it before."""
     ecol[E_SEEN, :] = 0.0               # (the coverage planes are kept lazily)
+    if sg.shape[1] > 0:
+        sg[rot % 3, :] = np.nan
     hrec[:, :] = np.nan
     x0 = column_x0(vp, col)
     # the column's scratch; the passes below run without reference counting
@@ -1424,7 +1718,7 @@ def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride):
     sdepth = np.zeros(STACK_SIZE, dtype=np.int64)
     bat = np.empty(BAT_SIZE * BATCH)
     evals = _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
-                           sdepth, bat)
+                           sdepth, bat, sg, rot)
     _settle_top(ecol, scr[SCR_RUN])
     _write_edge(ecol, scr[SCR_RUN])
     if scr[SCR_RUN, RUN_FOLD] != 0.0 and hstride == 0:
@@ -1458,7 +1752,7 @@ def _seen_ranges(gcol, ecol, run):
 
 @ngjit_nrt_free
 def _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr, sdepth,
-                   bat):
+                   bat, sg, rot):
     """The passes of one column (render_column): ascending t in orthographic; in
     perspective from the viewpoint's t outward, both ways."""
     prev = scr[SCR_PREV]
@@ -1475,7 +1769,7 @@ def _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, 
         if lo <= hi:
             evals += _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, lo, hi, 1.0,
                                   gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
-                                  stk, sdepth, left, mid, bat)
+                                  stk, sdepth, left, mid, bat, sg, rot)
         return evals
     t_lo = vp[VP_T0]
     t_hi = vp[VP_T1]
@@ -1483,12 +1777,46 @@ def _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, 
     if t_hi > t_view:
         evals += _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, max(t_lo, t_view), t_hi,
                               1.0, gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
-                              stk, sdepth, left, mid, bat)
+                              stk, sdepth, left, mid, bat, sg, rot)
     if t_lo < t_view:
         evals += _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, min(t_hi, t_view), t_lo,
                               -1.0, gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
-                              stk, sdepth, left, mid, bat)
+                              stk, sdepth, left, mid, bat, sg, rot)
     return evals
+
+
+@ngjit
+def guesses_for(vp):
+    """A tile's perspective Newton starts: the solutions s of its last three columns
+    (rows by column number mod 3), one a plane of the grid t0 + k dt (NaN: none);
+    empty where the planes are not batched in perspective."""
+    if vp[VP_ORTHO] != 0.0 or vp[VP_BATCH] == 0.0 or not vp[VP_DT] > 0.0:
+        return np.empty((3, 0))
+    n = (vp[VP_T1] - vp[VP_T0]) / vp[VP_DT] + 3.0
+    if not n < 1e7:
+        return np.empty((3, 0))
+    return np.full((3, int(n)), np.nan)
+
+
+@ngjit_inline
+def _guess(sg, rot, k):
+    """Column number rot's Newton start on grid plane k from the two columns before
+    (sg: guesses_for): the line through their solutions, or the last one's; NaN
+    where there is none."""
+    if not 0 <= k < sg.shape[1]:
+        return np.nan
+    a = sg[(rot + 2) % 3, k]
+    b = sg[(rot + 1) % 3, k]
+    if math.isfinite(b):
+        return 2.0 * a - b            # (NaN where a is)
+    return a
+
+
+@ngjit_inline
+def _keep_guess(sg, rot, k, s):
+    """Column number rot's solution s on grid plane k, for the columns after it."""
+    if 0 <= k < sg.shape[1]:
+        sg[rot % 3, k] = s
 
 
 @ngjit_parallel
@@ -1512,12 +1840,13 @@ def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals
     for b in prange(n_tiles):
         rows[b, 0] = H
         rows[b, 1] = -1
+        sg = guesses_for(vp)            # the tile's own: its columns run in order
         for lane in range(T):
             c = b * T + lane
             if c >= W:
                 break
             evals[c], wrange[c, 0], wrange[c, 1], j_lo, j_hi = render_column(
                 kind, f, fg, fb, hf, hfp, vp, c, gbuf[b, :, lane], ebuf[b, :, :, lane], hrec[c],
-                hstride)
+                hstride, sg, lane)
             rows[b, 0] = min(rows[b, 0], j_lo)
             rows[b, 1] = max(rows[b, 1], j_hi)

@@ -56,11 +56,18 @@ def probe(vp, x0, a):
     nz = a[A_NZ]
     if vp[VP_ORTHO] != 0.0:
         return probe_ortho(vp, ny, nz)
+    return probe_persp(vp, x0, a[A_Y], a[A_Z], nx, ny, nz)
+
+
+@ngjit_inline
+def probe_persp(vp, x0, ypix, z, nx, ny, nz):
+    """probe() in perspective, of a sample at screen row ypix and depth z with the unit
+    normal (nx, ny, nz) (for the batched planes too: column._batch_point)."""
     scale = vp[VP_SCALE]
     ca = vp[VP_CA]
     sa = vp[VP_SA]
     d1 = vp[VP_D1]
-    y0 = (a[A_Y] - (vp[VP_H] - 1.0) * 0.5) / scale
+    y0 = (ypix - (vp[VP_H] - 1.0) * 0.5) / scale
     vx = -x0
     vy = -y0
     vz = -d1
@@ -83,7 +90,7 @@ def probe(vp, x0, a):
     ty = pz * nx - px * nz
     tz = px * ny
     dt = -ty * sa + tz * ca                       # t = -y sin(a) + z cos(a), eq. (1)
-    q = a[A_Z] + vp[VP_D3]                        # y0 = y1 d1 / (z1 + d3), eq. (10)
+    q = z + vp[VP_D3]                             # y0 = y1 d1 / (z1 + d3), eq. (10)
     y1 = y0 * q / d1
     dy = d1 * (ty * q - y1 * tz) / (q * q)
     if dt == 0.0:

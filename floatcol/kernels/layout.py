@@ -40,7 +40,7 @@ VP_AA = 34        # 1.0: coverage antialiasing along columns (section 6.4), into
 VP_XOFF = 35      # sub-column offset in pixels (antialiasing across columns)
 VP_ADAPT = 36     # 1.0: locally adaptive planes (section 6.3)
 VP_QNEAR = 37     # perspective: the nearest depth z + d3, where the step is a pixel
-VP_BATCH = 38     # 1.0: orthographic planes are evaluated in batches by fb (SIMD code)
+VP_BATCH = 38     # 1.0: the uniform planes are evaluated in batches by fb (SIMD code)
 VP_INV_D1 = 39    # 1 / d1 (perspective; 0 in orthographic)
 # The hole map (perspective, a surface with holes; view.hole_map): n x n cells over
 # the box u in [U0, U0 + n / SU], v in [V0, V0 + n / SV], where f may be finite or is

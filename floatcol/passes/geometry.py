@@ -100,9 +100,12 @@ def pass_outputs(W, n_tiles):
 
 def batch_evaluator(surface, view, method, sampling):
     """The surface's batch evaluator (Surface.batch, SIMD code) where the column
-    kernel can use it, on the uniform planes of an orthographic view, and where the
-    picture has at least BATCH_MIN_SAMPLES of them to repay its compile; else None."""
-    if not view.orthographic or (method == "column" and sampling != "uniform"):
+    kernel can use it, on uniform planes (in perspective with exact placement: the
+    kernel's Newton steps for many planes at once), and where the picture has at least
+    BATCH_MIN_SAMPLES of them to repay its compile; else None."""
+    if method == "column" and sampling != "uniform":
+        return None
+    if not view.orthographic and view.placement != "exact":
         return None
     (ua, ub), (va, vb) = view.domain
     # the lattice of columns (1 / scale apart) and planes (step apart) in the domain

@@ -25,9 +25,9 @@ import time
 
 import numpy as np
 
-#: columns drawn beyond a band's own on each side (the passes that read neighbours): a
-#: whole number of tiles (bands)
-MARGIN = 4
+#: columns drawn beyond a band's own on each side (the passes that read neighbours
+#: need 4): a whole group of the column kernel's tiles (bands)
+MARGIN = 16
 #: the most bands of a poster
 MAX_TILES = 4096
 
@@ -53,13 +53,13 @@ def _check_tiles(tiles, width):
 
 def bands(width, tiles):
     """The bands' columns: [(first, end), ...] of nearly equal widths, each starting at
-    a whole tile (kernels/layout.py TILE; MARGIN is one): the columns of a tile run in
-    order and start their perspective Newton iterations from the ones before
-    (kernels/column.py guesses_for), so a band draws a tile's columns as the whole
+    a whole group of tiles (kernels/layout.py GROUP; MARGIN is one): a group's columns
+    run in order and start their perspective Newton iterations from the ones before
+    (kernels/column.py guesses_for), so a band draws a group's columns as the whole
     picture does."""
-    from .kernels.layout import TILE
-    n = -(-width // TILE)
-    edges = np.minimum(np.linspace(0, n, tiles + 1).round().astype(int) * TILE, width)
+    from .kernels.layout import GROUP
+    n = -(-width // GROUP)
+    edges = np.minimum(np.linspace(0, n, tiles + 1).round().astype(int) * GROUP, width)
     return [(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:]) if b > a]
 
 

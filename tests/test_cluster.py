@@ -4,6 +4,8 @@ A band fits the camera to the whole picture and draws its columns at the whole
 picture's screen positions, so a tiled poster is the same, array for array, as one
 render() of it; frames rendered by the workers of a LocalCluster are the same as
 those rendered here."""
+import sys
+
 import numpy as np
 import pytest
 
@@ -42,6 +44,23 @@ def test_a_tiled_poster_is_the_same_picture(kw):
     _same(whole, tiled)
 
 
+def test_a_tiled_poster_in_perspective_batches(monkeypatch):
+    """Perspective planes in SIMD batches start each column's Newton iterations from
+    the columns before it in its group of tiles (kernels/column.py guesses_for): the
+    bands start at whole groups, so a poster is still the same picture."""
+    from floatcol.cluster import bands
+    from floatcol.kernels.layout import GROUP
+    geometry = sys.modules["floatcol.passes.geometry"]
+    kw = dict(projection="perspective", elev=35, azim=-50)
+    scalar = fc.render(EXPR, **DOM, size=(203, 150), **kw)
+    monkeypatch.setattr(geometry, "BATCH_MIN_SAMPLES", 0)
+    whole = fc.render(EXPR, **DOM, size=(203, 150), **kw)
+    tiled = fc.render(EXPR, **DOM, size=(203, 150), tiles=4, **kw)
+    assert whole.stats["samples"] != scalar.stats["samples"]      # (batched)
+    assert all(a % GROUP == 0 for a, _ in bands(203, 4))
+    _same(whole, tiled)
+
+
 def test_a_tiled_poster_of_lines_fields_and_objects():
     """A line drawing; a colour field with a wireframe (the field's range is the
     picture's); a height field with objects standing on it (their triangles
@@ -73,7 +92,7 @@ def test_the_bands_colormap_is_the_pictures():
     _same(whole, tiled)
     # the bands' own heights differ (u from -4 to 4 across the picture)
     from floatcol.cluster import _band_task
-    band = _band_task([("u", (-4, 4), (-1, 1))], dict(size=(120, 60), elev=90), 0, 40, 120)
+    band = _band_task([("u", (-4, 4), (-1, 1))], dict(size=(120, 60), elev=90), 0, 24, 120)
     assert band["stats"]["w_limits"][1] < whole.stats["w_limits"][1] - 4
 
 

@@ -29,11 +29,20 @@ CASES = [dict(projection="orthographic", method="column"),
          # exact area sampling (kernels/area.py)
          dict(projection="perspective", antialias="area"),
          dict(projection="orthographic", antialias="area", elev=50,
-              expr="4.9*(sqrt(4 - u**2 - v**2) + sqrt(u**2 + v**2 - 1) - 2)")]
+              expr="4.9*(sqrt(4 - u**2 - v**2) + sqrt(u**2 + v**2 - 1) - 2)"),
+         # perspective planes in SIMD batches (each column's Newton iterations start
+         # from the columns before it in its group: column.py guesses_for), at a size
+         # the batches are not used otherwise
+         dict(projection="perspective", batch=True),
+         dict(projection="perspective", batch=True, antialias=3, lightsource=(315, 25),
+              shadows=True)]
 SCRIPT = """
 import sys, numpy as np, numba, floatcol as fc
+from floatcol.passes import geometry
 assert numba.get_num_threads() == 1
 kw = eval(sys.argv[2])
+if kw.pop("batch", False):
+    geometry.BATCH_MIN_SAMPLES = 0
 e, dom = kw.pop("expr", "3*sin(u*cos(v))"), kw.pop("dom", (-5, 5))
 r = fc.render(e, u=dom, v=dom, size=(160, 120), **kw)
 np.savez(sys.argv[1], rgba=r.rgba, intensity=r.intensity, side=r.side, depth=r.depth,
@@ -42,12 +51,14 @@ np.savez(sys.argv[1], rgba=r.rgba, intensity=r.intensity, side=r.side, depth=r.d
 
 
 @pytest.mark.parametrize("kw", CASES)
-def test_one_thread_equals_default(tmp_path, kw):
+def test_one_thread_equals_default(tmp_path, kw, monkeypatch):
     out = tmp_path / "one.npz"
     env = dict(os.environ, NUMBA_NUM_THREADS="1")
     subprocess.run([sys.executable, "-c", SCRIPT, str(out), repr(kw)], check=True, env=env)
     one = np.load(out)
     kw = dict(kw)
+    if kw.pop("batch", False):
+        monkeypatch.setattr(sys.modules["floatcol.passes.geometry"], "BATCH_MIN_SAMPLES", 0)
     e, dom = kw.pop("expr", "3*sin(u*cos(v))"), kw.pop("dom", (-5, 5))
     r = fc.render(e, u=dom, v=dom, size=(160, 120), **kw)
     for name in ("rgba", "intensity", "side", "depth"):

@@ -27,6 +27,7 @@ from ._jit import (
 from .index import ceil_index, floor_index, trunc_index
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
+    GROUP_TILES,
     E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_U, E_V, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W, HFP_CW, HFP_IU, HFP_IV,
     DETECT_RIDGE, DETECT_WALL, FIX_ADAPTIVE, FIX_NONE, FIX_SPLINE, FIX_SUPER, S_OK, S_OUTSIDE,
@@ -1830,23 +1831,24 @@ def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals
     of f; wrange (W, 2) the lowest and highest w where the upper side is seen (inf,
     -inf where it is not), kept while the pixels are painted (_fill); rows (n_tiles,
     2) the lowest and highest row of each tile where E_SEEN may be set (H, -1: none),
-    outside which its E_SEEN is 0 and the finishing pass does not read it. A tile's
-    columns run on one thread, one after another, and write only their own tile: no
-    shared scratch."""
+    outside which its E_SEEN is 0 and the finishing pass does not read it. A group of
+    GROUP_TILES tiles runs on one thread, its columns one after another, and writes
+    only its own tiles: no shared scratch."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]
     W = evals.shape[0]
-    for b in prange(n_tiles):
-        rows[b, 0] = H
-        rows[b, 1] = -1
-        sg = guesses_for(vp)            # the tile's own: its columns run in order
-        for lane in range(T):
-            c = b * T + lane
-            if c >= W:
-                break
-            evals[c], wrange[c, 0], wrange[c, 1], j_lo, j_hi = render_column(
-                kind, f, fg, fb, hf, hfp, vp, c, gbuf[b, :, lane], ebuf[b, :, :, lane], hrec[c],
-                hstride, sg, lane)
-            rows[b, 0] = min(rows[b, 0], j_lo)
-            rows[b, 1] = max(rows[b, 1], j_hi)
+    for g in prange((n_tiles + GROUP_TILES - 1) // GROUP_TILES):
+        sg = guesses_for(vp)            # the group's own: its columns run in order
+        for b in range(g * GROUP_TILES, min(g * GROUP_TILES + GROUP_TILES, n_tiles)):
+            rows[b, 0] = H
+            rows[b, 1] = -1
+            for lane in range(T):
+                c = b * T + lane
+                if c >= W:
+                    break
+                evals[c], wrange[c, 0], wrange[c, 1], j_lo, j_hi = render_column(
+                    kind, f, fg, fb, hf, hfp, vp, c, gbuf[b, :, lane], ebuf[b, :, :, lane],
+                    hrec[c], hstride, sg, (b - g * GROUP_TILES) * T + lane)
+                rows[b, 0] = min(rows[b, 0], j_lo)
+                rows[b, 1] = max(rows[b, 1], j_hi)

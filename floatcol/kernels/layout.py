@@ -94,6 +94,12 @@ HFP_SIZE = 7
 # tile's columns one after another, through the same cache lines and pages) and the
 # finishing pass reads a tile's row as one run of memory.
 TILE = 4
+# The column kernel's threads take GROUP_TILES tiles at a time, their columns in order:
+# a column's perspective Newton iterations start from the ones before it in its group
+# (column.py guesses_for), so the picture is the same for any number of threads, and a
+# poster's bands start at whole groups (cluster.py)
+GROUP_TILES = 4
+GROUP = TILE * GROUP_TILES
 
 # G-buffer channels, gbuf shape (n_tiles, H, TILE, G_SIZE) float32, rows counted from
 # the BOTTOM: column c is gbuf[c // TILE, :, c % TILE]. Written only where a surface

@@ -133,17 +133,13 @@ BAT_SLOPE = 14
 BAT_US = 15       # u and v of f where the surface is box-scaled (HFP_IU, HFP_IV)
 BAT_VS = 16
 BAT_T = 17        # perspective (_batch_planes_persp): each plane's t, r0 (eq. 9), the
-BAT_R0 = 18       # Newton iterate s, the solution s = w - cw, the final w
+BAT_R0 = 18       # Newton iterate s, the solution s = w - cw
 BAT_SI = 19
 BAT_S = 20
-BAT_WF = 21
-BAT_PT = 22       # 1.0: an S_OUTSIDE plane's point (BAT_U, BAT_V) lies where its root is
-BAT_ACT = 23      # 1.0: the plane is still iterating; 1.0: it has converged
-BAT_DONE = 24
-BAT_WUF = 25      # f_u and f_v there
-BAT_WVF = 26
-BAT_LAZY = 27     # 1.0: its normal, intensity and probe()'s values are still to come
-BAT_SIZE = 28
+BAT_PT = 21       # 1.0: an S_OUTSIDE plane's point (BAT_U, BAT_V) lies where its root is
+BAT_ACT = 22      # 1.0: the plane is still iterating, 2.0: it has converged, 0.0: neither
+BAT_LAZY = 23     # 1.0: its normal, intensity and probe()'s values are still to come
+BAT_SIZE = 24
 #: a perspective plane the batch leaves to the scalar path (_sample_at): its domain
 #: test was not sure, Newton did not converge in BATCH_NEWTON vector steps, or the
 #: point is not a plain one (a hole, the domain's edge, in front of the screen)
@@ -1237,12 +1233,19 @@ def _batch_planes_persp(kind, f, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta
                 lin, quad = _newton_start(run, t)
                 s = lin if math.isfinite(lin) else 0.0
         bat[BAT_SI * BATCH + j] = s
-        bat[BAT_DONE * BATCH + j] = 0.0
+    for j in range(m, BATCH):                   # (evaluated, never used)
+        bat[BAT_T * BATCH + j] = 0.0
+        bat[BAT_R0 * BATCH + j] = 0.0
+        bat[BAT_SI * BATCH + j] = 0.0
+        bat[BAT_ACT * BATCH + j] = 0.0
     evals = 0
     if na == 0:
         return evals
+    # The iterations run over all BATCH planes (fb's values BATCH apart: every row of
+    # bat at a fixed offset, so that LLVM compiles both loops to SIMD code); a plane
+    # that has converged keeps its s, and fb's last values are its own.
     for _ in range(BATCH_NEWTON):
-        for j in range(m):
+        for j in range(BATCH):
             t = bat[BAT_T * BATCH + j]
             r = bat[BAT_R0 * BATCH + j] + kp * bat[BAT_SI * BATCH + j]
             u = cu + r * cb + t * sb                            # eq. (2)
@@ -1252,43 +1255,40 @@ def _batch_planes_persp(kind, f, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta
             bat[BAT_US * BATCH + j] = u * iu
             bat[BAT_VS * BATCH + j] = v * iv
         fb(array_ptr(bat, BAT_US * BATCH), array_ptr(bat, BAT_VS * BATCH), hfp[0],
-           array_ptr(bat, o), m)
+           array_ptr(bat, o), BATCH)
         evals += m
         left = 0
-        for j in range(m):
-            # (branch-free: the loop is SIMD code) a plane still iterating that
-            # converges is done; one whose values or step are not finite stops (S_RETRY)
+        for j in range(BATCH):
+            # (branch-free) a plane still iterating (BAT_ACT 1) that converges is done
+            # (2); one whose values or step are not finite stops (0: S_RETRY)
             w = bat[o + j] * c
-            wu = bat[o + m + j] * (c * iu)
-            wv = bat[o + 2 * m + j] * (c * iv)
+            wu = bat[o + BATCH + j] * (c * iu)
+            wv = bat[o + 2 * BATCH + j] * (c * iv)
             s = bat[BAT_SI * BATCH + j]
             g = (w - cw) - s
             dg = kp * (wu * cb - wv * sb) - 1.0
             s_next = s - g / dg
-            act = bat[BAT_ACT * BATCH + j] != 0.0
-            fin = math.isfinite(w) and math.isfinite(wu) and math.isfinite(wv)
-            conv = abs(kp * g) * scale <= BATCH_TOL_PX or kp == 0.0
-            done = act and fin and conv
-            go = act and fin and not conv and math.isfinite(s_next)
-            bat[BAT_DONE * BATCH + j] = 1.0 if done else bat[BAT_DONE * BATCH + j]
-            bat[BAT_WF * BATCH + j] = w if done else bat[BAT_WF * BATCH + j]
-            bat[BAT_WUF * BATCH + j] = wu if done else bat[BAT_WUF * BATCH + j]
-            bat[BAT_WVF * BATCH + j] = wv if done else bat[BAT_WVF * BATCH + j]
+            act = bat[BAT_ACT * BATCH + j] == 1.0
+            fin = math.isfinite(w) & math.isfinite(wu) & math.isfinite(wv)
+            conv = (abs(kp * g) * scale <= BATCH_TOL_PX) | (kp == 0.0)
+            done = act & fin & conv
+            go = act & fin & (not conv) & math.isfinite(s_next)
             bat[BAT_SI * BATCH + j] = s_next if go else s
-            bat[BAT_ACT * BATCH + j] = 1.0 if go else 0.0
+            bat[BAT_ACT * BATCH + j] = 1.0 if go else (2.0 if done else (
+                bat[BAT_ACT * BATCH + j] if not act else 0.0))
             left += 1 if go else 0
         if left == 0:
             break
     for j in range(m):
-        if bat[BAT_DONE * BATCH + j] != 0.0:
+        if bat[BAT_ACT * BATCH + j] == 2.0:
             # (u, v): where f was evaluated last, at the plane's final s
-            if not _batch_point(vp, x0, bat, j):
+            if not _batch_point(vp, x0, bat, j, c, iu, iv):
                 evals += _outside_test(kind, f, hf, hfp, vp, bat, j, kp)
     return evals
 
 
 @ngjit_inline
-def _batch_point(vp, x0, bat, j):
+def _batch_point(vp, x0, bat, j, c, iu, iv):
     """Batched perspective plane j's converged point (u, v, w): its sample into bat
     where it is a plain one, as sample_point computes it (status, screen row, depth,
     the solution s, w, and with VP_DETECT the sign of V.N, for the hidden samples'
@@ -1306,7 +1306,7 @@ def _batch_point(vp, x0, bat, j):
     sa = vp[VP_SA]
     d1 = vp[VP_D1]
     d3 = vp[VP_D3]
-    w = bat[BAT_WF * BATCH + j]
+    w = bat[BAT_W * BATCH + j] * c              # fb's last values (the box's scaling)
     s = w - vp[VP_CW]
     y1 = s * ca - t * sa                         # eqs. (4), (10)
     z1 = s * sa + t * ca
@@ -1324,8 +1324,8 @@ def _batch_point(vp, x0, bat, j):
     bat[BAT_LAZY * BATCH + j] = 1.0
     # the normal (eq. 11) not yet of unit length: fold_test's and the ridge test's
     # signs do not need it
-    wu = bat[BAT_WUF * BATCH + j]
-    wv = bat[BAT_WVF * BATCH + j]
+    wu = bat[(BAT_W + 1) * BATCH + j] * (c * iu)
+    wv = bat[(BAT_W + 2) * BATCH + j] * (c * iv)
     cb = vp[VP_CB]
     sb = vp[VP_SB]
     nx = -wu * cb + wv * sb

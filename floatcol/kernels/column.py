@@ -44,8 +44,8 @@ from .correct import (
     shading_problem, wall_between, wall_normal,
 )
 from .sample import (
-    NEWTON_TOL_PX, _clip_line, _g_at, _r_interval, column_x0, in_domain, in_known_hole,
-    into_domain, lambert, ortho_point, sample_point, scan_range, surface_eval, unit_normal,
+    NEWTON_TOL_PX, _clip_line, _r_interval, bracket_ends, column_x0, in_domain,
+    in_known_hole, into_domain, lambert, ortho_point, sample_point, surface_eval, unit_normal,
 )
 
 
@@ -1381,24 +1381,11 @@ def _outside_test(kind, f, hf, hfp, vp, bat, j, kp):
     if ra > rb or kp == 0.0:
         bat[BAT_ST * BATCH + j] = S_OUTSIDE
         return 0
-    r0 = bat[BAT_R0 * BATCH + j]
-    s1 = (ra - r0) / kp
-    s2 = (rb - r0) / kp
-    s_lo, s_hi = scan_range(vp)
-    a = max(min(s1, s2), s_lo)
-    b = min(max(s1, s2), s_hi)
+    a, b, ga, gb, evals = bracket_ends(kind, f, hf, hfp, vp, bat[BAT_R0 * BATCH + j], kp, t,
+                                       ra, rb)
     if not a < b:
         bat[BAT_ST * BATCH + j] = S_OUTSIDE
         return 0
-    evals = 0
-    ga = 1.0
-    if a > s_lo:
-        ga, ev = _g_at(kind, f, hf, hfp, vp, r0, kp, t, a)
-        evals += ev
-    gb = -1.0
-    if b < s_hi:
-        gb, ev = _g_at(kind, f, hf, hfp, vp, r0, kp, t, b)
-        evals += ev
     if math.isfinite(ga) and math.isfinite(gb) and (ga >= 0.0) == (gb >= 0.0):
         bat[BAT_ST * BATCH + j] = S_OUTSIDE
         bat[BAT_PT * BATCH + j] = 1.0

@@ -372,6 +372,32 @@ def _g_at(kind, f, hf, hfp, vp, r0, k, t, s):
     return w - vp[VP_CW] - s, 1
 
 
+@ngjit_inline
+def bracket_ends(kind, f, hf, hfp, vp, r0, k, t, ra, rb):
+    """The part of plane t's line inside Pi (k != 0) that lies inside the domain (r in
+    [ra, rb]) and inside the scan range, s from a to b, and g at its ends: an end at
+    the scan range's bottom (top) has g > 0 (< 0) without evaluating f there.
+    Returns (a, b, g(a), g(b), evaluations); a >= b (and no evaluation) where the part
+    is empty."""
+    s1 = (ra - r0) / k
+    s2 = (rb - r0) / k
+    s_lo, s_hi = scan_range(vp)
+    a = max(min(s1, s2), s_lo)
+    b = min(max(s1, s2), s_hi)
+    if not a < b:
+        return a, b, 1.0, -1.0, 0
+    evals = 0
+    ga = 1.0
+    if a > s_lo:
+        ga, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, a)
+        evals += ev
+    gb = -1.0
+    if b < s_hi:
+        gb, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, b)
+        evals += ev
+    return a, b, ga, gb, evals
+
+
 @ngjit_nrt_free
 def _root_inside(kind, f, fg, hf, hfp, vp, r0, k, t, ra, rb):
     """The root of g on the part of plane t's line inside Pi that lies inside the
@@ -382,24 +408,12 @@ def _root_inside(kind, f, fg, hf, hfp, vp, r0, k, t, ra, rb):
     change does not converge). Returns (found, s, w, wu, wv, g, evaluations)."""
     if ra > rb or k == 0.0:
         return False, 0.0, np.nan, 0.0, 0.0, np.inf, 0
-    s1 = (ra - r0) / k
-    s2 = (rb - r0) / k
-    s_lo, s_hi = scan_range(vp)
-    a = max(min(s1, s2), s_lo)
-    b = min(max(s1, s2), s_hi)
+    a, b, ga, gb, evals = bracket_ends(kind, f, hf, hfp, vp, r0, k, t, ra, rb)
     if not a < b:
         return False, 0.0, np.nan, 0.0, 0.0, np.inf, 0
-    evals = 0
-    ga = 1.0
-    if a > s_lo:
-        ga, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, a)
-        evals += ev
-    gb = -1.0
-    if b < s_hi:
-        gb, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, b)
-        evals += ev
     if not (math.isfinite(ga) and math.isfinite(gb)) or (ga >= 0.0) == (gb >= 0.0):
         return False, 0.0, np.nan, 0.0, 0.0, np.inf, evals
+    s_lo, s_hi = scan_range(vp)
     cb = vp[VP_CB]
     sb = vp[VP_SB]
     s = a - ga * (b - a) / (gb - ga) if (a > s_lo and b < s_hi) else 0.5 * (a + b)

@@ -140,9 +140,9 @@ BAT_PT = 21       # 1.0: an S_OUTSIDE plane's point (BAT_U, BAT_V) lies where it
 BAT_ACT = 22      # 1.0: the plane is still iterating, 2.0: it has converged, 0.0: neither
 BAT_LAZY = 23     # 1.0: its normal, intensity and probe()'s values are still to come
 BAT_SIZE = 24
-#: a perspective plane the batch leaves to the scalar path (_sample_at): its domain
-#: test was not sure, Newton did not converge in BATCH_NEWTON vector steps, or the
-#: point is not a plain one (a hole, the domain's edge, in front of the screen)
+#: a perspective plane the batch leaves to the scalar path (_sample_at): Newton did not
+#: converge in BATCH_NEWTON vector steps, or the point is not a plain one (a hole, the
+#: domain's edge, in front of the screen, a root outside with one inside it may hide)
 S_RETRY = 4
 BATCH_NEWTON = 4
 #: how far (in pixels) a batched perspective sample's point may lie off its column plane
@@ -1190,10 +1190,10 @@ def _batch_planes_persp(kind, f, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta
     plane has converged or BATCH_NEWTON steps (a plane that has converged keeps its s,
     and so its values). Each plane starts from the previous columns' solutions on it
     (_guess: the line through the last two columns', or the last column's; the
-    columns of a tile run one after another on one thread), else from the run's line
-    (_newton_start), else at Gordon's point s = 0. A plane that converges to a plain
-    point (finite, strictly inside the domain, outside the known holes, behind the
-    screen) gets its sample (_batch_point: status, row, depth, the solution BAT_S; its
+    columns of a group of tiles run one after another on one thread), else from the
+    run's line (_newton_start), else at Gordon's point s = 0. A plane that converges to
+    a plain point (finite, strictly inside the domain, outside the known holes, behind
+    the screen) gets its sample (_batch_point: status, row, depth, the solution BAT_S; its
     normal, intensity and probe()'s values when it is used, _finish_batched). A plane
     whose root lies outside the domain is S_OUTSIDE where g = f - cw - s has no sign
     change over the part of its line inside the domain (the scalar path's test:

@@ -231,6 +231,8 @@ def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, main, bat, kb):
     between two planes). Planes sampled ahead by _batch_planes (_batch_planes_persp)
     come as number kb >= 0 of bat."""
     if kb >= 0:
+        if vp[VP_ORTHO] == 0.0:
+            _finish_batched(vp, x0, bat, kb)        # (where it is S_OK and still lazy)
         st = int(bat[BAT_ST * BATCH + kb])
         # (a perspective batch counts its evaluations itself: _batch_planes_persp)
         ev = 0 if st == S_OUTSIDE or vp[VP_ORTHO] == 0.0 else 1
@@ -1219,6 +1221,7 @@ def _batch_planes_persp(kind, f, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta
         t, kg = _pass_plane(i_lo + j, n, ta, tb, t0, ka, kb, dt, sigma)
         bat[BAT_T * BATCH + j] = t
         bat[BAT_PT * BATCH + j] = 0.0
+        bat[BAT_LAZY * BATCH + j] = 0.0
         bat[BAT_R0 * BATCH + j] = x0 * (t * ca + d3) / d1      # eq. (9)
         s = 0.0
         if _domain_test(vp, x0, t) == 0:
@@ -1405,8 +1408,10 @@ def _batch_taken(vp, x0, run, bat, kb, t):
 
 
 @ngjit_inline
-def _prev_from_batch(prev, bat, kb, t, detect):
+def _prev_from_batch(vp, x0, prev, bat, kb, t, detect):
     """Write batched sample kb (plane t) into ``prev`` as _sample_at writes it."""
+    if vp[VP_ORTHO] == 0.0:
+        _finish_batched(vp, x0, bat, kb)
     prev[A_Y] = bat[BAT_Y * BATCH + kb]
     prev[A_Z] = bat[BAT_Z * BATCH + kb]
     prev[A_U] = bat[BAT_U * BATCH + kb]
@@ -1487,9 +1492,7 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
         if batched and not resume:
             if i >= b_hi:
                 if prev_kb >= 0:
-                    if persp:
-                        _finish_batched(vp, x0, bat, prev_kb)
-                    _prev_from_batch(prev, bat, prev_kb, prev_t, detect)
+                    _prev_from_batch(vp, x0, prev, bat, prev_kb, prev_t, detect)
                     prev_kb = -1
                 b_lo = i
                 b_hi = min(i_end, i + BATCH)
@@ -1532,12 +1535,8 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                     t, k = _pass_plane(i, n, ta, tb, t0, ka, kb, dt, sigma)
                     continue
             if prev_kb >= 0:
-                if persp:
-                    _finish_batched(vp, x0, bat, prev_kb)
-                _prev_from_batch(prev, bat, prev_kb, prev_t, detect)
+                _prev_from_batch(vp, x0, prev, bat, prev_kb, prev_t, detect)
                 prev_kb = -1
-            if persp and kb_i >= 0 and st_b == S_OK:
-                _finish_batched(vp, x0, bat, kb_i)
             st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True, bat, kb_i)
         else:
             st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True, bat, -1)

@@ -175,6 +175,9 @@ def _surface_options(p, default_size="800x600", many=False, terrain=False):
                         "exact area sampling along columns, a height field's level of detail "
                         "(Cohen-Or 1997; no flicker on dense terrain) (default on, off with "
                         "--shading lambert)")
+    p.add_argument("--device", default=None, choices=["cpu", "cuda"],
+                   help="where the column pass runs: cpu (default) or cuda, an NVIDIA GPU "
+                        "(pip install 'floatcol[cuda]')")
     p.add_argument("--sampling", default=None, choices=["uniform", "adaptive"],
                    help="adaptive: planes grow with distance and where the normal turns slowly")
     p.add_argument("--lines", type=int, default=None, help="horizon: number of lines (default 160)")
@@ -351,7 +354,7 @@ def _options(args):
         opts["antialias"] = {"on": True, "off": False, "2": 2, "3": 3, "4": 4,
                              "area": "area"}[args.antialias]
     for name in ("focal_length", "cmap", "color", "vmin", "vmax", "lines", "corrections",
-                 "sampling"):
+                 "sampling", "device"):
         value = getattr(args, name)
         if value is not None:
             opts[name] = value

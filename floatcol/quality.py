@@ -29,6 +29,8 @@ DETECTORS = {"ridge": L.DETECT_RIDGE, "intensity": L.DETECT_JUMP, "bump": L.DETE
 DEFAULT_JUMP = 1.0 / 16.0       # the paper's threshold: 1/16 of the maximal intensity
 DEFAULT_RATE = 16               # the paper's supersampling rate
 SAMPLINGS = ("uniform", "adaptive")
+#: where the column pass runs: the CPU's cores, or an NVIDIA GPU (kernels/cuda.py)
+DEVICES = ("cpu", "cuda")
 
 
 @dataclass
@@ -37,7 +39,8 @@ class Quality:
     sampling planes (``step`` in world units or ``pixel_step`` pixels apart,
     ``sampling`` "uniform" or "adaptive", perspective ``placement``); the corrections
     of section 5 (``corrections``, ``detect``, ``jump_threshold``,
-    ``supersample_rate``, ``spline_tolerance``); ``antialias`` (section 6.4)."""
+    ``supersample_rate``, ``spline_tolerance``); ``antialias`` (section 6.4); the
+    ``device`` the column pass runs on ("cpu", "cuda")."""
     method: str = "column"
     lines: int = DEFAULT_LINES
     step: float | None = None
@@ -50,6 +53,7 @@ class Quality:
     supersample_rate: int = DEFAULT_RATE
     spline_tolerance: float | None = None
     antialias: Any = None
+    device: str = "cpu"
 
     def check_method(self):
         if not isinstance(self.method, str) or self.method not in METHODS:
@@ -71,6 +75,20 @@ class Quality:
     def area(self):
         """Exact area sampling along the columns (antialias="area", Cohen-Or 1997)."""
         return isinstance(self.antialias, str) and self.antialias == "area"
+
+    def check_device(self):
+        """ValueError for a device that is not one, or one that cannot draw this
+        picture ("cuda": the column pass on an NVIDIA GPU, kernels/cuda.py)."""
+        if not isinstance(self.device, str) or self.device not in DEVICES:
+            raise ValueError(f"device must be 'cpu' or 'cuda', got {self.device!r}")
+        if self.device == "cuda":
+            if self.method != "column":
+                raise ValueError("device='cuda' draws shaded pictures: method='column'")
+            if self.area:
+                raise ValueError("device='cuda' runs the column pass: antialias='area' (the "
+                                 "area pass) runs on device='cpu'")
+            from .kernels.cuda import check_device
+            check_device()
 
     def check_sampling(self):
         if self.sampling not in SAMPLINGS:

@@ -37,7 +37,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            shadows=False, light_radius=0.0, opacity=1.0, texture=None, texture_extent=None,
            texture_filter="mipmap", color=None, contours=None, contour_color="black",
            contour_width=1.0, wireframe=None, edgecolor="black", linewidth=0.75,
-           objects=None, tiles=None, client=None) -> Render:
+           objects=None, tiles=None, client=None, device="cpu") -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -164,6 +164,11 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         or as tasks on ``client`` (a dask.distributed Client; ``pip install
         'floatcol[dask]'``), assembled into the same picture, array for array, as
         without (floatcol/cluster.py). A client alone: two bands a worker.
+    device : where the column pass runs: "cpu" (default) or "cuda", an NVIDIA GPU, a
+        thread a pixel column, the same column code compiled for the GPU (the same
+        picture; ``pip install 'floatcol[cuda]'``; kernels/cuda.py, docs/cuda.md). A
+        ValueError says so on a machine without a GPU. The passes after it (shadows,
+        finishing, textures) run on the CPU.
 
     Returns
     -------
@@ -199,5 +204,5 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
                         sampling=sampling, placement=placement, corrections=corrections,
                         detect=detect, jump_threshold=jump_threshold,
                         supersample_rate=supersample_rate, spline_tolerance=spline_tolerance,
-                        antialias=antialias),
+                        antialias=antialias, device=device),
         background=background, vars=vars, objects=objects or ()), stacklevel=2)

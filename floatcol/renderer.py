@@ -83,6 +83,7 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
     """render_scene's layers."""
     quality = scene.quality
     quality.check_method()
+    quality.check_device()
     if not scene.layers:
         raise ValueError("surfaces is empty: give at least one expression")
     layers = [_prepare(layer, scene) for layer in scene.layers]
@@ -97,6 +98,9 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
         background = default_background(quality.method, first.shading)
     texture = _shadow_texture(layers[0].light, scene.camera, quality, drawn, views[0])
     if any(p.material.opacity < 1.0 for p in layers):
+        if quality.device != "cpu":
+            raise ValueError("opacity below 1 runs on device='cpu' (the GPU's kernel draws "
+                             "opaque layers)")
         if quality.method != "column":
             raise ValueError("opacity below 1 needs shaded pictures: method='column' (a line "
                              "drawing has no layers to blend)")
@@ -113,6 +117,7 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
         return render_translucent(layers, views, drawn, box, quality, background, texture,
                                   t_start)
     if not many and texture is None and draft.supports(quality, views[0]) \
+            and quality.device == "cpu" \
             and scene.camera.columns is None \
             and not first.colored and not first.overlaid and warmup.drafting():
         return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
@@ -219,6 +224,8 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     buffers = geometry.allocate(W, H, n_lines, sub_columns)
     if quality.area:
         geom = area.area_pass(surface, view, vp, buffers)
+    elif quality.device == "cuda":
+        geom = geometry.column_pass(surface, view, vp, buffers, hstride, None, device="cuda")
     else:
         fb = geometry.batch_evaluator(surface, view, method, quality.sampling)
         geom = geometry.column_pass(surface, view, vp, buffers, hstride, fb)

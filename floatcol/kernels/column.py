@@ -1685,15 +1685,40 @@ def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride, 
     -inf where it is not, the lowest and highest row where E_SEEN may be set: H, -1
     where none is). sg: the perspective solutions of the last columns by plane
     (guesses_for; row rot % 3 gets this column's), or empty; rot: the columns
-    rendered into it before."""
+    rendered into it before. The column's scratch is allocated here; the GPU's
+    kernel (kernels/cuda.py) runs the same steps on scratch of its own."""
+    scr, sdepth, bat = column_scratch()
+    evals = render_column_into(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride,
+                               sg, rot, scr, sdepth, bat)
+    if column_folds(scr, hstride):
+        # the column's curve folds back in t: traced, and put in where the column
+        # pass missed it (fold.py)
+        evals += trace_column(kind, f, fg, hf, hfp, vp, column_x0(vp, col), gcol, ecol)
+        _seen_ranges(gcol, ecol, scr[SCR_RUN])
+    return column_result(scr, gcol.shape[0], evals)
+
+
+@ngjit
+def column_scratch():
+    """render_column_into's scratch of one column: (scr, sdepth, bat)."""
+    return (np.empty((SCR_STK + STACK_SIZE, SCR_WIDTH)), np.zeros(STACK_SIZE, dtype=np.int64),
+            np.empty(BAT_SIZE * BATCH))
+
+
+@ngjit_nrt_free
+def render_column_into(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride, sg, rot,
+                       scr, sdepth, bat):
+    """render_column's passes with the column's scratch given (column_scratch's: scr
+    (SCR_STK + STACK_SIZE, SCR_WIDTH), sdepth (STACK_SIZE,) int64, bat (BAT_SIZE *
+    BATCH,)); allocates nothing. Returns the evaluations of f; then column_folds says
+    whether the fold tracer is to run, and column_result gives render_column's
+    values."""
     ecol[E_SEEN, :] = 0.0               # (the coverage planes are kept lazily)
     if sg.shape[1] > 0:
         sg[rot % 3, :] = np.nan
     hrec[:, :] = np.nan
     x0 = column_x0(vp, col)
-    # the column's scratch; the passes below run without reference counting
-    # (_jit.ngjit_nrt_free)
-    scr = np.empty((SCR_STK + STACK_SIZE, SCR_WIDTH))
+    # the passes below run without reference counting (_jit.ngjit_nrt_free)
     scr[SCR_RUN, :] = 0.0
     scr[SCR_RUN, RUN_WLO] = np.inf
     scr[SCR_RUN, RUN_WHI] = -np.inf
@@ -1702,18 +1727,24 @@ def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride, 
     scr[SCR_RUN, RUN_EDGE_J] = -1.0
     scr[SCR_RUN, RUN_TOP_J] = -1.0
     scr[SCR_RUN, RUN_TOP_ON] = vp[VP_KEEP_TOP]
-    sdepth = np.zeros(STACK_SIZE, dtype=np.int64)
-    bat = np.empty(BAT_SIZE * BATCH)
+    sdepth[:] = 0
     evals = _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
                            sdepth, bat, sg, rot)
     _settle_top(ecol, scr[SCR_RUN])
     _write_edge(ecol, scr[SCR_RUN])
-    if scr[SCR_RUN, RUN_FOLD] != 0.0 and hstride == 0:
-        # the column's curve folds back in t: traced, and put in where the column
-        # pass missed it (fold.py)
-        evals += trace_column(kind, f, fg, hf, hfp, vp, x0, gcol, ecol)
-        _seen_ranges(gcol, ecol, scr[SCR_RUN])
-    H = gcol.shape[0]
+    return evals
+
+
+@ngjit_inline
+def column_folds(scr, hstride):
+    """Does the column just rendered into scr fold back in t (fold.py; not traced in a
+    line drawing)?"""
+    return scr[SCR_RUN, RUN_FOLD] != 0.0 and hstride == 0
+
+
+@ngjit_inline
+def column_result(scr, H, evals):
+    """render_column's values from the column's scratch."""
     return (evals, scr[SCR_RUN, RUN_WLO], scr[SCR_RUN, RUN_WHI],
             min(max(trunc_index(scr[SCR_RUN, RUN_JLO]), 0), H),
             min(max(trunc_index(scr[SCR_RUN, RUN_JHI]), -1), H - 1))

@@ -320,16 +320,38 @@ def trace_column(kind, f, fg, hf, hfp, vp, x0, gcol, ecol):
     column pass's coverages (the module's docstring). Seeds: the column pass's seen points every
     SEED_ROWS rows, and the roots on every SEED_STRIDE-th plane. Returns the
     evaluations of f."""
+    tg, te, cross, n_cross, a, b = fold_scratch(vp, gcol.shape[0], gcol.shape[1])
+    return trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n_cross,
+                             a, b)
+
+
+@ngjit
+def fold_scratch(vp, H, width):
+    """trace_column_into's scratch for a column of H rows of ``width`` values (the
+    G-buffer's G_SIZE): (tg (H, width), te
+    (E_SEEN + 1, H), cross (planes, CROSS_MAX), n_cross (planes,) int64, a, b
+    (P_SIZE,))."""
+    n = fold_planes(vp)
+    return (np.empty((H, width)), np.zeros((E_SEEN + 1, H)), np.empty((n, CROSS_MAX)),
+            np.zeros(n, dtype=np.int64), np.empty(P_SIZE), np.empty(P_SIZE))
+
+
+@ngjit_inline
+def fold_planes(vp):
+    """The planes the fold tracer keeps crossings of."""
+    return trunc_index((vp[VP_T1] - vp[VP_T0]) / vp[VP_DT]) + 2
+
+
+@ngjit_nrt_free
+def trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n_cross, a, b):
+    """trace_column with its scratch given (fold_scratch's; te and n_cross are cleared
+    here); allocates nothing."""
     H = gcol.shape[0]
-    tg = np.empty((H, gcol.shape[1]))
-    te = np.zeros((E_SEEN + 1, H))
+    te[:, :] = 0.0
+    n_cross[:] = 0
     t0 = vp[VP_T0]
     dt = vp[VP_DT]
-    n = trunc_index((vp[VP_T1] - t0) / dt) + 2
-    cross = np.empty((n, CROSS_MAX))
-    n_cross = np.zeros(n, dtype=np.int64)
-    a = np.empty(P_SIZE)
-    b = np.empty(P_SIZE)
+    n = fold_planes(vp)
     ca = vp[VP_CA]
     d1 = vp[VP_D1]
     k = x0 * vp[VP_SA] / d1

@@ -81,13 +81,19 @@ def allocate(W, H, n_lines, sub_columns):
     return gbuf, ebuf, hrec
 
 
-def column_pass(surface, view, vp, buffers, hstride, fb):
-    """Run the column kernel of one layer into ``buffers`` (allocate's)."""
+def column_pass(surface, view, vp, buffers, hstride, fb, device="cpu"):
+    """Run the column kernel of one layer into ``buffers`` (allocate's), on the CPU's
+    cores or (``device="cuda"``) an NVIDIA GPU's (kernels/cuda.py: the same column
+    code, without batches)."""
     gbuf, ebuf, hrec = buffers
     evals, wrange, rows = pass_outputs(view.width, gbuf.shape[0])
     vp[L.VP_BATCH] = 0.0 if fb is None else 1.0
-    column_kernel(*surface.kernel_args(fb), vp, gbuf, ebuf, hrec, hstride, evals, wrange,
-                  rows)
+    if device == "cuda":
+        from ..kernels.cuda import column_kernel_cuda
+        column_kernel_cuda(surface, vp, gbuf, ebuf, hrec, hstride, evals, wrange, rows)
+    else:
+        column_kernel(*surface.kernel_args(fb), vp, gbuf, ebuf, hrec, hstride, evals, wrange,
+                      rows)
     return Geometry(gbuf, ebuf, hrec, rows, wrange, evals, vp, fb, hstride)
 
 

@@ -1,0 +1,255 @@
+"""The column kernel on an NVIDIA GPU (numba.cuda): one thread a pixel column.
+
+Gordon's columns are independent (section 1, 6.1), so a GPU runs each on a thread of
+its own, with the very code the CPU kernel runs: ``render_column_into`` and all it
+calls (column.py, sample.py, correct.py, coverage.py, fold.py) are compiled a second
+time by Numba's CUDA target, the surface's functions f and fg with them as device
+functions. The pictures are the CPU kernel's: exact placement, the corrections of
+section 5, the coverages of section 6.4's antialiasing, the fold tracer; only the
+batched SIMD evaluations (a CPU's) are off (vp's VP_BATCH), as the CPU kernel runs
+without them.
+
+Nothing here allocates on the device: each column's scratch (column_scratch's and
+fold.fold_scratch's) is a row of arrays made once per call on the host side, and the
+column writes only its own lane of the tiled buffers; the per-tile rows are reduced
+after the kernel.
+
+Under Numba's CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``, how the tests run on a
+machine without a GPU) the kernel's body runs as Python threads, which cannot hand
+the simulator's arrays to compiled code: there the column is the CPU's compiled
+function, called with the arrays the simulator wraps. ``ptx`` compiles the kernel for
+a GPU without one (a check that the whole column compiles for the device).
+
+This module imports numba.cuda (numba-cuda, the ``floatcol[cuda]`` extra) only when a
+kernel is asked for.
+"""
+import math
+
+import numpy as np
+
+from .column import (
+    column_folds, column_result, column_scratch, render_column_into, _seen_ranges, SCR_RUN,
+)
+from .fold import fold_scratch, trace_column_into
+from .layout import VP_BATCH
+
+#: numba.cuda once _cuda() has imported it (a global: the simulator swaps a kernel's
+#: global numba.cuda for its own)
+cuda = None
+
+#: Threads per block: columns are independent, a block is only a launch unit
+THREADS = 64
+#: Columns per launch at most (the fold tracer's scratch is about 250 KB a column at
+#: 1080p: a launch of 4096 columns holds about 1 GiB of it)
+MAX_COLUMNS = 4096
+
+
+def _cuda():
+    """numba.cuda (numba-cuda's, where installed: Numba hands its name over), or
+    ValueError naming what to install."""
+    global cuda
+    try:
+        from numba import cuda as module
+    except Exception as exc:                   # pragma: no cover - depends on the machine
+        raise ValueError(f"device='cuda' needs Numba's CUDA target ({exc}): pip install "
+                         "'floatcol[cuda]'") from None
+    cuda = module
+    return cuda
+
+
+def simulated():
+    """Is numba.cuda Numba's simulator (NUMBA_ENABLE_CUDASIM=1)?"""
+    from numba import config
+    return bool(getattr(config, "ENABLE_CUDASIM", 0))
+
+
+def check_device():
+    """ValueError where device='cuda' cannot run: no numba-cuda, or no GPU (and not
+    the simulator)."""
+    if not simulated():
+        try:
+            import numba_cuda  # noqa: F401  (the maintained CUDA target)
+        except ImportError:
+            raise ValueError("device='cuda' needs numba-cuda: pip install 'floatcol[cuda]' "
+                             "(or use device='cpu')") from None
+    try:
+        ok = _cuda().is_available()
+    except Exception:                          # pragma: no cover - a broken driver
+        ok = False
+    if not ok:
+        raise ValueError("device='cuda' needs an NVIDIA GPU with its driver, and this "
+                         "machine has none that CUDA can use: use device='cpu'")
+
+
+def device_functions(surface):
+    """(f, fg, fb) of a surface as the GPU kernel calls them: the surface's Python
+    functions (their compiled cfuncs' sources) compiled by Numba, which the CUDA target
+    compiles again as device functions; fb a stand-in that is never called (VP_BATCH
+    is 0 on the GPU). Under the simulator, the surface's own CPU functions."""
+    if simulated():
+        return surface.f, surface.fg, surface.kernel_args()[3]
+    key = "_cuda_functions"
+    fns = getattr(surface, "_fits", {}).get(key)
+    if fns is None:
+        import numba
+        try:
+            f_py = surface.f._pyfunc
+            fg_py = surface.fg._pyfunc
+        except AttributeError:                  # pragma: no cover - not a compiled surface
+            raise ValueError("device='cuda' draws surfaces given as expressions, Numba "
+                             "functions or height fields") from None
+        jit = numba.njit(error_model="numpy")
+        fns = (jit(f_py), jit(fg_py), jit(_no_batch))
+        surface._fits[key] = fns
+    return fns
+
+
+def _no_batch(u, v, t, out, n):
+    """The batch evaluator's stand-in (never called: VP_BATCH is 0)."""
+    for i in range(3 * n):
+        out[i] = math.nan
+
+
+def _kernel_source(f, fg, fb, column, folds, fold_trace, seen_ranges, result, x0_of):
+    """The kernel's Python function, closing over the surface's functions and the
+    column's (the CPU's compiled ones, which the CUDA target compiles for the GPU; or,
+    under the simulator, wrappers that hand them the simulator's arrays unwrapped)."""
+    _cuda()
+
+    def kernel(kind, hf, hfp, vp, first, gbuf, ebuf, hrec, hstride, sg, scr, sdepth, bat,
+               tg, te, cross, n_cross, pa, pb, evals, wrange, jrange):
+        i = cuda.grid(1)
+        if i >= evals.shape[0]:
+            return
+        c = first + i                      # the picture's column
+        T = gbuf.shape[2]
+        b = c // T
+        lane = c - b * T
+        gcol = gbuf[b, :, lane]
+        ecol = ebuf[b, :, :, lane]
+        s = scr[i]
+        ev = column(kind, f, fg, fb, hf, hfp, vp, c, gcol, ecol, hrec[c], hstride, sg, 0,
+                    s, sdepth[i], bat[i])
+        if folds(s, hstride):
+            ev += fold_trace(kind, f, fg, hf, hfp, vp, x0_of(vp, c), gcol, ecol, tg[i], te[i],
+                             cross[i], n_cross[i], pa[i], pb[i])
+            seen_ranges(gcol, ecol, s[SCR_RUN])
+        n, wlo, whi, jlo, jhi = result(s, gcol.shape[0], ev)
+        evals[i] = n
+        wrange[i, 0] = wlo
+        wrange[i, 1] = whi
+        jrange[i, 0] = jlo
+        jrange[i, 1] = jhi
+    return kernel
+
+
+def _column_functions():
+    """(column, folds, fold_trace, seen_ranges, result, x0_of): the steps of
+    column.render_column the kernel runs."""
+    from .sample import column_x0
+    fns = (render_column_into, column_folds, trace_column_into, _seen_ranges, column_result,
+           column_x0)
+    if simulated():
+        return tuple(_unwrapped(fn) for fn in fns)
+    return fns
+
+
+def _unwrapped(fn):
+    """fn called with the simulator's array wrappers unwrapped (their numpy arrays)."""
+    def call(*args):
+        return fn(*[getattr(a, "_ary", a) for a in args])
+    return call
+
+
+def kernel(surface):
+    """The compiled (cuda.jit) column kernel of ``surface``, kept with it: its
+    functions are device functions compiled into the kernel, so each surface has a
+    kernel of its own (a surface at another time or scale shares it)."""
+    fns = surface._fits
+    if "_cuda_kernel" not in fns:
+        f, fg, fb = device_functions(surface)
+        fns["_cuda_kernel"] = _cuda().jit(_kernel_source(f, fg, fb, *_column_functions()))
+    return fns["_cuda_kernel"]
+
+
+def scratch(n, H, vp, width):
+    """The scratch of n columns: (scr, sdepth, bat, tg, te, cross, n_cross, pa, pb),
+    each a row per column, shaped as column_scratch's and fold_scratch's."""
+    scr, sdepth, bat = column_scratch()
+    fold = fold_scratch(vp, H, width)
+    return tuple(np.empty((n,) + a.shape, a.dtype) for a in (scr, sdepth, bat) + fold)
+
+
+def column_kernel_cuda(surface, vp, gbuf, ebuf, hrec, hstride, evals, wrange, rows):
+    """column.column_kernel's work on the GPU (the same arguments, f and fg the
+    surface's): gbuf, ebuf, hrec, evals, wrange and rows are filled on the host."""
+    _cuda()
+    vp = vp.copy()
+    vp[VP_BATCH] = 0.0
+    kind, _, _, _, hf, hfp = surface.kernel_args()
+    k = kernel(surface)
+    n_tiles, H, T = gbuf.shape[0], gbuf.shape[1], gbuf.shape[2]
+    W = evals.shape[0]
+    d = cuda.to_device
+    d_vp, d_hf, d_hfp = d(vp), d(np.ascontiguousarray(hf)), d(hfp)
+    d_g = cuda.device_array(gbuf.shape, gbuf.dtype)
+    d_e = cuda.device_array(ebuf.shape, ebuf.dtype)
+    d_h = cuda.device_array(hrec.shape, hrec.dtype)
+    sg = d(np.empty((3, 0)))
+    jrange = np.empty((W, 2), dtype=np.int64)
+    for first in range(0, W, MAX_COLUMNS):
+        n = min(MAX_COLUMNS, W - first)
+        bufs = [cuda.device_array(a.shape, a.dtype)
+                for a in scratch(n, H, vp, gbuf.shape[3])]
+        d_ev = cuda.device_array(n, np.int64)
+        d_wr = cuda.device_array((n, 2), np.float64)
+        d_jr = cuda.device_array((n, 2), np.int64)
+        blocks = -(-n // THREADS)
+        k[blocks, THREADS](kind, d_hf, d_hfp, d_vp, first, d_g, d_e, d_h, hstride, sg, *bufs,
+                           d_ev, d_wr, d_jr)
+        evals[first:first + n] = d_ev.copy_to_host()
+        wrange[first:first + n] = d_wr.copy_to_host()
+        jrange[first:first + n] = d_jr.copy_to_host()
+    gbuf[...] = d_g.copy_to_host()
+    ebuf[...] = d_e.copy_to_host()
+    hrec[...] = d_h.copy_to_host()
+    # each tile's rows where E_SEEN may be set (column_kernel's ``rows``)
+    pad = n_tiles * T - W
+    lo = np.concatenate([jrange[:, 0], np.full(pad, H, np.int64)]).reshape(n_tiles, T)
+    hi = np.concatenate([jrange[:, 1], np.full(pad, -1, np.int64)]).reshape(n_tiles, T)
+    rows[:, 0] = lo.min(axis=1)
+    rows[:, 1] = hi.max(axis=1)
+
+
+def ptx(surface, cc=(9, 0)):
+    """The column kernel of ``surface`` compiled to PTX for compute capability ``cc``,
+    on a machine with or without a GPU (the CUDA toolkit's NVVM, which numba-cuda's
+    extra brings, is enough): (PTX text, seconds). Device functions ask the current
+    device for its compute capability; without a GPU, ``cc`` stands for it while
+    this compiles."""
+    import time
+    from numba import types
+    from numba.cuda import dispatcher as cuda_dispatcher
+    _cuda()
+    if simulated():
+        raise ValueError("ptx() compiles for a real GPU: not under NUMBA_ENABLE_CUDASIM")
+    f64, f32, i64 = types.float64, types.float32, types.int64
+    a = types.Array
+    sig = (i64, a(f64, 2, "C"), a(f64, 1, "C"), a(f64, 1, "C"), i64, a(f32, 4, "C"),
+           a(f32, 4, "C"), a(f64, 3, "C"), i64, a(f64, 2, "C"),
+           a(f64, 3, "C"), a(i64, 2, "C"), a(f64, 2, "C"),
+           a(f64, 3, "C"), a(f64, 3, "C"), a(f64, 3, "C"), a(i64, 2, "C"), a(f64, 2, "C"),
+           a(f64, 2, "C"), a(i64, 1, "C"), a(f64, 2, "C"), a(i64, 2, "C"))
+    source = _kernel_source(*device_functions(surface), *_column_functions())
+
+    class _Device:
+        compute_capability = tuple(cc)
+
+    saved = cuda_dispatcher.get_current_device
+    cuda_dispatcher.get_current_device = lambda: _Device()
+    try:
+        t = time.perf_counter()
+        text, _ = cuda.compile_ptx(source, sig, cc=tuple(cc))
+        return text, time.perf_counter() - t
+    finally:
+        cuda_dispatcher.get_current_device = saved

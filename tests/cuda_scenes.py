@@ -1,0 +1,43 @@
+"""Renders the GPU kernel's test scenes on device="cuda" and on device="cpu", for
+tests/test_cuda.py, in a process of its own: run with NUMBA_ENABLE_CUDASIM=1 (Numba's
+CUDA simulator, which must be chosen before numba.cuda is first imported).
+
+    NUMBA_ENABLE_CUDASIM=1 python tests/cuda_scenes.py SCENES.json OUT.npz
+
+SCENES.json: a list of [name, expression or {"heightfield": seed}, render keywords].
+OUT.npz gets NAME/DEVICE/ARRAY for rgba, side, intensity, depth, u, v and samples.
+"""
+import json
+import os
+import sys
+
+import numpy as np
+
+os.environ.setdefault("FLOATCOL_DRAFT", "0")
+
+import floatcol as fc  # noqa: E402
+
+
+def surface(spec):
+    if isinstance(spec, dict):
+        rng = np.random.default_rng(spec["heightfield"])
+        z = np.cumsum(np.cumsum(rng.normal(size=(33, 33)), 0), 1) / 12.0
+        return fc.HeightField(z, u=(-4, 4), v=(-4, 4))
+    return spec
+
+
+def main(scenes_path, out_path):
+    with open(scenes_path) as fh:
+        scenes = json.load(fh)
+    out = {}
+    for name, spec, kw in scenes:
+        for device in ("cpu", "cuda"):
+            r = fc.render(surface(spec), device=device, **kw)
+            for key in ("rgba", "side", "intensity", "depth", "u", "v"):
+                out[f"{name}/{device}/{key}"] = np.asarray(getattr(r, key))
+            out[f"{name}/{device}/samples"] = np.array(r.stats["samples"])
+    np.savez(out_path, **out)
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:3])

@@ -1,0 +1,173 @@
+"""device="cuda": the column pass on an NVIDIA GPU (floatcol/kernels/cuda.py).
+
+CI has no GPU, so the kernel is checked two ways:
+
+- under Numba's CUDA simulator (NUMBA_ENABLE_CUDASIM=1, in a process of its own:
+  tests/cuda_scenes.py), where the kernel's launch, its per-column scratch, the
+  fold tracer's steps and the tiles' row ranges run as on a GPU, each column's code
+  being the CPU's compiled column. Its pictures are compared with the CPU kernel's
+  (issue 34 asks >= 50 dB and the same sides; measured: identical, array for array)
+  and with the ray caster, under the same bounds as tests/test_reference.py and
+  tests/test_fold.py;
+- compiled to PTX for a GPU (compute capability 9.0) without one, where the CUDA
+  toolkit's NVVM is installed (numba-cuda's extra brings it): the whole column code,
+  with the surface's functions as device functions, compiles for the device.
+"""
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import floatcol as fc
+from conftest import reference_for
+from reference import numpy_surface, psnr, raycast
+from test_fold import ANNULUS, KW as FOLD_KW
+from test_reference import CASES
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+GORDON = "3*sin(u*cos(v))"
+DOM = (-5, 5)
+
+
+def _scenes():
+    scenes = []
+    for k, (expr, u, v, elev, azim, proj, _, _) in enumerate(CASES):
+        scenes.append([f"ref{k}", expr, dict(u=u, v=v, size=(160, 120), elev=elev, azim=azim,
+                                             projection=proj, shading="lambert")])
+    # the default quality: antialiased coverages (section 6.4), specular light
+    for proj in ("orthographic", "perspective"):
+        scenes.append([f"default-{proj}", GORDON, dict(u=DOM, v=DOM, size=(160, 120),
+                                                       projection=proj)])
+    scenes.append(["fold", ANNULUS, dict(FOLD_KW)])
+    scenes.append(["heightfield", {"heightfield": 3},
+                   dict(size=(120, 90), projection="perspective", elev=35, azim=-20)])
+    scenes.append(["shadows", GORDON, dict(u=DOM, v=DOM, size=(120, 90), shadows=True,
+                                           lightsource=(315, 35))])
+    scenes.append(["adaptive", GORDON, dict(u=DOM, v=DOM, size=(120, 90),
+                                            projection="perspective", sampling="adaptive")])
+    return scenes
+
+
+@pytest.fixture(scope="module")
+def simulated(tmp_path_factory):
+    """{scene: {device: {array: value}}} from tests/cuda_scenes.py under the
+    simulator, with the scenes' render keywords."""
+    folder = tmp_path_factory.mktemp("cuda")
+    scenes = _scenes()
+    spec = folder / "scenes.json"
+    spec.write_text(json.dumps(scenes))
+    out = folder / "out.npz"
+    env = dict(os.environ, NUMBA_ENABLE_CUDASIM="1", FLOATCOL_DRAFT="0")
+    run = subprocess.run([sys.executable, os.path.join(HERE, "cuda_scenes.py"), str(spec),
+                          str(out)], env=env, capture_output=True, text=True, timeout=900)
+    assert run.returncode == 0, run.stderr[-3000:]
+    data = np.load(out)
+    got = {}
+    for key in data.files:
+        name, device, array = key.split("/")
+        got.setdefault(name, {}).setdefault(device, {})[array] = data[key]
+    return got, {name: kw for name, _, kw in scenes}
+
+
+def test_the_gpu_kernel_draws_the_cpu_kernels_pictures(simulated):
+    """Every scene, array for array (measured: identical; the issue's bound is 50 dB
+    and the same sides)."""
+    got, _ = simulated
+    assert len(got) == len(_scenes())
+    for name, by in got.items():
+        cpu, gpu = by["cpu"], by["cuda"]
+        assert (cpu["side"] != 0).mean() > 0.1, name
+        np.testing.assert_array_equal(gpu["side"], cpu["side"], err_msg=name)
+        np.testing.assert_array_equal(gpu["rgba"], cpu["rgba"], err_msg=name)
+        for key in ("intensity", "depth", "u", "v"):
+            np.testing.assert_array_equal(gpu[key], cpu[key], err_msg=f"{name} {key}")
+        assert int(gpu["samples"]) == int(cpu["samples"]), name
+        assert psnr(np.nan_to_num(gpu["intensity"]), np.nan_to_num(cpu["intensity"])) >= 50.0
+
+
+@pytest.mark.parametrize("k", range(len(CASES)))
+def test_the_gpu_kernel_matches_the_ray_caster(simulated, k):
+    """tests/test_reference.py's cases and bounds, drawn by the GPU kernel."""
+    got, kws = simulated
+    expr, u, v, elev, azim, proj, min_agree, min_psnr = CASES[k]
+    gpu = got[f"ref{k}"]["cuda"]
+    r = fc.render(expr, **kws[f"ref{k}"])          # (its view: scale, d1, d2, centre)
+    ref = reference_for(r, expr, u, v, elev, azim, proj)
+    assert (gpu["side"] == ref.side).mean() >= min_agree
+    assert psnr(gpu["intensity"], ref.intensity) >= min_psnr
+
+
+def test_the_gpu_kernel_traces_folding_columns(simulated):
+    """tests/test_fold.py's annulus: its bounds hold only with the fold tracer (93.9 %
+    and 20.2 dB without), which runs on the GPU on scratch of its own."""
+    got, kws = simulated
+    gpu = got["fold"]["cuda"]
+    r = fc.render(ANNULUS, **kws["fold"])
+    vw = r.view
+    ref = raycast(numpy_surface(ANNULUS), FOLD_KW["u"], FOLD_KW["v"], FOLD_KW["size"],
+                  FOLD_KW["elev"], FOLD_KW["azim"], "perspective", vw.d1, vw.d2, vw.scale,
+                  center=vw.center, steps=4000)
+    assert (gpu["side"] == ref.side).mean() >= 0.987        # measured 0.99144
+    assert psnr(gpu["intensity"], ref.intensity) >= 24.5     # measured 26.56
+
+
+def test_device_errors_name_the_fix():
+    with pytest.raises(ValueError, match="device must be 'cpu' or 'cuda'"):
+        fc.render(GORDON, size=(40, 30), device="gpu")
+    with pytest.raises(ValueError, match="method='column'"):
+        fc.render(GORDON, size=(40, 30), device="cuda", method="horizon")
+    with pytest.raises(ValueError, match="antialias='area'"):
+        fc.render(GORDON, size=(40, 30), device="cuda", antialias="area")
+
+
+def _gpu_here():
+    try:
+        from numba import cuda
+        return cuda.is_available()
+    except Exception:
+        return False
+
+
+@pytest.mark.skipif(_gpu_here(), reason="this machine has a GPU: device='cuda' runs here")
+def test_without_a_gpu_device_cuda_says_so(tmp_path):
+    with pytest.raises(ValueError, match="GPU|numba-cuda"):
+        fc.render(GORDON, size=(40, 30), device="cuda")
+    out = tmp_path / "x.png"
+    run = subprocess.run([sys.executable, "-m", "floatcol.cli", "render", GORDON,
+                          "--device", "cuda", "-o", str(out)], capture_output=True, text=True,
+                         env=dict(os.environ, FLOATCOL_DRAFT="0"))
+    assert run.returncode == 2
+    assert len(run.stderr.strip().splitlines()) == 1 and "device" in run.stderr
+    assert not out.exists()
+
+
+PTX_SCRIPT = """
+import sys
+try:
+    from numba.cuda.cudadrv.nvvm import NVVM
+    NVVM()
+    import numba_cuda  # noqa: F401
+except Exception as exc:
+    print("no NVVM:", exc)
+    sys.exit(77)
+import floatcol as fc
+from floatcol.kernels.cuda import ptx
+text, seconds = ptx(fc.as_surface(sys.argv[1]), cc=(9, 0))
+print(len(text), round(seconds, 1))
+assert ".entry" in text and "sm_90" in text
+"""
+
+
+def test_the_column_kernel_compiles_for_a_gpu():
+    """The kernel, all the column code it calls and the surface's fused function as a
+    device function, compiled to PTX for sm_90 by NVVM: about 2 minutes on 2 cores
+    (measured 109 s), the cost of a new expression's first GPU picture."""
+    run = subprocess.run([sys.executable, "-c", PTX_SCRIPT, "exp(-u**2)*sin(3*v) + u*v/4"],
+                         capture_output=True, text=True, timeout=1200,
+                         env={k: x for k, x in os.environ.items() if k != "NUMBA_ENABLE_CUDASIM"})
+    if run.returncode == 77:
+        pytest.skip("no CUDA toolkit NVVM here (pip install 'floatcol[cuda]'): " + run.stdout)
+    assert run.returncode == 0, run.stderr[-3000:]

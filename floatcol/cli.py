@@ -259,6 +259,9 @@ def build_parser():
     gb.add_argument("-o", "--output", default="gallery-build", help="folder to write (default gallery-build)")
     gb.add_argument("--source", default=None, help="folder of example scripts (default: the gallery/ of this checkout)")
     gb.add_argument("--only", nargs="+", default=None, metavar="NAME", help="build only these examples")
+    gb.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                    help="run the examples on the workers of this dask.distributed scheduler "
+                         "(e.g. tcp://host:8786; pip install 'floatcol[dask]')")
     return p
 
 
@@ -418,13 +421,33 @@ def _terrain(args):
     return 0
 
 
+def _client(address):
+    """A dask.distributed Client of the scheduler at ``address``, or UsageError."""
+    try:
+        from distributed import Client
+    except ImportError:
+        raise UsageError("--scheduler needs dask.distributed: pip install "
+                         "'floatcol[dask]'") from None
+    try:
+        return Client(address, timeout=10)
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise UsageError(f"cannot reach the scheduler {address!r}: {exc}") from None
+
+
 def _gallery(args):
     from .gallery import build
     out = args.output
     parent = os.path.dirname(os.path.abspath(out))
     if not os.path.isdir(parent):
         raise UsageError(f"cannot write {out}: folder {parent} does not exist")
-    result = build(out, source=args.source, only=args.only)
+    client = None
+    if args.scheduler is not None:
+        client = _client(args.scheduler)
+    try:
+        result = build(out, source=args.source, only=args.only, client=client)
+    finally:
+        if client is not None:
+            client.close()
     print(f"wrote {result.index} ({len(result.examples)} examples)")
     if result.failed:
         for name, err in result.failed.items():

@@ -12,8 +12,11 @@ Columns are independent (Gordon sections 1, 6.1) and so are frames. With a
   where they are left to the seen range, a band whose own range is not the picture's
   is drawn again with the picture's (vmin, vmax). The poster is the same, array for
   array, as one render() of it.
+- ``render_many(..., tiles=N, client=client)``: the same for several surfaces, each
+  surface's colormap over the heights it shows in the whole picture.
 - ``animate(..., client=client)`` renders the frames as tasks (each worker compiles
   the expression once) and writes them in order.
+- ``gallery.build(..., client=client)`` runs the gallery's examples as tasks.
 
 Without a client (``client=None``) the bands are drawn one after the other in this
 process: a poster larger than the memory of one render's buffers.
@@ -63,17 +66,17 @@ def bands(width, tiles):
     return [(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:]) if b > a]
 
 
-def _band_task(items, options, first, end, width):
+def _band_task(items, options, first, end, width, composite=False):
     """One band: columns first..end - 1 of a ``width`` wide picture, drawn with MARGIN
-    columns more each side. Returns its arrays cut to its own columns and what the
-    colormap's heights need."""
+    columns more each side (``composite``: its layers composited, as render_many).
+    Returns its arrays cut to its own columns and what the colormap's heights need."""
     from .passes.tiles import untile
     from .renderer import render_scene
     from .scene import scene_from_options
     a0 = max(0, first - MARGIN)
     a1 = min(width, end + MARGIN)
     scene = scene_from_options(list(items), **options, columns=(a0, a1 - a0))
-    r = render_scene(scene)
+    r = render_scene(scene, composite=composite)
     cut = slice(first - a0, end - a0)
     gbuf = untile(r._gbuf, a1 - a0)[:, cut] if r._gbuf is not None else None
     out = {"rgba": r.rgba[:, cut].copy(), "side": r.side[:, cut].copy(),
@@ -85,13 +88,19 @@ def _band_task(items, options, first, end, width):
     layers = out["stats"].pop("layers", None)      # (translucent: a count a pixel)
     if isinstance(layers, np.ndarray) and layers.ndim == 2:
         out["layers"] = layers[:, cut].copy()
+    surface = out["stats"].pop("surface", None)    # (a composite: the layer a pixel)
+    if isinstance(surface, np.ndarray) and surface.ndim == 2:
+        out["surface"] = surface[:, cut].copy()
+    if "upper_seen" in out["stats"]:               # (a composite: each layer's upper side)
+        out["upper"] = list(out["stats"]["upper_seen"])
     return out
 
 
-def render_tiled(items, options, tiles=None, client=None):
-    """render()'s picture of ``items`` (one (expr, u, v) triple: the colormap's
-    limits are settled for one surface) with render's ``options``, in ``tiles`` bands
-    of columns on ``client`` (dask.distributed) or here. Returns a Render."""
+def render_tiled(items, options, tiles=None, client=None, composite=False):
+    """render()'s picture of ``items`` ((expr, u, v) triples, expressions or Layers)
+    with render's ``options``, in ``tiles`` bands of columns on ``client``
+    (dask.distributed) or here; ``composite``: render_many's picture (the layers
+    composited, as it draws even one). Returns a Render."""
     from .view import check_size
     t0 = time.perf_counter()
     client = _check_client(client)
@@ -100,9 +109,11 @@ def render_tiled(items, options, tiles=None, client=None):
         2 * max(len(client.scheduler_info().get("workers", {})), 1) if client else 1)
     spans = bands(W, min(n, W))
     items = list(items)
-    if len(items) != 1:
-        raise ValueError("tiles and client draw one surface (render); several surfaces "
-                         "in one poster are not built")
+    if not items:
+        raise ValueError("surfaces is empty: give at least one expression")
+    composite = composite or len(items) > 1
+    if composite:
+        return _render_tiled_layers(items, options, spans, W, H, client, t0)
     auto = (options.get("vmin") is None or options.get("vmax") is None) \
         and options.get("norm") is None
     got = _run(items, options, spans, W, client)
@@ -112,10 +123,7 @@ def render_tiled(items, options, tiles=None, client=None):
         ranges = [g["stats"].get(key) for g in got if g["upper"] or key == "c_limits"]
         ranges = [r for r in ranges if r is not None and np.ndim(r) == 1]
         if ranges:
-            lo = min(r[0] for r in ranges)
-            hi = max(r[1] for r in ranges)
-            vmin = lo if options.get("vmin") is None else options["vmin"]
-            vmax = hi if options.get("vmax") is None else options["vmax"]
+            vmin, vmax = _limits(ranges, options.get("vmin"), options.get("vmax"))
             again = [k for k, g in enumerate(got)
                      if tuple(g["stats"].get(key) or ()) != (vmin, vmax)]
             if again:
@@ -126,10 +134,68 @@ def render_tiled(items, options, tiles=None, client=None):
     return _assemble(got, W, H, t0, len(spans))
 
 
-def _run(items, options, spans, W, client):
+def _limits(ranges, vmin, vmax):
+    """The picture's (vmin, vmax) from the bands' seen ranges, where not given."""
+    lo = min(r[0] for r in ranges)
+    hi = max(r[1] for r in ranges)
+    return (lo if vmin is None else vmin), (hi if vmax is None else vmax)
+
+
+def _render_tiled_layers(items, options, spans, W, H, client, t0):
+    """render_tiled of several layers (render_many's composite): each layer's
+    colormap spans the heights it shows in the whole picture, as in one render_many;
+    a band whose layers' ranges are not the picture's is drawn again with every
+    layer's limits fixed (the items as Layers of their own materials)."""
+    from .scene import scene_from_options
+    if options.get("color") is not None:
+        if options.get("vmin") is None or options.get("vmax") is None:
+            raise ValueError("a poster of several surfaces with a color field needs vmin "
+                             "and vmax (the field's colormap limits)")
+    layers = scene_from_options(list(items), **_material_only(options)).layers
+    got = _run(items, options, spans, W, client, composite=True)
+    again = []
+    fixed_layers = []
+    for k, layer in enumerate(layers):
+        m = layer.material
+        auto = (m.vmin is None or m.vmax is None) and m.norm is None and m.color is None
+        if not auto:
+            fixed_layers.append(layer)
+            continue
+        ranges = [g["stats"]["w_limits"][k] for g in got if g["upper"][k]]
+        ranges = [r for r in ranges if r is not None and np.ndim(r) == 1]
+        if not ranges:
+            fixed_layers.append(layer)
+            continue
+        vmin, vmax = _limits(ranges, m.vmin, m.vmax)
+        again += [b for b, g in enumerate(got)
+                  if tuple(g["stats"]["w_limits"][k] or ()) != (vmin, vmax)]
+        fixed_layers.append(dataclasses.replace(
+            layer, material=dataclasses.replace(m, vmin=vmin, vmax=vmax)))
+    again = sorted(set(again))
+    if again:
+        rest = {k: x for k, x in options.items() if k not in _material_keys()}
+        for b, g in zip(again, _run(fixed_layers, rest, [spans[b] for b in again], W, client,
+                                    composite=True)):
+            got[b] = g
+    return _assemble(got, W, H, t0, len(spans))
+
+
+def _material_keys():
+    from .scene import MATERIAL_OPTIONS
+    return set(MATERIAL_OPTIONS)
+
+
+def _material_only(options):
+    """The options a scene needs to give its layers their materials (and the
+    variables' names)."""
+    keys = _material_keys() | {"vars"}
+    return {k: x for k, x in options.items() if k in keys}
+
+
+def _run(items, options, spans, W, client, composite=False):
     if client is None:
-        return [_band_task(items, options, a, b, W) for a, b in spans]
-    futures = [client.submit(_band_task, items, options, a, b, W, pure=False)
+        return [_band_task(items, options, a, b, W, composite) for a, b in spans]
+    futures = [client.submit(_band_task, items, options, a, b, W, composite, pure=False)
                for a, b in spans]
     return client.gather(futures)
 
@@ -159,6 +225,11 @@ def _assemble(got, W, H, t0, n_bands):
         stats.pop(key, None)
     if "layers" in got[0]:
         stats["layers"] = cat("layers")
+    if "surface" in got[0]:
+        stats["surface"] = cat("surface")
+    if "upper_seen" in stats:
+        stats["upper_seen"] = [any(g["upper"][k] for g in got)
+                               for k in range(len(stats["upper_seen"]))]
     side = cat("side")
     seen = cat("seen")
     return Render(cat("rgba"), cat("intensity"), side, cat("depth"), stats, view, gbuf, None,

@@ -16,7 +16,7 @@ from .scene import scene_from_options
 
 def render_many(surfaces, size=(400, 300), elev=30.0, azim=30.0, projection="orthographic",
                 d1=None, d2=None, scale=None, center=None, *, background=None, vars=None,
-                focal_length=None, **options) -> Render:
+                focal_length=None, tiles=None, client=None, **options) -> Render:
     """Render several surfaces w = f(u, v) into one picture.
 
     Parameters
@@ -33,6 +33,10 @@ def render_many(surfaces, size=(400, 300), elev=30.0, azim=30.0, projection="ort
         not given as a Layer (shading, cmap, vmin, vmax, ...), and the light, quality
         and box of all (light, antialias, corrections, aspect, ...). Each surface takes
         the colormap over its own seen heights unless vmin/vmax say otherwise.
+    tiles, client : the picture in ``tiles`` bands of columns, drawn one after the
+        other or as tasks on ``client`` (a dask.distributed Client), as
+        :func:`floatcol.render`'s: the same picture, array for array, each surface's
+        colormap over the heights it shows in the whole picture (floatcol/cluster.py).
 
     Returns
     -------
@@ -45,6 +49,12 @@ def render_many(surfaces, size=(400, 300), elev=30.0, azim=30.0, projection="ort
     if isinstance(surfaces, (str, bytes)) or not hasattr(surfaces, "__iter__"):
         raise ValueError("surfaces must be a list of expressions or of (expr, u, v) triples, "
                          f"got {surfaces!r}")
+    if tiles is not None or client is not None:
+        from .cluster import render_tiled
+        options = dict(options, size=size, elev=elev, azim=azim, projection=projection,
+                       d1=d1, d2=d2, scale=scale, center=center, background=background,
+                       vars=vars, focal_length=focal_length)
+        return render_tiled(list(surfaces), options, tiles, client, composite=True)
     try:
         scene = scene_from_options(list(surfaces), size=size, elev=elev, azim=azim,
                                    projection=projection, d1=d1, d2=d2, scale=scale,

@@ -1,7 +1,8 @@
 """Build the example gallery: run each script, collect its pictures, write index.html.
 
 ``floatcol gallery build -o DIR`` runs every ``*.py`` in the gallery folder (the
-checkout's ``gallery/`` unless ``source=`` says otherwise) in a fresh working folder,
+checkout's ``gallery/`` unless ``source=`` says otherwise) in a fresh working folder
+(on the workers of a dask.distributed client with ``client=``, ``--scheduler``),
 with matplotlib's Agg backend. Each picture a script writes (.png, .gif, .jpg) goes to
 ``DIR/img/``, a thumbnail to ``DIR/thumbs/``, the script to ``DIR/src/``; ``index.html``
 shows the thumbnails, each linking to its full picture and to its source.
@@ -71,38 +72,60 @@ def find_examples(source=None, only=None):
 
 def run_example(ex, out):
     """Run one script in a fresh folder; move its pictures to out/img."""
+    pictures, ex.seconds, ex.error = run_script(ex.name, ex.source.read_bytes())
+    _keep(ex, pictures, out)
+
+
+def run_script(name, text):
+    """Run a gallery script (its text, bytes) as ``__main__`` in a fresh temporary
+    folder of this machine, with matplotlib's Agg backend. Returns (the pictures it
+    wrote: [(file name, bytes)], seconds, error or None). The task a client's worker
+    runs for ``build(..., client=)``: the script travels as text and the pictures
+    come back as bytes, so the workers need no folder in common with the caller."""
     import runpy
 
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    work = Path(tempfile.mkdtemp(prefix=f".run-{ex.name}-", dir=out))
+    work = Path(tempfile.mkdtemp(prefix=f"floatcol-gallery-{name}-"))
+    script = work / f"{name}.py"
+    script.write_bytes(text)
     cwd = os.getcwd()
     start = time.perf_counter()
+    error = None
     try:
         os.chdir(work)
-        runpy.run_path(str(ex.source), run_name="__main__")
+        runpy.run_path(str(script), run_name="__main__")
     except BaseException as exc:  # a failing example is reported, the others still run
         if isinstance(exc, KeyboardInterrupt):
             raise
         tb = traceback.extract_tb(exc.__traceback__)
-        where = next((f"line {f.lineno}" for f in reversed(tb) if f.filename == str(ex.source)), "")
-        ex.error = f"{type(exc).__name__}: {exc}" + (f" ({where})" if where else "")
+        where = next((f"line {f.lineno}" for f in reversed(tb) if f.filename == str(script)), "")
+        error = f"{type(exc).__name__}: {exc}" + (f" ({where})" if where else "")
     finally:
         os.chdir(cwd)
         plt.close("all")
-        ex.seconds = time.perf_counter() - start
+        seconds = time.perf_counter() - start
     made = sorted(p for p in work.iterdir() if p.suffix.lower() in PICTURES)
-    if not made and ex.error is None:
-        ex.error = "the script wrote no picture"
-    for p in made:
-        name = f"{ex.name}{p.suffix.lower()}" if len(made) == 1 else f"{ex.name}-{p.stem}{p.suffix.lower()}"
+    if not made and error is None:
+        error = "the script wrote no picture"
+    pictures = [(p.name, p.read_bytes()) for p in made]
+    shutil.rmtree(work, ignore_errors=True)
+    return pictures, seconds, error
+
+
+def _keep(ex, pictures, out):
+    """An example's pictures (run_script's) written to out/img, with thumbnails and its
+    source."""
+    for fname, data in pictures:
+        p = Path(fname)
+        name = f"{ex.name}{p.suffix.lower()}" if len(pictures) == 1 else \
+            f"{ex.name}-{p.stem}{p.suffix.lower()}"
         dest = out / "img" / name
-        shutil.move(str(p), dest)
+        dest.write_bytes(data)
         ex.images.append(f"img/{name}")
         ex.thumbs.append(_thumbnail(dest, out / "thumbs"))
-    shutil.rmtree(work, ignore_errors=True)
     shutil.copy2(ex.source, out / "src" / ex.source.name)
 
 
@@ -118,18 +141,33 @@ def _thumbnail(path, folder):
     return f"thumbs/{name}"
 
 
-def build(out, source=None, only=None, progress=True) -> GalleryResult:
-    """Run the examples and write ``out/index.html``; returns what was built."""
+def build(out, source=None, only=None, progress=True, client=None) -> GalleryResult:
+    """Run the examples and write ``out/index.html``; returns what was built. With
+    ``client`` (a dask.distributed Client) every example is a task on its workers
+    (run_script), its pictures written here as they come back."""
     from tqdm.auto import tqdm
 
+    from .cluster import _check_client
+    client = _check_client(client)
     examples = find_examples(source, only)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     for sub in ("img", "thumbs", "src"):
         (out / sub).mkdir(exist_ok=True)
-    for ex in tqdm(examples, desc="floatcol gallery", unit="example", delay=1.0,
-                   disable=not progress, leave=False):
-        run_example(ex, out)
+    bar = tqdm(total=len(examples), desc="floatcol gallery", unit="example", delay=1.0,
+               disable=not progress, leave=False)
+    if client is None:
+        for ex in examples:
+            run_example(ex, out)
+            bar.update()
+    else:
+        futures = [client.submit(run_script, ex.name, ex.source.read_bytes(), pure=False)
+                   for ex in examples]
+        for ex, fut in zip(examples, futures):
+            pictures, ex.seconds, ex.error = fut.result()
+            _keep(ex, pictures, out)
+            bar.update()
+    bar.close()
     index = out / "index.html"
     tmp = out / ".index.html.tmp"
     tmp.write_text(_page(examples), encoding="utf-8")

@@ -78,6 +78,35 @@ def test_a_tiled_poster_of_lines_fields_and_objects():
             assert whole.stats["c_limits"] == tiled.stats["c_limits"]
 
 
+TWO = [("sin(u)*cos(v)", (-3, 3), (-3, 3)), ("0.4*u - 0.5", (-3, 3), (-2, 2))]
+
+
+@pytest.mark.parametrize("kw", [
+    dict(),
+    dict(projection="perspective", lightsource=(315, 25), shadows=True),
+    dict(cmap="magma", vmin=-1.0, vmax=1.0),
+], ids=["default", "persp-shadows", "limits"])
+def test_a_tiled_poster_of_several_surfaces(kw):
+    """render_many in bands: each surface's colormap spans the heights it shows in the
+    whole picture (a band that saw other heights of either is drawn again), and the
+    surface seen at each pixel is the whole picture's."""
+    whole = fc.render_many(TWO, size=(157, 110), elev=25, **kw)
+    tiled = fc.render_many(TWO, size=(157, 110), elev=25, tiles=4, **kw)
+    assert tiled.stats["bands"] == 4
+    _same(whole, tiled)
+    assert np.array_equal(whole.stats["surface"], tiled.stats["surface"])
+    assert set(np.unique(whole.stats["surface"])) >= {0, 1}       # both show
+
+
+def test_a_tiled_poster_of_layers_with_their_own_materials():
+    layers = [fc.Layer(TWO[0][0], TWO[0][1:], fc.Material(cmap="plasma")),
+              fc.Layer(TWO[1][0], TWO[1][1:], fc.Material(upper_color="tab:red",
+                                                          vmin=-2, vmax=1))]
+    whole = fc.render_many(layers, size=(120, 90))
+    tiled = fc.render_many(layers, size=(120, 90), tiles=3)
+    _same(whole, tiled)
+
+
 def test_a_translucent_posters_layer_counts():
     whole = fc.render(EXPR, **DOM, size=(120, 90), opacity=0.5)
     tiled = fc.render(EXPR, **DOM, size=(120, 90), opacity=0.5, tiles=3)
@@ -130,6 +159,36 @@ def test_a_poster_on_two_workers(client):
     tiled = fc.render(EXPR, **DOM, client=client, **kw)
     assert tiled.stats["bands"] == 4                  # two a worker
     _same(whole, tiled)
+
+
+def test_several_surfaces_on_two_workers(client):
+    whole = fc.render_many(TWO, size=(200, 150))
+    tiled = fc.render_many(TWO, size=(200, 150), client=client)
+    assert tiled.stats["bands"] == 4
+    _same(whole, tiled)
+
+
+def test_the_gallery_on_two_workers(client, tmp_path):
+    """Each example a task: the script goes as text, its pictures come back as bytes;
+    the same pictures as a build here, and the CLI's --scheduler does the same."""
+    from PIL import Image
+
+    from floatcol.cli import main
+    from floatcol.gallery import build
+    only = ["saddle", "gordon_figures"]
+    here = build(tmp_path / "here", only=only, progress=False)
+    there = build(tmp_path / "there", only=only, progress=False, client=client)
+    assert there.failed == {} and here.failed == {}
+    images = [img for ex in there.examples for img in ex.images]
+    assert len(images) == 1 + 4
+    assert images == [img for ex in here.examples for img in ex.images]
+    for img in images:
+        a = np.asarray(Image.open(tmp_path / "here" / img))
+        b = np.asarray(Image.open(tmp_path / "there" / img))
+        assert np.array_equal(a, b), img
+    assert main(["gallery", "build", "-o", str(tmp_path / "cli"), "--only", "saddle",
+                 "--scheduler", client.scheduler.address]) == 0
+    assert (tmp_path / "cli" / "img" / "saddle.png").is_file()
 
 
 def test_sixty_frames_on_two_workers(client):

@@ -68,6 +68,9 @@ def composite(renders, background=(255, 255, 255, 255)) -> Render:
              "surfaces": len(renders), "surface": which,
              "method": renders[0].stats.get("method"),
              "w_limits": [r.stats.get("w_limits") for r in renders],
+             # whether each layer shows its upper side in its own picture (the heights
+             # its colormap spans come from there: cluster.py's posters)
+             "upper_seen": [bool((r.side == 1).any()) for r in renders],
              "box": renders[0].box}
     return Render(out, intensity, side, depth_out, stats, renders[0].view, gbuf, None, seen,
                   box=renders[0].box, shadow=shadow)

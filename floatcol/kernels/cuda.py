@@ -37,8 +37,9 @@ from .layout import VP_BATCH
 #: global numba.cuda for its own)
 cuda = None
 
-#: Threads per block: columns are independent, a block is only a launch unit
-THREADS = 64
+#: Threads per block: a warp. Columns are independent, and a picture has few of them
+#: for a GPU (1920 at 1080p): small blocks spread them over more of its multiprocessors
+THREADS = 32
 #: Columns per launch at most (the fold tracer's scratch is about 250 KB a column at
 #: 1080p: a launch of 4096 columns holds about 1 GiB of it)
 MAX_COLUMNS = 4096
@@ -221,12 +222,13 @@ def column_kernel_cuda(surface, vp, gbuf, ebuf, hrec, hstride, evals, wrange, ro
     rows[:, 1] = hi.max(axis=1)
 
 
-def ptx(surface, cc=(9, 0)):
+def ptx(surface, cc=(9, 0), opt=True):
     """The column kernel of ``surface`` compiled to PTX for compute capability ``cc``,
     on a machine with or without a GPU (the CUDA toolkit's NVVM, which numba-cuda's
-    extra brings, is enough): (PTX text, seconds). Device functions ask the current
-    device for its compute capability; without a GPU, ``cc`` stands for it while
-    this compiles."""
+    extra brings, is enough): (PTX text, seconds). ``opt=False``: without NVVM's
+    optimisation (the same check that everything compiles for the device, 49 s
+    instead of 123 s on 2 cores). Device functions ask the current device for its
+    compute capability; without a GPU, ``cc`` stands for it while this compiles."""
     import time
     from numba import types
     from numba.cuda import dispatcher as cuda_dispatcher
@@ -249,7 +251,7 @@ def ptx(surface, cc=(9, 0)):
     cuda_dispatcher.get_current_device = lambda: _Device()
     try:
         t = time.perf_counter()
-        text, _ = cuda.compile_ptx(source, sig, cc=tuple(cc))
+        text, _ = cuda.compile_ptx(source, sig, cc=tuple(cc), opt=bool(opt))
         return text, time.perf_counter() - t
     finally:
         cuda_dispatcher.get_current_device = saved

@@ -82,8 +82,6 @@ class Quality:
         if not isinstance(self.device, str) or self.device not in DEVICES:
             raise ValueError(f"device must be 'cpu' or 'cuda', got {self.device!r}")
         if self.device == "cuda":
-            if self.method != "column":
-                raise ValueError("device='cuda' draws shaded pictures: method='column'")
             if self.area:
                 raise ValueError("device='cuda' runs the column pass: antialias='area' (the "
                                  "area pass) runs on device='cpu'")

@@ -146,6 +146,43 @@ def _positive(name, x):
     return x
 
 
+def clip_near(pts, tris, rgb, z_near):
+    """Triangles (vertex indices ``tris`` into ``pts`` (n, 3) screen x, y, z; colours
+    ``rgb``) cut by the plane z = z_near: the parts at or behind it (Sutherland and
+    Hodgman's clipping of each triangle that crosses it: a triangle or a quad, in two
+    triangles, of the same colour; new vertices appended). Returns (pts, tris, rgb)."""
+    inside = pts[tris, 2] >= z_near                    # (m, 3)
+    count = inside.sum(axis=1)
+    keep = count == 3
+    cross = np.nonzero((count > 0) & (count < 3))[0]
+    if len(cross) == 0:
+        return pts, tris[keep], rgb[keep]
+    new_pts = [pts]
+    new_tris = [tris[keep]]
+    new_rgb = [rgb[keep]]
+    n = len(pts)
+    for k in cross:
+        poly = []
+        for i in range(3):
+            a = pts[tris[k, i]]
+            b = pts[tris[k, (i + 1) % 3]]
+            a_in = a[2] >= z_near
+            b_in = b[2] >= z_near
+            if a_in:
+                poly.append(a)
+            if a_in != b_in:                           # the edge meets the plane
+                f = (z_near - a[2]) / (b[2] - a[2])
+                q = a + f * (b - a)
+                q[2] = z_near
+                poly.append(q)
+        fan = np.array([[n, n + j, n + j + 1] for j in range(1, len(poly) - 1)])
+        new_pts.append(np.array(poly))
+        new_tris.append(fan)
+        new_rgb.append(np.tile(rgb[k], (len(fan), 1)))
+        n += len(poly)
+    return np.vstack(new_pts), np.vstack(new_tris).astype(np.int64), np.vstack(new_rgb)
+
+
 def objects_pass(r, objects, surface, light_dir):
     """Draw ``objects`` (Mesh) into Render ``r`` in place: its rgba, and its depth
     where an object is nearer than the surface (side, intensity and the G-buffer stay
@@ -180,14 +217,6 @@ def objects_pass(r, objects, surface, light_dir):
     tris = np.vstack(tris).astype(np.int64)
     rgb = np.vstack(rgbs)
     x, y, z = view.to_screen(p[:, 0], p[:, 1], p[:, 2])
-    e = z + view.d3                              # distance along the view axis
-    if ortho:
-        m = np.ones_like(e)
-    else:
-        # a triangle with a corner in front of the screen plane is left out
-        m = np.where(e > view.d1, view.d1 / np.where(e > view.d1, e, 1.0), np.nan)
-    col = view.column(x * m)
-    row = (H - 1) / 2 - y * m * view.scale
     # flat light: each face's normal turned toward the eye, against the light
     pts = np.c_[x, y, z]
     nrm = np.cross(pts[tris[:, 1]] - pts[tris[:, 0]], pts[tris[:, 2]] - pts[tris[:, 0]])
@@ -203,6 +232,15 @@ def objects_pass(r, objects, surface, light_dir):
     lv = to_eye if not ld.any() else np.tile(ld / np.linalg.norm(ld), (len(tris), 1))
     shade = AMBIENT + (1 - AMBIENT) * np.clip(np.sum(nrm * lv, axis=1), 0.0, None)
     rgb = np.clip(rgb * shade[:, None], 0.0, 1.0)
+    if not ortho:
+        # the parts of the triangles behind the screen plane (a fly-through's objects
+        # reach past the eye)
+        pts, tris, rgb = clip_near(pts, tris, rgb, view.d1 - view.d3)
+    x, y, z = pts[:, 0], pts[:, 1], pts[:, 2]
+    e = z + view.d3                              # distance along the view axis
+    m = np.ones_like(e) if ortho else view.d1 / e
+    col = view.column(x * m)
+    row = (H - 1) / 2 - y * m * view.scale
     depth = r.depth
     zbuf = np.where(np.isfinite(depth), depth.astype(np.float64), np.inf)
     drawn = np.zeros((H, W), np.uint8)

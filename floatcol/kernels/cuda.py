@@ -31,7 +31,7 @@ from .column import (
     column_folds, column_result, column_scratch, render_column_into, _seen_ranges, SCR_RUN,
 )
 from .fold import fold_scratch, trace_column_into
-from .layout import VP_BATCH
+from .layout import SURF_FUNCTION, VP_BATCH
 
 #: numba.cuda once _cuda() has imported it (a global: the simulator swaps a kernel's
 #: global numba.cuda for its own)
@@ -86,7 +86,12 @@ def device_functions(surface):
     """(f, fg, fb) of a surface as the GPU kernel calls them: the surface's Python
     functions (their compiled cfuncs' sources) compiled by Numba, which the CUDA target
     compiles again as device functions; fb a stand-in that is never called (VP_BATCH
-    is 0 on the GPU). Under the simulator, the surface's own CPU functions."""
+    is 0 on the GPU). Under the simulator, the surface's own CPU functions. A Python
+    callable is a ValueError: its wrapper catches the callable's exceptions (a hole),
+    which the CUDA target cannot compile."""
+    if surface.kind == SURF_FUNCTION and surface.expr is None:
+        raise ValueError("device='cuda' draws surfaces given as expressions (strings or "
+                         "sympy) and height fields: a Python callable runs on device='cpu'")
     if simulated():
         return surface.f, surface.fg, surface.kernel_args()[3]
     key = "_cuda_functions"
@@ -97,8 +102,8 @@ def device_functions(surface):
             f_py = surface.f._pyfunc
             fg_py = surface.fg._pyfunc
         except AttributeError:                  # pragma: no cover - not a compiled surface
-            raise ValueError("device='cuda' draws surfaces given as expressions, Numba "
-                             "functions or height fields") from None
+            raise ValueError("device='cuda' draws surfaces given as expressions and "
+                             "height fields") from None
         jit = numba.njit(error_model="numpy")
         fns = (jit(f_py), jit(fg_py), jit(_no_batch))
         surface._fits[key] = fns

@@ -328,9 +328,8 @@ def trace_column(kind, f, fg, hf, hfp, vp, x0, gcol, ecol):
 @ngjit
 def fold_scratch(vp, H, width):
     """trace_column_into's scratch for a column of H rows of ``width`` values (the
-    G-buffer's G_SIZE): (tg (H, width), te
-    (E_SEEN + 1, H), cross (planes, CROSS_MAX), n_cross (planes,) int64, a, b
-    (P_SIZE,))."""
+    G-buffer's G_SIZE): (tg (H, width), te (E_SEEN + 1, H), cross (planes, CROSS_MAX),
+    n_cross (planes,) int64, a, b (P_SIZE,))."""
     n = fold_planes(vp)
     return (np.empty((H, width)), np.zeros((E_SEEN + 1, H)), np.empty((n, CROSS_MAX)),
             np.zeros(n, dtype=np.int64), np.empty(P_SIZE), np.empty(P_SIZE))

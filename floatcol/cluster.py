@@ -161,14 +161,15 @@ def _render_tiled_layers(items, options, spans, W, H, client, t0):
         if not auto:
             fixed_layers.append(layer)
             continue
-        ranges = [g["stats"]["w_limits"][k] for g in got if g["upper"][k]]
+        ranges = [lims[k] for lims, upper in map(_per_layer, got, [len(layers)] * len(got))
+                  if upper[k]]
         ranges = [r for r in ranges if r is not None and np.ndim(r) == 1]
         if not ranges:
             fixed_layers.append(layer)
             continue
         vmin, vmax = _limits(ranges, m.vmin, m.vmax)
         again += [b for b, g in enumerate(got)
-                  if tuple(g["stats"]["w_limits"][k] or ()) != (vmin, vmax)]
+                  if tuple(_per_layer(g, len(layers))[0][k] or ()) != (vmin, vmax)]
         fixed_layers.append(dataclasses.replace(
             layer, material=dataclasses.replace(m, vmin=vmin, vmax=vmax)))
     again = sorted(set(again))
@@ -178,6 +179,19 @@ def _render_tiled_layers(items, options, spans, W, H, client, t0):
                                     composite=True)):
             got[b] = g
     return _assemble(got, W, H, t0, len(spans))
+
+
+def _per_layer(band, n):
+    """(each layer's colormap limits, whether each shows its upper side) of a band of
+    n layers; a translucent composite's limits are the fitted view's, the same in
+    every band, and it says nothing of sides: its layers count as seen."""
+    lims = band["stats"].get("w_limits")
+    upper = band["upper"]
+    if not isinstance(upper, list):
+        upper = [True] * n
+    if not isinstance(lims, list):
+        lims = [lims] * n
+    return lims, upper
 
 
 def _material_keys():

@@ -85,7 +85,8 @@ TWO = [("sin(u)*cos(v)", (-3, 3), (-3, 3)), ("0.4*u - 0.5", (-3, 3), (-2, 2))]
     dict(),
     dict(projection="perspective", lightsource=(315, 25), shadows=True),
     dict(cmap="magma", vmin=-1.0, vmax=1.0),
-], ids=["default", "persp-shadows", "limits"])
+    dict(opacity=[0.6, 0.8]),
+], ids=["default", "persp-shadows", "limits", "translucent"])
 def test_a_tiled_poster_of_several_surfaces(kw):
     """render_many in bands: each surface's colormap spans the heights it shows in the
     whole picture (a band that saw other heights of either is drawn again), and the
@@ -96,6 +97,13 @@ def test_a_tiled_poster_of_several_surfaces(kw):
     _same(whole, tiled)
     assert np.array_equal(whole.stats["surface"], tiled.stats["surface"])
     assert set(np.unique(whole.stats["surface"])) >= {0, 1}       # both show
+
+
+def test_a_tiled_poster_of_one_surface_in_render_many():
+    whole = fc.render_many([TWO[0]], size=(120, 90))
+    tiled = fc.render_many([TWO[0]], size=(120, 90), tiles=3)
+    _same(whole, tiled)
+    assert np.array_equal(whole.stats["surface"], tiled.stats["surface"])
 
 
 def test_a_tiled_poster_of_layers_with_their_own_materials():

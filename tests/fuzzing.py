@@ -39,6 +39,8 @@ OPTIONS = {
     "antialias": [True, False, 2, 3],
     "aspect": ["equal", "auto", "equalxy", [1, 1, 0.5]],
     "placement": ["exact", "paper"],
+    # (no GPU in CI: "cuda" is a ValueError there, as a bad name is)
+    "device": ["cpu", "cpu", "cpu", "cuda", "gpu"],
 }
 BOUNDS = [0.0, 1.0, -1.0, 2.5, -7.3, 1e-300, -1e-300, 1e300, -1e300, math.inf, -math.inf,
           math.nan, 1e-9, 1e9]

@@ -52,7 +52,7 @@ def _cuda():
     try:
         from numba import cuda as module
     except Exception as exc:                   # pragma: no cover - depends on the machine
-        raise ValueError(f"device='cuda' needs Numba's CUDA target ({exc}): pip install "
+        raise ValueError(f"device='cuda' needs the CUDA extra ({exc}): pip install "
                          "'floatcol[cuda]'") from None
     cuda = module
     return cuda
@@ -71,8 +71,8 @@ def check_device():
         try:
             import numba_cuda  # noqa: F401  (the maintained CUDA target)
         except ImportError:
-            raise ValueError("device='cuda' needs numba-cuda: pip install 'floatcol[cuda]' "
-                             "(or use device='cpu')") from None
+            raise ValueError("device='cuda' needs the CUDA extra: pip install "
+                             "'floatcol[cuda]' (or use device='cpu')") from None
     try:
         ok = _cuda().is_available()
     except Exception:                          # pragma: no cover - a broken driver
@@ -90,8 +90,9 @@ def device_functions(surface):
     callable is a ValueError: its wrapper catches the callable's exceptions (a hole),
     which the CUDA target cannot compile."""
     if surface.kind == SURF_FUNCTION and surface.expr is None:
-        raise ValueError("device='cuda' draws surfaces given as expressions (strings or "
-                         "sympy) and height fields: a Python callable runs on device='cpu'")
+        raise ValueError("device='cuda' draws surfaces given as formulas (text or symbolic "
+                         "expressions) and height fields: a Python callable runs on "
+                         "device='cpu'")
     if simulated():
         return surface.f, surface.fg, surface.kernel_args()[3]
     key = "_cuda_functions"

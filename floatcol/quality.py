@@ -77,14 +77,12 @@ class Quality:
         return isinstance(self.antialias, str) and self.antialias == "area"
 
     def check_device(self):
-        """ValueError for a device that is not one, or one that cannot draw this
-        picture ("cuda": the column pass on an NVIDIA GPU, kernels/cuda.py)."""
+        """ValueError for a device that is not one, or one that cannot run here
+        ("cuda": the column pass, or area sampling's, on an NVIDIA GPU,
+        kernels/cuda.py)."""
         if not isinstance(self.device, str) or self.device not in DEVICES:
             raise ValueError(f"device must be 'cpu' or 'cuda', got {self.device!r}")
         if self.device == "cuda":
-            if self.area:
-                raise ValueError("device='cuda' runs the column pass: antialias='area' (the "
-                                 "area pass) runs on device='cpu'")
             from .kernels.cuda import check_device
             check_device()
 

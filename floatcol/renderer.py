@@ -223,7 +223,7 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     vp = geometry.view_params(view, method, quality.sampling, fixes, aa_cov, surface)
     buffers = geometry.allocate(W, H, n_lines, sub_columns)
     if quality.area:
-        geom = area.area_pass(surface, view, vp, buffers)
+        geom = area.area_pass(surface, view, vp, buffers, device=quality.device)
     elif quality.device == "cuda":
         geom = geometry.column_pass(surface, view, vp, buffers, hstride, None, device="cuda")
     else:

@@ -583,6 +583,15 @@ def area_column(kind, f, fg, flat, lv, hfp, vp, x0, slices, lod, gcol, ecol, acc
     return evals, w_lo, w_hi, j_lo, j_hi
 
 
+@ngjit
+def area_scratch(H, n_lv):
+    """area_column's scratch for a column of H rows and n_lv levels: (acc, cov, gaps,
+    guess, pts); guess is to be zeroed before each column."""
+    return (np.empty((H, AC_SIZE)), np.empty((MAX_INTERVALS, 2)),
+            np.empty((MAX_INTERVALS + 1, 2)), np.empty((max(n_lv, 1) + 1, 3)),
+            np.empty((4 + REFINE_DEPTH + 2, P_SIZE)))
+
+
 @ngjit_parallel
 def area_kernel(kind, f, fg, flat, lv, hfp, vp, slices, lod, gbuf, ebuf, evals, wrange, rows):
     """Every column by area sampling (area_column) into the tiled gbuf and ebuf
@@ -595,11 +604,7 @@ def area_kernel(kind, f, fg, flat, lv, hfp, vp, slices, lod, gbuf, ebuf, evals, 
     W = evals.shape[0]
     n_lv = lv.shape[0]
     for b in prange(n_tiles):
-        acc = np.empty((H, AC_SIZE))
-        cov = np.empty((MAX_INTERVALS, 2))
-        gaps = np.empty((MAX_INTERVALS + 1, 2))
-        guess = np.empty((max(n_lv, 1) + 1, 3))
-        pts = np.empty((4 + REFINE_DEPTH + 2, P_SIZE))
+        acc, cov, gaps, guess, pts = area_scratch(H, n_lv)
         rows[b, 0] = H
         rows[b, 1] = -1
         for lane in range(T):

@@ -7,7 +7,8 @@ time by Numba's CUDA target, the surface's functions f and fg with them as devic
 functions. The pictures are the CPU kernel's: exact placement, the corrections of
 section 5, the coverages of section 6.4's antialiasing, the fold tracer; only the
 batched SIMD evaluations (a CPU's) are off (vp's VP_BATCH), as the CPU kernel runs
-without them.
+without them. Area sampling (``antialias="area"``, area.py's ``area_column``) has a
+kernel of its own, made the same way.
 
 Nothing here allocates on the device: each column's scratch (column_scratch's and
 fold.fold_scratch's) is a row of arrays made once per call on the host side, and the
@@ -118,12 +119,13 @@ def _no_batch(u, v, t, out, n):
 
 
 def _kernel_source(f, fg, fb, column, folds, fold_trace, seen_ranges, result, x0_of):
-    """The kernel's Python function, closing over the surface's functions and the
-    column's (the CPU's compiled ones, which the CUDA target compiles for the GPU; or,
-    under the simulator, wrappers that hand them the simulator's arrays unwrapped)."""
+    """The column kernel's Python function, closing over the surface's functions and
+    the column's (the CPU's compiled ones, which the CUDA target compiles for the GPU;
+    or, under the simulator, wrappers that hand them the simulator's arrays
+    unwrapped)."""
     _cuda()
 
-    def kernel(kind, hf, hfp, vp, first, gbuf, ebuf, hrec, hstride, sg, scr, sdepth, bat,
+    def kernel(kind, hf, hfp, vp, hstride, sg, first, gbuf, ebuf, hrec, scr, sdepth, bat,
                tg, te, cross, n_cross, pa, pb, evals, wrange, jrange):
         i = cuda.grid(1)
         if i >= evals.shape[0]:
@@ -150,15 +152,52 @@ def _kernel_source(f, fg, fb, column, folds, fold_trace, seen_ranges, result, x0
     return kernel
 
 
+def _area_source(f, fg, area, x0_of):
+    """The area-sampling kernel's Python function (area.area_column a thread), as
+    _kernel_source."""
+    _cuda()
+
+    def kernel(kind, flat, lv, hfp, vp, slices, lod, first, gbuf, ebuf, hrec, acc, cov, gaps,
+               guess, pts, evals, wrange, jrange):
+        i = cuda.grid(1)
+        if i >= evals.shape[0]:
+            return
+        c = first + i
+        T = gbuf.shape[2]
+        b = c // T
+        lane = c - b * T
+        g = guess[i]
+        g[:, :] = 0.0
+        n, wlo, whi, jlo, jhi = area(kind, f, fg, flat, lv, hfp, vp, x0_of(vp, c), slices,
+                                     lod, gbuf[b, :, lane], ebuf[b, :, :, lane], acc[i], cov[i],
+                                     gaps[i], g, pts[i])
+        evals[i] = n
+        wrange[i, 0] = wlo
+        wrange[i, 1] = whi
+        jrange[i, 0] = jlo
+        jrange[i, 1] = jhi
+    return kernel
+
+
+def _on_device(*fns):
+    """The column's functions as the kernel calls them: themselves on a GPU; under the
+    simulator, wrappers that unwrap its arrays."""
+    return tuple(_unwrapped(fn) for fn in fns) if simulated() else fns
+
+
 def _column_functions():
     """(column, folds, fold_trace, seen_ranges, result, x0_of): the steps of
     column.render_column the kernel runs."""
     from .sample import column_x0
-    fns = (render_column_into, column_folds, trace_column_into, _seen_ranges, column_result,
-           column_x0)
-    if simulated():
-        return tuple(_unwrapped(fn) for fn in fns)
-    return fns
+    return _on_device(render_column_into, column_folds, trace_column_into, _seen_ranges,
+                      column_result, column_x0)
+
+
+def _area_functions():
+    """(area, x0_of): the area-sampling kernel's column."""
+    from .area import area_column
+    from .sample import column_x0
+    return _on_device(area_column, column_x0)
 
 
 def _unwrapped(fn):
@@ -168,23 +207,31 @@ def _unwrapped(fn):
     return call
 
 
-def kernel(surface):
-    """The compiled (cuda.jit) column kernel of ``surface``, kept with it: its
-    functions are device functions compiled into the kernel, so each surface has a
-    kernel of its own (a surface at another time or scale shares it)."""
+def kernel(surface, area=False):
+    """The compiled (cuda.jit) column kernel of ``surface`` (``area``: the
+    area-sampling one), kept with it: its functions are device functions compiled into
+    the kernel, so each surface has a kernel of its own (a surface at another time or
+    scale shares it)."""
     fns = surface._fits
-    if "_cuda_kernel" not in fns:
+    key = "_cuda_area" if area else "_cuda_kernel"
+    if key not in fns:
         f, fg, fb = device_functions(surface)
-        fns["_cuda_kernel"] = _cuda().jit(_kernel_source(f, fg, fb, *_column_functions()))
-    return fns["_cuda_kernel"]
+        source = _area_source(f, fg, *_area_functions()) if area else \
+            _kernel_source(f, fg, fb, *_column_functions())
+        fns[key] = _cuda().jit(source)
+    return fns[key]
 
 
 def scratch(n, H, vp, width):
-    """The scratch of n columns: (scr, sdepth, bat, tg, te, cross, n_cross, pa, pb),
-    each a row per column, shaped as column_scratch's and fold_scratch's."""
+    """The column kernel's scratch of n columns: (scr, sdepth, bat, tg, te, cross,
+    n_cross, pa, pb), each a row per column, shaped as column_scratch's and
+    fold_scratch's."""
     scr, sdepth, bat = column_scratch()
-    fold = fold_scratch(vp, H, width)
-    return tuple(np.empty((n,) + a.shape, a.dtype) for a in (scr, sdepth, bat) + fold)
+    return _rows(n, (scr, sdepth, bat) + fold_scratch(vp, H, width))
+
+
+def _rows(n, arrays):
+    return tuple(np.empty((n,) + a.shape, a.dtype) for a in arrays)
 
 
 def column_kernel_cuda(surface, vp, gbuf, ebuf, hrec, hstride, evals, wrange, rows):
@@ -194,33 +241,54 @@ def column_kernel_cuda(surface, vp, gbuf, ebuf, hrec, hstride, evals, wrange, ro
     vp = vp.copy()
     vp[VP_BATCH] = 0.0
     kind, _, _, _, hf, hfp = surface.kernel_args()
-    k = kernel(surface)
+    d = cuda.to_device
+    head = (kind, d(np.ascontiguousarray(hf)), d(hfp), d(vp), hstride, d(np.empty((3, 0))))
+    H = gbuf.shape[1]
+    _launch(kernel(surface), head, lambda n: scratch(n, H, vp, gbuf.shape[3]), gbuf, ebuf,
+            hrec, evals, wrange, rows)
+
+
+def area_kernel_cuda(surface, flat, lv, vp, slices, lod, gbuf, ebuf, evals, wrange, rows):
+    """area.area_kernel's work on the GPU (the same arguments, f and fg the
+    surface's)."""
+    from .area import area_scratch
+    _cuda()
+    kind, _, _, _, _, hfp = surface.kernel_args()
+    d = cuda.to_device
+    head = (kind, d(np.ascontiguousarray(flat, dtype=np.float64)),
+            d(np.ascontiguousarray(lv, dtype=np.float64)), d(hfp), d(vp), int(slices),
+            float(lod))
+    H = gbuf.shape[1]
+    hrec = np.empty((evals.shape[0], 1, 1))
+    _launch(kernel(surface, area=True), head,
+            lambda n: _rows(n, area_scratch(H, lv.shape[0])), gbuf, ebuf, hrec, evals, wrange,
+            rows)
+
+
+def _launch(k, head, scratch_of, gbuf, ebuf, hrec, evals, wrange, rows):
+    """Launch kernel k over the picture's columns, MAX_COLUMNS at a time: its
+    arguments ``head``, the column's first number, the buffers, ``scratch_of(n)``'s
+    arrays for n columns, the per-column outputs; then the buffers, evals, wrange and
+    each tile's rows (column_kernel's ``rows``) filled on the host."""
     n_tiles, H, T = gbuf.shape[0], gbuf.shape[1], gbuf.shape[2]
     W = evals.shape[0]
-    d = cuda.to_device
-    d_vp, d_hf, d_hfp = d(vp), d(np.ascontiguousarray(hf)), d(hfp)
     d_g = cuda.device_array(gbuf.shape, gbuf.dtype)
     d_e = cuda.device_array(ebuf.shape, ebuf.dtype)
     d_h = cuda.device_array(hrec.shape, hrec.dtype)
-    sg = d(np.empty((3, 0)))
     jrange = np.empty((W, 2), dtype=np.int64)
     for first in range(0, W, MAX_COLUMNS):
         n = min(MAX_COLUMNS, W - first)
-        bufs = [cuda.device_array(a.shape, a.dtype)
-                for a in scratch(n, H, vp, gbuf.shape[3])]
+        bufs = [cuda.device_array(a.shape, a.dtype) for a in scratch_of(n)]
         d_ev = cuda.device_array(n, np.int64)
         d_wr = cuda.device_array((n, 2), np.float64)
         d_jr = cuda.device_array((n, 2), np.int64)
-        blocks = -(-n // THREADS)
-        k[blocks, THREADS](kind, d_hf, d_hfp, d_vp, first, d_g, d_e, d_h, hstride, sg, *bufs,
-                           d_ev, d_wr, d_jr)
+        k[-(-n // THREADS), THREADS](*head, first, d_g, d_e, d_h, *bufs, d_ev, d_wr, d_jr)
         evals[first:first + n] = d_ev.copy_to_host()
         wrange[first:first + n] = d_wr.copy_to_host()
         jrange[first:first + n] = d_jr.copy_to_host()
     gbuf[...] = d_g.copy_to_host()
     ebuf[...] = d_e.copy_to_host()
     hrec[...] = d_h.copy_to_host()
-    # each tile's rows where E_SEEN may be set (column_kernel's ``rows``)
     pad = n_tiles * T - W
     lo = np.concatenate([jrange[:, 0], np.full(pad, H, np.int64)]).reshape(n_tiles, T)
     hi = np.concatenate([jrange[:, 1], np.full(pad, -1, np.int64)]).reshape(n_tiles, T)
@@ -228,13 +296,14 @@ def column_kernel_cuda(surface, vp, gbuf, ebuf, hrec, hstride, evals, wrange, ro
     rows[:, 1] = hi.max(axis=1)
 
 
-def ptx(surface, cc=(9, 0), opt=True):
-    """The column kernel of ``surface`` compiled to PTX for compute capability ``cc``,
-    on a machine with or without a GPU (the CUDA toolkit's NVVM, which numba-cuda's
-    extra brings, is enough): (PTX text, seconds). ``opt=False``: without NVVM's
-    optimisation (the same check that everything compiles for the device, 49 s
-    instead of 123 s on 2 cores). Device functions ask the current device for its
-    compute capability; without a GPU, ``cc`` stands for it while this compiles."""
+def ptx(surface, cc=(9, 0), opt=True, area=False):
+    """The column kernel of ``surface`` (``area``: the area-sampling kernel) compiled
+    to PTX for compute capability ``cc``, on a machine with or without a GPU (the CUDA
+    toolkit's NVVM, which numba-cuda's extra brings, is enough): (PTX text, seconds).
+    ``opt=False``: without NVVM's optimisation (the same check that everything
+    compiles for the device; the column kernel 49 s instead of 123 s on 2 cores).
+    Device functions ask the current device for its compute capability; without a
+    GPU, ``cc`` stands for it while this compiles."""
     import time
     from numba import types
     from numba.cuda import dispatcher as cuda_dispatcher
@@ -242,13 +311,21 @@ def ptx(surface, cc=(9, 0), opt=True):
     if simulated():
         raise ValueError("ptx() compiles for a real GPU: not under NUMBA_ENABLE_CUDASIM")
     f64, f32, i64 = types.float64, types.float32, types.int64
-    a = types.Array
-    sig = (i64, a(f64, 2, "C"), a(f64, 1, "C"), a(f64, 1, "C"), i64, a(f32, 4, "C"),
-           a(f32, 4, "C"), a(f64, 3, "C"), i64, a(f64, 2, "C"),
-           a(f64, 3, "C"), a(i64, 2, "C"), a(f64, 2, "C"),
-           a(f64, 3, "C"), a(f64, 3, "C"), a(f64, 3, "C"), a(i64, 2, "C"), a(f64, 2, "C"),
-           a(f64, 2, "C"), a(i64, 1, "C"), a(f64, 2, "C"), a(i64, 2, "C"))
-    source = _kernel_source(*device_functions(surface), *_column_functions())
+
+    def arr(t, nd):
+        return types.Array(t, nd, "C")
+    bufs = (i64, arr(f32, 4), arr(f32, 4), arr(f64, 3))           # first, gbuf, ebuf, hrec
+    outs = (arr(i64, 1), arr(f64, 2), arr(i64, 2))                # evals, wrange, jrange
+    f, fg, fb = device_functions(surface)
+    if area:
+        sig = (i64, arr(f64, 1), arr(f64, 2), arr(f64, 1), arr(f64, 1), i64, f64) + bufs + \
+            (arr(f64, 3),) * 5 + outs
+        source = _area_source(f, fg, *_area_functions())
+    else:
+        sig = (i64, arr(f64, 2), arr(f64, 1), arr(f64, 1), i64, arr(f64, 2)) + bufs + \
+            (arr(f64, 3), arr(i64, 2), arr(f64, 2), arr(f64, 3), arr(f64, 3), arr(f64, 3),
+             arr(i64, 2), arr(f64, 2), arr(f64, 2)) + outs
+        source = _kernel_source(f, fg, fb, *_column_functions())
 
     class _Device:
         compute_capability = tuple(cc)

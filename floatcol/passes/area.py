@@ -31,11 +31,17 @@ _NO_HEIGHTS = np.zeros(0)
 _NO_LEVELS = np.array([[0.0, 0.0, 0.0, np.inf, np.nan, np.nan]])
 
 
-def area_pass(surface, view, vp, buffers):
-    """Run the area kernel of one layer into ``buffers`` (geometry.allocate's)."""
+def area_pass(surface, view, vp, buffers, device="cpu"):
+    """Run the area kernel of one layer into ``buffers`` (geometry.allocate's), on the
+    CPU's cores or (``device="cuda"``) an NVIDIA GPU's (kernels/cuda.py)."""
     gbuf, ebuf, hrec = buffers
     evals, wrange, rows = pass_outputs(view.width, gbuf.shape[0])
     flat, lv = levels(surface)
+    if device == "cuda":
+        from ..kernels.cuda import area_kernel_cuda
+        area_kernel_cuda(surface, flat, lv, vp, SLICES, 2.0 ** LOD_BIAS, gbuf, ebuf, evals,
+                         wrange, rows)
+        return Geometry(gbuf, ebuf, hrec, rows, wrange, evals, vp, None, 0)
     kind, f, fg, _, hf, hfp = surface.kernel_args(None)
     area_kernel(kind, f, fg, flat, lv, hfp, vp, SLICES, 2.0 ** LOD_BIAS, gbuf, ebuf, evals,
                 wrange, rows)

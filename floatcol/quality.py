@@ -78,8 +78,8 @@ class Quality:
 
     def check_device(self):
         """ValueError for a device that is not one, or one that cannot run here
-        ("cuda": the column pass, or area sampling's, on an NVIDIA GPU,
-        kernels/cuda.py)."""
+        ("cuda": the column pass, area sampling's or the translucent layers', on an
+        NVIDIA GPU, kernels/cuda.py)."""
         if not isinstance(self.device, str) or self.device not in DEVICES:
             raise ValueError(f"device must be 'cpu' or 'cuda', got {self.device!r}")
         if self.device == "cuda":

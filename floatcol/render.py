@@ -164,11 +164,12 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         or as tasks on ``client`` (a dask.distributed Client; ``pip install
         'floatcol[dask]'``), assembled into the same picture, array for array, as
         without (floatcol/cluster.py). A client alone: two bands a worker.
-    device : where the column pass (or area sampling's) runs: "cpu" (default) or
-        "cuda", an NVIDIA GPU, a thread a pixel column, the same column code compiled
-        for the GPU (the same picture; ``pip install 'floatcol[cuda]'``;
-        kernels/cuda.py, docs/cuda.md). A ValueError says so on a machine without a
-        GPU. The passes after it (shadows, finishing, textures) run on the CPU.
+    device : where the column pass (area sampling's, the translucent layers') runs:
+        "cpu" (default) or "cuda", an NVIDIA GPU, a thread a pixel column, the same
+        column code compiled for the GPU (the same picture; ``pip install
+        'floatcol[cuda]'``; kernels/cuda.py, docs/cuda.md). A ValueError says so on a
+        machine without a GPU. The passes after it (shadows, finishing, textures) run
+        on the CPU.
 
     Returns
     -------

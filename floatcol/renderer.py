@@ -98,9 +98,6 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
         background = default_background(quality.method, first.shading)
     texture = _shadow_texture(layers[0].light, scene.camera, quality, drawn, views[0])
     if any(p.material.opacity < 1.0 for p in layers):
-        if quality.device != "cpu":
-            raise ValueError("opacity below 1 runs on device='cpu' (the GPU draws opaque "
-                             "layers)")
         if quality.method != "column":
             raise ValueError("opacity below 1 needs shaded pictures: method='column' (a line "
                              "drawing has no layers to blend)")

@@ -7,8 +7,9 @@ time by Numba's CUDA target, the surface's functions f and fg with them as devic
 functions. The pictures are the CPU kernel's: exact placement, the corrections of
 section 5, the coverages of section 6.4's antialiasing, the fold tracer; only the
 batched SIMD evaluations (a CPU's) are off (vp's VP_BATCH), as the CPU kernel runs
-without them. Area sampling (``antialias="area"``, area.py's ``area_column``) has a
-kernel of its own, made the same way.
+without them. Area sampling (``antialias="area"``, area.py's ``area_column``) and
+translucent layers (``opacity < 1``, layers.py's ``_column_layers``, a band of columns
+a launch, composited on the CPU) have kernels of their own, made the same way.
 
 Nothing here allocates on the device: each column's scratch (column_scratch's and
 fold.fold_scratch's) is a row of arrays made once per call on the host side, and the
@@ -179,6 +180,27 @@ def _area_source(f, fg, area, x0_of):
     return kernel
 
 
+def _layers_source(f, fg, column_layers, x0_of):
+    """The translucent layers' kernel's Python function (layers._column_layers a
+    thread: one band's columns), as _kernel_source. The colour tuple (lut, texture
+    levels, offsets, shapes, tp) comes as five arguments."""
+    _cuda()
+
+    def kernel(kind, hf, hfp, vp, c0, mp, lut, levels, offsets, shapes, tp, sh, hmax, hmin,
+               hsurf, lists, off, K, counts, gfirst, hits, evals, trans, scr, width):
+        b = cuda.grid(1)
+        if b >= lists.shape[0] or c0 + b >= width:
+            return
+        t = trans[b]
+        t[:] = 1.0
+        s = scr[b]
+        s[:, :] = 0.0
+        evals[b] += column_layers(kind, f, fg, hf, hfp, vp, x0_of(vp, c0 + b), mp,
+                                  (lut, levels, offsets, shapes, tp), sh, hmax, hmin, hsurf,
+                                  lists, off, K, counts, t, gfirst, hits, b, s)
+    return kernel
+
+
 def _on_device(*fns):
     """The column's functions as the kernel calls them: themselves on a GPU; under the
     simulator, wrappers that unwrap its arrays."""
@@ -200,26 +222,44 @@ def _area_functions():
     return _on_device(area_column, column_x0)
 
 
+def _layers_functions():
+    """(column_layers, x0_of): the translucent layers' kernel's column."""
+    from .layers import _column_layers
+    from .sample import column_x0
+    return _on_device(_column_layers, column_x0)
+
+
 def _unwrapped(fn):
-    """fn called with the simulator's array wrappers unwrapped (their numpy arrays)."""
+    """fn called with the simulator's array wrappers unwrapped (their numpy arrays),
+    in tuples too."""
+    def bare(a):
+        return tuple(bare(x) for x in a) if isinstance(a, tuple) else getattr(a, "_ary", a)
+
     def call(*args):
-        return fn(*[getattr(a, "_ary", a) for a in args])
+        return fn(*[bare(a) for a in args])
     return call
 
 
-def kernel(surface, area=False):
-    """The compiled (cuda.jit) column kernel of ``surface`` (``area``: the
-    area-sampling one), kept with it: its functions are device functions compiled into
-    the kernel, so each surface has a kernel of its own (a surface at another time or
-    scale shares it)."""
+def kernel(surface, which="column"):
+    """The compiled (cuda.jit) kernel of ``surface``: "column" (the column pass),
+    "area" (area sampling's) or "layers" (translucent layers'); kept with it: its
+    functions are device functions compiled into the kernel, so each surface has a
+    kernel of its own (a surface at another time or scale shares it)."""
     fns = surface._fits
-    key = "_cuda_area" if area else "_cuda_kernel"
+    key = "_cuda_" + which
     if key not in fns:
-        f, fg, fb = device_functions(surface)
-        source = _area_source(f, fg, *_area_functions()) if area else \
-            _kernel_source(f, fg, fb, *_column_functions())
-        fns[key] = _cuda().jit(source)
+        fns[key] = _cuda().jit(_source(surface, which))
     return fns[key]
+
+
+def _source(surface, which):
+    """The Python function of ``surface``'s kernel ``which`` (kernel's)."""
+    f, fg, fb = device_functions(surface)
+    if which == "area":
+        return _area_source(f, fg, *_area_functions())
+    if which == "layers":
+        return _layers_source(f, fg, *_layers_functions())
+    return _kernel_source(f, fg, fb, *_column_functions())
 
 
 def scratch(n, H, vp, width):
@@ -260,9 +300,33 @@ def area_kernel_cuda(surface, flat, lv, vp, slices, lod, gbuf, ebuf, evals, wran
             float(lod))
     H = gbuf.shape[1]
     hrec = np.empty((evals.shape[0], 1, 1))
-    _launch(kernel(surface, area=True), head,
+    _launch(kernel(surface, "area"), head,
             lambda n: _rows(n, area_scratch(H, lv.shape[0])), gbuf, ebuf, hrec, evals, wrange,
             rows)
+
+
+def layers_kernel_cuda(surface, vp, c0, mp, colours, sh, hmax, hmin, hsurf, lists, off,
+                       K, counts, gfirst, hits, evals):
+    """layers.layers_kernel's work on the GPU (the same arguments but the surface's
+    functions; ``colours`` its (lut, levels, offsets, shapes, tp)): lists, counts,
+    gfirst, hits and evals are updated on the host."""
+    from .layers import layers_scratch
+    from .layout import VP_W
+    _cuda()
+    kind, _, _, _, hf, hfp = surface.kernel_args()
+    d = cuda.to_device
+    B, H = lists.shape[0], lists.shape[1]
+    trans, scr = layers_scratch(H)
+    out = [d(a) for a in (lists, counts, gfirst, hits, evals)]
+    k = kernel(surface, "layers")
+    k[-(-B // THREADS), THREADS](
+        kind, d(np.ascontiguousarray(hf)), d(hfp), d(vp), int(c0), d(mp),
+        *(d(np.ascontiguousarray(a)) for a in colours), d(sh), d(hmax), d(hmin), d(hsurf),
+        *out[:1], int(off), int(K), *out[1:],
+        cuda.device_array((B,) + trans.shape), cuda.device_array((B,) + scr.shape),
+        int(vp[VP_W]))
+    for host, dev in zip((lists, counts, gfirst, hits, evals), out):
+        host[...] = dev.copy_to_host()
 
 
 def _launch(k, head, scratch_of, gbuf, ebuf, hrec, evals, wrange, rows):
@@ -296,12 +360,12 @@ def _launch(k, head, scratch_of, gbuf, ebuf, hrec, evals, wrange, rows):
     rows[:, 1] = hi.max(axis=1)
 
 
-def ptx(surface, cc=(9, 0), opt=True, area=False):
-    """The column kernel of ``surface`` (``area``: the area-sampling kernel) compiled
+def ptx(surface, cc=(9, 0), opt=True, which="column"):
+    """``surface``'s kernel ``which`` ("column", "area" or "layers": kernel's) compiled
     to PTX for compute capability ``cc``, on a machine with or without a GPU (the CUDA
     toolkit's NVVM, which numba-cuda's extra brings, is enough): (PTX text, seconds).
     ``opt=False``: without NVVM's optimisation (the same check that everything
-    compiles for the device; the column kernel 49 s instead of 123 s on 2 cores).
+    compiles for the device; the column kernel 21-49 s instead of 123 s on 2 cores).
     Device functions ask the current device for its compute capability; without a
     GPU, ``cc`` stands for it while this compiles."""
     import time
@@ -310,22 +374,26 @@ def ptx(surface, cc=(9, 0), opt=True, area=False):
     _cuda()
     if simulated():
         raise ValueError("ptx() compiles for a real GPU: not under NUMBA_ENABLE_CUDASIM")
-    f64, f32, i64 = types.float64, types.float32, types.int64
+    f64, f32, i32, i64 = types.float64, types.float32, types.int32, types.int64
 
     def arr(t, nd):
         return types.Array(t, nd, "C")
     bufs = (i64, arr(f32, 4), arr(f32, 4), arr(f64, 3))           # first, gbuf, ebuf, hrec
     outs = (arr(i64, 1), arr(f64, 2), arr(i64, 2))                # evals, wrange, jrange
-    f, fg, fb = device_functions(surface)
-    if area:
+    if which == "area":
         sig = (i64, arr(f64, 1), arr(f64, 2), arr(f64, 1), arr(f64, 1), i64, f64) + bufs + \
             (arr(f64, 3),) * 5 + outs
-        source = _area_source(f, fg, *_area_functions())
+    elif which == "layers":
+        sig = (i64, arr(f64, 2), arr(f64, 1), arr(f64, 1), i64, arr(f64, 1),
+               arr(f64, 2), arr(f32, 1), arr(i64, 1), arr(i64, 2), arr(f64, 1),
+               arr(f64, 1), arr(f32, 3), arr(f32, 3), arr(f32, 3), arr(f32, 4), i64, i64,
+               arr(i32, 2), arr(f32, 3), arr(i32, 2), arr(i64, 1), arr(f64, 2), arr(f64, 3),
+               i64)
     else:
         sig = (i64, arr(f64, 2), arr(f64, 1), arr(f64, 1), i64, arr(f64, 2)) + bufs + \
             (arr(f64, 3), arr(i64, 2), arr(f64, 2), arr(f64, 3), arr(f64, 3), arr(f64, 3),
              arr(i64, 2), arr(f64, 2), arr(f64, 2)) + outs
-        source = _kernel_source(f, fg, fb, *_column_functions())
+    source = _source(surface, which)
 
     class _Device:
         compute_capability = tuple(cc)

@@ -32,7 +32,7 @@ column's scratch its own (no shared scratch across the parallel columns).
 import numpy as np
 from numba import prange
 
-from ._jit import ngjit_inline, ngjit_nrt_free, ngjit_parallel
+from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .column import (
     _column_t_range, _copy, _grid_range, _ortho_chord, CLIP_MARGIN_PLANES, CLIP_TOL,
     store_sample)
@@ -481,6 +481,13 @@ def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf,
     return evals
 
 
+@ngjit
+def layers_scratch(H):
+    """_column_layers' scratch for a column of H rows, as it must start: (trans
+    (H,) ones, scr zeros)."""
+    return np.ones(H), np.zeros((SCR_STACK + REFINE_DEPTH + 3, A_SIZE))
+
+
 @ngjit_parallel
 def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf,
                   lists, off, K, counts, gfirst, hits, evals):
@@ -497,8 +504,7 @@ def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf,
         c = c0 + b
         if c >= W:
             continue
-        trans = np.ones(H)
-        scr = np.zeros((SCR_STACK + REFINE_DEPTH + 3, A_SIZE))
+        trans, scr = layers_scratch(H)
         x0 = column_x0(vp, c)
         evals[b] += _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax,
                                    hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b,

@@ -121,13 +121,16 @@ def translucent_pass(layers, views, drawn, box, quality, background, texture):
     geometry.check_bytes(W, H, need)
     try:
         return _composited(layers, views, drawn, box, background, texture, ks, slots, B,
-                           aa_cov, sub)
+                           aa_cov, sub, quality.device)
     except MemoryError:
         raise ValueError(geometry.too_large(W, H, need)) from None
 
 
-def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa_cov, sub):
-    """translucent_pass's work, its sizes settled."""
+def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa_cov, sub,
+                device="cpu"):
+    """translucent_pass's work, its sizes settled; the layers of each band on
+    ``device`` (kernels/cuda.py's layers_kernel_cuda on "cuda"), their composite
+    here."""
     view0 = views[0]
     W, H = view0.width, view0.height
     n = len(layers)
@@ -170,6 +173,12 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
                     continue
                 vpk = vp.copy()
                 vpk[VP_XOFF] = vp[VP_XOFF] + offsets_px[m]
+                if device == "cuda":
+                    from ..kernels.cuda import layers_kernel_cuda
+                    layers_kernel_cuda(surface, vpk, c0, mp, lut, sh, hmax, hmin, hsurf,
+                                       lists, offs[k], ks[k], counts[k], gfirst[k], hits,
+                                       evals)
+                    continue
                 kind, f, fg, _, hf, hfp = surface.kernel_args(None)
                 K.layers_kernel(kind, f, fg, hf, hfp, vpk, c0, mp, lut, sh, hmax,
                                 hmin, hsurf, lists, offs[k], ks[k], counts[k], gfirst[k], hits,

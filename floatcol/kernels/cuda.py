@@ -233,7 +233,10 @@ def _unwrapped(fn):
     """fn called with the simulator's array wrappers unwrapped (their numpy arrays),
     in tuples too."""
     def bare(a):
-        return tuple(bare(x) for x in a) if isinstance(a, tuple) else getattr(a, "_ary", a)
+        if isinstance(a, tuple):
+            return tuple(bare(x) for x in a)
+        a = vars(a).get("_item", a) if hasattr(a, "__dict__") else a   # (within a kernel)
+        return getattr(a, "_ary", a)
 
     def call(*args):
         return fn(*[bare(a) for a in args])

@@ -153,6 +153,7 @@ def _render_tiled_layers(items, options, spans, W, H, client, t0):
                              "and vmax (the field's colormap limits)")
     layers = scene_from_options(list(items), **_material_only(options)).layers
     got = _run(items, options, spans, W, client, composite=True)
+    per = [_per_layer(g, len(layers)) for g in got]     # (limits, upper side seen)
     again = []
     fixed_layers = []
     for k, layer in enumerate(layers):
@@ -161,20 +162,18 @@ def _render_tiled_layers(items, options, spans, W, H, client, t0):
         if not auto:
             fixed_layers.append(layer)
             continue
-        ranges = [lims[k] for lims, upper in map(_per_layer, got, [len(layers)] * len(got))
-                  if upper[k]]
+        ranges = [lims[k] for lims, upper in per if upper[k]]
         ranges = [r for r in ranges if r is not None and np.ndim(r) == 1]
         if not ranges:
             fixed_layers.append(layer)
             continue
         vmin, vmax = _limits(ranges, m.vmin, m.vmax)
-        again += [b for b, g in enumerate(got)
-                  if tuple(_per_layer(g, len(layers))[0][k] or ()) != (vmin, vmax)]
+        again += [b for b, (lims, _) in enumerate(per) if tuple(lims[k] or ()) != (vmin, vmax)]
         fixed_layers.append(dataclasses.replace(
             layer, material=dataclasses.replace(m, vmin=vmin, vmax=vmax)))
     again = sorted(set(again))
     if again:
-        rest = {k: x for k, x in options.items() if k not in _material_keys()}
+        rest = {k: x for k, x in options.items() if k not in _material_keys()}  # (Layers')
         for b, g in zip(again, _run(fixed_layers, rest, [spans[b] for b in again], W, client,
                                     composite=True)):
             got[b] = g

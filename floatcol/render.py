@@ -85,7 +85,13 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         planes grows with the distance from the viewer in perspective (up to 16
         times), grows where the normal turns slowly (up to 4 times, while spans stay
         within 2 pixel rows) and shrinks to a quarter where it turns fast; "uniform"
-        (default): planes ``step`` apart everywhere, as the paper and the line drawings.
+        (default): planes ``step`` apart everywhere, as the paper and the line drawings;
+        "lod" (fc.fly's): the level-of-detail engine of fly-throughs (passes/lod.py,
+        docs/terrain.md): planes a pixel's footprint apart, each sampling the height
+        field's pyramid at that footprint, one floating horizon per column; where it
+        cannot draw the view (orthographic, looking down past the nadir, the eye
+        below the ground) the adaptive planes. Antialiased by area weights along
+        the columns (antialias=True or "area"), or at pixel centres (False).
     antialias : section 6.4. True: coverage-weighted blending along columns (the
         floating interval's float ends give each silhouette pixel its coverage, and
         where the surface reappears beyond an extremum the pixel blends both

@@ -23,7 +23,8 @@ from dataclasses import dataclass
 from . import color, warmup
 from .camera import fit
 from .light import as_light
-from .passes import antialias, area, colour, draft, finish, geometry, horizon, overlays, shadow as shadows
+from .passes import (antialias, area, colour, draft, finish, geometry, horizon, lod, overlays,
+                     shadow as shadows)
 from .passes.composite import composite as merge
 from .passes.translucency import render_translucent
 from .kernels.shade import INTERP_INTENSITY
@@ -219,7 +220,13 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     quality.check_sampling()
     vp = geometry.view_params(view, method, quality.sampling, fixes, aa_cov, surface)
     buffers = geometry.allocate(W, H, n_lines, sub_columns)
-    if quality.area:
+    # sampling="lod": the fly-through's level-of-detail pass where it can draw the
+    # view (antialiased: by Cohen-Or's area weights along the columns)
+    by_lod = quality.sampling == "lod" and method == "column" and lod.supports(surface, view)
+    by_area = quality.area or (by_lod and aa_cov)
+    if by_lod:
+        geom = lod.lod_pass(surface, view, vp, buffers, by_area)
+    elif quality.area:
         geom = area.area_pass(surface, view, vp, buffers, device=quality.device)
     elif quality.device == "cuda":
         geom = geometry.column_pass(surface, view, vp, buffers, hstride, None, device="cuda")
@@ -243,7 +250,7 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     else:
         # area sampling averages the intensities it sees (kernels/area.py): lit at
         # the samples, as the paper's iis
-        colours = material.table(geom.wrange, box[2], INTERP_INTENSITY if quality.area else None)
+        colours = material.table(geom.wrange, box[2], INTERP_INTENSITY if by_area else None)
         w_limits = colours.w_limits
         bg8 = color.to_rgba8(background)
         intensity = depth = None        # Render computes them when asked (centre_kernel)
@@ -256,7 +263,7 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
                                  "sub-columns)")
             base, c_limits = colour.base_colours(material, p.source, geom, W, H, box, colours)
         rgba, side = finish.finish_pass(geom, H, W, colours, bg8, lit, base)
-        if aa_cov and sub_columns == 1 and not quality.area:
+        if aa_cov and sub_columns == 1 and not by_area:
             antialias.staircase_pass(geom, side, rgba)
         if sub_columns > 1:
             rgba, ev2 = antialias.subcolumn_pass(surface, geom, sub_columns, rgba, colours,
@@ -283,6 +290,8 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
         "w_limits": w_limits,      # the colormap's height range (column method)
         "box": box,                # aspect's stretch of u, v and w (1, 1, 1: none)
         "engine": "kernels",       # (a fresh install's first pictures: "draft")
+        # the geometry pass that drew it: "column", "area" or "lod" (passes/)
+        "geometry": "lod" if by_lod else ("area" if quality.area else "column"),
     }
     if c_limits is not None:
         stats["c_limits"] = c_limits   # the colour field's range on the colormap

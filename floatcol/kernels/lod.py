@@ -1,0 +1,730 @@
+"""The level-of-detail column (``sampling="lod"``): a fly-through's fast floating
+column over a height field's pyramid (Cohen-Or 1997's multiresolution traversal,
+Guedes 1997's growing step), with each sample placed exactly on its column plane.
+
+A perspective column x0 is sampled front to back on the planes t = const, as in
+column.py, but the planes are spaced by the footprint of a pixel there (KAPPA
+footprints apart) and each samples the pyramid level (passes/area.py) whose cells
+match LOD (2**bias) footprints, blended with the next level (a mip-map's trilinear
+filter, so no level boundary pops). So a column takes about D ln(far / near) / KAPPA
+samples (D the focal length in pixels) whatever the grid's size, where the uniform
+planes of column.py take one per cell: 19 000 a column for a 2049^2 DEM at 640x360.
+
+A sample is the point of the (blended) surface on the line where column x0's plane Pi
+meets plane t: Newton's iteration in s from the last sample's s (ERRATA 2; the plane
+is tilted when the camera pitches, Guedes's non-vertical view plane, so the point is
+not the one under the plane's ground line) until it lies within TOL_PX of Pi. The
+column keeps one floating horizon, the highest row covered; a span from the last
+sample is painted above it (pixel centres: ``area=False``), or (``area=True``) each
+pixel takes the visible parts of the spans that cross it, weighted by their length on
+screen (Cohen-Or's Fig. 12 weights, as kernels/area.py), their total the pixel's
+coverage. One horizon is exact for a surface seen from above it (a terrain under a
+fly camera, passes/lod.py checks the eye is above the ground under it) with no holes;
+behind a hole a farther surface is drawn where it rises above the nearer ones only.
+"""
+import math
+
+import numpy as np
+from numba import prange
+
+from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
+from .area import (AC_I, AC_NX, AC_NY, AC_NZ, AC_SIZE, AC_T, AC_U, AC_V, AC_W, AC_WW, AC_Z,
+                   LV_CELL, LV_NU, LV_NV, LV_OFF, WHOLE)
+from .column import _column_t_range
+from .layout import (E_COV, E_COV0, E_FLAG, E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U,
+                     G_V, G_W, SURF_HEIGHTFIELD, VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1,
+                     VP_D3, VP_H, VP_SA, VP_SB, VP_SCALE, VP_T0, VP_T1)
+from .sample import column_x0, in_domain, into_domain, lambert, surface_eval, unit_normal
+
+#: planes a footprint apart (1: a plane per pixel's width at its distance)
+KAPPA = 1.0
+#: a sample is placed when it lies within this many pixels of its column's plane
+TOL_PX = 0.05
+NEWTON_MAX = 8
+#: a visible span is cut in two (its middle sampled) where it rises more than this
+#: many rows, up to this many times
+REFINE_ROWS = 1.0
+REFINE_DEPTH = 5
+#: ... and cut where it crosses an edge of its level's cells while rising more rows
+#: than this
+CROSS_ROWS = 0.05
+#: a ridge between two samples is looked for where it may rise this many rows above
+#: the horizon, by this many bisections
+RIDGE_PX = 0.25
+RIDGE_STEPS = 4
+#: a sample that Newton leaves farther than this from its plane (pixels) breaks the run
+GIVE_UP_PX = 0.5
+#: A sample: t, s, u, v, w, f_u, f_v, row, depth, level, blend, normal, intensity, done
+Q_T = 0
+Q_S = 1
+Q_U = 2
+Q_V = 3
+Q_W = 4
+Q_WU = 5
+Q_WV = 6
+Q_Y = 7
+Q_Z = 8
+Q_K = 9
+Q_A = 10
+Q_NX = 11
+Q_NY = 12
+Q_NZ = 13
+Q_I = 14
+Q_DONE = 15
+Q_DEP = 16        # (a refinement stack's entry: how many times it was cut)
+Q_SIZE = 17
+#: level_table's columns
+LT_OFF = 0
+LT_NU = 1
+LT_NV = 2
+LT_SU = 3
+LT_SV = 4
+LT_SIZE = 5
+
+
+@ngjit_inline
+def _bilinear(flat, lt, k, hfp, u, v):
+    """(w, f_u, f_v) of level k at (u, v) inside the extent: bilinear, its partials
+    the cell's. lt: level_table's."""
+    nu = int(lt[k, LT_NU])
+    su = lt[k, LT_SU]
+    sv = lt[k, LT_SV]
+    gx = (u - hfp[0]) * su
+    gy = (v - hfp[2]) * sv
+    i = min(max(int(gx), 0), nu - 2)             # (gx >= 0 inside the extent)
+    j = min(max(int(gy), 0), int(lt[k, LT_NV]) - 2)
+    fx = gx - i
+    fy = gy - j
+    b = int(lt[k, LT_OFF]) + j * nu + i
+    z00 = flat[b]
+    z10 = flat[b + 1]
+    z01 = flat[b + nu]
+    z11 = flat[b + nu + 1]
+    a0 = z00 + fx * (z10 - z00)
+    a1 = z01 + fx * (z11 - z01)
+    w = a0 + fy * (a1 - a0)
+    wu = ((z10 - z00) + fy * ((z11 - z01) - (z10 - z00))) * su
+    wv = (a1 - a0) * sv
+    return w, wu, wv
+
+
+@ngjit_inline
+def _node_gradient(flat, lt, k, i, j):
+    """(f_u, f_v) at node (i, j) of level k by central differences."""
+    off = int(lt[k, LT_OFF])
+    nu = int(lt[k, LT_NU])
+    nv = int(lt[k, LT_NV])
+    i0 = max(i - 1, 0)
+    i1 = min(i + 1, nu - 1)
+    j0 = max(j - 1, 0)
+    j1 = min(j + 1, nv - 1)
+    hu = lt[k, LT_SU] if i1 - i0 == 1 else 0.5 * lt[k, LT_SU]
+    hv = lt[k, LT_SV] if j1 - j0 == 1 else 0.5 * lt[k, LT_SV]
+    return ((flat[off + j * nu + i1] - flat[off + j * nu + i0]) * hu,
+            (flat[off + j1 * nu + i] - flat[off + j0 * nu + i]) * hv)
+
+
+@ngjit_inline
+def _smooth_gradient(flat, lt, k, hfp, u, v):
+    """(f_u, f_v) of level k at (u, v) interpolated bilinearly between its cell's
+    nodes' central differences (as area.py's _smooth_normal): a smoothed level's
+    light does not jump from one facet to the next."""
+    gx = (u - hfp[0]) * lt[k, LT_SU]
+    gy = (v - hfp[2]) * lt[k, LT_SV]
+    i = min(max(int(gx), 0), int(lt[k, LT_NU]) - 2)
+    j = min(max(int(gy), 0), int(lt[k, LT_NV]) - 2)
+    fx = min(max(gx - i, 0.0), 1.0)
+    fy = min(max(gy - j, 0.0), 1.0)
+    a_u, a_v = _node_gradient(flat, lt, k, i, j)
+    b_u, b_v = _node_gradient(flat, lt, k, i + 1, j)
+    c_u, c_v = _node_gradient(flat, lt, k, i, j + 1)
+    d_u, d_v = _node_gradient(flat, lt, k, i + 1, j + 1)
+    return ((a_u * (1 - fx) + b_u * fx) * (1 - fy) + (c_u * (1 - fx) + d_u * fx) * fy,
+            (a_v * (1 - fx) + b_v * fx) * (1 - fy) + (c_v * (1 - fx) + d_v * fx) * fy)
+
+
+@ngjit_inline
+def _height(kind, fg, hf0, flat, lt, hfp, k, a, u, v):
+    """(w, f_u, f_v) of the surface at (u, v): a height field's level k blended with
+    level k + 1 by a (trilinear), a function surface itself."""
+    if kind != SURF_HEIGHTFIELD:
+        return surface_eval(kind, fg, hf0, hfp, u, v)
+    w, wu, wv = _bilinear(flat, lt, k, hfp, u, v)
+    if a > 0.0:
+        w1, wu1, wv1 = _bilinear(flat, lt, k + 1, hfp, u, v)
+        b = 1.0 - a
+        w = b * w + a * w1
+        wu = b * wu + a * wu1
+        wv = b * wv + a * wv1
+    return w, wu, wv
+
+
+@ngjit_inline
+def _place(kind, fg, hf0, flat, lt, hfp, vp, x0, t, k, a, s, q):
+    """The sample of plane t into q (Q_*) from Newton's start s: False where it
+    falls in a hole, outside the domain, in front of the screen or off its plane.
+    Returns (placed, evaluations)."""
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    d1 = vp[VP_D1]
+    d3 = vp[VP_D3]
+    cw = vp[VP_CW]
+    inv_d1 = 1.0 / d1
+    r0 = x0 * (t * ca + d3) * inv_d1             # eq. (9): Pi at height s = 0
+    kx = x0 * sa * inv_d1                        # dr/ds inside Pi (ERRATA 2)
+    ev = 0
+    u = 0.0
+    v = 0.0
+    w = np.nan
+    wu = 0.0
+    wv = 0.0
+    g = np.inf
+    # Pi's distance in pixels at the point's depth: |kx g| scale d1 / q
+    tol = TOL_PX * max(t * ca + s * sa + d3, d1) * inv_d1 / vp[VP_SCALE]
+    for _ in range(NEWTON_MAX):
+        r = r0 + kx * s
+        u = vp[VP_CU] + r * cb + t * sb          # eq. (2)
+        v = vp[VP_CV] - r * sb + t * cb
+        if not in_domain(vp, u, v):
+            return False, ev
+        u, v = into_domain(vp, u, v)
+        w, wu, wv = _height(kind, fg, hf0, flat, lt, hfp, k, a, u, v)
+        ev += 1
+        if not (math.isfinite(w) and math.isfinite(wu) and math.isfinite(wv)):
+            return False, ev
+        g = (w - cw) - s
+        if abs(kx * g) <= tol:
+            break
+        dg = kx * (wu * cb - wv * sb) - 1.0
+        if dg == 0.0:
+            break
+        s = s - g / dg
+    if abs(kx * g) > tol * (GIVE_UP_PX / TOL_PX):
+        return False, ev
+    s = w - cw
+    y1 = s * ca - t * sa                         # eqs. (4), (10)
+    z1 = s * sa + t * ca
+    if z1 + d3 <= d1:                            # in front of the screen
+        return False, ev
+    ypix = y1 * d1 / (z1 + d3) * vp[VP_SCALE] + (vp[VP_H] - 1.0) * 0.5
+    q[Q_T] = t
+    q[Q_S] = s
+    q[Q_U] = u
+    q[Q_V] = v
+    q[Q_W] = w
+    q[Q_WU] = wu
+    q[Q_WV] = wv
+    q[Q_Y] = ypix
+    q[Q_Z] = z1
+    q[Q_K] = k
+    q[Q_A] = a
+    q[Q_DONE] = 0.0
+    return True, ev
+
+
+@ngjit_inline
+def _finish(kind, flat, lt, hfp, vp, q):
+    """The normal and intensity of a sample that is drawn (computed once)."""
+    if q[Q_DONE] != 0.0:
+        return
+    wu = q[Q_WU]
+    wv = q[Q_WV]
+    k = int(q[Q_K])
+    if kind == SURF_HEIGHTFIELD and (k > 0 or q[Q_A] > 0.0):
+        # a smoothed level: its partials interpolated between the nodes
+        a = q[Q_A]
+        gu, gv = _smooth_gradient(flat, lt, k, hfp, q[Q_U], q[Q_V])
+        if k > 0 or a > 0.0:
+            if a > 0.0:
+                hu, hv = _smooth_gradient(flat, lt, k + 1, hfp, q[Q_U], q[Q_V])
+                gu = (1.0 - a) * gu + a * hu
+                gv = (1.0 - a) * gv + a * hv
+            if k == 0:
+                # level 0 keeps its exact partials where it dominates
+                gu = (1.0 - a) * wu + a * gu if a < 1.0 else gu
+                gv = (1.0 - a) * wv + a * gv if a < 1.0 else gv
+            if math.isfinite(gu) and math.isfinite(gv):
+                wu = gu
+                wv = gv
+    nx, ny, nz = unit_normal(vp, wu, wv)
+    r = (q[Q_U] - vp[VP_CU]) * vp[VP_CB] - (q[Q_V] - vp[VP_CV]) * vp[VP_SB]
+    y1 = q[Q_S] * vp[VP_CA] - q[Q_T] * vp[VP_SA]
+    q[Q_NX] = nx
+    q[Q_NY] = ny
+    q[Q_NZ] = nz
+    q[Q_I] = lambert(vp, -r, -y1, -(vp[VP_D3] + q[Q_Z]), nx, ny, nz)    # eq. (12)
+    q[Q_DONE] = 1.0
+
+
+@ngjit_inline
+def _weight(yq, p, c, d3):
+    """Perspective-correct weight of sample c at screen row yq of the chord p -> c."""
+    ls = min(max((yq - p[Q_Y]) / (c[Q_Y] - p[Q_Y]), 0.0), 1.0)
+    qp = 1.0 / (p[Q_Z] + d3)
+    qc = 1.0 / (c[Q_Z] + d3)
+    return ls * qc / ((1.0 - ls) * qp + ls * qc)
+
+
+@ngjit_inline
+def _store(g, lw, p, c):
+    """Pixel g of the G-buffer at weight lw of the chord p -> c."""
+    g[G_DEPTH] = p[Q_Z] + lw * (c[Q_Z] - p[Q_Z])
+    g[G_U] = p[Q_U] + lw * (c[Q_U] - p[Q_U])
+    g[G_V] = p[Q_V] + lw * (c[Q_V] - p[Q_V])
+    g[G_W] = p[Q_W] + lw * (c[Q_W] - p[Q_W])
+    g[G_NX] = p[Q_NX] + lw * (c[Q_NX] - p[Q_NX])
+    g[G_NY] = p[Q_NY] + lw * (c[Q_NY] - p[Q_NY])
+    g[G_NZ] = p[Q_NZ] + lw * (c[Q_NZ] - p[Q_NZ])
+    g[G_I] = p[Q_I] + lw * (c[Q_I] - p[Q_I])
+    g[G_T] = p[Q_T] + lw * (c[Q_T] - p[Q_T])
+
+
+@ngjit_inline
+def _accumulate(acc, j, wgt, lw, p, c):
+    """A visible piece of the chord p -> c (its middle at weight lw) into pixel j's
+    accumulator, weighted by its length on screen."""
+    a = acc[j]
+    a[AC_W] += wgt
+    a[AC_U] += wgt * (p[Q_U] + lw * (c[Q_U] - p[Q_U]))
+    a[AC_V] += wgt * (p[Q_V] + lw * (c[Q_V] - p[Q_V]))
+    a[AC_WW] += wgt * (p[Q_W] + lw * (c[Q_W] - p[Q_W]))
+    a[AC_NX] += wgt * (p[Q_NX] + lw * (c[Q_NX] - p[Q_NX]))
+    a[AC_NY] += wgt * (p[Q_NY] + lw * (c[Q_NY] - p[Q_NY]))
+    a[AC_NZ] += wgt * (p[Q_NZ] + lw * (c[Q_NZ] - p[Q_NZ]))
+    a[AC_I] += wgt * (p[Q_I] + lw * (c[Q_I] - p[Q_I]))
+    a[AC_T] += wgt * (p[Q_T] + lw * (c[Q_T] - p[Q_T]))
+    a[AC_Z] = min(a[AC_Z], p[Q_Z] + lw * (c[Q_Z] - p[Q_Z]))
+
+
+@ngjit_inline
+def _below(vp, t, s_lo, s_hi):
+    """Do all points of plane t on a column plane, over the heights s in [s_lo,
+    s_hi], fall more than a pixel below the picture (both beyond the screen)?"""
+    for s in (s_lo, s_hi):
+        q = s * vp[VP_SA] + t * vp[VP_CA] + vp[VP_D3]
+        if q <= vp[VP_D1]:
+            return False
+        y = (s * vp[VP_CA] - t * vp[VP_SA]) * vp[VP_D1] / q * vp[VP_SCALE] \
+            + (vp[VP_H] - 1.0) * 0.5
+        if y >= -1.5:
+            return False
+    return True
+
+
+@ngjit_inline
+def _footprint(vp, t, s):
+    """The width of a pixel, in world units, at height s on plane t."""
+    q = s * vp[VP_SA] + t * vp[VP_CA] + vp[VP_D3]
+    return max(q, vp[VP_D1]) / (vp[VP_D1] * vp[VP_SCALE])
+
+
+@ngjit
+def plane_table(kind, lv, vp, lod, kappa, s_ref):
+    """The sampling planes every column takes, (n, 3): t, level k, blend a. From the
+    viewpoint's t to the last plane, each ``kappa`` footprints of a pixel after the
+    last (at the height s_ref: a footprint there), the level whose cells are ``lod``
+    footprints (a mip-map's level, blended linearly in log2 with the next)."""
+    d3 = vp[VP_D3]
+    t0 = max(-d3 * vp[VP_CA], vp[VP_T0])
+    t1 = vp[VP_T1]
+    n_lv = lv.shape[0]
+    cell0 = lv[0, LV_CELL]
+    n = 0
+    t = t0
+    while t <= t1:
+        n += 1
+        t += max(kappa * _footprint(vp, t, s_ref), 1e-9 * (abs(t) + 1.0))
+    out = np.empty((n + 1, 3))
+    t = t0
+    for i in range(n + 1):
+        if i == n:
+            t = t1                               # the last plane on the far end
+        fw = _footprint(vp, t, s_ref)
+        k = 0
+        a = 0.0
+        if kind == SURF_HEIGHTFIELD:
+            lf = math.log2(max(fw * lod / cell0, 1.0))
+            if lf >= n_lv - 1:
+                k = n_lv - 1
+            else:
+                k = int(lf)
+                a = lf - k
+        out[i, 0] = t
+        out[i, 1] = k
+        out[i, 2] = a
+        t += max(kappa * fw, 1e-9 * (abs(t) + 1.0))
+    return out
+
+
+@ngjit
+def level_table(lv, hfp):
+    """Each level's offset, nodes along u and v, and nodes per unit of u and v."""
+    lt = np.empty((lv.shape[0], LT_SIZE))
+    for k in range(lv.shape[0]):
+        lt[k, LT_OFF] = lv[k, LV_OFF]
+        lt[k, LT_NU] = lv[k, LV_NU]
+        lt[k, LT_NV] = lv[k, LV_NV]
+        lt[k, LT_SU] = (lv[k, LV_NU] - 1.0) / (hfp[1] - hfp[0])
+        lt[k, LT_SV] = (lv[k, LV_NV] - 1.0) / (hfp[3] - hfp[2])
+    return lt
+
+
+@ngjit_inline
+def _last_before(planes, t):
+    """The index of the last plane at or before t (0 where none)."""
+    lo = 0
+    hi = planes.shape[0] - 1
+    if planes[hi, 0] <= t:
+        return hi
+    while hi - lo > 1:
+        m = (lo + hi) // 2
+        if planes[m, 0] <= t:
+            lo = m
+        else:
+            hi = m
+    return lo
+
+
+#: A lane's state in lod_tile: its t range, first plane, Newton's next start s and
+#: the slope ds/dt of its last two samples, the floating horizon, whether the last
+#: sample continues a run, whether it is done, evaluations, rows set
+ST_TA = 0
+ST_TB = 1
+ST_I0 = 2
+ST_S = 3
+ST_SLOPE = 4
+ST_YMAX = 5
+ST_HAVE = 6
+ST_DONE = 7
+ST_EVALS = 8
+ST_JLO = 9
+ST_JHI = 10
+ST_OK = 11
+ST_DY = 12
+ST_SIZE = 13
+
+
+@ngjit_inline
+def _start(vp, x0, s_lo, s_hi, planes, st):
+    """A lane's state before its first plane."""
+    d3 = vp[VP_D3]
+    lo, hi = _column_t_range(vp, x0)
+    ta = max(lo, -d3 * vp[VP_CA], vp[VP_T0])
+    tb = min(hi, vp[VP_T1])
+    if ta <= tb and s_lo == s_lo and _below(vp, ta, s_lo, s_hi):
+        # the planes whose points all fall below the picture (the ground under a fly
+        # camera) are skipped: bisect for the last of them (each end's row is monotone
+        # in t along a line of constant s)
+        if _below(vp, tb, s_lo, s_hi):
+            ta = tb + 1.0
+        else:
+            a = ta
+            b = tb
+            for _ in range(60):
+                m = 0.5 * (a + b)
+                if _below(vp, m, s_lo, s_hi):
+                    a = m
+                else:
+                    b = m
+            ta = a
+    st[ST_TA] = ta
+    st[ST_TB] = tb
+    st[ST_I0] = _last_before(planes, ta)
+    st[ST_S] = 0.5 * (s_lo + s_hi) if s_lo == s_lo else 0.0
+    st[ST_SLOPE] = 0.0
+    st[ST_YMAX] = -0.5
+    st[ST_HAVE] = 0.0
+    st[ST_DONE] = 1.0 if ta > tb else 0.0
+    st[ST_EVALS] = 0.0
+    st[ST_DY] = 0.0
+
+
+@ngjit_inline
+def _sample_lane(kind, fg, hf0, flat, lt, hfp, vp, x0, t, k, a, st, prev, cur):
+    """One plane's sample of one lane into cur, from Newton's start on the line
+    through its last two samples. Returns whether it was placed."""
+    s_start = st[ST_S]
+    if st[ST_HAVE] != 0.0:
+        s_start += st[ST_SLOPE] * (t - prev[Q_T])
+    ok, ev = _place(kind, fg, hf0, flat, lt, hfp, vp, x0, t, k, a, s_start, cur)
+    st[ST_EVALS] += ev
+    return ok
+
+
+@ngjit_inline
+def _crossing(lt, k, hfp, p, c):
+    """Where the segment p -> c (ground points) first crosses an edge of level k's
+    cells, as a fraction of it in (0.02, 0.98); 0 where it crosses none there."""
+    best = 1.0
+    for axis in range(2):
+        o = hfp[0] if axis == 0 else hfp[2]
+        sc = lt[k, LT_SU] if axis == 0 else lt[k, LT_SV]
+        a = (p[Q_U if axis == 0 else Q_V] - o) * sc
+        b = (c[Q_U if axis == 0 else Q_V] - o) * sc
+        fa = math.floor(a)
+        fb = math.floor(b)
+        if fa != fb:
+            edge = fb if b > a else fa
+            lam = (edge - a) / (b - a)
+            if 0.02 < lam < 0.98:
+                best = min(best, lam)
+    return best if best < 1.0 else 0.0
+
+
+@ngjit_inline
+def _paint(area, st, prev, cur, gcol, ecol, acc, d3):
+    """The part of the span prev -> cur above the floating horizon, which rises to
+    cur's row: pixel centres, or (area) each pixel's visible pieces (Fig. 12)."""
+    H = gcol.shape[0]
+    y = cur[Q_Y]
+    lo_f = max(st[ST_YMAX], prev[Q_Y])
+    if area:
+        j = int(math.floor(lo_f + 0.5))
+        while j < H:
+            pa = max(lo_f, j - 0.5)
+            pb = min(y, j + 0.5)
+            if pb > pa and j >= 0:
+                _accumulate(acc, j, pb - pa, _weight(0.5 * (pa + pb), prev, cur, d3), prev, cur)
+                st[ST_JLO] = min(st[ST_JLO], j)
+                st[ST_JHI] = max(st[ST_JHI], j)
+            if j + 0.5 >= y:
+                break
+            j += 1
+    else:
+        j0 = max(int(math.floor(lo_f)) + 1, 0)
+        j1 = min(int(math.floor(y)), H - 1)
+        for j in range(j0, j1 + 1):
+            _store(gcol[j], _weight(j, prev, cur, d3), prev, cur)
+            ecol[E_SEEN, j] = 1.0
+        if j1 >= j0:
+            st[ST_JLO] = min(st[ST_JLO], j0)
+            st[ST_JHI] = max(st[ST_JHI], j1)
+    st[ST_YMAX] = y
+
+
+@ngjit_inline
+def _draw_lane(kind, fg, hf0, flat, lt, hfp, vp, x0, area, st, pts, gcol, ecol, acc):
+    """The span from a lane's last sample pts[0] to its new one pts[1] where it rises
+    above the floating horizon, cut at midpoints (up to REFINE_DEPTH times, pts[2:]
+    the stack) while its visible part spans more than REFINE_ROWS rows: a steep
+    stretch that one straight span would misplace. The new sample becomes the last."""
+    d3 = vp[VP_D3]
+    prev = pts[0]
+    cur = pts[1]
+    have = st[ST_HAVE] != 0.0
+    st[ST_SLOPE] = (cur[Q_S] - prev[Q_S]) / (cur[Q_T] - prev[Q_T]) if have else 0.0
+    dy = st[ST_DY]
+    st[ST_DY] = (cur[Q_Y] - prev[Q_Y]) / (cur[Q_T] - prev[Q_T]) if have else 0.0
+    s_new = cur[Q_S]
+    if have and cur[Q_Y] > st[ST_YMAX]:
+        k = int(cur[Q_K])
+        a = cur[Q_A]
+        for q in range(Q_SIZE):
+            pts[2, q] = cur[q]
+        pts[2, Q_DEP] = 0.0
+        sp = 2
+        while sp >= 2:
+            right = pts[sp]
+            lo_f = max(st[ST_YMAX], prev[Q_Y])
+            if right[Q_Y] > lo_f:
+                d = right[Q_DEP]
+                rise = right[Q_Y] - lo_f
+                lam = 0.5
+                cut = rise > REFINE_ROWS
+                if kind == SURF_HEIGHTFIELD and rise > CROSS_ROWS:
+                    # the span crosses an edge of its level's cells, where the
+                    # surface bends: cut it there (as column.py's height-field spans)
+                    c = _crossing(lt, k, hfp, prev, right)
+                    if c > 0.0:
+                        lam = c
+                        cut = True
+                if cut and d < REFINE_DEPTH:
+                    mid = pts[sp + 1]
+                    ok, ev = _place(kind, fg, hf0, flat, lt, hfp, vp, x0,
+                                    prev[Q_T] + lam * (right[Q_T] - prev[Q_T]), k, a,
+                                    prev[Q_S] + lam * (right[Q_S] - prev[Q_S]), mid)
+                    st[ST_EVALS] += ev
+                    if ok:
+                        right[Q_DEP] = d + 1.0
+                        mid[Q_DEP] = d + 1.0
+                        sp += 1
+                        continue
+                _finish(kind, flat, lt, hfp, vp, prev)
+                _finish(kind, flat, lt, hfp, vp, right)
+                _paint(area, st, prev, right, gcol, ecol, acc, d3)
+            for q in range(Q_SIZE):
+                prev[q] = right[q]
+            sp -= 1
+    elif have and prev[Q_Y] >= st[ST_YMAX] and cur[Q_Y] < prev[Q_Y] \
+            and dy * (cur[Q_T] - prev[Q_T]) > RIDGE_PX:
+        # a ridge between the top sample and this one, which may rise above the
+        # horizon by up to the last rise's slope times the step (section 5.1's
+        # problem): bisect toward it, drawing each point found above the horizon
+        k = int(cur[Q_K])
+        a = cur[Q_A]
+        right = pts[2]
+        for q in range(Q_SIZE):
+            right[q] = cur[q]
+        mid = pts[3]
+        for _ in range(RIDGE_STEPS):
+            ok, ev = _place(kind, fg, hf0, flat, lt, hfp, vp, x0, 0.5 * (prev[Q_T] + right[Q_T]),
+                            k, a, 0.5 * (prev[Q_S] + right[Q_S]), mid)
+            st[ST_EVALS] += ev
+            if not ok:
+                break
+            if mid[Q_Y] > prev[Q_Y]:
+                _finish(kind, flat, lt, hfp, vp, prev)
+                _finish(kind, flat, lt, hfp, vp, mid)
+                _paint(area, st, prev, mid, gcol, ecol, acc, d3)
+                for q in range(Q_SIZE):
+                    prev[q] = mid[q]
+            else:
+                for q in range(Q_SIZE):
+                    right[q] = mid[q]
+        for q in range(Q_SIZE):
+            prev[q] = cur[q]
+    else:
+        for q in range(Q_SIZE):
+            prev[q] = cur[q]
+    st[ST_S] = s_new
+    st[ST_HAVE] = 1.0
+
+
+@ngjit_inline
+def _resolve(area, gcol, ecol, acc, st):
+    """A lane's G-buffer from its accumulators (area); returns the lowest and
+    highest w seen."""
+    H = gcol.shape[0]
+    w_lo = np.inf
+    w_hi = -np.inf
+    for j in range(max(int(st[ST_JLO]), 0), min(int(st[ST_JHI]), H - 1) + 1):
+        if not area:
+            if ecol[E_SEEN, j] != 0.0:
+                w = gcol[j, G_W]
+                w_lo = min(w_lo, w)
+                w_hi = max(w_hi, w)
+            continue
+        c = acc[j]
+        wgt = c[AC_W]
+        if wgt <= 0.0:
+            continue
+        inv = 1.0 / wgt
+        g = gcol[j]
+        g[G_DEPTH] = c[AC_Z]
+        g[G_U] = c[AC_U] * inv
+        g[G_V] = c[AC_V] * inv
+        g[G_W] = c[AC_WW] * inv
+        nx = c[AC_NX]
+        ny = c[AC_NY]
+        nz = c[AC_NZ]
+        qn = math.sqrt(nx * nx + ny * ny + nz * nz)
+        qn = 1.0 / qn if qn > 0.0 else 0.0
+        g[G_NX] = nx * qn
+        g[G_NY] = ny * qn
+        g[G_NZ] = nz * qn
+        g[G_I] = c[AC_I] * inv
+        g[G_T] = c[AC_T] * inv
+        if wgt >= WHOLE:
+            ecol[E_SEEN, j] = 1.0
+        else:
+            ecol[E_SEEN, j] = 1.0 + E_FLAG
+            ecol[E_COV0, j] = wgt
+            ecol[E_COV, j] = 0.0
+        w_lo = min(w_lo, g[G_W])
+        w_hi = max(w_hi, g[G_W])
+    return w_lo, w_hi
+
+
+@ngjit_nrt_free
+def lod_tile(kind, fg, hf0, flat, lt, hfp, vp, c0, lanes, area, planes, s_lo, s_hi, gtile,
+             etile, acc, pts, st, out):
+    """Render columns c0 .. c0 + lanes - 1 (one tile: gtile (H, TILE, G_SIZE), etile
+    (E_SIZE, H, TILE)) in lock step, plane after plane: each lane's samples depend on
+    its last one, and the lanes' independent chains overlap in the processor.
+    ``area``: Cohen-Or's weights (acc: lanes x H x AC_SIZE) instead of pixel centres;
+    ``planes`` plane_table's, [s_lo, s_hi] the surface's heights relative to the
+    centre. Writes each lane's evaluations, lowest and highest w seen, lowest and
+    highest row set to out[lane]."""
+    H = gtile.shape[0]
+    top = H - 0.5
+    i_first = planes.shape[0]
+    for L in range(lanes):
+        etile[E_SEEN, :, L] = 0.0
+        if area:
+            acc[L, :, :] = 0.0
+            acc[L, :, AC_Z] = np.inf
+        _start(vp, column_x0(vp, c0 + L), s_lo, s_hi, planes, st[L])
+        st[L, ST_JLO] = H
+        st[L, ST_JHI] = -1
+        if st[L, ST_DONE] == 0.0:
+            i_first = min(i_first, int(st[L, ST_I0]))
+    for i in range(i_first, planes.shape[0]):
+        t = planes[i, 0]
+        k = int(planes[i, 1])
+        a = planes[i, 2]
+        busy = False
+        # the lanes' samples first (independent chains the processor overlaps),
+        # then their spans (whose branches it cannot foresee)
+        for L in range(lanes):
+            sl = st[L]
+            sl[ST_OK] = 0.0
+            if sl[ST_DONE] != 0.0:
+                continue
+            busy = True
+            if i < sl[ST_I0]:
+                continue
+            if t > sl[ST_TB] or sl[ST_YMAX] >= top:
+                sl[ST_DONE] = 1.0
+                continue
+            if _sample_lane(kind, fg, hf0, flat, lt, hfp, vp, column_x0(vp, c0 + L), t, k, a,
+                            sl, pts[L, 0], pts[L, 1]):
+                sl[ST_OK] = 1.0
+            else:
+                sl[ST_HAVE] = 0.0
+        for L in range(lanes):
+            if st[L, ST_OK] != 0.0:
+                _draw_lane(kind, fg, hf0, flat, lt, hfp, vp, column_x0(vp, c0 + L), area, st[L],
+                           pts[L], gtile[:, L], etile[:, :, L], acc[L])
+        if not busy:
+            break
+    for L in range(lanes):
+        w_lo, w_hi = _resolve(area, gtile[:, L], etile[:, :, L], acc[L], st[L])
+        out[L, 0] = st[L, ST_EVALS]
+        out[L, 1] = w_lo
+        out[L, 2] = w_hi
+        out[L, 3] = st[L, ST_JLO]
+        out[L, 4] = st[L, ST_JHI]
+
+
+@ngjit_parallel
+def lod_kernel(kind, fg, hf0, flat, lv, hfp, vp, area, lod, kappa, s_lo, s_hi, gbuf, ebuf,
+               evals, wrange, rows):
+    """Every tile by lod_tile into the tiled gbuf and ebuf (layout.py), the tiles in
+    parallel; each tile's scratch is its own, each column starts afresh (the picture
+    is the same for any number of threads)."""
+    n_tiles = gbuf.shape[0]
+    H = gbuf.shape[1]
+    T = gbuf.shape[2]
+    W = evals.shape[0]
+    s_ref = 0.5 * (s_lo + s_hi) if s_lo == s_lo else 0.0
+    planes = plane_table(kind, lv, vp, lod, kappa, s_ref)
+    lt = level_table(lv, hfp)
+    for b in prange(n_tiles):
+        acc = np.empty((T, H if area else 1, AC_SIZE))
+        pts = np.empty((T, 3 + REFINE_DEPTH, Q_SIZE))
+        st = np.empty((T, ST_SIZE))
+        out = np.empty((T, 5))
+        lanes = min(T, W - b * T)
+        lod_tile(kind, fg, hf0, flat, lt, hfp, vp, b * T, lanes, area, planes, s_lo, s_hi,
+                 gbuf[b], ebuf[b], acc, pts, st, out)
+        rows[b, 0] = H
+        rows[b, 1] = -1
+        for L in range(lanes):
+            c = b * T + L
+            evals[c] = int(out[L, 0])
+            wrange[c, 0] = out[L, 1]
+            wrange[c, 1] = out[L, 2]
+            rows[b, 0] = min(rows[b, 0], int(out[L, 3]))
+            rows[b, 1] = max(rows[b, 1], int(out[L, 4]))

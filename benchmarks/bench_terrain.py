@@ -16,12 +16,14 @@ Table 1 (1997), and the fly-through's speed.
    400 rows) sample; P the pixels that show terrain, NP the rays cast. Area sampling
    weighs every visible piece of the column (kernels/area.py), so its M is V.
 3. Guedes' Table 1: his variants (kernels/voxel.py) timed, and how far each puts
-   the terrain from where the exact ray finds it; floatcol's exact perspective too.
+   the terrain from where the exact ray finds it; floatcol's exact perspective and
+   its level-of-detail engine too.
 4. Szenberg's Table 1: the time of each step of a terrain with objects (640x360 fly
    view over matplotlib's Jacksboro DEM, 43 objects): the terrain, its window depth
    (eq. 7), the objects (z-buffer).
 5. Speed: a fly-through over a 4097^2 DEM at 1280x720 (the issue asks 30 fps point
-   sampled, 10 fps area sampled).
+   sampled, 10 fps area sampled): the level-of-detail engine fc.fly takes
+   (sampling="lod", passes/lod.py) and the exact column pass (sampling="adaptive").
 
     python benchmarks/bench_terrain.py [--quick]
 """
@@ -175,23 +177,25 @@ def guedes_table():
         print(f"| {v} | {ms:.0f} | {1e3 / ms:.1f} | {np.median(d):.2f} | "
               f"{np.percentile(d, 90):.2f} | {100 * (d > 1).mean():.1f} % | {paper[v]} |",
               flush=True)
-    kw = fc.fly(hf, pos, size=(640, 360), **cam)
-    fc.render(hf, **kw)
-    ts = []
-    for _ in range(3):
-        t = time.perf_counter()
+    for name, sampling in (("floatcol (exact, bilinear)", "adaptive"),
+                           ("floatcol (sampling='lod', fc.fly's)", "lod")):
+        kw = dict(fc.fly(hf, pos, size=(640, 360), **cam), sampling=sampling)
         fc.render(hf, **kw)
-        ts.append(time.perf_counter() - t)
-    ms = statistics.median(ts) * 1e3
-    kw = fc.fly(hf, pos, size=small, **cam)
-    r = fc.render(hf, **kw)
-    ref = raycast(bilinear_surface(hf.hf, (ua, ub), (va, vb)), (ua, ub), (va, vb), small,
-                  kw["elev"], kw["azim"], "perspective", kw["d1"], kw["d2"], kw["scale"],
-                  center=kw["center"], steps=3000)
-    both = (r.side != 0) & (ref.side != 0)
-    d = np.hypot(r.u[both] - ref.u[both], r.v[both] - ref.v[both]) / cell
-    print(f"| floatcol (exact, bilinear) | {ms:.0f} | {1e3 / ms:.1f} | {np.median(d):.3f} | "
-          f"{np.percentile(d, 90):.3f} | {100 * (d > 1).mean():.1f} % | |")
+        ts = []
+        for _ in range(3):
+            t = time.perf_counter()
+            fc.render(hf, **kw)
+            ts.append(time.perf_counter() - t)
+        ms = statistics.median(ts) * 1e3
+        kw = dict(fc.fly(hf, pos, size=small, **cam), sampling=sampling)
+        r = fc.render(hf, **kw)
+        ref = raycast(bilinear_surface(hf.hf, (ua, ub), (va, vb)), (ua, ub), (va, vb), small,
+                      kw["elev"], kw["azim"], "perspective", kw["d1"], kw["d2"], kw["scale"],
+                      center=kw["center"], steps=3000)
+        both = (r.side != 0) & (ref.side != 0)
+        d = np.hypot(r.u[both] - ref.u[both], r.v[both] - ref.v[both]) / cell
+        print(f"| {name} | {ms:.0f} | {1e3 / ms:.1f} | {np.median(d):.3f} | "
+              f"{np.percentile(d, 90):.3f} | {100 * (d > 1).mean():.1f} % | |", flush=True)
 
 
 def szenberg():
@@ -232,20 +236,23 @@ def speed():
     hf = fc.HeightField(fractal(n, seed=3) * 40, u=(0, 4 * (n - 1)), v=(0, 4 * (n - 1)))
     size = (1280, 720)
     print(f"\n## Fly-through speed: {n}^2 DEM, {size[0]}x{size[1]}\n")
-    print("| sampling | ms/frame | fps |\n|---|---|---|")
-    for name, extra in (("point (antialias=False, adaptive planes)",
-                         dict(antialias=False)),
-                        ("area (antialias='area')", dict(antialias="area"))):
-        ts = []
-        for k in range(4 if QUICK else 8):
-            kw = fc.fly(hf, (2000.0 + 40 * k, 1000.0), heading=30, pitch=-10, fov=60,
-                        size=size, above=300)
-            kw.update(extra)
-            t = time.perf_counter()
-            fc.render(hf, **kw)
-            ts.append(time.perf_counter() - t)
-        ms = statistics.median(ts[1:]) * 1e3
-        print(f"| {name} | {ms:.0f} | {1e3 / ms:.1f} |", flush=True)
+    print("| engine | sampling | ms/frame | fps | evaluations |\n|---|---|---|---|---|")
+    for engine, sampling in (("level of detail (fc.fly's)", "lod"),
+                             ("exact column pass", "adaptive")):
+        for name, extra in (("point (antialias=False)", dict(antialias=False)),
+                            ("area (antialias='area')", dict(antialias="area"))):
+            ts = []
+            frames = 8 if sampling == "lod" else (3 if QUICK else 5)
+            for k in range(frames):
+                kw = fc.fly(hf, (2000.0 + 40 * k, 1000.0), heading=30, pitch=-10, fov=60,
+                            size=size, above=300)
+                kw.update(extra, sampling=sampling)
+                t = time.perf_counter()
+                r = fc.render(hf, **kw)
+                ts.append(time.perf_counter() - t)
+            ms = statistics.median(ts[1:]) * 1e3
+            print(f"| {engine} | {name} | {ms:.0f} | {1e3 / ms:.1f} | "
+                  f"{r.stats['samples']} |", flush=True)
 
 
 if __name__ == "__main__":

@@ -35,7 +35,7 @@ OPTIONS = {
     "interpolation": ["normal", "intensity"],
     "corrections": ["none", "spline", "supersample", "adaptive", "spline+supersample",
                     "spline+adaptive"],
-    "sampling": ["uniform", "adaptive"],
+    "sampling": ["uniform", "adaptive", "lod"],
     "antialias": [True, False, 2, 3],
     "aspect": ["equal", "auto", "equalxy", [1, 1, 0.5]],
     "placement": ["exact", "paper"],

@@ -41,6 +41,12 @@ KAPPA = 1.0
 #: a sample is placed when it lies within this many pixels of its column's plane
 TOL_PX = 0.05
 NEWTON_MAX = 8
+#: a hidden column tries to skip this many planes at first, doubling while it
+#: succeeds up to SKIP_MAX; after a failure it waits SKIP_MIN planes
+SKIP_MIN = 4
+SKIP_MAX = 1024
+#: planes a frame at most (their spacing doubles until they fit)
+MAX_PLANES = 200_000
 #: a visible span is cut in two (its middle sampled) where it rises more than this
 #: many rows, up to this many times
 REFINE_ROWS = 1.0
@@ -331,11 +337,17 @@ def plane_table(kind, lv, vp, lod, kappa, s_ref):
     t1 = vp[VP_T1]
     n_lv = lv.shape[0]
     cell0 = lv[0, LV_CELL]
-    n = 0
-    t = t0
-    while t <= t1:
-        n += 1
-        t += max(kappa * _footprint(vp, t, s_ref), 1e-9 * (abs(t) + 1.0))
+    if not (math.isfinite(t0) and math.isfinite(t1) and t0 <= t1):
+        return np.empty((0, 3))
+    n = MAX_PLANES + 1
+    while n > MAX_PLANES:                        # (a step that grows, not a hang)
+        n = 0
+        t = t0
+        while t <= t1 and n <= MAX_PLANES:
+            n += 1
+            t += max(kappa * _footprint(vp, t, s_ref), 1e-9 * (abs(t) + 1.0))
+        if n > MAX_PLANES:
+            kappa *= 2.0
     out = np.empty((n + 1, 3))
     t = t0
     for i in range(n + 1):
@@ -376,6 +388,8 @@ def _last_before(planes, t):
     """The index of the last plane at or before t (0 where none)."""
     lo = 0
     hi = planes.shape[0] - 1
+    if hi < 0:
+        return 0
     if planes[hi, 0] <= t:
         return hi
     while hi - lo > 1:
@@ -637,70 +651,167 @@ def _resolve(area, gcol, ecol, acc, st):
     return w_lo, w_hi
 
 
+@ngjit_inline
+def _region_max(mx, mt, n_m, lt, k, hfp, u0, u1, v0, v1):
+    """The highest height of level k over the box [u0, u1] x [v0, v1] (its cells'
+    nodes), from the maxima of its blocks (mx, mt: passes/lod.py block_maxima); -inf
+    where the box misses the grid."""
+    su = lt[k, LT_SU]
+    sv = lt[k, LT_SV]
+    nu = int(lt[k, LT_NU])
+    nv = int(lt[k, LT_NV])
+    fu0 = (u0 - hfp[0]) * su
+    fu1 = (u1 - hfp[0]) * su
+    fv0 = (v0 - hfp[2]) * sv
+    fv1 = (v1 - hfp[2]) * sv
+    if fu1 < 0.0 or fv1 < 0.0 or fu0 > nu - 1.0 or fv0 > nv - 1.0:
+        return -np.inf
+    ci0 = min(max(int(fu0), 0), nu - 2)
+    ci1 = min(max(int(fu1), 0), nu - 2)
+    cj0 = min(max(int(fv0), 0), nv - 2)
+    cj1 = min(max(int(fv1), 0), nv - 2)
+    ext = max(ci1 - ci0, cj1 - cj0) + 1
+    m = 1
+    while (1 << m) < ext and m < n_m - 1:
+        m += 1
+    row = k * n_m + m
+    off = int(mt[row, 0])
+    nc = int(mt[row, 2])
+    best = -np.inf
+    for bj in range(cj0 >> m, (cj1 >> m) + 1):
+        for bi in range(ci0 >> m, (ci1 >> m) + 1):
+            best = max(best, mx[off + bj * nc + bi])
+    return best
+
+
+@ngjit_inline
+def _hidden_until(mx, mt, n_m, lt, hfp, vp, x0, planes, i, j, s_lo, s_hi, ymax):
+    """Are all points of the surface on column x0's plane between planes i and j
+    surely below the floating horizon ymax? The plane's points there over the
+    heights [s_lo, s_hi] lie in a parallelogram of the ground (Pi leans with the
+    pitch); the highest height of the levels sampled over its box, projected at both
+    ends (a constant height's row is monotone in t), must be below ymax."""
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    d1 = vp[VP_D1]
+    d3 = vp[VP_D3]
+    # the height of the horizon's ray on planes i and j (a point of Pi on plane t is
+    # seen only above it): (s ca - t sa) d1 = y0 (s sa + t ca + d3), eqs. (4), (10)
+    y0 = (ymax - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]
+    den = ca * d1 - y0 * sa                      # > 0: the rays point forward
+    s_min = s_hi
+    for e in range(2):
+        t = planes[i, 0] if e == 0 else planes[j, 0]
+        s_min = min(s_min, (y0 * (t * ca + d3) + t * sa * d1) / den)
+    s_min = max(s_min, s_lo)
+    if s_min >= s_hi:
+        return True                              # above the highest point
+    u0 = np.inf
+    u1 = -np.inf
+    v0 = np.inf
+    v1 = -np.inf
+    kx = x0 * sa / d1
+    for e in range(2):
+        t = planes[i, 0] if e == 0 else planes[j, 0]
+        r0 = x0 * (t * ca + d3) / d1
+        for s in (s_min, s_hi):
+            r = r0 + kx * s
+            u = vp[VP_CU] + r * cb + t * sb
+            v = vp[VP_CV] - r * sb + t * cb
+            u0 = min(u0, u)
+            u1 = max(u1, u)
+            v0 = min(v0, v)
+            v1 = max(v1, v)
+    top = -np.inf
+    k_hi = min(int(planes[j, 1]) + 1, lt.shape[0] - 1)
+    for k in range(int(planes[i, 1]), k_hi + 1):
+        top = max(top, _region_max(mx, mt, n_m, lt, k, hfp, u0, u1, v0, v1))
+    if top == -np.inf:
+        return True
+    s_top = top - vp[VP_CW]
+    for e in range(2):
+        t = planes[i, 0] if e == 0 else planes[j, 0]
+        q = s_top * sa + t * ca + d3
+        if q <= d1:
+            return False
+        y = (s_top * ca - t * sa) * d1 / q * vp[VP_SCALE] + (vp[VP_H] - 1.0) * 0.5
+        if not y <= ymax:
+            return False
+    return True
+
+
 @ngjit_nrt_free
-def lod_tile(kind, fg, hf0, flat, lt, hfp, vp, c0, lanes, area, planes, s_lo, s_hi, gtile,
-             etile, acc, pts, st, out):
+def lod_tile(kind, fg, hf0, flat, lt, mx, mt, hfp, vp, c0, lanes, area, planes, s_lo, s_hi,
+             gtile, etile, acc, pts, st, out):
     """Render columns c0 .. c0 + lanes - 1 (one tile: gtile (H, TILE, G_SIZE), etile
-    (E_SIZE, H, TILE)) in lock step, plane after plane: each lane's samples depend on
-    its last one, and the lanes' independent chains overlap in the processor.
-    ``area``: Cohen-Or's weights (acc: lanes x H x AC_SIZE) instead of pixel centres;
-    ``planes`` plane_table's, [s_lo, s_hi] the surface's heights relative to the
-    centre. Writes each lane's evaluations, lowest and highest w seen, lowest and
+    (E_SIZE, H, TILE)) one after another. ``area``: Cohen-Or's weights (acc: lanes x
+    H x AC_SIZE) instead of pixel centres; ``planes`` plane_table's, [s_lo, s_hi] the
+    surface's heights relative to the centre; mx, mt a height field's block maxima
+    (passes/lod.py), which let a column skip the planes where the surface is surely
+    hidden. Writes each lane's evaluations, lowest and highest w seen, lowest and
     highest row set to out[lane]."""
     H = gtile.shape[0]
     top = H - 0.5
-    i_first = planes.shape[0]
+    n = planes.shape[0]
+    n_m = mt.shape[0] // max(lt.shape[0], 1)
+    skips = kind == SURF_HEIGHTFIELD and mt.shape[0] > 0 and s_lo == s_lo
     for L in range(lanes):
         etile[E_SEEN, :, L] = 0.0
         if area:
             acc[L, :, :] = 0.0
             acc[L, :, AC_Z] = np.inf
-        _start(vp, column_x0(vp, c0 + L), s_lo, s_hi, planes, st[L])
-        st[L, ST_JLO] = H
-        st[L, ST_JHI] = -1
-        if st[L, ST_DONE] == 0.0:
-            i_first = min(i_first, int(st[L, ST_I0]))
-    for i in range(i_first, planes.shape[0]):
-        t = planes[i, 0]
-        k = int(planes[i, 1])
-        a = planes[i, 2]
-        busy = False
-        # the lanes' samples first (independent chains the processor overlaps),
-        # then their spans (whose branches it cannot foresee)
-        for L in range(lanes):
-            sl = st[L]
-            sl[ST_OK] = 0.0
-            if sl[ST_DONE] != 0.0:
-                continue
-            busy = True
-            if i < sl[ST_I0]:
-                continue
+        x0 = column_x0(vp, c0 + L)
+        sl = st[L]
+        _start(vp, x0, s_lo, s_hi, planes, sl)
+        sl[ST_JLO] = H
+        sl[ST_JHI] = -1
+        prev = pts[L, 0]
+        cur = pts[L, 1]
+        i = int(sl[ST_I0])
+        jump = SKIP_MIN
+        wait = 0
+        while sl[ST_DONE] == 0.0 and i < n:
+            t = planes[i, 0]
             if t > sl[ST_TB] or sl[ST_YMAX] >= top:
-                sl[ST_DONE] = 1.0
-                continue
-            if _sample_lane(kind, fg, hf0, flat, lt, hfp, vp, column_x0(vp, c0 + L), t, k, a,
-                            sl, pts[L, 0], pts[L, 1]):
-                sl[ST_OK] = 1.0
+                break
+            if skips and sl[ST_HAVE] != 0.0 and prev[Q_Y] < sl[ST_YMAX]:
+                # hidden: try to skip the planes up to i + jump (their last one
+                # sampled, the next run's first point)
+                if wait > 0:
+                    wait -= 1
+                else:
+                    j = min(i + jump, n - 1)
+                    while j > i and planes[j, 0] > sl[ST_TB]:
+                        j -= 1
+                    if j > i + 1 and _hidden_until(mx, mt, n_m, lt, hfp, vp, x0, planes, i, j,
+                                                   s_lo, s_hi, sl[ST_YMAX]):
+                        i = j
+                        t = planes[i, 0]
+                        sl[ST_HAVE] = 0.0
+                        jump = min(2 * jump, SKIP_MAX)
+                    else:
+                        jump = max(jump // 2, SKIP_MIN)
+                        wait = SKIP_MIN
+            if _sample_lane(kind, fg, hf0, flat, lt, hfp, vp, x0, t, int(planes[i, 1]),
+                            planes[i, 2], sl, prev, cur):
+                _draw_lane(kind, fg, hf0, flat, lt, hfp, vp, x0, area, sl, pts[L], gtile[:, L],
+                           etile[:, :, L], acc[L])
             else:
                 sl[ST_HAVE] = 0.0
-        for L in range(lanes):
-            if st[L, ST_OK] != 0.0:
-                _draw_lane(kind, fg, hf0, flat, lt, hfp, vp, column_x0(vp, c0 + L), area, st[L],
-                           pts[L], gtile[:, L], etile[:, :, L], acc[L])
-        if not busy:
-            break
-    for L in range(lanes):
-        w_lo, w_hi = _resolve(area, gtile[:, L], etile[:, :, L], acc[L], st[L])
-        out[L, 0] = st[L, ST_EVALS]
+            i += 1
+        w_lo, w_hi = _resolve(area, gtile[:, L], etile[:, :, L], acc[L], sl)
+        out[L, 0] = sl[ST_EVALS]
         out[L, 1] = w_lo
         out[L, 2] = w_hi
-        out[L, 3] = st[L, ST_JLO]
-        out[L, 4] = st[L, ST_JHI]
+        out[L, 3] = sl[ST_JLO]
+        out[L, 4] = sl[ST_JHI]
 
 
 @ngjit_parallel
-def lod_kernel(kind, fg, hf0, flat, lv, hfp, vp, area, lod, kappa, s_lo, s_hi, gbuf, ebuf,
-               evals, wrange, rows):
+def lod_kernel(kind, fg, hf0, flat, lv, mx, mt, hfp, vp, area, lod, kappa, s_lo, s_hi, gbuf,
+               ebuf, evals, wrange, rows):
     """Every tile by lod_tile into the tiled gbuf and ebuf (layout.py), the tiles in
     parallel; each tile's scratch is its own, each column starts afresh (the picture
     is the same for any number of threads)."""
@@ -717,8 +828,8 @@ def lod_kernel(kind, fg, hf0, flat, lv, hfp, vp, area, lod, kappa, s_lo, s_hi, g
         st = np.empty((T, ST_SIZE))
         out = np.empty((T, 5))
         lanes = min(T, W - b * T)
-        lod_tile(kind, fg, hf0, flat, lt, hfp, vp, b * T, lanes, area, planes, s_lo, s_hi,
-                 gbuf[b], ebuf[b], acc, pts, st, out)
+        lod_tile(kind, fg, hf0, flat, lt, mx, mt, hfp, vp, b * T, lanes, area, planes, s_lo,
+                 s_hi, gbuf[b], ebuf[b], acc, pts, st, out)
         rows[b, 0] = H
         rows[b, 1] = -1
         for L in range(lanes):

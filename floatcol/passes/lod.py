@@ -63,8 +63,9 @@ def lod_pass(surface, view, vp, buffers, area):
         s_hi = lv[0, LV_ZMAX] - vp[L.VP_CW]
     else:
         s_lo = s_hi = np.nan
-    lod_kernel(kind, fg, hf, flat, lv, hfp, vp, bool(area), 2.0 ** LOD_BIAS, KAPPA, s_lo, s_hi,
-               gbuf, ebuf, evals, wrange, rows)
+    mx, mt = block_maxima(surface)
+    lod_kernel(kind, fg, hf, flat, lv, mx, mt, hfp, vp, bool(area), 2.0 ** LOD_BIAS, KAPPA, s_lo,
+               s_hi, gbuf, ebuf, evals, wrange, rows)
     return Geometry(gbuf, ebuf, hrec, rows, wrange, evals, vp, None, 0)
 
 
@@ -78,3 +79,42 @@ def _single(surface, flat):
         held = (flat, flat.astype(np.float32))
         surface.__dict__["_lod_single"] = held
     return held[1]
+
+
+#: block sizes of the maxima: 2**1 .. 2**(BLOCK_LEVELS - 1) cells a side
+BLOCK_LEVELS = 16
+_NO_BLOCKS = (np.zeros(0), np.zeros((0, 3)))
+
+
+def block_maxima(surface):
+    """(mx, mt): for each level k of a height field's pyramid and each m in 1 ..
+    BLOCK_LEVELS - 1, the highest height over each block of 2**m x 2**m of its cells
+    (their nodes; a hole ignored, -inf where all are holes), in one flat array;
+    mt[k * BLOCK_LEVELS + m] = (offset, rows, columns). The lod kernel bounds the
+    surface over a stretch of a column with them, to skip what is surely hidden.
+    Kept on the height field with its pyramid; a function surface has none."""
+    if surface.kind != L.SURF_HEIGHTFIELD:
+        return _NO_BLOCKS
+    flat, lv = levels(surface)
+    held = surface.__dict__.get("_lod_blocks")
+    if held is not None and held[0] is flat:
+        return held[1]
+    parts = []
+    mt = np.zeros((lv.shape[0] * BLOCK_LEVELS, 3))
+    off = 0
+    for k in range(lv.shape[0]):
+        o, nv, nu = (int(x) for x in lv[k, :3])
+        z = flat[o:o + nv * nu].reshape(nv, nu)
+        z = np.where(np.isfinite(z), z, -np.inf)
+        cells = np.maximum(np.maximum(z[:-1, :-1], z[:-1, 1:]), np.maximum(z[1:, :-1], z[1:, 1:]))
+        for m in range(1, BLOCK_LEVELS):
+            r, c = cells.shape
+            if r % 2 or c % 2:
+                cells = np.pad(cells, ((0, r % 2), (0, c % 2)), constant_values=-np.inf)
+            cells = cells.reshape(cells.shape[0] // 2, 2, cells.shape[1] // 2, 2).max(axis=(1, 3))
+            mt[k * BLOCK_LEVELS + m] = (off, cells.shape[0], cells.shape[1])
+            parts.append(cells.ravel())
+            off += cells.size
+    mx = np.concatenate(parts)
+    surface.__dict__["_lod_blocks"] = (flat, (mx, mt))
+    return mx, mt

@@ -133,3 +133,17 @@ def test_options_it_cannot_take():
         fc.render("u*v", sampling="footprint")
     with pytest.raises(ValueError, match="not sub-columns"):
         fc.render("u*v", sampling="lod", antialias=2)
+
+
+def test_skipping_hidden_planes_leaves_the_picture(monkeypatch):
+    import floatcol.passes.lod as lod_pass
+    hf = fc.HeightField(fractal(513, seed=4) * 20, u=(0, 2000), v=(0, 2000))
+    kw = fc.fly(hf, (600, 200), heading=20, pitch=-12, fov=60, size=(320, 180), above=60)
+    skipping = fc.render(hf, antialias="area", **kw)
+    monkeypatch.setattr(lod_pass, "block_maxima", lambda surface: lod_pass._NO_BLOCKS)
+    every = fc.render(hf, antialias="area", **kw)
+    d = np.abs(skipping.rgba.astype(int) - every.rgba.astype(int)).max(axis=2)
+    # measured: 322 724 evaluations instead of 545 063; 2 pixels of 57 600 one level
+    # apart (a run restarted after a skip starts Newton from another point)
+    assert skipping.stats["samples"] <= 0.7 * every.stats["samples"]
+    assert (d > 0).sum() <= 20 and d.max() <= 2

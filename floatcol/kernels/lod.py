@@ -705,9 +705,9 @@ def _hidden_until(mx, mt, n_m, lt, hfp, vp, x0, planes, i, j, s_lo, s_hi, ymax):
     for e in range(2):
         t = planes[i, 0] if e == 0 else planes[j, 0]
         s_min = min(s_min, (y0 * (t * ca + d3) + t * sa * d1) / den)
-    s_min = max(s_min, s_lo)
-    if s_min >= s_hi:
+    if s_min > s_hi:
         return True                              # above the highest point
+    s_min = max(s_min, s_lo)
     u0 = np.inf
     u1 = -np.inf
     v0 = np.inf

@@ -672,7 +672,7 @@ def _region_max(mx, mt, n_m, lt, k, hfp, u0, u1, v0, v1):
     cj1 = min(max(int(fv1), 0), nv - 2)
     ext = max(ci1 - ci0, cj1 - cj0) + 1
     m = 1
-    while (1 << m) < ext and m < n_m - 1:
+    while (2 << m) < ext and m < n_m - 1:       # blocks half the box: 3 x 3 at most
         m += 1
     row = k * n_m + m
     off = int(mt[row, 0])

@@ -10,17 +10,26 @@ filter, so no level boundary pops). So a column takes about D ln(far / near) / K
 samples (D the focal length in pixels) whatever the grid's size, where the uniform
 planes of column.py take one per cell: 19 000 a column for a 2049^2 DEM at 640x360.
 
+The planes are one table a frame (plane_table: spaced by the footprint at the
+surface's middle height), which every column walks from its first plane in view.
+
 A sample is the point of the (blended) surface on the line where column x0's plane Pi
-meets plane t: Newton's iteration in s from the last sample's s (ERRATA 2; the plane
-is tilted when the camera pitches, Guedes's non-vertical view plane, so the point is
-not the one under the plane's ground line) until it lies within TOL_PX of Pi. The
-column keeps one floating horizon, the highest row covered; a span from the last
-sample is painted above it (pixel centres: ``area=False``), or (``area=True``) each
-pixel takes the visible parts of the spans that cross it, weighted by their length on
-screen (Cohen-Or's Fig. 12 weights, as kernels/area.py), their total the pixel's
-coverage. One horizon is exact for a surface seen from above it (a terrain under a
-fly camera, passes/lod.py checks the eye is above the ground under it) with no holes;
-behind a hole a farther surface is drawn where it rises above the nearer ones only.
+meets plane t: Newton's iteration in s from the line through the column's last two
+samples (ERRATA 2; the plane is tilted when the camera pitches, Guedes's non-vertical
+view plane, so the point is not the one under the plane's ground line) until it lies
+within TOL_PX of Pi at its depth. The column keeps one floating horizon, the highest
+row covered; a span from the last sample is painted above it (pixel centres:
+``area=False``), or (``area=True``) each pixel takes the visible parts of the spans
+that cross it, weighted by their length on screen (Cohen-Or's Fig. 12 weights, as
+kernels/area.py), their total the pixel's coverage. Spans are cut at the level's cell
+edges, where they rise more than REFINE_ROWS, and at a ridge between two samples.
+One horizon is exact for a surface seen from above it (a terrain under a fly camera,
+passes/lod.py checks the eye is above the ground under it) with no holes; behind a
+hole a farther surface is drawn where it rises above the nearer ones only.
+
+Where the column's last sample is hidden it tries to skip the planes ahead: the
+pyramid's block maxima (passes/lod.py block_maxima) bound the surface over the ground
+where Pi meets them above the horizon's ray (_hidden_until).
 """
 import math
 
@@ -238,22 +247,22 @@ def _finish(kind, flat, lt, hfp, vp, q):
     wu = q[Q_WU]
     wv = q[Q_WV]
     k = int(q[Q_K])
-    if kind == SURF_HEIGHTFIELD and (k > 0 or q[Q_A] > 0.0):
-        # a smoothed level: its partials interpolated between the nodes
-        a = q[Q_A]
-        gu, gv = _smooth_gradient(flat, lt, k, hfp, q[Q_U], q[Q_V])
-        if k > 0 or a > 0.0:
-            if a > 0.0:
-                hu, hv = _smooth_gradient(flat, lt, k + 1, hfp, q[Q_U], q[Q_V])
-                gu = (1.0 - a) * gu + a * hu
-                gv = (1.0 - a) * gv + a * hv
-            if k == 0:
-                # level 0 keeps its exact partials where it dominates
-                gu = (1.0 - a) * wu + a * gu if a < 1.0 else gu
-                gv = (1.0 - a) * wv + a * gv if a < 1.0 else gv
-            if math.isfinite(gu) and math.isfinite(gv):
-                wu = gu
-                wv = gv
+    a = q[Q_A]
+    if kind == SURF_HEIGHTFIELD and (k > 0 or a > 0.0):
+        # a smoothed level's partials interpolated between its nodes (level 0 keeps
+        # its exact ones), blended as the heights are
+        if k > 0:
+            gu, gv = _smooth_gradient(flat, lt, k, hfp, q[Q_U], q[Q_V])
+        else:
+            gu = wu
+            gv = wv
+        if a > 0.0:
+            hu, hv = _smooth_gradient(flat, lt, k + 1, hfp, q[Q_U], q[Q_V])
+            gu = (1.0 - a) * gu + a * hu
+            gv = (1.0 - a) * gv + a * hv
+        if math.isfinite(gu) and math.isfinite(gv):
+            wu = gu
+            wv = gv
     nx, ny, nz = unit_normal(vp, wu, wv)
     r = (q[Q_U] - vp[VP_CU]) * vp[VP_CB] - (q[Q_V] - vp[VP_CV]) * vp[VP_SB]
     y1 = q[Q_S] * vp[VP_CA] - q[Q_T] * vp[VP_SA]
@@ -415,9 +424,8 @@ ST_DONE = 7
 ST_EVALS = 8
 ST_JLO = 9
 ST_JHI = 10
-ST_OK = 11
-ST_DY = 12
-ST_SIZE = 13
+ST_DY = 11
+ST_SIZE = 12
 
 
 @ngjit_inline

@@ -56,7 +56,6 @@ def lod_pass(surface, view, vp, buffers, area):
     gbuf, ebuf, hrec = buffers
     evals, wrange, rows = pass_outputs(view.width, gbuf.shape[0])
     flat, lv = levels(surface)
-    flat = _single(surface, flat)
     kind, f, fg, _, hf, hfp = surface.kernel_args(None)
     if kind == L.SURF_HEIGHTFIELD and lv[0, LV_ZMIN] == lv[0, LV_ZMIN]:
         s_lo = lv[0, LV_ZMIN] - vp[L.VP_CW]
@@ -67,18 +66,6 @@ def lod_pass(surface, view, vp, buffers, area):
     lod_kernel(kind, fg, hf, flat, lv, mx, mt, hfp, vp, bool(area), 2.0 ** LOD_BIAS, KAPPA, s_lo,
                s_hi, gbuf, ebuf, evals, wrange, rows)
     return Geometry(gbuf, ebuf, hrec, rows, wrange, evals, vp, None, 0)
-
-
-def _single(surface, flat):
-    """The pyramid's heights in single precision (half the memory a column walks
-    through), kept with the surface."""
-    if flat.size == 0:
-        return flat
-    held = surface.__dict__.get("_lod_single")
-    if held is None or held[0] is not flat:
-        held = (flat, flat.astype(np.float32))
-        surface.__dict__["_lod_single"] = held
-    return held[1]
 
 
 #: block sizes of the maxima: 2**1 .. 2**(BLOCK_LEVELS - 1) cells a side

@@ -25,6 +25,7 @@ TERRAIN_EXAMPLES = """examples:
   floatcol terrain dem.tif -o dem.png
   floatcol terrain heights.png --extent 0:30000:0:20000 --vert-exag 3 --shadows -o relief.png
   floatcol terrain dem.npz --antialias area --elev 20 --azim -80 -o low.png
+  floatcol terrain dem.tif --fly 15000:2500 --heading 15 --pitch -10 --above 900 -o fly.png
 """
 
 RENDER_OUTPUTS = (".png", ".jpg", ".jpeg", ".tif", ".tiff", ".webp", ".pdf", ".svg", ".eps", ".ps")
@@ -111,6 +112,18 @@ def _exaggeration(text):
     if not 0 < x < float("inf"):
         raise argparse.ArgumentTypeError(f"vert-exag {text!r} must be auto or a positive number")
     return x
+
+
+def _eye(text):
+    """--fly U:V or U:V:W: two or three numbers or constant formulas."""
+    try:
+        vals = tuple(_number(x) for x in text.split(":"))
+    except ValueError:
+        vals = ()
+    if len(vals) not in (2, 3):
+        raise argparse.ArgumentTypeError(f"fly {text!r} must be U:V or U:V:W, e.g. "
+                                         "15000:2500 or 15000:2500:1200")
+    return vals
 
 
 def _four(text):
@@ -251,6 +264,19 @@ def build_parser():
                         "(default: the file's, else the indices)")
     t.add_argument("--nodata", type=_value("nodata"), default=None,
                    help="a height that means no data (a hole), besides the file's own")
+    t.add_argument("--fly", type=_eye, default=None, metavar="U:V[:W]",
+                   help="fly: the eye inside the scene at (u, v), --above the ground there, "
+                        "or at (u, v, w) (the DEM's units, heights exaggerated); replaces "
+                        "--elev, --azim and --proj (Guedes 1997; sampling lod)")
+    t.add_argument("--heading", type=_value("heading"), default=0.0,
+                   help="fly: compass heading in degrees clockwise from north (default 0)")
+    t.add_argument("--pitch", type=_value("pitch"), default=-10.0,
+                   help="fly: degrees up (negative: down; default -10)")
+    t.add_argument("--fov", type=_value("fov"), default=60.0,
+                   help="fly: horizontal field of view in degrees (default 60)")
+    t.add_argument("--above", type=_value("above"), default=None,
+                   help="fly: the eye's height above the ground (default 5%% of the DEM's "
+                        "longer side)")
     t.add_argument("-o", "--output", default="terrain.png",
                    help="file to write: .png, .jpg, .tif, .webp, .pdf, .svg, .eps or .ps "
                         "(default terrain.png)")
@@ -413,8 +439,12 @@ def _animate(args):
 def _terrain(args):
     _check_output(args.output, RENDER_OUTPUTS)
     import floatcol as fc
+    fly = None
+    if args.fly is not None:
+        fly = dict(position=args.fly, heading=args.heading, pitch=args.pitch, fov=args.fov,
+                   above=args.above)
     plot = fc.terrain(args.file, vert_exag=args.vert_exag, extent=args.extent,
-                      nodata=args.nodata, **_options(args))
+                      nodata=args.nodata, fly=fly, **_options(args))
     plot.save(args.output)
     s = plot.render.stats
     print(f"wrote {args.output} ({args.size[0]}x{args.size[1]}, heights x{plot.vert_exag:g}, "

@@ -72,7 +72,8 @@ def read_dem(path, *, extent=None, nodata=None, vert_exag=1.0, geographic=None):
     return hf
 
 
-def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=None, **kw):
+def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=None, fly=None,
+            **kw):
     """Draw a DEM (a file, a HeightField or a 2-D array north-up) with landscape
     defaults: ``plot_surface``'s picture and options, with aspect="equal", an earth
     colormap, a sun at azimuth 315 and altitude 35 degrees, elev 35, azim -100 (from
@@ -80,25 +81,45 @@ def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=No
     of detail: a DEM denser than the pixels neither aliases nor flickers, and renders
     faster than the column pass's corrections on its every cell). vert_exag="auto"
     picks the exaggeration that makes the relief 8 % of the longer side (at least 1);
-    the one used is the plot's ``vert_exag``. Returns plot_surface's SurfacePlot (``.save(path)``, ``.render``)."""
+    the one used is the plot's ``vert_exag``. ``fly``: a fly camera instead of the view
+    from outside (camera.fly, its lod engine): the eye's position (u, v) or (u, v, w)
+    in the DEM's units (heights exaggerated), or a dict of fly()'s keywords (position,
+    heading, pitch, fov, above, near); its elev, azim and projection replace those
+    given. Returns plot_surface's SurfacePlot (``.save(path)``, ``.render``)."""
     from .plot import plot_surface
     if isinstance(source, HeightField):
         hf = source
-        if vert_exag != "auto":
-            hf = hf.scaled(1.0, 1.0, _positive("vert_exag", vert_exag))
     else:
         hf = read_dem(source, extent=extent, nodata=nodata, geographic=geographic)
     if isinstance(vert_exag, str):
         if vert_exag != "auto":
             raise ValueError(f"vert_exag must be a positive number or 'auto', got {vert_exag!r}")
         exag = auto_exaggeration(hf)
-        if exag != 1.0:
-            hf = hf.scaled(1.0, 1.0, exag)
     else:
         exag = _positive("vert_exag", vert_exag)
+    if exag != 1.0:
+        # (a file's or an array's heights too: a number given was once ignored there)
+        hf = hf.scaled(1.0, 1.0, exag)
     defaults = dict(aspect="equal", cmap="gist_earth", lightsource=(315, 35), elev=35,
                     azim=-100, size=(1000, 600), antialias="area")
     defaults.update(kw)
+    if fly is not None:
+        from .camera import fly as fly_camera
+        camera = dict(fly) if isinstance(fly, dict) else {"position": fly}
+        if "position" not in camera:
+            raise ValueError("fly must be the eye's position (u, v) or (u, v, w), or a dict "
+                             "of fc.fly's keywords with its position")
+        if "size" in camera:
+            defaults["size"] = camera.pop("size")
+        cam = fly_camera(hf, size=defaults["size"], **camera)
+        for key in ("elev", "azim", "proj_type", "projection", "focal_length"):
+            defaults.pop(key, None)
+        if kw.get("sampling") is not None:
+            cam["sampling"] = kw["sampling"]
+        # plot_surface takes matplotlib's azimuth (plot.mpl_to_paper_angles inverted)
+        cam["azim"] = -90.0 - cam["azim"]
+        defaults.update(cam)
+        defaults["aspect"] = "equal"            # (the camera is in the DEM's units)
     plot = plot_surface(hf, **defaults)
     plot.vert_exag = exag
     return plot

@@ -110,6 +110,13 @@ def test_terrain_defaults_and_auto_exaggeration():
     assert (plot.rgba[..., 3] > 0).mean() > 0.3
     flat = fc.terrain(np.zeros((5, 5)) + 3.0, size=(60, 40))
     assert flat.vert_exag == 1.0
+    # a number given is the heights' factor, for a file as for a HeightField (it was
+    # once ignored for files)
+    one, three = (fc.terrain(JACKSBORO, vert_exag=x, size=(120, 80)).draw().rgba
+                  for x in (1, 3))
+    assert not np.array_equal(one, three)
+    hf = fc.read_dem(JACKSBORO)
+    assert np.array_equal(fc.terrain(hf, vert_exag=3, size=(120, 80)).draw().rgba, three)
     with pytest.raises(ValueError, match="vert_exag"):
         fc.terrain(JACKSBORO, vert_exag=0)
 
@@ -145,6 +152,34 @@ def test_cli_terrain(tmp_path, capsys):
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and err[0].startswith("floatcol: error:")
         assert not os.path.exists(bad)
+
+
+def test_a_dem_flown_over_in_one_call_and_one_command(tmp_path, capsys):
+    p = fc.terrain(JACKSBORO, vert_exag=2, size=(160, 90),
+                   fly=dict(position=(15000, 2500), heading=15, pitch=-10, above=900))
+    p.save(tmp_path / "call.png")
+    r = p.render
+    assert r.stats["geometry"] == "lod"
+    # the camera fc.fly puts there over the same (exaggerated) heights
+    cam = fc.fly(fc.read_dem(JACKSBORO, vert_exag=2), (15000, 2500), heading=15, pitch=-10,
+                 above=900, size=(160, 90))
+    assert np.allclose(r.view.center, cam["center"]) and r.view.scale == cam["scale"]
+    assert (r.side[-20:] != 0).all() and (r.side[:5] == 0).all()     # ground, then sky
+    out = tmp_path / "fly.png"
+    assert main(["terrain", JACKSBORO, "--vert-exag", "2", "--fly", "15000:2500",
+                 "--heading", "15", "--above", "900", "--size", "160x90", "-o", str(out)]) == 0
+    from PIL import Image
+    assert np.array_equal(np.asarray(Image.open(out).convert("RGBA")), p.render.rgba)
+    capsys.readouterr()
+    for argv in (["--fly", "1:2:3:4"], ["--fly", "15000:2500", "--pitch", "95"],
+                 ["--fly", "x:2"]):
+        bad = tmp_path / "bad.png"
+        assert main(["terrain", JACKSBORO] + argv + ["-o", str(bad)]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith("floatcol: error:")
+        assert not os.path.exists(bad)
+    with pytest.raises(ValueError, match="position"):
+        fc.terrain(JACKSBORO, fly=dict(heading=3))
 
 
 def test_fly_camera_looks_where_it_says():

@@ -547,40 +547,49 @@ def area_column(kind, f, fg, flat, lv, hfp, vp, x0, slices, lod, gcol, ecol, acc
     j_lo = H
     j_hi = -1
     for j in range(H):
-        c = acc[j]
-        wgt = c[AC_W]
-        if wgt <= 0.0:
+        side = resolve_pixel(acc[j], gcol[j], ecol, j)
+        if side == 0.0:
             ecol[E_SEEN, j] = 0.0
             continue
-        inv = 1.0 / wgt
-        g = gcol[j]
-        g[G_DEPTH] = c[AC_Z]
-        g[G_U] = c[AC_U] * inv
-        g[G_V] = c[AC_V] * inv
-        g[G_W] = c[AC_WW] * inv
-        nx = c[AC_NX]
-        ny = c[AC_NY]
-        nz = c[AC_NZ]
-        q = math.sqrt(nx * nx + ny * ny + nz * nz)
-        q = 1.0 / q if q > 0.0 else 0.0
-        g[G_NX] = nx * q
-        g[G_NY] = ny * q
-        g[G_NZ] = nz * q
-        g[G_I] = c[AC_I] * inv
-        g[G_T] = c[AC_T] * inv
-        side = 1.0 if c[AC_SIDE] >= 0.0 else -1.0
-        if wgt >= WHOLE:
-            ecol[E_SEEN, j] = side
-        else:
-            ecol[E_SEEN, j] = side + E_FLAG
-            ecol[E_COV0, j] = wgt
-            ecol[E_COV, j] = 0.0
         if side > 0.0:
-            w_lo = min(w_lo, g[G_W])
-            w_hi = max(w_hi, g[G_W])
+            w_lo = min(w_lo, gcol[j, G_W])
+            w_hi = max(w_hi, gcol[j, G_W])
         j_lo = min(j_lo, j)
         j_hi = max(j_hi, j)
     return evals, w_lo, w_hi, j_lo, j_hi
+
+
+@ngjit_inline
+def resolve_pixel(c, g, ecol, j):
+    """Pixel j's G-buffer entry g and edge-buffer coverage from its accumulator c
+    (AC_*): the weighted means, the normal made unit, the coverage their total weight
+    (flagged where it is not whole). Returns the side seen (0: nothing, g untouched)."""
+    wgt = c[AC_W]
+    if wgt <= 0.0:
+        return 0.0
+    inv = 1.0 / wgt
+    g[G_DEPTH] = c[AC_Z]
+    g[G_U] = c[AC_U] * inv
+    g[G_V] = c[AC_V] * inv
+    g[G_W] = c[AC_WW] * inv
+    nx = c[AC_NX]
+    ny = c[AC_NY]
+    nz = c[AC_NZ]
+    q = math.sqrt(nx * nx + ny * ny + nz * nz)
+    q = 1.0 / q if q > 0.0 else 0.0
+    g[G_NX] = nx * q
+    g[G_NY] = ny * q
+    g[G_NZ] = nz * q
+    g[G_I] = c[AC_I] * inv
+    g[G_T] = c[AC_T] * inv
+    side = 1.0 if c[AC_SIDE] >= 0.0 else -1.0
+    if wgt >= WHOLE:
+        ecol[E_SEEN, j] = side
+    else:
+        ecol[E_SEEN, j] = side + E_FLAG
+        ecol[E_COV0, j] = wgt
+        ecol[E_COV, j] = 0.0
+    return side
 
 
 @ngjit

@@ -38,9 +38,9 @@ from numba import prange
 
 from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .area import (AC_I, AC_NX, AC_NY, AC_NZ, AC_SIZE, AC_T, AC_U, AC_V, AC_W, AC_WW, AC_Z,
-                   LV_CELL, LV_NU, LV_NV, LV_OFF, WHOLE)
+                   LV_CELL, LV_NU, LV_NV, LV_OFF, _below_picture, resolve_pixel)
 from .column import _column_t_range
-from .layout import (E_COV, E_COV0, E_FLAG, E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U,
+from .layout import (E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U,
                      G_V, G_W, SURF_HEIGHTFIELD, VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1,
                      VP_D3, VP_H, VP_SA, VP_SB, VP_SCALE, VP_T0, VP_T1)
 from .sample import column_x0, in_domain, into_domain, lambert, surface_eval, unit_normal
@@ -314,21 +314,6 @@ def _accumulate(acc, j, wgt, lw, p, c):
 
 
 @ngjit_inline
-def _below(vp, t, s_lo, s_hi):
-    """Do all points of plane t on a column plane, over the heights s in [s_lo,
-    s_hi], fall more than a pixel below the picture (both beyond the screen)?"""
-    for s in (s_lo, s_hi):
-        q = s * vp[VP_SA] + t * vp[VP_CA] + vp[VP_D3]
-        if q <= vp[VP_D1]:
-            return False
-        y = (s * vp[VP_CA] - t * vp[VP_SA]) * vp[VP_D1] / q * vp[VP_SCALE] \
-            + (vp[VP_H] - 1.0) * 0.5
-        if y >= -1.5:
-            return False
-    return True
-
-
-@ngjit_inline
 def _footprint(vp, t, s):
     """The width of a pixel, in world units, at height s on plane t."""
     q = s * vp[VP_SA] + t * vp[VP_CA] + vp[VP_D3]
@@ -435,18 +420,18 @@ def _start(vp, x0, s_lo, s_hi, planes, st):
     lo, hi = _column_t_range(vp, x0)
     ta = max(lo, -d3 * vp[VP_CA], vp[VP_T0])
     tb = min(hi, vp[VP_T1])
-    if ta <= tb and s_lo == s_lo and _below(vp, ta, s_lo, s_hi):
+    if ta <= tb and s_lo == s_lo and _below_picture(vp, ta, s_lo, s_hi):
         # the planes whose points all fall below the picture (the ground under a fly
         # camera) are skipped: bisect for the last of them (each end's row is monotone
         # in t along a line of constant s)
-        if _below(vp, tb, s_lo, s_hi):
+        if _below_picture(vp, tb, s_lo, s_hi):
             ta = tb + 1.0
         else:
             a = ta
             b = tb
             for _ in range(60):
                 m = 0.5 * (a + b)
-                if _below(vp, m, s_lo, s_hi):
+                if _below_picture(vp, m, s_lo, s_hi):
                     a = m
                 else:
                     b = m
@@ -628,34 +613,10 @@ def _resolve(area, gcol, ecol, acc, st):
                 w_lo = min(w_lo, w)
                 w_hi = max(w_hi, w)
             continue
-        c = acc[j]
-        wgt = c[AC_W]
-        if wgt <= 0.0:
-            continue
-        inv = 1.0 / wgt
-        g = gcol[j]
-        g[G_DEPTH] = c[AC_Z]
-        g[G_U] = c[AC_U] * inv
-        g[G_V] = c[AC_V] * inv
-        g[G_W] = c[AC_WW] * inv
-        nx = c[AC_NX]
-        ny = c[AC_NY]
-        nz = c[AC_NZ]
-        qn = math.sqrt(nx * nx + ny * ny + nz * nz)
-        qn = 1.0 / qn if qn > 0.0 else 0.0
-        g[G_NX] = nx * qn
-        g[G_NY] = ny * qn
-        g[G_NZ] = nz * qn
-        g[G_I] = c[AC_I] * inv
-        g[G_T] = c[AC_T] * inv
-        if wgt >= WHOLE:
-            ecol[E_SEEN, j] = 1.0
-        else:
-            ecol[E_SEEN, j] = 1.0 + E_FLAG
-            ecol[E_COV0, j] = wgt
-            ecol[E_COV, j] = 0.0
-        w_lo = min(w_lo, g[G_W])
-        w_hi = max(w_hi, g[G_W])
+        # (the pieces' side is the upper one: AC_SIDE stays 0)
+        if resolve_pixel(acc[j], gcol[j], ecol, j) != 0.0:
+            w_lo = min(w_lo, gcol[j, G_W])
+            w_hi = max(w_hi, gcol[j, G_W])
     return w_lo, w_hi
 
 

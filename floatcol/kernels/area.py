@@ -8,10 +8,13 @@ adds its colour with the weight W_k = H' - H(R) it shows between the two rays (F
 of a span that no nearer span covers is what it shows, and each pixel takes the
 visible parts that fall in it, each weighted by its length on screen: the same
 weights, on the exact surface instead of voxels, so every visible cell counts and
-only the visible ones. A pixel's attributes (u, v, w, normal, intensity) are these
-weighted means; its coverage is their total weight (the part of the pixel that shows
-a surface), blended with the background by the finishing pass; its depth is the
-nearest piece's.
+only the visible ones. The pieces of a pixel fall in two groups (piece_group): the
+nearest and those that continue it, and those of a farther surface. Each group's
+attributes (u, v, w, normal, intensity) are its weighted means, its coverage its total
+weight (the part of the pixel it shows), its depth its nearest piece's: the first is
+the pixel's surface (the G-buffer), the second its edge surface (section 6.4's, in
+the edge buffer), each coloured by its own height and blended with the background by
+the finishing pass (resolve_pixel).
 
 Where a height field's cells are smaller than a pixel is wide, the column samples a
 pyramid of the heights smoothed and halved level by level (passes/area.py): the
@@ -33,14 +36,22 @@ from numba import prange
 from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .column import _column_t_range, _domain_test, _may_meet_domain, _ortho_chord
 from .layout import (
-    E_COV, E_COV0, E_FLAG, E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W, S_OK,
+    E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_U, E_V, E_W, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W, S_OK,
     SURF_HEIGHTFIELD, VP_CA, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_WHI, VP_WLO, VP_SA, VP_SCALE, VP_T0,
     VP_T1,
 )
+from .coverage import flagged
 from .sample import column_x0, lambert, sample_point, unit_normal
 
-#: Accumulator of one pixel: total weight, weighted sums of u, v, w, the normal, the
-#: intensity, t and the side, and the nearest depth
+#: Accumulator of one pixel: two groups of pieces (AC_G1, AC_G2 + the fields below),
+#: each its total weight, weighted sums of u, v, w, the normal, the intensity, t and
+#: the side, and its nearest depth. The first group holds the nearest piece and the
+#: pieces that continue it along the column; a piece that does not continue the last
+#: one (a farther surface rising behind a silhouette, the other side of a hole) starts
+#: the second, which takes the rest. The pixel shows the first as its surface and the
+#: second as its edge surface (section 6.4's): each coloured by its own height, so a
+#: silhouette pixel mixes the colours of the two surfaces instead of taking the colour
+#: of their mean height (a colour of neither).
 AC_W = 0
 AC_U = 1
 AC_V = 2
@@ -52,7 +63,13 @@ AC_I = 7
 AC_T = 8
 AC_SIDE = 9
 AC_Z = 10
-AC_SIZE = 11
+AC_GROUP = 11         # fields of a group
+AC_TA = 11            # the last piece's span: its ends' t (NaN: none yet), and its
+AC_TB = 12            # group's offset
+AC_LAST = 13
+AC_G1 = 0
+AC_G2 = 14
+AC_SIZE = AC_G2 + AC_GROUP
 #: A sample: row, depth, u, v, w, normal, intensity, t
 P_Y = 0
 P_Z = 1
@@ -298,6 +315,37 @@ def _cover(cov, n, lo, hi):
     return n - shift
 
 
+@ngjit_inline
+def clear_accumulators(acc):
+    """acc (n, AC_SIZE): no pieces yet."""
+    for j in range(acc.shape[0]):
+        for k in range(AC_SIZE):
+            acc[j, k] = 0.0
+        acc[j, AC_G1 + AC_Z] = np.inf
+        acc[j, AC_G2 + AC_Z] = np.inf
+        acc[j, AC_TA] = np.nan
+        acc[j, AC_TB] = np.nan
+
+
+@ngjit_inline
+def piece_group(c, ta, tb):
+    """The group (its offset in the accumulator c, AC_*) of a piece of the span
+    between planes ta and tb: the first piece's is the first group; a piece of the
+    same span as the last piece, or of the span after it (starting where that one
+    ended), goes where the last one went; any other (hidden spans or a break between
+    them and the last piece) to the second group."""
+    if c[AC_G1 + AC_W] <= 0.0:
+        g = AC_G1
+    elif ta == c[AC_TB] or (ta == c[AC_TA] and tb == c[AC_TB]):
+        g = int(c[AC_LAST])
+    else:
+        g = AC_G2
+    c[AC_TA] = ta
+    c[AC_TB] = tb
+    c[AC_LAST] = g
+    return g
+
+
 @ngjit_nrt_free
 def _add_span(acc, cov, n, gaps, prev, cur, sigma, H, share):
     """The visible parts of the span prev -> cur into the pixels' accumulators, each
@@ -329,17 +377,18 @@ def _add_span(acc, cov, n, gaps, prev, cur, sigma, H, share):
             wgt = (b - a) * share
             lam = (0.5 * (a + b) - ya) * inv             # the piece's middle on the span
             c = acc[j]
-            c[AC_W] += wgt
-            c[AC_U] += wgt * (prev[P_U] + lam * (cur[P_U] - prev[P_U]))
-            c[AC_V] += wgt * (prev[P_V] + lam * (cur[P_V] - prev[P_V]))
-            c[AC_WW] += wgt * (prev[P_W] + lam * (cur[P_W] - prev[P_W]))
-            c[AC_NX] += wgt * (prev[P_NX] + lam * (cur[P_NX] - prev[P_NX]))
-            c[AC_NY] += wgt * (prev[P_NY] + lam * (cur[P_NY] - prev[P_NY]))
-            c[AC_NZ] += wgt * (prev[P_NZ] + lam * (cur[P_NZ] - prev[P_NZ]))
-            c[AC_I] += wgt * (prev[P_I] + lam * (cur[P_I] - prev[P_I]))
-            c[AC_T] += wgt * (prev[P_T] + lam * (cur[P_T] - prev[P_T]))
-            c[AC_SIDE] += wgt * side
-            c[AC_Z] = min(c[AC_Z], prev[P_Z] + lam * (cur[P_Z] - prev[P_Z]))
+            g = piece_group(c, prev[P_T], cur[P_T])
+            c[g + AC_W] += wgt
+            c[g + AC_U] += wgt * (prev[P_U] + lam * (cur[P_U] - prev[P_U]))
+            c[g + AC_V] += wgt * (prev[P_V] + lam * (cur[P_V] - prev[P_V]))
+            c[g + AC_WW] += wgt * (prev[P_W] + lam * (cur[P_W] - prev[P_W]))
+            c[g + AC_NX] += wgt * (prev[P_NX] + lam * (cur[P_NX] - prev[P_NX]))
+            c[g + AC_NY] += wgt * (prev[P_NY] + lam * (cur[P_NY] - prev[P_NY]))
+            c[g + AC_NZ] += wgt * (prev[P_NZ] + lam * (cur[P_NZ] - prev[P_NZ]))
+            c[g + AC_I] += wgt * (prev[P_I] + lam * (cur[P_I] - prev[P_I]))
+            c[g + AC_T] += wgt * (prev[P_T] + lam * (cur[P_T] - prev[P_T]))
+            c[g + AC_SIDE] += wgt * side
+            c[g + AC_Z] = min(c[g + AC_Z], prev[P_Z] + lam * (cur[P_Z] - prev[P_Z]))
             if b >= q:
                 break
             j += 1
@@ -514,8 +563,7 @@ def area_column(kind, f, fg, flat, lv, hfp, vp, x0, slices, lod, gcol, ecol, acc
     in choosing a level (2**bias). Returns (evaluations, lowest and highest w with
     the upper side seen, lowest and highest row set)."""
     H = gcol.shape[0]
-    acc[:, :] = 0.0
-    acc[:, AC_Z] = np.inf
+    clear_accumulators(acc)
     evals = 0
     share = 1.0 / slices
     for k in range(slices):
@@ -551,9 +599,7 @@ def area_column(kind, f, fg, flat, lv, hfp, vp, x0, slices, lod, gcol, ecol, acc
         if side == 0.0:
             ecol[E_SEEN, j] = 0.0
             continue
-        if side > 0.0:
-            w_lo = min(w_lo, gcol[j, G_W])
-            w_hi = max(w_hi, gcol[j, G_W])
+        w_lo, w_hi = seen_heights(gcol, ecol, j, side, w_lo, w_hi)
         j_lo = min(j_lo, j)
         j_hi = max(j_hi, j)
     return evals, w_lo, w_hi, j_lo, j_hi
@@ -561,9 +607,11 @@ def area_column(kind, f, fg, flat, lv, hfp, vp, x0, slices, lod, gcol, ecol, acc
 
 @ngjit_inline
 def resolve_pixel(c, g, ecol, j):
-    """Pixel j's G-buffer entry g and edge-buffer coverage from its accumulator c
-    (AC_*): the weighted means, the normal made unit, the coverage their total weight
-    (flagged where it is not whole). Returns the side seen (0: nothing, g untouched)."""
+    """Pixel j's G-buffer entry g and edge-buffer entry from its accumulator c (AC_*):
+    the first group's weighted means (the normal made unit) the pixel's surface, its
+    total weight that surface's coverage; the second group's, where it has pieces, the
+    pixel's edge surface (E_*, its coverage E_COV); flagged where the coverages are
+    not one whole surface. Returns the side seen (0: nothing, g untouched)."""
     wgt = c[AC_W]
     if wgt <= 0.0:
         return 0.0
@@ -583,13 +631,49 @@ def resolve_pixel(c, g, ecol, j):
     g[G_I] = c[AC_I] * inv
     g[G_T] = c[AC_T] * inv
     side = 1.0 if c[AC_SIDE] >= 0.0 else -1.0
-    if wgt >= WHOLE:
+    w2 = c[AC_G2 + AC_W]
+    if w2 > 0.0:
+        ecol[E_SEEN, j] = side + E_FLAG
+        ecol[E_COV0, j] = wgt
+        ecol[E_COV, j] = w2
+        inv = 1.0 / w2
+        nx = c[AC_G2 + AC_NX]
+        ny = c[AC_G2 + AC_NY]
+        nz = c[AC_G2 + AC_NZ]
+        q = math.sqrt(nx * nx + ny * ny + nz * nz)
+        q = 1.0 / q if q > 0.0 else 0.0
+        ecol[E_NX, j] = nx * q
+        ecol[E_NY, j] = ny * q
+        ecol[E_NZ, j] = nz * q
+        ecol[E_W, j] = c[AC_G2 + AC_WW] * inv
+        ecol[E_I, j] = c[AC_G2 + AC_I] * inv
+        ecol[E_SIDE, j] = 1.0 if c[AC_G2 + AC_SIDE] >= 0.0 else -1.0
+        ecol[E_DEPTH, j] = c[AC_G2 + AC_Z]
+        ecol[E_U, j] = c[AC_G2 + AC_U] * inv
+        ecol[E_V, j] = c[AC_G2 + AC_V] * inv
+    elif wgt >= WHOLE:
         ecol[E_SEEN, j] = side
     else:
         ecol[E_SEEN, j] = side + E_FLAG
         ecol[E_COV0, j] = wgt
         ecol[E_COV, j] = 0.0
     return side
+
+
+@ngjit_inline
+def seen_heights(gcol, ecol, j, side, w_lo, w_hi):
+    """(w_lo, w_hi) widened by the heights pixel j shows with the upper side (the
+    colour map's range): its surface's (side > 0) and its edge surface's
+    (resolve_pixel's second group)."""
+    if side > 0.0:
+        w_lo = min(w_lo, gcol[j, G_W])
+        w_hi = max(w_hi, gcol[j, G_W])
+    x = ecol[E_SEEN, j]
+    if flagged(x):                              # (its coverages kept: coverage.py)
+        if ecol[E_COV, j] > 0.0 and ecol[E_SIDE, j] > 0.0:
+            w_lo = min(w_lo, ecol[E_W, j])
+            w_hi = max(w_hi, ecol[E_W, j])
+    return w_lo, w_hi
 
 
 @ngjit

@@ -38,7 +38,8 @@ from numba import prange
 
 from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .area import (AC_I, AC_NX, AC_NY, AC_NZ, AC_SIZE, AC_T, AC_U, AC_V, AC_W, AC_WW, AC_Z,
-                   LV_CELL, LV_NU, LV_NV, LV_OFF, _below_picture, resolve_pixel)
+                   LV_CELL, LV_NU, LV_NV, LV_OFF, _below_picture, clear_accumulators,
+                   piece_group, resolve_pixel, seen_heights)
 from .column import _column_t_range
 from .layout import (E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U,
                      G_V, G_W, SURF_HEIGHTFIELD, VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1,
@@ -301,16 +302,17 @@ def _accumulate(acc, j, wgt, lw, p, c):
     """A visible piece of the chord p -> c (its middle at weight lw) into pixel j's
     accumulator, weighted by its length on screen."""
     a = acc[j]
-    a[AC_W] += wgt
-    a[AC_U] += wgt * (p[Q_U] + lw * (c[Q_U] - p[Q_U]))
-    a[AC_V] += wgt * (p[Q_V] + lw * (c[Q_V] - p[Q_V]))
-    a[AC_WW] += wgt * (p[Q_W] + lw * (c[Q_W] - p[Q_W]))
-    a[AC_NX] += wgt * (p[Q_NX] + lw * (c[Q_NX] - p[Q_NX]))
-    a[AC_NY] += wgt * (p[Q_NY] + lw * (c[Q_NY] - p[Q_NY]))
-    a[AC_NZ] += wgt * (p[Q_NZ] + lw * (c[Q_NZ] - p[Q_NZ]))
-    a[AC_I] += wgt * (p[Q_I] + lw * (c[Q_I] - p[Q_I]))
-    a[AC_T] += wgt * (p[Q_T] + lw * (c[Q_T] - p[Q_T]))
-    a[AC_Z] = min(a[AC_Z], p[Q_Z] + lw * (c[Q_Z] - p[Q_Z]))
+    g = piece_group(a, p[Q_T], c[Q_T])          # (area.py: two groups of pieces)
+    a[g + AC_W] += wgt
+    a[g + AC_U] += wgt * (p[Q_U] + lw * (c[Q_U] - p[Q_U]))
+    a[g + AC_V] += wgt * (p[Q_V] + lw * (c[Q_V] - p[Q_V]))
+    a[g + AC_WW] += wgt * (p[Q_W] + lw * (c[Q_W] - p[Q_W]))
+    a[g + AC_NX] += wgt * (p[Q_NX] + lw * (c[Q_NX] - p[Q_NX]))
+    a[g + AC_NY] += wgt * (p[Q_NY] + lw * (c[Q_NY] - p[Q_NY]))
+    a[g + AC_NZ] += wgt * (p[Q_NZ] + lw * (c[Q_NZ] - p[Q_NZ]))
+    a[g + AC_I] += wgt * (p[Q_I] + lw * (c[Q_I] - p[Q_I]))
+    a[g + AC_T] += wgt * (p[Q_T] + lw * (c[Q_T] - p[Q_T]))
+    a[g + AC_Z] = min(a[g + AC_Z], p[Q_Z] + lw * (c[Q_Z] - p[Q_Z]))
 
 
 @ngjit_inline
@@ -614,9 +616,9 @@ def _resolve(area, gcol, ecol, acc, st):
                 w_hi = max(w_hi, w)
             continue
         # (the pieces' side is the upper one: AC_SIDE stays 0)
-        if resolve_pixel(acc[j], gcol[j], ecol, j) != 0.0:
-            w_lo = min(w_lo, gcol[j, G_W])
-            w_hi = max(w_hi, gcol[j, G_W])
+        side = resolve_pixel(acc[j], gcol[j], ecol, j)
+        if side != 0.0:
+            w_lo, w_hi = seen_heights(gcol, ecol, j, side, w_lo, w_hi)
     return w_lo, w_hi
 
 
@@ -729,8 +731,7 @@ def lod_tile(kind, fg, hf0, flat, lt, mx, mt, hfp, vp, c0, lanes, area, planes, 
     for L in range(lanes):
         etile[E_SEEN, :, L] = 0.0
         if area:
-            acc[L, :, :] = 0.0
-            acc[L, :, AC_Z] = np.inf
+            clear_accumulators(acc[L])
         x0 = column_x0(vp, c0 + L)
         sl = st[L]
         _start(vp, x0, s_lo, s_hi, planes, sl)

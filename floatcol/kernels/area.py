@@ -327,6 +327,32 @@ def clear_accumulators(acc):
         acc[j, AC_TB] = np.nan
 
 
+#: where a sample record (P_*) holds u, v, w, the normal, the intensity, t and the depth
+#: (add_piece; the lod engine's records hold them elsewhere)
+SAMPLE_FIELDS = (P_U, P_V, P_W, P_NX, P_NY, P_NZ, P_I, P_T, P_Z)
+
+
+@ngjit_inline
+def add_piece(c, wgt, lam, p, q, at, side):
+    """A visible piece of the span between the sample records p and q (its middle at
+    lam along it, its length on screen wgt) into a pixel's accumulator c, in its group
+    (piece_group). ``at``: the records' indices of u, v, w, the normal, the intensity,
+    t and the depth (SAMPLE_FIELDS); ``side`` the side it shows (+1, -1)."""
+    iu, iv, iw, inx, iny, inz, ii, it, iz = at
+    g = piece_group(c, p[it], q[it])
+    c[g + AC_W] += wgt
+    c[g + AC_U] += wgt * (p[iu] + lam * (q[iu] - p[iu]))
+    c[g + AC_V] += wgt * (p[iv] + lam * (q[iv] - p[iv]))
+    c[g + AC_WW] += wgt * (p[iw] + lam * (q[iw] - p[iw]))
+    c[g + AC_NX] += wgt * (p[inx] + lam * (q[inx] - p[inx]))
+    c[g + AC_NY] += wgt * (p[iny] + lam * (q[iny] - p[iny]))
+    c[g + AC_NZ] += wgt * (p[inz] + lam * (q[inz] - p[inz]))
+    c[g + AC_I] += wgt * (p[ii] + lam * (q[ii] - p[ii]))
+    c[g + AC_T] += wgt * (p[it] + lam * (q[it] - p[it]))
+    c[g + AC_SIDE] += wgt * side
+    c[g + AC_Z] = min(c[g + AC_Z], p[iz] + lam * (q[iz] - p[iz]))
+
+
 @ngjit_inline
 def piece_group(c, ta, tb):
     """The group (its offset in the accumulator c, AC_*) of a piece of the span
@@ -376,19 +402,7 @@ def _add_span(acc, cov, n, gaps, prev, cur, sigma, H, share):
                 continue
             wgt = (b - a) * share
             lam = (0.5 * (a + b) - ya) * inv             # the piece's middle on the span
-            c = acc[j]
-            g = piece_group(c, prev[P_T], cur[P_T])
-            c[g + AC_W] += wgt
-            c[g + AC_U] += wgt * (prev[P_U] + lam * (cur[P_U] - prev[P_U]))
-            c[g + AC_V] += wgt * (prev[P_V] + lam * (cur[P_V] - prev[P_V]))
-            c[g + AC_WW] += wgt * (prev[P_W] + lam * (cur[P_W] - prev[P_W]))
-            c[g + AC_NX] += wgt * (prev[P_NX] + lam * (cur[P_NX] - prev[P_NX]))
-            c[g + AC_NY] += wgt * (prev[P_NY] + lam * (cur[P_NY] - prev[P_NY]))
-            c[g + AC_NZ] += wgt * (prev[P_NZ] + lam * (cur[P_NZ] - prev[P_NZ]))
-            c[g + AC_I] += wgt * (prev[P_I] + lam * (cur[P_I] - prev[P_I]))
-            c[g + AC_T] += wgt * (prev[P_T] + lam * (cur[P_T] - prev[P_T]))
-            c[g + AC_SIDE] += wgt * side
-            c[g + AC_Z] = min(c[g + AC_Z], prev[P_Z] + lam * (cur[P_Z] - prev[P_Z]))
+            add_piece(acc[j], wgt, lam, prev, cur, SAMPLE_FIELDS, side)
             if b >= q:
                 break
             j += 1

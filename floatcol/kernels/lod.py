@@ -37,9 +37,8 @@ import numpy as np
 from numba import prange
 
 from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
-from .area import (AC_I, AC_NX, AC_NY, AC_NZ, AC_SIZE, AC_T, AC_U, AC_V, AC_W, AC_WW, AC_Z,
-                   LV_CELL, LV_NU, LV_NV, LV_OFF, _below_picture, clear_accumulators,
-                   piece_group, resolve_pixel, seen_heights)
+from .area import (AC_SIZE, LV_CELL, LV_NU, LV_NV, LV_OFF, _below_picture, add_piece,
+                   clear_accumulators, resolve_pixel, seen_heights)
 from .column import _column_t_range
 from .layout import (E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U,
                      G_V, G_W, SURF_HEIGHTFIELD, VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1,
@@ -297,22 +296,8 @@ def _store(g, lw, p, c):
     g[G_T] = p[Q_T] + lw * (c[Q_T] - p[Q_T])
 
 
-@ngjit_inline
-def _accumulate(acc, j, wgt, lw, p, c):
-    """A visible piece of the chord p -> c (its middle at weight lw) into pixel j's
-    accumulator, weighted by its length on screen."""
-    a = acc[j]
-    g = piece_group(a, p[Q_T], c[Q_T])          # (area.py: two groups of pieces)
-    a[g + AC_W] += wgt
-    a[g + AC_U] += wgt * (p[Q_U] + lw * (c[Q_U] - p[Q_U]))
-    a[g + AC_V] += wgt * (p[Q_V] + lw * (c[Q_V] - p[Q_V]))
-    a[g + AC_WW] += wgt * (p[Q_W] + lw * (c[Q_W] - p[Q_W]))
-    a[g + AC_NX] += wgt * (p[Q_NX] + lw * (c[Q_NX] - p[Q_NX]))
-    a[g + AC_NY] += wgt * (p[Q_NY] + lw * (c[Q_NY] - p[Q_NY]))
-    a[g + AC_NZ] += wgt * (p[Q_NZ] + lw * (c[Q_NZ] - p[Q_NZ]))
-    a[g + AC_I] += wgt * (p[Q_I] + lw * (c[Q_I] - p[Q_I]))
-    a[g + AC_T] += wgt * (p[Q_T] + lw * (c[Q_T] - p[Q_T]))
-    a[g + AC_Z] = min(a[g + AC_Z], p[Q_Z] + lw * (c[Q_Z] - p[Q_Z]))
+#: where a sample record (Q_*) holds what area.add_piece takes
+PIECE_FIELDS = (Q_U, Q_V, Q_W, Q_NX, Q_NY, Q_NZ, Q_I, Q_T, Q_Z)
 
 
 @ngjit_inline
@@ -495,7 +480,8 @@ def _paint(area, st, prev, cur, gcol, ecol, acc, d3):
             pa = max(lo_f, j - 0.5)
             pb = min(y, j + 0.5)
             if pb > pa and j >= 0:
-                _accumulate(acc, j, pb - pa, _weight(0.5 * (pa + pb), prev, cur, d3), prev, cur)
+                add_piece(acc[j], pb - pa, _weight(0.5 * (pa + pb), prev, cur, d3), prev, cur,
+                          PIECE_FIELDS, 1.0)
                 st[ST_JLO] = min(st[ST_JLO], j)
                 st[ST_JHI] = max(st[ST_JHI], j)
             if j + 0.5 >= y:
@@ -615,7 +601,7 @@ def _resolve(area, gcol, ecol, acc, st):
                 w_lo = min(w_lo, w)
                 w_hi = max(w_hi, w)
             continue
-        # (the pieces' side is the upper one: AC_SIDE stays 0)
+        # (the pieces show the upper side: add_piece's side 1)
         side = resolve_pixel(acc[j], gcol[j], ecol, j)
         if side != 0.0:
             w_lo, w_hi = seen_heights(gcol, ecol, j, side, w_lo, w_hi)

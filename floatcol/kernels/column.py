@@ -1195,7 +1195,7 @@ def _batch_planes_persp(kind, f, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta
     columns of a group of tiles run one after another on one thread), else from the
     run's line (_newton_start), else at Gordon's point s = 0. A plane that converges to
     a plain point (finite, strictly inside the domain, outside the known holes, behind
-    the screen) gets its sample (_batch_point: status, row, depth, the solution BAT_S; its
+    the screen) gets its sample (_batch_points: status, row, depth, the solution BAT_S; its
     normal, intensity and probe()'s values when it is used, _finish_batched). A plane
     whose root lies outside the domain is S_OUTSIDE where g = f - cw - s has no sign
     change over the part of its line inside the domain (the scalar path's test:
@@ -1282,28 +1282,30 @@ def _batch_planes_persp(kind, f, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta
             left += 1 if go else 0
         if left == 0:
             break
-    if vp[VP_HOLE_N] != 0.0:
-        for j in range(m):
-            if bat[BAT_ACT * BATCH + j] == 2.0:
-                # (u, v): where f was evaluated last, at the plane's final s
-                if not _batch_point(vp, x0, bat, j, c, iu, iv):
-                    evals += _outside_test(kind, f, hf, hfp, vp, bat, j, kp)
-        return evals
+    # (u, v): where f was evaluated last, at the plane's final s
     _batch_points(vp, x0, bat, c, iu, iv)
+    holes = vp[VP_HOLE_N] != 0.0
     for j in range(m):
         if bat[BAT_ACT * BATCH + j] == 3.0:
             evals += _outside_test(kind, f, hf, hfp, vp, bat, j, kp)
+        elif holes and bat[BAT_ST * BATCH + j] == S_OK and \
+                in_known_hole(vp, bat[BAT_U * BATCH + j], bat[BAT_V * BATCH + j]):
+            bat[BAT_ST * BATCH + j] = S_RETRY      # (the scalar path's, at a known hole)
+            bat[BAT_LAZY * BATCH + j] = 0.0
     return evals
 
 
 @ngjit_inline
 def _batch_points(vp, x0, bat, c, iu, iv):
-    """_batch_point for every plane of the batch at once, where the domain has no
-    known holes: the same values in one branch-free loop over the BATCH planes (LLVM's
-    SIMD code; the scalar loop was about a tenth of a perspective column pass). A
-    converged plane (BAT_ACT 2) whose point is a plain one gets its sample; one whose
-    point lies outside the domain gets BAT_ACT 3 (for _outside_test); the rest stay
-    S_RETRY."""
+    """The batched perspective planes' converged points (u, v, w) in one branch-free
+    loop over the BATCH planes (LLVM's SIMD code; a scalar call per plane was about a
+    tenth of the column pass): a converged plane (BAT_ACT 2) whose point is a plain
+    one (finite, strictly inside the domain, behind the screen) gets its sample, as
+    sample_point computes it (status, screen row, depth, the solution BAT_S, w, and
+    with VP_DETECT the sign of V.N, for the hidden samples' ridge test); the rest when
+    the sample is used (_finish_batched). A converged plane whose point lies outside
+    the domain gets BAT_ACT 3 (for _outside_test); the rest stay S_RETRY (and the
+    caller sends a point in a known hole back to them)."""
     eu = DOMAIN_EPS * (vp[VP_UB] - vp[VP_UA])     # (in_domain, into_domain)
     ev = DOMAIN_EPS * (vp[VP_VB] - vp[VP_VA])
     u_lo = vp[VP_UA] - eu
@@ -1341,6 +1343,8 @@ def _batch_points(vp, x0, bat, c, iu, iv):
         y0 = y1 * d1 / (z1 + d3)
         ypix = y0 * scale + mid
         ok = conv & inside & plain & front & math.isfinite(ypix) & math.isfinite(z1)
+        # the normal (eq. 11) not yet of unit length: fold_test's and the ridge test's
+        # signs do not need it
         wu = bat[(BAT_W + 1) * BATCH + j] * cu_
         wv = bat[(BAT_W + 2) * BATCH + j] * cv_
         nx = -wu * cb + wv * sb
@@ -1360,59 +1364,6 @@ def _batch_points(vp, x0, bat, c, iu, iv):
             vn = -x0 * nx - yv * ny - d1 * nz
             bat[BAT_VN * BATCH + j] = vn if ok else bat[BAT_VN * BATCH + j]
         bat[BAT_ACT * BATCH + j] = 3.0 if conv & (not inside) else bat[BAT_ACT * BATCH + j]
-
-
-@ngjit_inline
-def _batch_point(vp, x0, bat, j, c, iu, iv):
-    """Batched perspective plane j's converged point (u, v, w): its sample into bat
-    where it is a plain one, as sample_point computes it (status, screen row, depth,
-    the solution s, w, and with VP_DETECT the sign of V.N, for the hidden samples'
-    ridge test); the rest when the sample is used (_finish_batched). Else it stays
-    S_RETRY. Returns whether the point lies in the domain."""
-    u = bat[BAT_U * BATCH + j]
-    v = bat[BAT_V * BATCH + j]
-    if not in_domain(vp, u, v):
-        return False
-    ui, vi = into_domain(vp, u, v)
-    if ui != u or vi != v or (vp[VP_HOLE_N] != 0.0 and in_known_hole(vp, u, v)):
-        return True
-    t = bat[BAT_T * BATCH + j]
-    ca = vp[VP_CA]
-    sa = vp[VP_SA]
-    d1 = vp[VP_D1]
-    d3 = vp[VP_D3]
-    w = bat[BAT_W * BATCH + j] * c              # fb's last values (the box's scaling)
-    s = w - vp[VP_CW]
-    y1 = s * ca - t * sa                         # eqs. (4), (10)
-    z1 = s * sa + t * ca
-    if z1 + d3 <= d1:
-        return True
-    y0 = y1 * d1 / (z1 + d3)
-    ypix = y0 * vp[VP_SCALE] + (vp[VP_H] - 1.0) * 0.5
-    if not (math.isfinite(ypix) and math.isfinite(z1)):
-        return True
-    bat[BAT_ST * BATCH + j] = S_OK
-    bat[BAT_S * BATCH + j] = s
-    bat[BAT_W * BATCH + j] = w
-    bat[BAT_Y * BATCH + j] = ypix
-    bat[BAT_Z * BATCH + j] = z1
-    bat[BAT_LAZY * BATCH + j] = 1.0
-    # the normal (eq. 11) not yet of unit length: fold_test's and the ridge test's
-    # signs do not need it
-    wu = bat[(BAT_W + 1) * BATCH + j] * (c * iu)
-    wv = bat[(BAT_W + 2) * BATCH + j] * (c * iv)
-    cb = vp[VP_CB]
-    sb = vp[VP_SB]
-    nx = -wu * cb + wv * sb
-    ny = wu * sa * sb + ca + wv * sa * cb
-    nz = -wu * ca * sb + sa - wv * ca * cb
-    bat[BAT_NX * BATCH + j] = nx
-    bat[BAT_NY * BATCH + j] = ny
-    bat[BAT_NZ * BATCH + j] = nz
-    if vp[VP_DETECT] != 0.0:
-        y0 = (ypix - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]   # (probe_persp's V)
-        bat[BAT_VN * BATCH + j] = -x0 * nx - y0 * ny - d1 * nz
-    return True
 
 
 @ngjit_inline

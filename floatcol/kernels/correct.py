@@ -62,7 +62,7 @@ def probe(vp, x0, a):
 @ngjit_inline
 def probe_persp(vp, x0, ypix, z, nx, ny, nz):
     """probe() in perspective, of a sample at screen row ypix and depth z with the unit
-    normal (nx, ny, nz) (for the batched planes too: column._batch_point)."""
+    normal (nx, ny, nz) (for the batched planes too: column._batch_points)."""
     scale = vp[VP_SCALE]
     ca = vp[VP_CA]
     sa = vp[VP_SA]

@@ -36,7 +36,8 @@ from numba import prange
 from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .column import _column_t_range, _domain_test, _may_meet_domain, _ortho_chord
 from .layout import (
-    E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_U, E_V, E_W, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W, S_OK,
+    E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_U, E_V, E_W,
+    G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W, S_OK,
     SURF_HEIGHTFIELD, VP_CA, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_WHI, VP_WLO, VP_SA, VP_SCALE, VP_T0,
     VP_T1,
 )
@@ -620,6 +621,18 @@ def area_column(kind, f, fg, flat, lv, hfp, vp, x0, slices, lod, gcol, ecol, acc
 
 
 @ngjit_inline
+def _group_normal(c, grp):
+    """The unit normal of the group at offset grp of accumulator c (its weighted sum
+    made unit; 0 where it is 0)."""
+    nx = c[grp + AC_NX]
+    ny = c[grp + AC_NY]
+    nz = c[grp + AC_NZ]
+    q = math.sqrt(nx * nx + ny * ny + nz * nz)
+    q = 1.0 / q if q > 0.0 else 0.0
+    return nx * q, ny * q, nz * q
+
+
+@ngjit_inline
 def resolve_pixel(c, g, ecol, j):
     """Pixel j's G-buffer entry g and edge-buffer entry from its accumulator c (AC_*):
     the first group's weighted means (the normal made unit) the pixel's surface, its
@@ -634,14 +647,7 @@ def resolve_pixel(c, g, ecol, j):
     g[G_U] = c[AC_U] * inv
     g[G_V] = c[AC_V] * inv
     g[G_W] = c[AC_WW] * inv
-    nx = c[AC_NX]
-    ny = c[AC_NY]
-    nz = c[AC_NZ]
-    q = math.sqrt(nx * nx + ny * ny + nz * nz)
-    q = 1.0 / q if q > 0.0 else 0.0
-    g[G_NX] = nx * q
-    g[G_NY] = ny * q
-    g[G_NZ] = nz * q
+    g[G_NX], g[G_NY], g[G_NZ] = _group_normal(c, AC_G1)
     g[G_I] = c[AC_I] * inv
     g[G_T] = c[AC_T] * inv
     side = 1.0 if c[AC_SIDE] >= 0.0 else -1.0
@@ -651,14 +657,7 @@ def resolve_pixel(c, g, ecol, j):
         ecol[E_COV0, j] = wgt
         ecol[E_COV, j] = w2
         inv = 1.0 / w2
-        nx = c[AC_G2 + AC_NX]
-        ny = c[AC_G2 + AC_NY]
-        nz = c[AC_G2 + AC_NZ]
-        q = math.sqrt(nx * nx + ny * ny + nz * nz)
-        q = 1.0 / q if q > 0.0 else 0.0
-        ecol[E_NX, j] = nx * q
-        ecol[E_NY, j] = ny * q
-        ecol[E_NZ, j] = nz * q
+        ecol[E_NX, j], ecol[E_NY, j], ecol[E_NZ, j] = _group_normal(c, AC_G2)
         ecol[E_W, j] = c[AC_G2 + AC_WW] * inv
         ecol[E_I, j] = c[AC_G2 + AC_I] * inv
         ecol[E_SIDE, j] = 1.0 if c[AC_G2 + AC_SIDE] >= 0.0 else -1.0

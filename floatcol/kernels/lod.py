@@ -29,7 +29,11 @@ hole a farther surface is drawn where it rises above the nearer ones only.
 
 Where the column's last sample is hidden it tries to skip the planes ahead: the
 pyramid's block maxima (passes/lod.py block_maxima) bound the surface over the ground
-where Pi meets them above the horizon's ray (_hidden_until).
+where Pi meets them above the horizon's ray (_hidden_until); where they do not, one
+evaluation a plane, where the horizon's ray crosses it, tells whether the surface
+there is hidden (_scan_hidden), without Newton's iteration: a column's planes are
+two-thirds or more hidden in a fly-through, and these tests, independent of each
+other, cost half of a sample each (the 1280x720 fly-through 199 -> 163 ms).
 """
 import math
 
@@ -50,8 +54,8 @@ KAPPA = 1.0
 #: a sample is placed when it lies within this many pixels of its column's plane
 TOL_PX = 0.05
 NEWTON_MAX = 8
-#: a hidden column tries to skip this many planes at first, doubling while it
-#: succeeds up to SKIP_MAX; after a failure it waits SKIP_MIN planes
+#: a hidden column tries to skip this many planes at first by the block maxima,
+#: doubling while it succeeds up to SKIP_MAX, halving after a failure
 SKIP_MIN = 4
 SKIP_MAX = 1024
 #: planes a frame at most (their spacing doubles until they fit)
@@ -384,7 +388,9 @@ def _last_before(planes, t):
 
 #: A lane's state in lod_tile: its t range, first plane, Newton's next start s and
 #: the slope ds/dt of its last two samples, the floating horizon, whether the last
-#: sample continues a run, whether it is done, evaluations, rows set
+#: sample continues a run, whether it is done, evaluations, rows set; its column's
+#: x0, its next plane, how many planes it tries to skip, whether its next hidden run
+#: skips the block maxima' test (after a failure)
 ST_TA = 0
 ST_TB = 1
 ST_I0 = 2
@@ -397,7 +403,11 @@ ST_EVALS = 8
 ST_JLO = 9
 ST_JHI = 10
 ST_DY = 11
-ST_SIZE = 12
+ST_X0 = 12
+ST_I = 13
+ST_JUMP = 14
+ST_WAIT = 15
+ST_SIZE = 16
 
 
 @ngjit_inline
@@ -699,6 +709,99 @@ def _hidden_until(mx, mt, n_m, lt, hfp, vp, x0, planes, i, j, s_lo, s_hi, ymax):
     return True
 
 
+@ngjit_inline
+def _scan_hidden(kind, fg, hf0, flat, lt, hfp, vp, x0, planes, i, m_end, ymax):
+    """The first plane m in i .. m_end - 1 whose surface point on column x0's plane
+    Pi may rise above the floating horizon ymax (m_end where none does), one
+    evaluation a plane: plane t's point of Pi at height s is seen above ymax iff s
+    is above s_ray(t), where the horizon's ray crosses plane t (a point's row is
+    monotone in s, eqs. 4, 10), and the surface's point on Pi lies above s_ray iff
+    the surface there is, g(s) = f(u(s), v(s)) - s decreasing (as Newton's iteration
+    in _place takes it). Each plane's test is independent of the last (no Newton
+    chain): they overlap in the processor. A plane outside the domain or in a hole
+    is not surely hidden. Returns m, the surface's height (relative to the centre)
+    there on plane m - 1 (Newton's start for its sample) and the evaluations."""
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    d1 = vp[VP_D1]
+    d3 = vp[VP_D3]
+    cw = vp[VP_CW]
+    # s_ray(t) = a_r t + b_r: (s ca - t sa) d1 = y0 (s sa + t ca + d3), eqs. (4), (10)
+    y0 = (ymax - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]
+    den = ca * d1 - y0 * sa                      # > 0: the rays point forward
+    a_r = (y0 * ca + sa * d1) / den
+    b_r = y0 * d3 / den
+    kx = x0 * sa / d1
+    m = i
+    s_last = np.nan
+    ev = 0
+    while m < m_end:
+        t = planes[m, 0]
+        s_ray = a_r * t + b_r
+        r = x0 * (t * ca + d3) / d1 + kx * s_ray    # eq. (9), ERRATA 2
+        u = vp[VP_CU] + r * cb + t * sb              # eq. (2)
+        v = vp[VP_CV] - r * sb + t * cb
+        if not in_domain(vp, u, v):
+            break
+        u, v = into_domain(vp, u, v)
+        w, _, _ = _height(kind, fg, hf0, flat, lt, hfp, int(planes[m, 1]), planes[m, 2], u, v)
+        ev += 1
+        if not w - cw < s_ray:                       # (a hole: not surely hidden)
+            break
+        s_last = w - cw
+        m += 1
+    return m, s_last, ev
+
+
+@ngjit_inline
+def _step_lane(kind, fg, hf0, flat, lt, mx, mt, n_m, hfp, vp, area, planes, skips, s_lo, s_hi,
+               top, sl, pts, gcol, ecol, acc):
+    """One lane's next plane (sl[ST_I]): the lane ends where its planes or its
+    picture do. Where its last sample is hidden it skips the planes up to ST_I +
+    ST_JUMP that the block maxima show hidden (_hidden_until; every other hidden
+    run after a failure), else those of them that one evaluation each shows hidden
+    (_scan_hidden); the last plane skipped is sampled, the next run's first point."""
+    n = planes.shape[0]
+    i = int(sl[ST_I])
+    if i >= n or planes[i, 0] > sl[ST_TB] or sl[ST_YMAX] >= top:
+        sl[ST_DONE] = 1.0
+        return
+    x0 = sl[ST_X0]
+    prev = pts[0]
+    cur = pts[1]
+    if skips and sl[ST_HAVE] != 0.0 and prev[Q_Y] < sl[ST_YMAX]:
+        jump = int(sl[ST_JUMP])
+        j = min(i + jump, n - 1)
+        while j > i and planes[j, 0] > sl[ST_TB]:
+            j -= 1
+        if sl[ST_WAIT] == 0.0 and j > i + 1 and _hidden_until(
+                mx, mt, n_m, lt, hfp, vp, x0, planes, i, j, s_lo, s_hi, sl[ST_YMAX]):
+            i = j
+            sl[ST_HAVE] = 0.0
+            sl[ST_JUMP] = min(2 * jump, SKIP_MAX)
+        else:
+            if sl[ST_WAIT] == 0.0:
+                sl[ST_JUMP] = max(jump // 2, SKIP_MIN)
+                sl[ST_WAIT] = 1.0
+            else:
+                sl[ST_WAIT] = 0.0
+            m, s_last, ev = _scan_hidden(kind, fg, hf0, flat, lt, hfp, vp, x0, planes, i,
+                                         j + 1, sl[ST_YMAX])
+            sl[ST_EVALS] += ev
+            if m > i:
+                i = m - 1
+                sl[ST_HAVE] = 0.0
+                sl[ST_S] = s_last
+    if _sample_lane(kind, fg, hf0, flat, lt, hfp, vp, x0, planes[i, 0], int(planes[i, 1]),
+                    planes[i, 2], sl, prev, cur):
+        _draw_lane(kind, fg, hf0, flat, lt, hfp, vp, x0, area, sl, pts, gcol, ecol, acc)
+    else:
+        sl[ST_HAVE] = 0.0
+    sl[ST_I] = i + 1
+
+
 @ngjit_nrt_free
 def lod_tile(kind, fg, hf0, flat, lt, mx, mt, hfp, vp, c0, lanes, area, planes, s_lo, s_hi,
              gtile, etile, acc, pts, st, out):
@@ -711,7 +814,6 @@ def lod_tile(kind, fg, hf0, flat, lt, mx, mt, hfp, vp, c0, lanes, area, planes, 
     highest row set to out[lane]."""
     H = gtile.shape[0]
     top = H - 0.5
-    n = planes.shape[0]
     n_m = mt.shape[0] // max(lt.shape[0], 1)
     skips = kind == SURF_HEIGHTFIELD and mt.shape[0] > 0 and s_lo == s_lo
     for L in range(lanes):
@@ -723,40 +825,13 @@ def lod_tile(kind, fg, hf0, flat, lt, mx, mt, hfp, vp, c0, lanes, area, planes, 
         _start(vp, x0, s_lo, s_hi, planes, sl)
         sl[ST_JLO] = H
         sl[ST_JHI] = -1
-        prev = pts[L, 0]
-        cur = pts[L, 1]
-        i = int(sl[ST_I0])
-        jump = SKIP_MIN
-        wait = 0
-        while sl[ST_DONE] == 0.0 and i < n:
-            t = planes[i, 0]
-            if t > sl[ST_TB] or sl[ST_YMAX] >= top:
-                break
-            if skips and sl[ST_HAVE] != 0.0 and prev[Q_Y] < sl[ST_YMAX]:
-                # hidden: try to skip the planes up to i + jump (their last one
-                # sampled, the next run's first point)
-                if wait > 0:
-                    wait -= 1
-                else:
-                    j = min(i + jump, n - 1)
-                    while j > i and planes[j, 0] > sl[ST_TB]:
-                        j -= 1
-                    if j > i + 1 and _hidden_until(mx, mt, n_m, lt, hfp, vp, x0, planes, i, j,
-                                                   s_lo, s_hi, sl[ST_YMAX]):
-                        i = j
-                        t = planes[i, 0]
-                        sl[ST_HAVE] = 0.0
-                        jump = min(2 * jump, SKIP_MAX)
-                    else:
-                        jump = max(jump // 2, SKIP_MIN)
-                        wait = SKIP_MIN
-            if _sample_lane(kind, fg, hf0, flat, lt, hfp, vp, x0, t, int(planes[i, 1]),
-                            planes[i, 2], sl, prev, cur):
-                _draw_lane(kind, fg, hf0, flat, lt, hfp, vp, x0, area, sl, pts[L], gtile[:, L],
-                           etile[:, :, L], acc[L])
-            else:
-                sl[ST_HAVE] = 0.0
-            i += 1
+        sl[ST_X0] = x0
+        sl[ST_I] = sl[ST_I0]
+        sl[ST_JUMP] = SKIP_MIN
+        sl[ST_WAIT] = 0.0
+        while sl[ST_DONE] == 0.0:
+            _step_lane(kind, fg, hf0, flat, lt, mx, mt, n_m, hfp, vp, area, planes, skips, s_lo,
+                       s_hi, top, sl, pts[L], gtile[:, L], etile[:, :, L], acc[L])
         w_lo, w_hi = _resolve(area, gtile[:, L], etile[:, :, L], acc[L], sl)
         out[L, 0] = sl[ST_EVALS]
         out[L, 1] = w_lo

@@ -389,8 +389,9 @@ def _last_before(planes, t):
 #: A lane's state in lod_tile: its t range, first plane, Newton's next start s and
 #: the slope ds/dt of its last two samples, the floating horizon, whether the last
 #: sample continues a run, whether it is done, evaluations, rows set; its column's
-#: x0, its next plane, how many planes it tries to skip, whether its next hidden run
-#: skips the block maxima' test (after a failure)
+#: x0, its next plane, how many planes it tries to skip, whether its next hidden step
+#: leaves out the block maxima' test (after a failure), whether the planes before its
+#: next one were skipped (hidden, not sampled)
 ST_TA = 0
 ST_TB = 1
 ST_I0 = 2
@@ -407,7 +408,8 @@ ST_X0 = 12
 ST_I = 13
 ST_JUMP = 14
 ST_WAIT = 15
-ST_SIZE = 16
+ST_SKIP = 16
+ST_SIZE = 17
 
 
 @ngjit_inline
@@ -759,10 +761,11 @@ def _scan_hidden(kind, fg, hf0, flat, lt, hfp, vp, x0, planes, i, m_end, ymax):
 def _step_lane(kind, fg, hf0, flat, lt, mx, mt, n_m, hfp, vp, area, planes, skips, s_lo, s_hi,
                top, sl, pts, gcol, ecol, acc):
     """One lane's next plane (sl[ST_I]): the lane ends where its planes or its
-    picture do. Where its last sample is hidden it skips the planes up to ST_I +
-    ST_JUMP that the block maxima show hidden (_hidden_until; every other hidden
-    run after a failure), else those of them that one evaluation each shows hidden
-    (_scan_hidden); the last plane skipped is sampled, the next run's first point."""
+    picture do. Where its last sample is hidden (or planes were skipped) it skips
+    the planes up to ST_I + ST_JUMP that the block maxima show hidden (_hidden_until;
+    not the step after a failure), else those of them that one evaluation each
+    shows hidden (_scan_hidden); planes skipped need no sample (ST_SKIP) until one
+    may show, when the last of them is sampled, the next run's first point."""
     n = planes.shape[0]
     i = int(sl[ST_I])
     if i >= n or planes[i, 0] > sl[ST_TB] or sl[ST_YMAX] >= top:
@@ -771,29 +774,42 @@ def _step_lane(kind, fg, hf0, flat, lt, mx, mt, n_m, hfp, vp, area, planes, skip
     x0 = sl[ST_X0]
     prev = pts[0]
     cur = pts[1]
-    if skips and sl[ST_HAVE] != 0.0 and prev[Q_Y] < sl[ST_YMAX]:
+    skipped = sl[ST_SKIP] != 0.0
+    if skips and (skipped or (sl[ST_HAVE] != 0.0 and prev[Q_Y] < sl[ST_YMAX])):
         jump = int(sl[ST_JUMP])
         j = min(i + jump, n - 1)
         while j > i and planes[j, 0] > sl[ST_TB]:
             j -= 1
         if sl[ST_WAIT] == 0.0 and j > i + 1 and _hidden_until(
                 mx, mt, n_m, lt, hfp, vp, x0, planes, i, j, s_lo, s_hi, sl[ST_YMAX]):
-            i = j
-            sl[ST_HAVE] = 0.0
             sl[ST_JUMP] = min(2 * jump, SKIP_MAX)
+            sl[ST_SKIP] = 1.0
+            sl[ST_I] = j + 1
+            return
+        if sl[ST_WAIT] == 0.0:
+            sl[ST_JUMP] = max(jump // 2, SKIP_MIN)
+            sl[ST_WAIT] = 1.0
         else:
-            if sl[ST_WAIT] == 0.0:
-                sl[ST_JUMP] = max(jump // 2, SKIP_MIN)
-                sl[ST_WAIT] = 1.0
-            else:
-                sl[ST_WAIT] = 0.0
-            m, s_last, ev = _scan_hidden(kind, fg, hf0, flat, lt, hfp, vp, x0, planes, i,
-                                         j + 1, sl[ST_YMAX])
-            sl[ST_EVALS] += ev
-            if m > i:
-                i = m - 1
-                sl[ST_HAVE] = 0.0
-                sl[ST_S] = s_last
+            sl[ST_WAIT] = 0.0
+        m, s_last, ev = _scan_hidden(kind, fg, hf0, flat, lt, hfp, vp, x0, planes, i, j + 1,
+                                     sl[ST_YMAX])
+        sl[ST_EVALS] += ev
+        if m == j + 1:
+            # all hidden: nothing to sample yet
+            sl[ST_SKIP] = 1.0
+            sl[ST_S] = s_last
+            sl[ST_I] = j + 1
+            return
+        # plane m may show: the plane before it (hidden, skipped) is the next run's
+        # first point, sampled now (Newton from the surface's height there)
+        if m > i:
+            i = m - 1
+            sl[ST_S] = s_last
+            sl[ST_HAVE] = 0.0
+        elif skipped:
+            i -= 1
+            sl[ST_HAVE] = 0.0
+        sl[ST_SKIP] = 0.0
     if _sample_lane(kind, fg, hf0, flat, lt, hfp, vp, x0, planes[i, 0], int(planes[i, 1]),
                     planes[i, 2], sl, prev, cur):
         _draw_lane(kind, fg, hf0, flat, lt, hfp, vp, x0, area, sl, pts, gcol, ecol, acc)
@@ -829,6 +845,7 @@ def lod_tile(kind, fg, hf0, flat, lt, mx, mt, hfp, vp, c0, lanes, area, planes, 
         sl[ST_I] = sl[ST_I0]
         sl[ST_JUMP] = SKIP_MIN
         sl[ST_WAIT] = 0.0
+        sl[ST_SKIP] = 0.0
         while sl[ST_DONE] == 0.0:
             _step_lane(kind, fg, hf0, flat, lt, mx, mt, n_m, hfp, vp, area, planes, skips, s_lo,
                        s_hi, top, sl, pts[L], gtile[:, L], etile[:, :, L], acc[L])

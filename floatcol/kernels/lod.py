@@ -58,6 +58,9 @@ NEWTON_MAX = 8
 #: doubling while it succeeds up to SKIP_MAX, halving after a failure
 SKIP_MIN = 4
 SKIP_MAX = 1024
+#: ... and where they do not, tests up to this many planes (or that many) one by one
+#: (_scan_hidden) before it tries them again
+SCAN_PLANES = 64
 #: planes a frame at most (their spacing doubles until they fit)
 MAX_PLANES = 200_000
 #: a visible span is cut in two (its middle sampled) where it rises more than this
@@ -763,9 +766,10 @@ def _step_lane(kind, fg, hf0, flat, lt, mx, mt, n_m, hfp, vp, area, planes, skip
     """One lane's next plane (sl[ST_I]): the lane ends where its planes or its
     picture do. Where its last sample is hidden (or planes were skipped) it skips
     the planes up to ST_I + ST_JUMP that the block maxima show hidden (_hidden_until;
-    not the step after a failure), else those of them that one evaluation each
-    shows hidden (_scan_hidden); planes skipped need no sample (ST_SKIP) until one
-    may show, when the last of them is sampled, the next run's first point."""
+    not the step after a failure), else those of the next max(ST_JUMP, SCAN_PLANES)
+    that one evaluation each shows hidden (_scan_hidden); planes skipped need no
+    sample (ST_SKIP) until one may show, when the last of them is sampled, the next
+    run's first point."""
     n = planes.shape[0]
     i = int(sl[ST_I])
     if i >= n or planes[i, 0] > sl[ST_TB] or sl[ST_YMAX] >= top:
@@ -791,6 +795,9 @@ def _step_lane(kind, fg, hf0, flat, lt, mx, mt, n_m, hfp, vp, area, planes, skip
             sl[ST_WAIT] = 1.0
         else:
             sl[ST_WAIT] = 0.0
+        j = min(max(j, i + SCAN_PLANES), n - 1)
+        while j > i and planes[j, 0] > sl[ST_TB]:
+            j -= 1
         m, s_last, ev = _scan_hidden(kind, fg, hf0, flat, lt, hfp, vp, x0, planes, i, j + 1,
                                      sl[ST_YMAX])
         sl[ST_EVALS] += ev

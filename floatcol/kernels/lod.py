@@ -102,6 +102,11 @@ LT_NV = 2
 LT_SU = 3
 LT_SV = 4
 LT_SIZE = 5
+#: level_ints' columns
+LK_OFF = 0
+LK_NU = 1
+LK_NV2 = 2
+LK_SIZE = 3
 
 
 @ngjit_inline
@@ -369,6 +374,17 @@ def level_table(lv, hfp):
         lt[k, LT_SU] = (lv[k, LV_NU] - 1.0) / (hfp[1] - hfp[0])
         lt[k, LT_SV] = (lv[k, LV_NV] - 1.0) / (hfp[3] - hfp[2])
     return lt
+
+
+@ngjit
+def level_ints(lv):
+    """Each level's offset, nodes along u and nodes along v less 2, as integers."""
+    lk = np.empty((lv.shape[0], LK_SIZE), dtype=np.int64)
+    for k in range(lv.shape[0]):
+        lk[k, LK_OFF] = int(lv[k, LV_OFF])
+        lk[k, LK_NU] = int(lv[k, LV_NU])
+        lk[k, LK_NV2] = int(lv[k, LV_NV]) - 2
+    return lk
 
 
 @ngjit_inline
@@ -715,17 +731,36 @@ def _hidden_until(mx, mt, n_m, lt, hfp, vp, x0, planes, i, j, s_lo, s_hi, ymax):
 
 
 @ngjit_inline
-def _scan_hidden(kind, fg, hf0, flat, lt, hfp, vp, x0, planes, i, m_end, ymax):
+def _bilinear_w(flat, lt, lk, k, hfp, u, v):
+    """w of level k at (u, v) inside the extent, as _bilinear's (lk: level_ints')."""
+    nu = lk[k, LK_NU]
+    gx = (u - hfp[0]) * lt[k, LT_SU]
+    gy = (v - hfp[2]) * lt[k, LT_SV]
+    i = min(max(int(gx), 0), nu - 2)
+    j = min(max(int(gy), 0), lk[k, LK_NV2])
+    fx = gx - i
+    fy = gy - j
+    b = lk[k, LK_OFF] + j * nu + i
+    z00 = flat[b]
+    z01 = flat[b + nu]
+    a0 = z00 + fx * (flat[b + 1] - z00)
+    a1 = z01 + fx * (flat[b + nu + 1] - z01)
+    return a0 + fy * (a1 - a0)
+
+
+@ngjit_inline
+def _scan_hidden(flat, lt, lk, hfp, vp, x0, planes, i, m_end, ymax):
     """The first plane m in i .. m_end - 1 whose surface point on column x0's plane
     Pi may rise above the floating horizon ymax (m_end where none does), one
-    evaluation a plane: plane t's point of Pi at height s is seen above ymax iff s
-    is above s_ray(t), where the horizon's ray crosses plane t (a point's row is
-    monotone in s, eqs. 4, 10), and the surface's point on Pi lies above s_ray iff
-    the surface there is, g(s) = f(u(s), v(s)) - s decreasing (as Newton's iteration
-    in _place takes it). Each plane's test is independent of the last (no Newton
-    chain): they overlap in the processor. A plane outside the domain or in a hole
-    is not surely hidden. Returns m, the surface's height (relative to the centre)
-    there on plane m - 1 (Newton's start for its sample) and the evaluations."""
+    evaluation of the height field a plane: plane t's point of Pi at height s is
+    seen above ymax iff s is above s_ray(t), where the horizon's ray crosses plane t
+    (a point's row is monotone in s, eqs. 4, 10), and the surface's point on Pi lies
+    above s_ray iff the surface there is, g(s) = f(u(s), v(s)) - s decreasing (as
+    Newton's iteration in _place takes it). Each plane's test is independent of the
+    last (no Newton chain): they overlap in the processor. A plane outside the
+    domain or in a hole is not surely hidden. Returns m, the surface's height
+    (relative to the centre) there on plane m - 1 (Newton's start for its sample)
+    and the evaluations."""
     ca = vp[VP_CA]
     sa = vp[VP_SA]
     cb = vp[VP_CB]
@@ -738,22 +773,32 @@ def _scan_hidden(kind, fg, hf0, flat, lt, hfp, vp, x0, planes, i, m_end, ymax):
     den = ca * d1 - y0 * sa                      # > 0: the rays point forward
     a_r = (y0 * ca + sa * d1) / den
     b_r = y0 * d3 / den
+    # Pi's point at s_ray(t): r = x0 (t ca + d3) / d1 + kx s_ray (eq. 9, ERRATA 2),
+    # linear in t, and so are u and v (eq. 2)
     kx = x0 * sa / d1
+    r0 = x0 * d3 / d1 + kx * b_r
+    r1 = x0 * ca / d1 + kx * a_r
+    u0 = vp[VP_CU] + r0 * cb
+    du = r1 * cb + sb
+    v0 = vp[VP_CV] - r0 * sb
+    dv = cb - r1 * sb
     m = i
     s_last = np.nan
     ev = 0
     while m < m_end:
         t = planes[m, 0]
-        s_ray = a_r * t + b_r
-        r = x0 * (t * ca + d3) / d1 + kx * s_ray    # eq. (9), ERRATA 2
-        u = vp[VP_CU] + r * cb + t * sb              # eq. (2)
-        v = vp[VP_CV] - r * sb + t * cb
+        u = u0 + du * t
+        v = v0 + dv * t
         if not in_domain(vp, u, v):
             break
         u, v = into_domain(vp, u, v)
-        w, _, _ = _height(kind, fg, hf0, flat, lt, hfp, int(planes[m, 1]), planes[m, 2], u, v)
+        k = int(planes[m, 1])
+        a = planes[m, 2]
+        w = _bilinear_w(flat, lt, lk, k, hfp, u, v)
+        if a > 0.0:
+            w = (1.0 - a) * w + a * _bilinear_w(flat, lt, lk, k + 1, hfp, u, v)
         ev += 1
-        if not w - cw < s_ray:                       # (a hole: not surely hidden)
+        if not w - cw < a_r * t + b_r:           # (a hole: not surely hidden)
             break
         s_last = w - cw
         m += 1
@@ -761,8 +806,8 @@ def _scan_hidden(kind, fg, hf0, flat, lt, hfp, vp, x0, planes, i, m_end, ymax):
 
 
 @ngjit_inline
-def _step_lane(kind, fg, hf0, flat, lt, mx, mt, n_m, hfp, vp, area, planes, skips, s_lo, s_hi,
-               top, sl, pts, gcol, ecol, acc):
+def _step_lane(kind, fg, hf0, flat, lt, lk, mx, mt, n_m, hfp, vp, area, planes, skips, s_lo,
+               s_hi, top, sl, pts, gcol, ecol, acc):
     """One lane's next plane (sl[ST_I]): the lane ends where its planes or its
     picture do. Where its last sample is hidden (or planes were skipped) it skips
     the planes up to ST_I + ST_JUMP that the block maxima show hidden (_hidden_until;
@@ -798,8 +843,7 @@ def _step_lane(kind, fg, hf0, flat, lt, mx, mt, n_m, hfp, vp, area, planes, skip
         j = min(max(j, i + SCAN_PLANES), n - 1)
         while j > i and planes[j, 0] > sl[ST_TB]:
             j -= 1
-        m, s_last, ev = _scan_hidden(kind, fg, hf0, flat, lt, hfp, vp, x0, planes, i, j + 1,
-                                     sl[ST_YMAX])
+        m, s_last, ev = _scan_hidden(flat, lt, lk, hfp, vp, x0, planes, i, j + 1, sl[ST_YMAX])
         sl[ST_EVALS] += ev
         if m == j + 1:
             # all hidden: nothing to sample yet
@@ -826,8 +870,8 @@ def _step_lane(kind, fg, hf0, flat, lt, mx, mt, n_m, hfp, vp, area, planes, skip
 
 
 @ngjit_nrt_free
-def lod_tile(kind, fg, hf0, flat, lt, mx, mt, hfp, vp, c0, lanes, area, planes, s_lo, s_hi,
-             gtile, etile, acc, pts, st, out):
+def lod_tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, c0, lanes, area, planes, s_lo,
+             s_hi, gtile, etile, acc, pts, st, out):
     """Render columns c0 .. c0 + lanes - 1 (one tile: gtile (H, TILE, G_SIZE), etile
     (E_SIZE, H, TILE)) one after another. ``area``: Cohen-Or's weights (acc: lanes x
     H x AC_SIZE) instead of pixel centres; ``planes`` plane_table's, [s_lo, s_hi] the
@@ -854,8 +898,8 @@ def lod_tile(kind, fg, hf0, flat, lt, mx, mt, hfp, vp, c0, lanes, area, planes, 
         sl[ST_WAIT] = 0.0
         sl[ST_SKIP] = 0.0
         while sl[ST_DONE] == 0.0:
-            _step_lane(kind, fg, hf0, flat, lt, mx, mt, n_m, hfp, vp, area, planes, skips, s_lo,
-                       s_hi, top, sl, pts[L], gtile[:, L], etile[:, :, L], acc[L])
+            _step_lane(kind, fg, hf0, flat, lt, lk, mx, mt, n_m, hfp, vp, area, planes, skips,
+                       s_lo, s_hi, top, sl, pts[L], gtile[:, L], etile[:, :, L], acc[L])
         w_lo, w_hi = _resolve(area, gtile[:, L], etile[:, :, L], acc[L], sl)
         out[L, 0] = sl[ST_EVALS]
         out[L, 1] = w_lo
@@ -877,14 +921,15 @@ def lod_kernel(kind, fg, hf0, flat, lv, mx, mt, hfp, vp, area, lod, kappa, s_lo,
     s_ref = 0.5 * (s_lo + s_hi) if s_lo == s_lo else 0.0
     planes = plane_table(kind, lv, vp, lod, kappa, s_ref)
     lt = level_table(lv, hfp)
+    lk = level_ints(lv)
     for b in prange(n_tiles):
         acc = np.empty((T, H if area else 1, AC_SIZE))
         pts = np.empty((T, 3 + REFINE_DEPTH, Q_SIZE))
         st = np.empty((T, ST_SIZE))
         out = np.empty((T, 5))
         lanes = min(T, W - b * T)
-        lod_tile(kind, fg, hf0, flat, lt, mx, mt, hfp, vp, b * T, lanes, area, planes, s_lo,
-                 s_hi, gbuf[b], ebuf[b], acc, pts, st, out)
+        lod_tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, b * T, lanes, area, planes,
+                 s_lo, s_hi, gbuf[b], ebuf[b], acc, pts, st, out)
         rows[b, 0] = H
         rows[b, 1] = -1
         for L in range(lanes):

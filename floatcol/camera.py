@@ -215,7 +215,7 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
     keywords of render() that place it: projection, elev, azim, center, d1, d2,
     scale, size, step, and sampling="lod": the level-of-detail engine (passes/lod.py:
     planes a pixel's footprint apart, each sampling the height field's pyramid level
-    of that footprint; a 1280x720 view over a 4097^2 DEM 0.17 s a frame where the
+    of that footprint; a 1280x720 view over a 4097^2 DEM 0.14 s a frame where the
     exact column pass with adaptive planes takes 3.2 s). Set sampling="adaptive" in
     the dict for the exact surface everywhere (docs/terrain.md compares them).
 

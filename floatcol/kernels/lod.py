@@ -674,6 +674,20 @@ def _region_max(mx, mt, n_m, lt, k, hfp, u0, u1, v0, v1):
 
 
 @ngjit_inline
+def _horizon_ray(vp, ymax):
+    """(a, b): the ray of screen row ymax meets plane t of a column plane Pi at the
+    height s = a t + b (relative to the centre): (s ca - t sa) d1 = y0 (s sa + t ca +
+    d3), eqs. (4), (10). A point of Pi on plane t is seen above row ymax iff it lies
+    above that height (its row is monotone in s)."""
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    d1 = vp[VP_D1]
+    y0 = (ymax - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]
+    den = ca * d1 - y0 * sa                      # > 0: the rays point forward
+    return (y0 * ca + sa * d1) / den, y0 * vp[VP_D3] / den
+
+
+@ngjit_inline
 def _hidden_until(mx, mt, n_m, lt, hfp, vp, x0, planes, i, j, s_lo, s_hi, ymax):
     """Are all points of the surface on column x0's plane between planes i and j
     surely below the floating horizon ymax? The plane's points there over the
@@ -687,13 +701,12 @@ def _hidden_until(mx, mt, n_m, lt, hfp, vp, x0, planes, i, j, s_lo, s_hi, ymax):
     d1 = vp[VP_D1]
     d3 = vp[VP_D3]
     # the height of the horizon's ray on planes i and j (a point of Pi on plane t is
-    # seen only above it): (s ca - t sa) d1 = y0 (s sa + t ca + d3), eqs. (4), (10)
-    y0 = (ymax - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]
-    den = ca * d1 - y0 * sa                      # > 0: the rays point forward
+    # seen only above it)
+    a_r, b_r = _horizon_ray(vp, ymax)
     s_min = s_hi
     for e in range(2):
         t = planes[i, 0] if e == 0 else planes[j, 0]
-        s_min = min(s_min, (y0 * (t * ca + d3) + t * sa * d1) / den)
+        s_min = min(s_min, a_r * t + b_r)
     if s_min > s_hi:
         return True                              # above the highest point
     s_min = max(s_min, s_lo)
@@ -769,11 +782,7 @@ def _scan_hidden(flat, lt, lk, hfp, vp, x0, planes, i, m_end, ymax):
     d1 = vp[VP_D1]
     d3 = vp[VP_D3]
     cw = vp[VP_CW]
-    # s_ray(t) = a_r t + b_r: (s ca - t sa) d1 = y0 (s sa + t ca + d3), eqs. (4), (10)
-    y0 = (ymax - (vp[VP_H] - 1.0) * 0.5) / vp[VP_SCALE]
-    den = ca * d1 - y0 * sa                      # > 0: the rays point forward
-    a_r = (y0 * ca + sa * d1) / den
-    b_r = y0 * d3 / den
+    a_r, b_r = _horizon_ray(vp, ymax)            # s_ray(t) = a_r t + b_r
     # Pi's point at s_ray(t): r = x0 (t ca + d3) / d1 + kx s_ray (eq. 9, ERRATA 2),
     # linear in t, and so are u and v (eq. 2)
     kx = x0 * sa / d1

@@ -59,8 +59,8 @@ NEWTON_MAX = 8
 #: doubling while it succeeds up to SKIP_MAX, halving after a failure
 SKIP_MIN = 4
 SKIP_MAX = 1024
-#: ... and where they do not, tests up to this many planes (or that many) one by one
-#: (_scan_hidden) before it tries them again
+#: ... and where they do not, tests the next max(that many, SCAN_PLANES) planes one
+#: by one (_scan_hidden) before it tries them again
 SCAN_PLANES = 64
 #: planes a frame at most (their spacing doubles until they fit)
 MAX_PLANES = 200_000

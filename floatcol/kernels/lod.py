@@ -60,8 +60,10 @@ NEWTON_MAX = 8
 SKIP_MIN = 4
 SKIP_MAX = 1024
 #: ... and where they do not, tests the next max(that many, SCAN_PLANES) planes one
-#: by one (_scan_hidden) before it tries them again
+#: by one (_scan_hidden); it tries them again after 1, 2, 4 .. BLOCK_BACKOFF such
+#: steps as they keep failing (most of their tests fail where the scan is needed)
 SCAN_PLANES = 64
+BLOCK_BACKOFF = 8.0
 #: planes a frame at most (their spacing doubles until they fit)
 MAX_PLANES = 200_000
 #: a visible span is cut in two (its middle sampled) where it rises more than this
@@ -409,9 +411,10 @@ def _last_before(planes, t):
 #: A lane's state in lod_tile: its t range, first plane, Newton's next start s and
 #: the slope ds/dt of its last two samples, the floating horizon, whether the last
 #: sample continues a run, whether it is done, evaluations, rows set; its column's
-#: x0, its next plane, how many planes it tries to skip, whether its next hidden step
-#: leaves out the block maxima' test (after a failure), whether the planes before its
-#: next one were skipped (hidden, not sampled)
+#: x0, its next plane, how many planes it tries to skip, how many more hidden steps
+#: leave out the block maxima' test (after a failure), whether the planes before its
+#: next one were skipped (hidden, not sampled), how many steps the last failure's
+#: pause was
 ST_TA = 0
 ST_TB = 1
 ST_I0 = 2
@@ -429,7 +432,8 @@ ST_I = 13
 ST_JUMP = 14
 ST_WAIT = 15
 ST_SKIP = 16
-ST_SIZE = 17
+ST_BACK = 17
+ST_SIZE = 18
 
 
 @ngjit_inline
@@ -821,7 +825,7 @@ def _step_lane(kind, fg, hf0, flat, lt, lk, mx, mt, n_m, hfp, vp, area, planes, 
     """One lane's next plane (sl[ST_I]): the lane ends where its planes or its
     picture do. Where its last sample is hidden (or planes were skipped) it skips
     the planes up to ST_I + ST_JUMP that the block maxima show hidden (_hidden_until;
-    not the step after a failure), else those of the next max(ST_JUMP, SCAN_PLANES)
+    not for a few steps after a failure), else those of the next max(ST_JUMP, SCAN_PLANES)
     that one evaluation each shows hidden (_scan_hidden); planes skipped need no
     sample (ST_SKIP) until one may show, when the last of them is sampled, the next
     run's first point."""
@@ -842,14 +846,18 @@ def _step_lane(kind, fg, hf0, flat, lt, lk, mx, mt, n_m, hfp, vp, area, planes, 
         if sl[ST_WAIT] == 0.0 and j > i + 1 and _hidden_until(
                 mx, mt, n_m, lt, hfp, vp, x0, planes, i, j, s_lo, s_hi, sl[ST_YMAX]):
             sl[ST_JUMP] = min(2 * jump, SKIP_MAX)
+            sl[ST_BACK] = 0.0
             sl[ST_SKIP] = 1.0
             sl[ST_I] = j + 1
             return
         if sl[ST_WAIT] == 0.0:
+            # failed: the next 1, 2, 4, 8 hidden steps after successive failures
+            # leave the test out
             sl[ST_JUMP] = max(jump // 2, SKIP_MIN)
-            sl[ST_WAIT] = 1.0
+            sl[ST_BACK] = min(max(2.0 * sl[ST_BACK], 1.0), BLOCK_BACKOFF)
+            sl[ST_WAIT] = sl[ST_BACK]
         else:
-            sl[ST_WAIT] = 0.0
+            sl[ST_WAIT] -= 1.0
         j = min(max(j, i + SCAN_PLANES), n - 1)
         while j > i and planes[j, 0] > sl[ST_TB]:
             j -= 1
@@ -906,6 +914,7 @@ def lod_tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, c0, lanes, area, plan
         sl[ST_I] = sl[ST_I0]
         sl[ST_JUMP] = SKIP_MIN
         sl[ST_WAIT] = 0.0
+        sl[ST_BACK] = 0.0
         sl[ST_SKIP] = 0.0
         while sl[ST_DONE] == 0.0:
             _step_lane(kind, fg, hf0, flat, lt, lk, mx, mt, n_m, hfp, vp, area, planes, skips,

@@ -34,7 +34,7 @@ evaluation a plane, where the horizon's ray crosses it, tells whether the surfac
 there is hidden (_scan_hidden), without Newton's iteration: a column's planes are
 two-thirds or more hidden in a fly-through, and these tests, independent of each
 other, cost a third of a Newton step each; the planes skipped need no sample until
-one may show (the 1280x720 fly-through of benchmarks/bench_terrain.py 199 -> 139 ms).
+one may show (the 1280x720 fly-through of benchmarks/bench_terrain.py 199 -> 138 ms).
 """
 import math
 

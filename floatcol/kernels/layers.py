@@ -194,7 +194,7 @@ def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, lists, off, K,
         shade = point_shadow(side, p[A_U], p[A_V], p[A_W], nx, ny, nz, sh, hmax, hmin,
                              hsurf, int(sh[SH_LAYER]), sh[SH_GU], sh[SH_GV], sh[SH_TAN],
                              sh[SH_S0], sh[SH_T0], sh[SH_H], sh[SH_GRAZING], sh[SH_BIAS])
-    inten, spec = _light(vp, x0, j, depth, nx, ny, nz, p[A_I], mp, 1.0 - shade)
+    inten, spec = _light(vp, x0, j, nx, ny, nz, p[A_I], mp, 1.0 - shade)
     # ``lut`` is the tuple (lut, levels, offsets, shapes, tp) of texture.py's TP_*: the
     # side's colour table, and a texture (no levels: none) over it
     r, g, bl = _side_rgb(side, p[A_W], lut[0], mp[M_WLO], mp[M_SPAN], mp[M_LOWER:])

@@ -820,6 +820,16 @@ def _scan_hidden(flat, lt, lk, hfp, vp, x0, planes, i, m_end, ymax):
 
 
 @ngjit_inline
+def _last_within(planes, i, j, tb):
+    """The last plane from i to j (both taken, at most the last plane) at or before
+    t = tb; i where none after i is."""
+    j = min(j, planes.shape[0] - 1)
+    while j > i and planes[j, 0] > tb:
+        j -= 1
+    return j
+
+
+@ngjit_inline
 def _step_lane(kind, fg, hf0, flat, lt, lk, mx, mt, n_m, hfp, vp, area, planes, skips, s_lo,
                s_hi, top, sl, pts, gcol, ecol, acc):
     """One lane's next plane (sl[ST_I]): the lane ends where its planes or its
@@ -840,9 +850,7 @@ def _step_lane(kind, fg, hf0, flat, lt, lk, mx, mt, n_m, hfp, vp, area, planes, 
     skipped = sl[ST_SKIP] != 0.0
     if skips and (skipped or (sl[ST_HAVE] != 0.0 and prev[Q_Y] < sl[ST_YMAX])):
         jump = int(sl[ST_JUMP])
-        j = min(i + jump, n - 1)
-        while j > i and planes[j, 0] > sl[ST_TB]:
-            j -= 1
+        j = _last_within(planes, i, i + jump, sl[ST_TB])
         if sl[ST_WAIT] == 0.0 and j > i + 1 and _hidden_until(
                 mx, mt, n_m, lt, hfp, vp, x0, planes, i, j, s_lo, s_hi, sl[ST_YMAX]):
             sl[ST_JUMP] = min(2 * jump, SKIP_MAX)
@@ -858,9 +866,7 @@ def _step_lane(kind, fg, hf0, flat, lt, lk, mx, mt, n_m, hfp, vp, area, planes, 
             sl[ST_WAIT] = sl[ST_BACK]
         else:
             sl[ST_WAIT] -= 1.0
-        j = min(max(j, i + SCAN_PLANES), n - 1)
-        while j > i and planes[j, 0] > sl[ST_TB]:
-            j -= 1
+        j = _last_within(planes, i, max(j, i + SCAN_PLANES), sl[ST_TB])
         m, s_last, ev = _scan_hidden(flat, lt, lk, hfp, vp, x0, planes, i, j + 1, sl[ST_YMAX])
         sl[ST_EVALS] += ev
         if m == j + 1:

@@ -7,7 +7,7 @@ from numba import prange
 
 from ._jit import ngjit_inline, ngjit_parallel_nrt_free
 from .layout import (
-    E_COV, E_COV0, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
+    E_COV, E_COV0, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_W, M_AMBIENT, M_INTERP, M_LOWER, M_SHININESS, M_SPAN,
     M_SPECULAR, M_WLO, VP_AA, VP_D1, VP_D3, VP_H, VP_LX, VP_LY, VP_LZ, VP_ORTHO, VP_SCALE,
 )
@@ -53,7 +53,7 @@ def toward_viewer(vp, x0, j, depth):
 
 
 @ngjit_inline
-def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, mp, lit):
+def _light(vp, x0, j, nx, ny, nz, lam_iis, mp, lit):
     """(I, specular) of one pixel: I = ambient + (1 - ambient) |L.N| / (|L| |N|), and
     Phong's specular * max(R.V, 0)^shininess (the paper has none), with V toward the
     viewpoint, N turned toward the viewer (the side that is seen) and R the
@@ -71,7 +71,7 @@ def _light(vp, x0, j, depth, nx, ny, nz, lam_iis, mp, lit):
     before: the finishing pass of 3 sin(u cos v) at 1920x1080 in perspective 9.0 -> 7.0
     ms, orthographic 8.5 -> 8.1; the pictures bit for bit the same, the intensities
     within a float32 rounding), a second square root only where a highlight may be.
-    (``depth`` is not needed for that: every point seen lies beyond the screen, where
+    (The depth is not needed for that: every point seen lies beyond the screen, where
     the direction is the same.)"""
     ambient = mp[M_AMBIENT]
     specular = mp[M_SPECULAR]
@@ -228,7 +228,7 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, mp, lut, background, lit,
     w = 0.0
     if s != 0.0:
         w = g[G_W]
-        lam, sp = _light(vp, x0, j, g[G_DEPTH], g[G_NX], g[G_NY], g[G_NZ], g[G_I], mp, lit)
+        lam, sp = _light(vp, x0, j, g[G_NX], g[G_NY], g[G_NZ], g[G_I], mp, lit)
     cov0 = 1.0
     e_cov = 0.0
     e_side = 0.0
@@ -244,8 +244,7 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, mp, lut, background, lit,
         if e_cov > 0.0:
             e_side = e[E_SIDE]
             e_w = e[E_W]
-            e_lam, e_sp = _light(vp, x0, j, e[E_DEPTH], e[E_NX], e[E_NY], e[E_NZ], e[E_I],
-                                 mp, lit)
+            e_lam, e_sp = _light(vp, x0, j, e[E_NX], e[E_NY], e[E_NZ], e[E_I], mp, lit)
     if base.shape[0] > 0:
         r, gr, bl, a = blend(s, base[i, c, 0], base[i, c, 1], base[i, c, 2], cov0, lam, sp,
                              e_cov, base[i, c, 3], base[i, c, 4], base[i, c, 5], e_lam, e_sp,
@@ -338,9 +337,9 @@ def finish_kernel(gbuf, ebuf, rows, vp, mp, lut, background, lit, base, side, rg
                     if e_cov <= 0.0 and cov0 >= 1.0:
                         # a surface covering the whole pixel: shade_pixel's colour,
                         # without the blend
-                        lam, sp = _light(vp, x0, j, gbuf[b, j, lane, G_DEPTH],
-                                         gbuf[b, j, lane, G_NX], gbuf[b, j, lane, G_NY],
-                                         gbuf[b, j, lane, G_NZ], gbuf[b, j, lane, G_I], mt, lt)
+                        lam, sp = _light(vp, x0, j, gbuf[b, j, lane, G_NX],
+                                         gbuf[b, j, lane, G_NY], gbuf[b, j, lane, G_NZ],
+                                         gbuf[b, j, lane, G_I], mt, lt)
                         if textured:
                             r = base[i, c, 0]
                             g = base[i, c, 1]
@@ -381,7 +380,7 @@ def centre_kernel(gbuf, vp, mp, lit, side, intensity, depth):
                     if side[i, c] == 0:
                         continue
                     g = gbuf[b, j, lane]
-                    lam, _ = _light(vp, column_x0(vp, c), j, g[G_DEPTH], g[G_NX], g[G_NY],
-                                    g[G_NZ], g[G_I], mp, lit[i, c] if shadows else 1.0)
+                    lam, _ = _light(vp, column_x0(vp, c), j, g[G_NX], g[G_NY], g[G_NZ],
+                                    g[G_I], mp, lit[i, c] if shadows else 1.0)
                     intensity[i, c] = lam
                     depth[i, c] = g[G_DEPTH]

@@ -11,6 +11,10 @@ too: a shared virtual machine's speed drifts, compare ratios within one run). A
 floatcol render's time is the picture's; its intensity and depth arrays are computed
 when first read, and the rows "+ intensity and depth read" time that too.
 
+Then where 1920x1080 perspective's time goes: the column, finishing and staircase
+passes (each wrapped and timed, medians) at pixel_step 1, 2, 4 and 16, which shows
+what no thinning of the planes can take away.
+
 Then fidelity, the other half of the comparison: the three tools' pictures of the
 same surface from the same orthographic camera, lit by the reference model (I =
 |L.N|, light at the viewer; floatcol shading="lambert"), against the ray caster
@@ -229,6 +233,53 @@ def fidelity(size=(512, 384), elev=30.0, azim=30.0):
     return rows
 
 
+def breakdown(size=(1920, 1080), proj="perspective", repeat=11):
+    """Where a render's time goes (medians, ms): its passes, timed by wrapping them
+    (floatcol.renderer's names), and the column pass against the planes' spacing.
+    The column pass at pixel_step 16 is what no thinning of planes can take away:
+    painting the picture's pixels (and the corrections' samples on long spans)."""
+    from floatcol import renderer
+    timed = {}
+    passes = (("column pass", renderer.geometry, "column_pass"),
+              ("finishing pass", renderer.finish, "finish_pass"),
+              ("staircase pass", renderer.antialias, "staircase_pass"))
+    originals = []
+    for name, mod, attr in passes:
+        fn = getattr(mod, attr)
+        originals.append((mod, attr, fn))
+
+        def wrapped(*a, _fn=fn, _name=name, **k):
+            t = time.perf_counter()
+            out = _fn(*a, **k)
+            timed.setdefault(_name, []).append((time.perf_counter() - t) * 1e3)
+            return out
+        setattr(mod, attr, wrapped)
+    try:
+        rows = []
+        for label, kw in (("default (pixel_step 1)", {}), ("pixel_step 2", dict(pixel_step=2)),
+                          ("pixel_step 4", dict(pixel_step=4)),
+                          ("pixel_step 16", dict(pixel_step=16)),
+                          ("pixel_step 16, no corrections, no antialiasing",
+                           dict(pixel_step=16, corrections="none", antialias=False))):
+            fc.render(EXPR, size=size, projection=proj, **kw, **DOM)
+            timed.clear()
+            ts = _times_ms(lambda: fc.render(EXPR, size=size, projection=proj, **kw, **DOM),
+                           repeat)
+            r = fc.render(EXPR, size=size, projection=proj, **kw, **DOM)
+            med = {k: statistics.median(v) for k, v in timed.items()}
+            rows.append((label, r.stats["planes"], statistics.median(ts), med))
+    finally:
+        for mod, attr, fn in originals:
+            setattr(mod, attr, fn)
+    print(f"\n| {size[0]}x{size[1]} {proj} | planes | render ms | column pass | finishing | "
+          f"staircase | the rest |")
+    print("|---|---|---|---|---|---|---|")
+    for label, planes, total, med in rows:
+        parts = [med.get(name, 0.0) for name, _, _ in passes]
+        print(f"| {label} | {planes} | {total:.1f} | " + " | ".join(f"{x:.1f}" for x in parts)
+              + f" | {total - sum(parts):.1f} |")
+
+
 def main():
     print(f"{os.cpu_count()} cpus, {numba.get_num_threads()} numba threads")
     scalar_ns, batch_ns = eval_ns()
@@ -283,6 +334,7 @@ def main():
         ms = ours[size, proj]           # the same projection on both sides
         print(f"| PyVista new view / floatcol, {size[0]}x{size[1]} {proj} | {view_ms / ms:.2f}x |")
         print(f"| PyVista new mesh / floatcol, {size[0]}x{size[1]} {proj} | {fresh_ms / ms:.2f}x |")
+    breakdown()
     rows = fidelity()
     print("\n| tool, orthographic 512x384 against the ray caster | PSNR dB | agreement |")
     print("|---|---|---|")

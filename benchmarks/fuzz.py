@@ -1,6 +1,10 @@
 """Fuzz floatcol's render with random expressions, ranges and options (issue 26).
 
-    python benchmarks/fuzz.py [N] [SEED]      (default 10000 cases, seed 26)
+    python benchmarks/fuzz.py [N] [SEED] [--terrain]   (default 10000 cases, seed 26)
+
+--terrain: height-field cases instead (tests/fuzzing.py terrain_case: DEMs with
+holes, 16-bit, flat, huge or tiny heights, fly cameras anywhere, area sampling, lod,
+shadows, objects on the terrain).
 
 Each case runs in a worker process (tests/fuzzing.py): a segfault or a hang is
 counted, the worker restarted. Prints the counts of each outcome and the first few
@@ -18,8 +22,10 @@ import fuzzing  # noqa: E402
 
 
 def main():
-    n = int(sys.argv[1]) if len(sys.argv) > 1 else 10000
-    seed = int(sys.argv[2]) if len(sys.argv) > 2 else 26
+    args = [a for a in sys.argv[1:] if a != "--terrain"]
+    make = fuzzing.terrain_case if "--terrain" in sys.argv[1:] else fuzzing.case
+    n = int(args[0]) if len(args) > 0 else 10000
+    seed = int(args[1]) if len(args) > 1 else 26
     rng = random.Random(seed)
     worker = fuzzing.Worker(timeout=60.0)
     counts = collections.Counter()
@@ -27,7 +33,7 @@ def main():
     t0 = time.perf_counter()
     try:
         for i in range(n):
-            c = fuzzing.case(rng)
+            c = make(rng)
             res = worker.run(c)
             counts[res["outcome"]] += 1
             if res["outcome"] not in ("ok", "value") and len(findings[res["outcome"]]) < 5:

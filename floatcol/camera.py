@@ -260,7 +260,8 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
     a, b = math.radians(pitch), math.radians(heading)
     view = (math.cos(a) * math.sin(b), math.cos(a) * math.cos(b), math.sin(a))
     center = tuple(p + (d1 + d2) * c for p, c in zip(pos, view))
-    scale = 0.5 * (W - 1) / (d1 * math.tan(math.radians(fov) / 2))
+    # (a picture one pixel wide: its field of view as if two, as build_view fits one)
+    scale = 0.5 * max(W - 1, 1) / (d1 * math.tan(math.radians(fov) / 2))
     # the footprint of a pixel where the lowest ray meets the ground below the eye
     height = pos[2] - ground if np.isfinite(ground) else 0.0
     down = math.radians(-pitch) + math.atan(0.5 * (H - 1) / scale / d1)

@@ -190,6 +190,13 @@ def objects_pass(r, objects, surface, light_dir):
     on ``surface`` (in its own units; r.box stretches them as the picture); light_dir
     is the screen direction toward the light (None or zeros: the headlight). The
     meshes are projected and lit here (numpy), rasterised by kernels/raster.py."""
+    # (an object far larger than the scene overflows its normals' products: a face
+    # without a normal takes the ambient light, and numpy's warnings are no news)
+    with np.errstate(over="ignore", invalid="ignore"):
+        return _objects_pass(r, objects, surface, light_dir)
+
+
+def _objects_pass(r, objects, surface, light_dir):
     from .kernels.raster import raster_kernel
     view = r.view
     H, W = r.side.shape

@@ -137,7 +137,10 @@ def auto_exaggeration(hf):
     side = max(ub - ua, vb - va)
     if not hi > lo:
         return 1.0
-    k = AUTO_RELIEF * side / (hi - lo)
+    k = AUTO_RELIEF * float(side) / float(hi - lo)     # (Python floats: inf, no warning)
+    if not math.isfinite(k):
+        raise ValueError(f"vert_exag='auto': the relief ({hi - lo:g}) is too small against "
+                         f"the extent ({side:g}) for a finite exaggeration; give vert_exag")
     if k <= 1.0:
         return 1.0
     digits = 1 - int(math.floor(math.log10(k)))
@@ -240,13 +243,24 @@ def _geotiff(path):
     except ImportError:
         raise _DemError("reading GeoTIFF needs the optional extra: pip install "
                          "'floatcol[geotiff]' (tifffile)") from None
-    with tifffile.TiffFile(path) as tif:
-        page = tif.pages[0]
-        z = page.asarray()
-        if z.ndim == 3 and z.shape[-1] == 1:
-            z = z[..., 0]
-        z = _array(z)
-        tags = {t.code: t.value for t in page.tags.values()}
+    import logging
+    # tifffile logs what it finds wrong in a damaged file (its own names, on stderr
+    # past the CLI's one line): the error raised below says it instead
+    log = logging.getLogger("tifffile")
+    level = log.level
+    log.setLevel(logging.CRITICAL + 1)
+    try:
+        with tifffile.TiffFile(path) as tif:
+            if not tif.pages:
+                raise _DemError("no image in the file")
+            page = tif.pages[0]
+            z = page.asarray()
+            if z.ndim == 3 and z.shape[-1] == 1:
+                z = z[..., 0]
+            z = _array(z)
+            tags = {t.code: t.value for t in page.tags.values()}
+    finally:
+        log.setLevel(level)
     meta = {}
     if 42113 in tags:                                 # GDAL_NODATA (text)
         try:
@@ -343,7 +357,7 @@ def guedes(hf, position, heading=0.0, pitch=-10.0, fov=60.0, size=(640, 360), *,
          math.sin(math.radians(pitch))])
     (ua, ub), (va, vb) = hf.default_domain
     ext = np.array([ua, ub, va, vb], dtype=float)
-    focal = 0.5 * (W - 1) / math.tan(math.radians(fov) / 2)
+    focal = 0.5 * max(W - 1, 1) / math.tan(math.radians(fov) / 2)   # (as fly's scale)
     steps = int(2 * max(hf.hf.shape))
     uv = np.empty((H, W, 2))
     t = time.perf_counter()

@@ -109,6 +109,127 @@ def case(rng: random.Random) -> dict:
     return {"expr": expression(rng), "kwargs": kw}
 
 
+#: a terrain case's heights: ordinary relief, a flat or empty DEM, huge or tiny values,
+#: holes (NaN, inf), 16-bit integers
+TERRAIN_HEIGHTS = ["relief", "relief", "relief", "flat", "nan", "holes", "holes", "huge",
+                   "tiny", "uint16", "spikes"]
+TERRAIN_NUMBERS = [0.0, -1.0, 1e-300, 1e300, -1e300, math.inf, -math.inf, math.nan]
+
+
+def _odd(rng, good):
+    """A value from ``good`` (a callable), now and then one at the edge of the doubles."""
+    return rng.choice(TERRAIN_NUMBERS) if rng.random() < 0.06 else good()
+
+
+def terrain_case(rng: random.Random) -> dict:
+    """A random height-field render (JSON-able; the worker makes the heights from
+    ``seed``): one of fc.render of a HeightField, fc.render with fc.fly's camera (the
+    lod engine), or fc.terrain, with area sampling, shadows and objects on it."""
+    sides = [2, 3, 9, 33, 64, 129] * 6 + [1]
+    ny, nx = rng.choice(sides), rng.choice(sides)
+    extent = [round(rng.uniform(-1e4, 1e4), 1)]
+    extent.append(round(extent[0] + rng.choice([1.0, 250.0, 3e4]), 1))
+    extent.append(round(rng.uniform(-1e4, 1e4), 1))
+    extent.append(round(extent[2] + rng.choice([1.0, 250.0, 3e4]), 1))
+    if rng.random() < 0.3:
+        extent[1], extent[0] = extent[0], extent[1]          # west > east: rows reversed
+    if rng.random() < 0.05:
+        extent[rng.randrange(4)] = rng.choice(TERRAIN_NUMBERS)
+    c = {"seed": rng.randrange(2 ** 31), "shape": [ny, nx],
+         "heights": rng.choice(TERRAIN_HEIGHTS), "extent": extent,
+         "call": rng.choice(["render", "fly", "fly", "terrain"])}
+    kw = {"size": [rng.choice([1, 2, 17, 64, 120]), rng.choice([1, 3, 33, 90])]}
+    if rng.random() < 0.5:
+        kw["antialias"] = rng.choice([True, False, "area", "area", 2])
+    if rng.random() < 0.3:
+        kw["sampling"] = rng.choice(["uniform", "adaptive", "lod"])
+    if rng.random() < 0.2:
+        kw["shadows"] = rng.choice([True, "texture", "on-the-fly"])
+    if rng.random() < 0.3:
+        kw["lightsource"] = [_odd(rng, lambda: rng.uniform(0, 360)),
+                             _odd(rng, lambda: rng.uniform(-10, 90))]
+    if rng.random() < 0.2:
+        kw["vert_exag"] = rng.choice([1.0, 10.0, 0.0, -2.0, 1e300, math.nan])
+    if c["call"] != "fly" and rng.random() < 0.5:
+        kw["elev"] = _odd(rng, lambda: rng.uniform(-90, 90))
+        kw["azim"] = _odd(rng, lambda: rng.uniform(-360, 360))
+        kw["projection"] = rng.choice(["orthographic", "perspective"])
+    c["kwargs"] = kw
+    if c["call"] == "fly":
+        u0, u1, v0, v1 = (x if math.isfinite(x) else 0.0 for x in extent)
+        c["fly"] = {"position": [_odd(rng, lambda: rng.uniform(min(u0, u1) - 100, max(u0, u1) + 100)),
+                                 _odd(rng, lambda: rng.uniform(min(v0, v1) - 100, max(v0, v1) + 100))]
+                    + ([_odd(rng, lambda: rng.uniform(-100, 3000))] if rng.random() < 0.3 else []),
+                    "heading": _odd(rng, lambda: rng.uniform(-360, 360)),
+                    "pitch": _odd(rng, lambda: rng.choice([rng.uniform(-89, 89)] * 8
+                                                          + [-89.0, 89.0, 0.0, 90.0])),
+                    "fov": _odd(rng, lambda: rng.choice([rng.uniform(1, 170)] * 8
+                                                        + [1.0, 170.0, 0.5, 180.0])),
+                    "size": kw.pop("size")}
+        if rng.random() < 0.3:
+            c["fly"]["above"] = _odd(rng, lambda: rng.uniform(0, 2000))
+        if rng.random() < 0.2:
+            c["fly"]["near"] = _odd(rng, lambda: rng.choice([1e-6, 1.0, 1e5]))
+    if rng.random() < 0.3:
+        u0, u1, v0, v1 = (x if math.isfinite(x) else 0.0 for x in extent)
+        c["objects"] = [[rng.choice(["tree", "pole", "box", "marker"]),
+                         rng.uniform(min(u0, u1), max(u0, u1)),
+                         rng.uniform(min(v0, v1), max(v0, v1)),
+                         _odd(rng, lambda: rng.uniform(1, 500))]
+                        for _ in range(rng.choice([1, 3]))]
+    return {"terrain": c}
+
+
+def _terrain_heights(c):
+    import numpy as np
+    rng = np.random.default_rng(c["seed"])
+    ny, nx = c["shape"]
+    kind = c["heights"]
+    z = np.cumsum(np.cumsum(rng.normal(size=(ny, nx)), 0), 1) * 10.0
+    if kind == "flat":
+        z[:] = 123.0
+    elif kind == "nan":
+        z[:] = np.nan
+    elif kind == "holes":
+        z[rng.random((ny, nx)) < 0.2] = rng.choice([np.nan, np.inf, -np.inf])
+    elif kind == "huge":
+        z *= 1e300
+    elif kind == "tiny":
+        z *= 1e-300
+    elif kind == "uint16":
+        z = (np.abs(z) % 65535).astype(np.uint16)
+    elif kind == "spikes":
+        z[rng.random((ny, nx)) < 0.05] = 1e6
+    return z
+
+
+def _terrain_call(c):
+    import floatcol as fc
+    z = _terrain_heights(c)
+    w, e, s, n = c["extent"]
+    kw = dict(c["kwargs"])
+    if isinstance(kw.get("size"), list):
+        kw["size"] = tuple(kw["size"])
+    exag = kw.pop("vert_exag", None)
+    # (a box: width, depth and height all o[3])
+    objects = [getattr(fc, o[0])(*(o[1:] + [o[3], o[3]] if o[0] == "box" else o[1:]))
+               for o in c.get("objects", [])]
+    if objects:
+        kw["objects"] = objects
+    if c["call"] == "terrain":
+        if exag is not None:
+            kw["vert_exag"] = exag
+        return fc.terrain(z, extent=(w, e, s, n), **kw).draw()
+    hf = fc.HeightField(z, u=(w, e), v=(n, s))          # rows north-up
+    if c["call"] == "fly":
+        fly = dict(c["fly"])
+        fly["size"] = tuple(fly["size"])
+        cam = fc.fly(hf, fly.pop("position"), **fly)
+        cam.update(kw)
+        kw = cam
+    return fc.render(hf, **kw)
+
+
 def run_case(c: dict) -> dict:
     """Run one case here (the worker's side): its outcome and message."""
     import warnings
@@ -116,14 +237,14 @@ def run_case(c: dict) -> dict:
     import numpy as np
 
     import floatcol as fc
-    kw = dict(c["kwargs"])
+    kw = dict(c.get("kwargs", {}))
     for k in ("u", "v", "size", "aspect"):
         if isinstance(kw.get(k), list):
             kw[k] = tuple(kw[k])
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            r = fc.render(c["expr"], **kw)
+            r = _terrain_call(c["terrain"]) if "terrain" in c else fc.render(c["expr"], **kw)
             rgba = r.rgba
             assert rgba.dtype == np.uint8 and rgba.shape[2] == 4
             out = {"outcome": "ok", "message": ""}

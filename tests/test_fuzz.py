@@ -40,6 +40,40 @@ def test_random_renders_draw_or_raise_value_error(worker, rnd):
     _check(worker, fuzzing.case(rnd))
 
 
+#: terrain cases (a fixed seed): height fields with holes, 16-bit, flat, huge or tiny
+#: heights, rows either way, fly cameras anywhere, area sampling, lod, shadows, objects
+N_TERRAIN = 300
+
+
+#: what the terrain cases found: a tree 1e50 tall on a DEM (its screen corners
+#: converted to pixel indices beyond an int's range: a segfault), a fly camera one
+#: pixel wide (a division by zero), on-the-fly shadows seen by a fly camera (1.4e11
+#: cells of the sweep: killed for memory)
+TERRAIN_REPRODUCERS = [
+    {"seed": 159015466, "shape": [64, 33], "heights": "relief",
+     "extent": [-4893.2, -4894.2, 1609.5, 1859.5], "call": "terrain",
+     "kwargs": {"size": [17, 33]},
+     "objects": [["tree", -4894.1302986683795, 1785.2028684936238, 1e50]]},
+    {"seed": 1584163655, "shape": [3, 64], "heights": "spikes",
+     "extent": [-9833.8, -9583.8, 1425.6, 1426.6], "call": "fly", "kwargs": {},
+     "fly": {"position": [-9651.3, 1470.4, 40.0], "heading": -220.4, "pitch": 23.3,
+             "fov": 145.3, "size": [1, 1]}},
+    {"seed": 5, "shape": [129, 129], "heights": "relief", "extent": [0.0, 3e4, 0.0, 3e4],
+     "call": "fly", "kwargs": {"shadows": "on-the-fly", "lightsource": [315, 35]},
+     "fly": {"position": [15000.0, 7500.0], "heading": 10.0, "pitch": -10.0, "fov": 60.0,
+             "size": [64, 36], "above": 300.0}},
+]
+
+
+def test_random_terrains_draw_or_raise_value_error(worker):
+    for c in TERRAIN_REPRODUCERS:
+        res = worker.run({"terrain": c})
+        assert res["outcome"] == "ok", f"{res['outcome']}: {res['message']}\n{c}"
+    rnd = random.Random(32)
+    for _ in range(N_TERRAIN):
+        _check(worker, fuzzing.terrain_case(rnd))
+
+
 # The reproducers: segfaults in the column kernel (a float -> row conversion of
 # screen rows near 1e300, undefined in LLVM), and hangs (an adaptive perspective step
 # read from scratch never written: t became NaN)

@@ -1,4 +1,6 @@
 """Objects on a surface by z-buffer (Szenberg 1997) and the window depth of his eq. 7."""
+import warnings
+
 import numpy as np
 import pytest
 
@@ -126,3 +128,29 @@ def test_an_object_reaching_past_the_eye_is_clipped_not_dropped():
     assert want.sum() > 2000
     assert r.stats["object_pixels"] == got.sum()
     assert (got != want).sum() <= 10                        # measured 0
+
+
+def test_an_object_of_any_size_draws_what_a_large_one_does():
+    """A pole 1e50 or 1e300 tall: its screen corners far outside an int's range were
+    converted to pixel indices as they were, which LLVM leaves undefined (a segfault
+    or an endless loop, found by tests/fuzzing.py's terrain cases). Seen from 30
+    degrees up it is a stripe to the top of the picture, as a pole 100 tall (1700
+    pixels) is: the same pixels but at most 4 of 220 where the rounding of coordinates
+    near 1e50 moves a silhouette (measured 0, 3 and 0 for 1e10, 1e50 and 1e300)."""
+    kw = dict(u=(-4, 4), v=(-4, 4), size=(81, 61), elev=30, azim=0, scale=10.0,
+              center=(0, 0, 0))
+    plain = fc.render("0*u", **kw)
+    masks = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")                  # (numpy's overflow: none shown)
+        for h in (100.0, 1e10, 1e50, 1e300):
+            r = fc.render("0*u", objects=[fc.pole(0.0, 0.0, h, radius=0.3)], **kw)
+            masks.append(np.any(r.rgba != plain.rgba, axis=-1))
+            assert r.stats["object_pixels"] == masks[-1].sum()
+    assert masks[0][0, 40] and masks[0][:, 40].sum() > 25 and masks[0].sum() > 200
+    for m in masks[1:]:
+        assert (m != masks[0]).sum() <= 4
+    # in perspective too (its corners behind the eye clipped)
+    r = fc.render("0*u", u=(-4, 4), v=(-4, 4), size=(81, 61), elev=30,
+                  projection="perspective", objects=[fc.pole(0.0, 0.0, 1e300, radius=0.3)])
+    assert r.stats["object_pixels"] > 0

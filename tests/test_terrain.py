@@ -119,6 +119,11 @@ def test_terrain_defaults_and_auto_exaggeration():
     assert np.array_equal(fc.terrain(hf, vert_exag=3, size=(120, 80)).draw().rgba, three)
     with pytest.raises(ValueError, match="vert_exag"):
         fc.terrain(JACKSBORO, vert_exag=0)
+    # a relief too small for any finite exaggeration (found by tests/fuzzing.py: its
+    # logarithm of infinity was an OverflowError)
+    tiny = np.arange(16.0).reshape(4, 4) * 1e-300
+    with pytest.raises(ValueError, match="vert_exag='auto'.*give vert_exag"):
+        fc.terrain(tiny, extent=(0, 1e300, 0, 1e300))
 
 
 def test_bad_files_are_value_errors(tmp_path):
@@ -134,6 +139,32 @@ def test_bad_files_are_value_errors(tmp_path):
         fc.read_dem(tmp_path / "one.npy")
     with pytest.raises(ValueError, match="extent"):
         fc.read_dem(np.zeros((3, 3)), extent=(0, 0, 1, 2))
+
+
+def test_a_damaged_geotiff_is_one_line_from_the_cli(tmp_path):
+    """tifffile logs what it finds wrong in a damaged file (its own names) through
+    Python's logging, which a command line without handlers prints to stderr: the CLI
+    printed that line as well as its own. Run as a user runs it (a process of its own:
+    pytest would catch the log records itself)."""
+    import subprocess
+    import sys
+    tifffile = pytest.importorskip("tifffile", reason="the optional extra floatcol[geotiff]")
+    good = tmp_path / "good.tif"
+    tifffile.imwrite(good, corner_peak().astype(np.float32))
+    data = bytearray(good.read_bytes())
+    data[4:8] = (0xFFFFFF00).to_bytes(4, "little")    # the first IFD's offset: past the end
+    bad = tmp_path / "bad.tif"
+    bad.write_bytes(bytes(data))
+    with pytest.raises(ValueError, match="bad.tif"):
+        fc.read_dem(bad)
+    out = tmp_path / "out.png"
+    res = subprocess.run([sys.executable, "-c", "import sys; from floatcol.cli import main; "
+                          "sys.exit(main(sys.argv[1:]))", "terrain", str(bad), "-o", str(out)],
+                         capture_output=True, text=True, timeout=300)
+    assert res.returncode == 2
+    err = res.stderr.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("floatcol: error:"), res.stderr
+    assert not out.exists()
 
 
 def test_cli_terrain(tmp_path, capsys):
@@ -218,6 +249,25 @@ def test_fly_camera_looks_where_it_says():
         fc.fly(hf, eye, pitch=95)
     with pytest.raises(ValueError, match="position"):
         fc.fly(hf, (1, 2, 3, 4))
+
+
+def test_a_fly_picture_one_pixel_wide_sees_what_its_centre_ray_sees():
+    """fly() fits the field of view to the picture's width less one pixel: a picture
+    one pixel wide divided by zero (found by tests/fuzzing.py's terrain cases). Its
+    field of view is now that of two pixels, as build_view fits a one-pixel picture:
+    the centre ray, 30 degrees down, meets the flat ground; 30 degrees up, the sky."""
+    from floatcol.terrain import guedes
+    hf = fc.HeightField(np.zeros((11, 11)), u=(0, 1000), v=(0, 1000))
+    for size in ((1, 1), (1, 5)):
+        for pitch, ground in ((-30, True), (30, False)):
+            kw = fc.fly(hf, (500.0, 200.0, 30.0), heading=0, pitch=pitch, size=size)
+            assert np.isfinite(kw["scale"]) and kw["scale"] > 0
+            r = fc.render(hf, **kw)
+            mid = (size[1] - 1) // 2
+            assert (r.side[mid, 0] != 0) == ground
+            rgba, uv, _ = guedes(hf, (500.0, 200.0, 30.0), pitch=pitch, size=size,
+                                 variant="brute")
+            assert np.isfinite(uv[mid, 0, 0]) == ground
 
 
 def test_guedes_variants_place_the_terrain_as_his_paper_says():

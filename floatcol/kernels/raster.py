@@ -28,10 +28,12 @@ def raster_kernel(cx, cy, e, tris, rgb, ortho, d3, zbuf, rgba, drawn):
         det = (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2)
         if det == 0.0:
             continue
-        c0 = max(int(math.floor(min(x0, x1, x2))), 0)
-        c1 = min(int(math.ceil(max(x0, x1, x2))), W - 1)
-        r0 = max(int(math.floor(min(y0, y1, y2))), 0)
-        r1 = min(int(math.ceil(max(y0, y1, y2))), H - 1)
+        # (clamped as floats before the conversion: a float far outside an int's range
+        # converts to anything in LLVM, and an object 1e50 tall wrote past the picture)
+        c0 = int(min(max(math.floor(min(x0, x1, x2)), 0.0), W))
+        c1 = int(max(min(math.ceil(max(x0, x1, x2)), W - 1.0), -1.0))
+        r0 = int(min(max(math.floor(min(y0, y1, y2)), 0.0), H))
+        r1 = int(max(min(math.ceil(max(y0, y1, y2)), H - 1.0), -1.0))
         r8 = np.uint8(min(max(round(rgb[k, 0] * 255.0), 0.0), 255.0))
         g8 = np.uint8(min(max(round(rgb[k, 1] * 255.0), 0.0), 255.0))
         b8 = np.uint8(min(max(round(rgb[k, 2] * 255.0), 0.0), 255.0))

@@ -44,6 +44,10 @@ from .geometry import BATCH_MIN_SAMPLES
 #: most texels of a shadow texture (its memory: three float32 planes a layer, 46 MiB;
 #: soft shadows four float64 planes more)
 MAX_TEXELS = 4_000_000
+#: most cells of the on-the-fly sweep's grid (section 6.2.2: no texture, but a sweep
+#: over every cell; a fly camera's nearest footprint over a whole DEM asked 1.4e11 of
+#: them and the process was killed for memory)
+MAX_SWEEP_CELLS = 64_000_000
 #: texels per pixel of the picture along each axis
 TEXELS_PER_PIXEL = 1.0
 #: a light within this of the zenith (|ground| / |L|) casts no shadow of its own:
@@ -92,12 +96,21 @@ class Texture:
         h = 1.0 / (view.scale * TEXELS_PER_PIXEL)
         if not view.orthographic:
             h *= max(view.q_near / view.d1, 1.0)
-        n_sig = int(math.ceil((sig.max() - sig.min()) / h)) + 3
-        n_tau = int(math.ceil((tau.max() - tau.min()) / h)) + 3
-        if n_sig * n_tau > MAX_TEXELS and not self.on_the_fly:
-            h *= math.sqrt(n_sig * n_tau / MAX_TEXELS)
-            n_sig = int(math.ceil((sig.max() - sig.min()) / h)) + 3
-            n_tau = int(math.ceil((tau.max() - tau.min()) / h)) + 3
+        span_sig = float(sig.max() - sig.min())
+        span_tau = float(tau.max() - tau.min())
+        if not (math.isfinite(span_sig) and math.isfinite(span_tau) and math.isfinite(h)
+                and h > 0.0):
+            raise ValueError("shadows need a domain of a finite size: the ranges of u and v "
+                             "are too wide")
+        # (a huge domain against the pixel's footprint: the cap below takes it)
+        h = max(h, max(span_sig, span_tau) / (MAX_SWEEP_CELLS + MAX_TEXELS))
+        n_sig = int(math.ceil(span_sig / h)) + 3
+        n_tau = int(math.ceil(span_tau / h)) + 3
+        cap = MAX_SWEEP_CELLS if self.on_the_fly else MAX_TEXELS
+        if n_sig * n_tau > cap:
+            h *= math.sqrt(n_sig * n_tau / cap)
+            n_sig = int(math.ceil(span_sig / h)) + 3
+            n_tau = int(math.ceil(span_tau / h)) + 3
         self.h = h
         self.s0 = sig.min() - h
         self.t0 = tau.min() - h

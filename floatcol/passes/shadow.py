@@ -47,7 +47,7 @@ MAX_TEXELS = 4_000_000
 #: most cells of the on-the-fly sweep's grid (section 6.2.2: no texture, but a sweep
 #: over every cell; a fly camera's nearest footprint over a whole DEM asked 1.4e11 of
 #: them and the process was killed for memory)
-MAX_SWEEP_CELLS = 64_000_000
+MAX_SWEEP_CELLS = 16_000_000
 #: texels per pixel of the picture along each axis
 TEXELS_PER_PIXEL = 1.0
 #: a light within this of the zenith (|ground| / |L|) casts no shadow of its own:

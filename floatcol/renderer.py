@@ -112,6 +112,12 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
         if texture is not None and texture.rho > 0.0:
             raise ValueError("opacity below 1 casts hard shadows: use light_radius=0 (soft "
                              "shadows need opaque surfaces)")
+        if texture is not None and texture.on_the_fly:
+            # (every layer looks its shadow up: section 6.2.2's sweep answers the seen
+            # pixels of one opaque surface; it was an AttributeError)
+            raise ValueError("opacity below 1 takes its shadows from the shadow texture: "
+                             "use shadows=True (shadows='on-the-fly' draws one opaque "
+                             "surface)")
         return render_translucent(layers, views, drawn, box, quality, background, texture,
                                   t_start)
     if not many and texture is None and draft.supports(quality, views[0]) \

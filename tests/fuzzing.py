@@ -36,7 +36,8 @@ OPTIONS = {
     "corrections": ["none", "spline", "supersample", "adaptive", "spline+supersample",
                     "spline+adaptive"],
     "sampling": ["uniform", "adaptive", "lod"],
-    "antialias": [True, False, 2, 3],
+    "antialias": [True, False, 2, 3, "area"],
+    "opacity": [1.0, 0.5, 0.0, -1.0, 2.0, math.nan],
     "aspect": ["equal", "auto", "equalxy", [1, 1, 0.5]],
     "placement": ["exact", "paper"],
     # (no GPU in CI: "cuda" is a ValueError there, as a bad name is)

@@ -218,6 +218,8 @@ def test_zero_opacity_shows_nothing():
     (dict(opacity=True), "opacity"),
     (dict(opacity=float("nan")), "opacity"),
     (dict(opacity=0.5, method="horizon"), "method"),
+    # (found by the fuzzer: an AttributeError of the shadow pass)
+    (dict(opacity=0.5, shadows="on-the-fly", lightsource=(315, 45)), "shadows=True"),
 ])
 def test_bad_opacity(kw, word):
     with pytest.raises(ValueError, match=word):

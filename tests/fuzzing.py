@@ -37,7 +37,15 @@ OPTIONS = {
                     "spline+adaptive"],
     "sampling": ["uniform", "adaptive", "lod"],
     "antialias": [True, False, 2, 3, "area"],
-    "opacity": [1.0, 0.5, 0.0, -1.0, 2.0, math.nan],
+    # (mostly good values: a bad one now and then, so that most cases still draw)
+    "opacity": [1.0, 0.5, 0.3, 0.0, 0.8, 0.5, 2.0],
+    "contours": [None, 5, 3, 12, [0.0, 0.5], 0, [math.nan]],
+    "wireframe": [None, 8, 20, [3, 4], 5, 1e9],
+    "color": [None, "u*v", "sin(u)", "1/u", "u - v", "u**"],
+    "pixel_step": [1.0, 0.5, 3.0, 2.0, 1.5, 0.0],
+    "focal_length": [None, 1.0, 0.5, 10.0, 2.0, -2.0],
+    "specular": [None, 0.5, 0.0, 0.3, 1.0, -1.0],
+    "ambient": [None, 0.2, 1.0, 0.0, 0.5, math.nan],
     "aspect": ["equal", "auto", "equalxy", [1, 1, 0.5]],
     "placement": ["exact", "paper"],
     # (no GPU in CI: "cuda" is a ValueError there, as a bad name is)

@@ -273,9 +273,16 @@ class Surface3DImage(Artist):
         gc = renderer.new_gc()
         gc.set_clip_rectangle(bb)
         if abs(T[0, 1]) <= 1e-12 * abs(T[0, 0]):
-            # pixel (col, row) centred at the canvas point (ox + col / m, oy - row / m)
-            renderer.draw_image(gc, T[0, 2] - 0.5 / m, T[1, 2] - (size[1] - 0.5) / m,
-                                _enlarged(r.rgba, f)[::-1])
+            # pixel (col, row) centred at the canvas point (ox + col / m, oy - row / m);
+            # a picture reflected onto the canvas (an inverted axis) flipped first
+            rgba, D = _enlarged(r.rgba, f), T.copy()
+            for axis, sign in ((0, 1.0), (1, -1.0)):
+                if D[axis, axis] * sign < 0.0:
+                    rgba = np.flip(rgba, 1 - axis)
+                    D[:, 2] += D[:, axis] * (size[axis] - 1)
+                    D[:, axis] *= -1.0
+            renderer.draw_image(gc, D[0, 2] - 0.5 / m, D[1, 2] - (size[1] - 0.5) / m,
+                                np.ascontiguousarray(rgba[::-1]))
         else:                                     # a roll: the picture turned onto the Axes
             x0, y0 = int(np.floor(bb.x0)), int(np.floor(bb.y0))
             renderer.draw_image(gc, x0, y0, _turned(r.rgba, T, x0, y0, W, H, m)[::-1])
@@ -328,9 +335,20 @@ def axes_camera(plot, ax, W, H, mag=1.0):
     from .plot import mpl_to_paper_angles
     (x0, x1), (y0, y1), (z0, z1) = ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()
     ba = np.asarray(ax._box_aspect, dtype=float)
-    box = (ba[0] / (x1 - x0), ba[1] / (y1 - y0), ba[2] / (z1 - z0))
+    box = (ba[0] / abs(x1 - x0), ba[1] / abs(y1 - y0), ba[2] / abs(z1 - z0))
     center = ((x0 + x1) / 2.0, (y0 + y1) / 2.0, (z0 + z1) / 2.0)
     elev, azim = mpl_to_paper_angles(ax.elev, ax.azim)
+    # An inverted axis (ax.invert_zaxis(), limits high to low) shows the data mirrored
+    # in it: S W seen from the Axes' eye is W seen from the mirrored eye S C, whose
+    # view direction is S d (u: azim -> -azim, v: azim -> 180 - azim, w: elev -> -elev)
+    # and whose picture is a proper camera's up to a turn and, for an odd number of
+    # inverted axes, a reflection (_fit finds which)
+    if x1 < x0:
+        azim = -azim
+    if y1 < y0:
+        azim = 180.0 - azim
+    if z1 < z0:
+        elev = -elev
     kw = dict(elev=elev, azim=azim, box=box, center=center)
     if ax._focal_length == np.inf:
         kw["projection"] = "orthographic"
@@ -345,39 +363,46 @@ def axes_camera(plot, ax, W, H, mag=1.0):
     size = base
     bb = ax.bbox
     for _ in range(2):
-        (a, b, dx, dy), _ = _fit(plot, kw, size, (cx, cy, cz), box, disp)
+        A, _ = _fit(plot, kw, size, (cx, cy, cz), box, disp)
         cW, cH = (size[0] - 1) / 2.0, (size[1] - 1) / 2.0
         # the picture must cover the Axes: as much larger as its centre is off theirs
-        mx = abs(a * cW + b * cH + dx - (bb.x0 + bb.width / 2.0) * mag)
-        my = abs(b * cW - a * cH + dy - (bb.y0 + bb.height / 2.0) * mag)
+        mx = abs(A[0, 0] * cW + A[0, 1] * cH + A[0, 2] - (bb.x0 + bb.width / 2.0) * mag)
+        my = abs(A[1, 0] * cW + A[1, 1] * cH + A[1, 2] - (bb.y0 + bb.height / 2.0) * mag)
         size = (base[0] + 2 * int(np.ceil(mx)) + 2, base[1] + 2 * int(np.ceil(my)) + 2)
-    (a, b, dx, dy), trial_scale = _fit(plot, kw, size, (cx, cy, cz), box, disp)
-    s = float(np.hypot(a, b))
+    A, trial_scale = _fit(plot, kw, size, (cx, cy, cz), box, disp)
+    s = float(np.hypot(A[0, 0], A[0, 1]))
     kw["scale"] = s * trial_scale
     # pixel (col, row) at s times the fit's scale is the fit's (c + (col - c) / s, ...),
-    # whose canvas point (times mag) is (a col1 + b row1 + dx, b col1 - a row1 + dy)
+    # whose canvas point (times mag) is A (col1, row1, 1)
     cW, cH = (size[0] - 1) / 2.0, (size[1] - 1) / 2.0
     k = 1.0 - 1.0 / s
-    T = np.array([[a / s, b / s, a * cW * k + b * cH * k + dx],
-                  [b / s, -a / s, b * cW * k - a * cH * k + dy]]) / mag
+    T = np.column_stack([A[:, 0] / s, A[:, 1] / s,
+                         A[:, 0] * cW * k + A[:, 1] * cH * k + A[:, 2]]) / mag
     return kw, T, size
 
 
 def _fit(plot, kw, size, corners, box, disp):
-    """((a, b, dx, dy), the fit's scale): the similarity that puts a corner's pixel
-    (col, row) in the picture of ``size`` render_view fits (at its own scale) on its
-    canvas point disp: x = a col + b row + dx, y = b col - a row + dy (b = 0 without a
-    roll)."""
+    """(A (2, 3), the fit's scale): the similarity that puts a corner's pixel (col,
+    row) in the picture of ``size`` render_view fits (at its own scale) on its canvas
+    point disp, x = a col + b row + dx, y = b col - a row + dy (b = 0 without a roll);
+    or, where an odd number of the Axes' axes are inverted, the reflection x = a col
+    + b row + dx, y = a row - b col + dy: whichever puts the corners nearer."""
     from .plot import render_view
     cx, cy, cz = corners
     (x0, x1), (y0, y1) = (cx.min(), cx.max()), (cy.min(), cy.max())
     view, _ = render_view(plot.surface, dict(kw, size=size, u=(x0, x1), v=(y0, y1)))
     col, row = view.project(cx * box[0], cy * box[1], cz * box[2])
     n = len(col)
-    A = np.vstack([np.column_stack([col, row, np.ones(n), np.zeros(n)]),
-                   np.column_stack([-row, col, np.zeros(n), np.ones(n)])])
-    sol, *_ = np.linalg.lstsq(A, np.r_[disp[:, 0], disp[:, 1]], rcond=None)
-    return sol, view.scale
+    rhs = np.r_[disp[:, 0], disp[:, 1]]
+    best = None
+    for flip in (1.0, -1.0):
+        M = np.vstack([np.column_stack([col, row, np.ones(n), np.zeros(n)]),
+                       np.column_stack([-row * flip, col * flip, np.zeros(n), np.ones(n)])])
+        (a, b, dx, dy), *_ = np.linalg.lstsq(M, rhs, rcond=None)
+        err = float(np.sum((M @ np.array([a, b, dx, dy]) - rhs) ** 2))
+        if best is None or err < best[0]:
+            best = (err, np.array([[a, b, dx], [b * flip, -a * flip, dy]]))
+    return best[1], view.scale
 
 
 class OccludedObjects(Artist):

@@ -65,6 +65,43 @@ def test_surface_where_mplot3d_draws_the_mesh(proj, view, limits, bound):
     assert iou >= bound
 
 
+@pytest.mark.parametrize("proj,view,inverted", [
+    ("persp", (30, -60), "x"),
+    ("ortho", (30, -60), "z"),
+    ("persp", (60, 20), "y"),
+    ("persp", (25, 35), "xz"),
+    ("ortho", (40, 120), "xyz"),
+])
+def test_inverted_axes_show_the_surface_where_mplot3d_does(proj, view, inverted):
+    """An inverted axis (ax.invert_zaxis(), limits high to low) shows the data mirrored
+    in it: floatcol's draw raised "box's stretch factors must be positive numbers" (the
+    figure could not be drawn; found by fuzzing the Axes). The mirrored eye sees the
+    surface as the Axes' eye sees the mirrored data, up to a turn and, for an odd
+    number of inverted axes, a reflection of the picture. Intersection over union
+    against mplot3d's own mesh, measured 0.975-0.984 (the bound as the test above's)."""
+    X, Y, Z = _data()
+
+    def figure(draw):
+        fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
+        ax = fig.add_subplot(projection="3d", proj_type=proj)
+        draw(ax)
+        ax.set_zlim(-1.01, 1.01)
+        ax.set_xlim(-3, 6)                      # (not symmetric: a mirror shows)
+        for name in inverted:
+            getattr(ax, f"invert_{name}axis")()
+        ax.view_init(*view)
+        mask = _red(fig)
+        plt.close(fig)
+        return mask
+    ours = figure(lambda ax: fc.plot_surface(X, Y, Z, ax=ax, color="red", lower_color="red",
+                                             shade=False, linewidth=0, antialiased=False))
+    theirs = figure(lambda ax: ax.plot_surface(X, Y, Z, color="red", shade=False,
+                                               linewidth=0, antialiased=False))
+    iou = (ours & theirs).sum() / (ours | theirs).sum()
+    assert theirs.sum() > 20000
+    assert iou >= 0.95
+
+
 def test_surface3d_example_keeps_axes_and_colorbar(tmp_path):
     """matplotlib's surface3d example with only its plot_surface call changed."""
     X, Y, Z = _data()

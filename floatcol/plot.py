@@ -664,6 +664,9 @@ def mesh_surface(X, Y, Z, extra=None):
     if X.shape != (Z.shape[1],) or Y.shape != (Z.shape[0],):
         raise ValueError(f"plot_surface(X, Y, Z): x has {X.size} and y {Y.size} values for Z "
                          f"of shape {Z.shape}")
+    if min(Z.shape) < 2:
+        raise ValueError(f"plot_surface(X, Y, Z): Z must have at least 2 x 2 values (a "
+                         f"surface between them), got shape {Z.shape}")
     for name, a in (("X", X), ("Y", Y)):
         d = np.diff(a)
         if len(a) < 2 or not np.all(np.isfinite(a)) or d[0] == 0 or \

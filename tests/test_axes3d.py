@@ -143,6 +143,9 @@ def test_mesh_call_forms():
         fc.plot.mesh_surface(x ** 3, y, Z)
     with pytest.raises(ValueError, match="Z must be 2-D"):
         fc.plot.mesh_surface(x, y, Z[0])
+    # one row of values: no surface between them (it said "Y must be evenly spaced")
+    with pytest.raises(ValueError, match="at least 2 x 2"):
+        fc.plot.mesh_surface(X[:1], Y[:1], Z[:1])
 
 
 def test_matplotlib_keywords_accepted():

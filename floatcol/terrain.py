@@ -46,6 +46,14 @@ def read_dem(path, *, extent=None, nodata=None, vert_exag=1.0, geographic=None):
     """
     if isinstance(path, (str, os.PathLike)):
         z, meta = _read(os.fspath(path))
+    elif isinstance(path, np.lib.npyio.NpzFile):
+        # an .npz already open: matplotlib's get_sample_data("jacksboro_fault_dem.npz")
+        try:
+            z, meta = _npz_data(path)
+        except _DemError as exc:
+            raise ValueError(f"DEM (an open .npz): {exc}") from None
+        except Exception as exc:        # (numpy's own errors, as _read's)
+            raise ValueError(f"DEM (an open .npz) cannot be read: {exc}") from None
     else:
         z, meta = _array(path), {}
     vert_exag = _positive("vert_exag", vert_exag)
@@ -185,44 +193,50 @@ def _array(z):
 
 def _npz(path):
     with np.load(path, allow_pickle=False) as data:
-        name = next((n for n in NPZ_NAMES if n in data.files), None)
-        if name is None:
-            two_d = [n for n in data.files if data[n].ndim == 2]
-            if len(two_d) != 1:
-                raise _DemError(f"no height array: name it one of {', '.join(NPZ_NAMES)} "
-                                 f"(found {', '.join(data.files) or 'nothing'})")
-            name = two_d[0]
-        z = _array(data[name])
-        meta = {}
-        keys = set(data.files)
-        if {"xmin", "xmax", "ymin", "ymax"} <= keys:
-            # matplotlib's sample DEMs: x of the first and last columns' outer edges,
-            # y of the first and last rows' (jacksboro's rows run north to south: ymin
-            # > ymax); with dx, dy the cells' size, the nodes are the cells' centres
-            x0, x1, y0, y1 = (float(data[k]) for k in ("xmin", "xmax", "ymin", "ymax"))
-            ny, nx = z.shape
-            if {"dx", "dy"} <= keys:
-                dx, dy = abs(float(data["dx"])), abs(float(data["dy"]))
-                if math.isclose(abs(x1 - x0), nx * dx, rel_tol=1e-3):
-                    x0, x1 = x0 + math.copysign(dx / 2, x1 - x0), x1 - math.copysign(dx / 2, x1 - x0)
-                if math.isclose(abs(y1 - y0), ny * dy, rel_tol=1e-3):
-                    y0, y1 = y0 + math.copysign(dy / 2, y1 - y0), y1 - math.copysign(dy / 2, y1 - y0)
-            meta["extent"] = (x0, x1, min(y0, y1), max(y0, y1))
-            if y0 < y1:                       # its first row is the southern one
-                z = z[::-1]
-        elif {"x", "y"} <= keys and data["x"].ndim == 1 and data["y"].ndim == 1:
-            x, y = np.asarray(data["x"], float), np.asarray(data["y"], float)
-            if x.size != z.shape[1] or y.size != z.shape[0]:
-                raise _DemError(f"x and y have {x.size} and {y.size} values for heights of "
-                                 f"shape {z.shape}")
-            if x[0] > x[-1]:
-                z, x = z[:, ::-1], x[::-1]
-            if y[0] < y[-1]:                  # north-up rows, as read_dem keeps them
-                z, y = z[::-1], y[::-1]
-            meta["extent"] = (x[0], x[-1], y[-1], y[0])
-        if "nodata" in keys:
-            meta["nodata"] = float(data["nodata"])
-        return z, meta
+        return _npz_data(data)
+
+
+def _npz_data(data):
+    """(heights, meta) of an open NpzFile: the heights under one of NPZ_NAMES (or its
+    only 2-D array), the extent of matplotlib's sample DEMs or of x and y, nodata."""
+    name = next((n for n in NPZ_NAMES if n in data.files), None)
+    if name is None:
+        two_d = [n for n in data.files if data[n].ndim == 2]
+        if len(two_d) != 1:
+            raise _DemError(f"no height array: name it one of {', '.join(NPZ_NAMES)} "
+                             f"(found {', '.join(data.files) or 'nothing'})")
+        name = two_d[0]
+    z = _array(data[name])
+    meta = {}
+    keys = set(data.files)
+    if {"xmin", "xmax", "ymin", "ymax"} <= keys:
+        # matplotlib's sample DEMs: x of the first and last columns' outer edges,
+        # y of the first and last rows' (jacksboro's rows run north to south: ymin
+        # > ymax); with dx, dy the cells' size, the nodes are the cells' centres
+        x0, x1, y0, y1 = (float(data[k]) for k in ("xmin", "xmax", "ymin", "ymax"))
+        ny, nx = z.shape
+        if {"dx", "dy"} <= keys:
+            dx, dy = abs(float(data["dx"])), abs(float(data["dy"]))
+            if math.isclose(abs(x1 - x0), nx * dx, rel_tol=1e-3):
+                x0, x1 = x0 + math.copysign(dx / 2, x1 - x0), x1 - math.copysign(dx / 2, x1 - x0)
+            if math.isclose(abs(y1 - y0), ny * dy, rel_tol=1e-3):
+                y0, y1 = y0 + math.copysign(dy / 2, y1 - y0), y1 - math.copysign(dy / 2, y1 - y0)
+        meta["extent"] = (x0, x1, min(y0, y1), max(y0, y1))
+        if y0 < y1:                       # its first row is the southern one
+            z = z[::-1]
+    elif {"x", "y"} <= keys and data["x"].ndim == 1 and data["y"].ndim == 1:
+        x, y = np.asarray(data["x"], float), np.asarray(data["y"], float)
+        if x.size != z.shape[1] or y.size != z.shape[0]:
+            raise _DemError(f"x and y have {x.size} and {y.size} values for heights of "
+                             f"shape {z.shape}")
+        if x[0] > x[-1]:
+            z, x = z[:, ::-1], x[::-1]
+        if y[0] < y[-1]:                  # north-up rows, as read_dem keeps them
+            z, y = z[::-1], y[::-1]
+        meta["extent"] = (x[0], x[-1], y[-1], y[0])
+    if "nodata" in keys:
+        meta["nodata"] = float(data["nodata"])
+    return z, meta
 
 
 def _png(path):

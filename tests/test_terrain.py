@@ -32,6 +32,26 @@ def test_matplotlibs_sample_dem_in_metres_rows_south_to_north():
     assert fc.read_dem(JACKSBORO, vert_exag=2).hf.max() == 2 * z.max()
 
 
+def test_an_open_npz_reads_as_its_file(tmp_path):
+    """matplotlib's get_sample_data("jacksboro_fault_dem.npz") hands an open NpzFile
+    (its own terrain example's first line): read as its file is, not as an array of
+    its keys ("got shape (7,) of <U9")."""
+    from matplotlib.cbook import get_sample_data
+    opened = fc.read_dem(get_sample_data("jacksboro_fault_dem.npz"))
+    byname = fc.read_dem(JACKSBORO)
+    assert opened.default_domain == byname.default_domain
+    assert np.array_equal(opened.hf, byname.hf, equal_nan=True)
+    np.savez(tmp_path / "bad.npz", a=np.zeros(3), b=np.ones(4), xmin=np.zeros(2))
+    with np.load(tmp_path / "bad.npz") as data:
+        with pytest.raises(ValueError, match="open .npz.*no height array"):
+            fc.read_dem(data)
+    np.savez(tmp_path / "odd.npz", elevation=np.zeros((3, 3)), xmin=np.zeros(2), xmax=1,
+             ymin=0, ymax=1)
+    with np.load(tmp_path / "odd.npz") as data:
+        with pytest.raises(ValueError, match="open .npz.*cannot be read"):
+            fc.read_dem(data)
+
+
 def test_a_range_given_downward_is_the_grid_flipped():
     z = np.arange(12.0).reshape(3, 4) ** 1.5
     down = fc.HeightField(z, u=(0, 3), v=(2, 0))         # rows north to south

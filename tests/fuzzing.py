@@ -166,8 +166,9 @@ def terrain_case(rng: random.Random) -> dict:
     c["kwargs"] = kw
     if c["call"] == "fly":
         u0, u1, v0, v1 = (x if math.isfinite(x) else 0.0 for x in extent)
-        c["fly"] = {"position": [_odd(rng, lambda: rng.uniform(min(u0, u1) - 100, max(u0, u1) + 100)),
-                                 _odd(rng, lambda: rng.uniform(min(v0, v1) - 100, max(v0, v1) + 100))]
+        def near(a, b):                 # (a coordinate on the map or beside it)
+            return _odd(rng, lambda: rng.uniform(min(a, b) - 100, max(a, b) + 100))
+        c["fly"] = {"position": [near(u0, u1), near(v0, v1)]
                     + ([_odd(rng, lambda: rng.uniform(-100, 3000))] if rng.random() < 0.3 else []),
                     "heading": _odd(rng, lambda: rng.uniform(-360, 360)),
                     "pitch": _odd(rng, lambda: rng.choice([rng.uniform(-89, 89)] * 8

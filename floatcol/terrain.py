@@ -48,12 +48,7 @@ def read_dem(path, *, extent=None, nodata=None, vert_exag=1.0, geographic=None):
         z, meta = _read(os.fspath(path))
     elif isinstance(path, np.lib.npyio.NpzFile):
         # an .npz already open: matplotlib's get_sample_data("jacksboro_fault_dem.npz")
-        try:
-            z, meta = _npz_data(path)
-        except _DemError as exc:
-            raise ValueError(f"DEM (an open .npz): {exc}") from None
-        except Exception as exc:        # (numpy's own errors, as _read's)
-            raise ValueError(f"DEM (an open .npz) cannot be read: {exc}") from None
+        z, meta = _read(path)
     else:
         z, meta = _array(path), {}
     vert_exag = _positive("vert_exag", vert_exag)
@@ -156,13 +151,20 @@ def auto_exaggeration(hf):
 
 
 def _read(path):
-    suffix = os.path.splitext(path)[1].lower()
-    if suffix not in SUFFIXES:
-        raise ValueError(f"DEM file {path!r}: use .npy, .npz, .png, .tif or .tiff")
-    if not os.path.isfile(path):
-        raise ValueError(f"DEM file {path!r} does not exist")
-    kind = SUFFIXES[suffix]
+    """(heights, meta) of a DEM file's path, or of an .npz already open; what is
+    wrong with it a ValueError naming it."""
+    if isinstance(path, np.lib.npyio.NpzFile):
+        label, kind = "DEM (an open .npz)", "open npz"
+    else:
+        suffix = os.path.splitext(path)[1].lower()
+        if suffix not in SUFFIXES:
+            raise ValueError(f"DEM file {path!r}: use .npy, .npz, .png, .tif or .tiff")
+        if not os.path.isfile(path):
+            raise ValueError(f"DEM file {path!r} does not exist")
+        label, kind = f"DEM file {path!r}", SUFFIXES[suffix]
     try:
+        if kind == "open npz":
+            return _npz_data(path)
         if kind == "npy":
             return _array(np.load(path, allow_pickle=False)), {}
         if kind == "npz":
@@ -171,9 +173,9 @@ def _read(path):
             return _png(path)
         return _geotiff(path)
     except _DemError as exc:
-        raise ValueError(f"DEM file {path!r}: {exc}") from None
+        raise ValueError(f"{label}: {exc}") from None
     except Exception as exc:            # (numpy's, PIL's, tifffile's own errors alike)
-        raise ValueError(f"DEM file {path!r} cannot be read: {exc}") from None
+        raise ValueError(f"{label} cannot be read: {exc}") from None
 
 
 class _DemError(ValueError):

@@ -749,16 +749,15 @@ def _hidden_until(mx, mt, n_m, lt, hfp, vp, x0, planes, i, j, s_lo, s_hi, ymax):
 
 
 @ngjit_inline
-def _bilinear_w(flat, lt, lk, k, hfp, u, v):
-    """w of level k at (u, v) inside the extent, as _bilinear's (lk: level_ints')."""
-    nu = lk[k, LK_NU]
-    gx = (u - hfp[0]) * lt[k, LT_SU]
-    gy = (v - hfp[2]) * lt[k, LT_SV]
+def _bilinear_at(flat, off, nu, nv2, gx, gy):
+    """w of the level at offset off (level_ints' LK_OFF) with nu nodes along u and nv2
+    + 2 along v at grid coordinates (gx, gy) (>= 0 inside the extent), as _bilinear's;
+    _scan_hidden holds a level's parameters while its planes last."""
     i = min(max(int(gx), 0), nu - 2)
-    j = min(max(int(gy), 0), lk[k, LK_NV2])
+    j = min(max(int(gy), 0), nv2)
     fx = gx - i
     fy = gy - j
-    b = lk[k, LK_OFF] + j * nu + i
+    b = off + j * nu + i
     z00 = flat[b]
     z01 = flat[b + nu]
     a0 = z00 + fx * (flat[b + 1] - z00)
@@ -799,6 +798,11 @@ def _scan_hidden(flat, lt, lk, hfp, vp, x0, planes, i, m_end, ymax):
     m = i
     s_last = np.nan
     ev = 0
+    kc = -1                                      # the level whose parameters are held
+    nu0 = nv0 = off0 = nu1 = nv1 = off1 = 0
+    su0 = sv0 = su1 = sv1 = 0.0
+    ou = hfp[0]
+    ov = hfp[2]
     while m < m_end:
         t = planes[m, 0]
         u = u0 + du * t
@@ -808,9 +812,23 @@ def _scan_hidden(flat, lt, lk, hfp, vp, x0, planes, i, m_end, ymax):
         u, v = into_domain(vp, u, v)
         k = int(planes[m, 1])
         a = planes[m, 2]
-        w = _bilinear_w(flat, lt, lk, k, hfp, u, v)
+        if k != kc:
+            kc = k
+            k1 = min(k + 1, lk.shape[0] - 1)
+            nu0 = lk[k, LK_NU]
+            nv0 = lk[k, LK_NV2]
+            off0 = lk[k, LK_OFF]
+            su0 = lt[k, LT_SU]
+            sv0 = lt[k, LT_SV]
+            nu1 = lk[k1, LK_NU]
+            nv1 = lk[k1, LK_NV2]
+            off1 = lk[k1, LK_OFF]
+            su1 = lt[k1, LT_SU]
+            sv1 = lt[k1, LT_SV]
+        w = _bilinear_at(flat, off0, nu0, nv0, (u - ou) * su0, (v - ov) * sv0)
         if a > 0.0:
-            w = (1.0 - a) * w + a * _bilinear_w(flat, lt, lk, k + 1, hfp, u, v)
+            w = (1.0 - a) * w + a * _bilinear_at(flat, off1, nu1, nv1, (u - ou) * su1,
+                                                  (v - ov) * sv1)
         ev += 1
         if not w - cw < a_r * t + b_r:           # (a hole: not surely hidden)
             break

@@ -143,7 +143,13 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
 def _prepare(layer, scene):
     material = layer.material.check()
     surface = as_surface(layer.surface, scene.vars)
-    u, v = (None, None) if layer.domain is None else layer.domain
+    u, v = None, None
+    if layer.domain is not None:
+        try:
+            u, v = layer.domain
+        except (TypeError, ValueError):
+            raise ValueError("a layer's domain must be ((u_low, u_high), (v_low, v_high)) or "
+                             f"None, got {layer.domain!r}") from None
     domain = layer_domain(surface, u, v)
     light = as_light(scene.light, material.shading)
     view_angles = (scene.camera.elev, scene.camera.azim)

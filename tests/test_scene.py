@@ -102,6 +102,11 @@ def test_the_sun_is_matplotlibs_lightsource():
     (lambda: fc.render_scene(fc.Scene([])), "surfaces is empty"),
     (lambda: fc.render_scene(fc.Scene([fc.Layer("u")], quality=fc.Quality(method="ray"))),
      "method must be one of"),
+    # (these two said "not enough values to unpack" and "too many values to unpack")
+    (lambda: fc.render_scene(fc.Scene([fc.Layer("u", domain=((-1, 1),))])),
+     "a layer's domain must be ((u_low, u_high), (v_low, v_high)) or None"),
+    (lambda: fc.render_scene(fc.Scene([fc.Layer("u", domain="((0,1),(0,1))")])),
+     "a layer's domain must be ((u_low, u_high), (v_low, v_high)) or None"),
 ])
 def test_parts_say_what_to_fix(make, message):
     with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):

@@ -63,11 +63,31 @@ def _gif_images(frames):
     return out
 
 
+#: the slowest frame rate: a GIF holds a frame at most 655.35 s (a 16-bit count of
+#: hundredths of a second; 1/0.01 fps = 100 s)
+MIN_FPS = 0.01
+GIF_MAX_MS = 655_350
+
+
 def write_gif(frames, path, fps):
+    """The frames as a looping GIF, 1 / fps s each (20 ms at least). Frames that equal
+    the one before lengthen its hold instead (as Pillow would merge them), which a GIF
+    keeps for at most GIF_MAX_MS: a picture held longer (a still surface at a slow
+    frame rate) is shown that long."""
     images = _gif_images(frames)
+    step = min(max(20, round(1000 / fps)), GIF_MAX_MS)
+    kept, holds, last = [], [], None
+    for im in images:
+        key = im.convert("RGBA").tobytes()
+        if kept and key == last:
+            holds[-1] = min(holds[-1] + step, GIF_MAX_MS)
+            continue
+        kept.append(im)
+        holds.append(step)
+        last = key
     with atomic_file(path) as tmp:
-        images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:],
-                       duration=max(20, round(1000 / fps)), loop=0)
+        kept[0].save(tmp, format="GIF", save_all=True, append_images=kept[1:],
+                     duration=holds if len(kept) > 1 else holds[0], loop=0)
 
 
 def write_mp4(frames, path, fps):
@@ -139,7 +159,8 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     """Render w = f(u, v, t) at ``frames`` times in ``t`` = (low, high) or
     (symbol, low, high) (the symbol defaults to t). ``endpoint=False`` leaves out
     t = high, so a periodic clip loops without a repeated frame. ``output``: a .gif or
-    .mp4 file to write. Other options as :func:`floatcol.plot_surface`; ``lightsource``
+    .mp4 file to write, ``fps`` frames a second (0.01 to 120). Other options as
+    :func:`floatcol.plot_surface`; ``lightsource``
     may be a function of t giving (azdeg, altdeg) (a moving sun, with ``shadows=True``
     its shadows move). ``client``: a dask.distributed Client: the frames are rendered
     as its tasks (each worker compiles the expression once; floatcol/cluster.py), the
@@ -152,8 +173,8 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     t_name, t_lo, t_hi = _time_range(t)
     if isinstance(frames, bool) or not isinstance(frames, (int, np.integer)) or frames < 1:
         raise ValueError(f"frames must be a positive whole number, got {frames!r}")
-    if not isinstance(fps, (int, float)) or isinstance(fps, bool) or not 0 < fps <= 120:
-        raise ValueError(f"fps must be a number in (0, 120], got {fps!r}")
+    if not isinstance(fps, (int, float)) or isinstance(fps, bool) or not MIN_FPS <= fps <= 120:
+        raise ValueError(f"fps must be a number in [{MIN_FPS}, 120], got {fps!r}")
     if output is not None:
         output, _ = check_output(output, ANIMATION_FORMATS)
     start = _time.perf_counter()

@@ -190,6 +190,9 @@ def check_range(name, rng):
         raise ValueError(f"range {name} = ({lo}, {hi}) is reversed: low must be below high")
     if hi == lo:
         raise ValueError(f"range {name} = ({lo}, {hi}) is empty: low must be below high")
+    if not math.isfinite(hi - lo):
+        raise ValueError(f"range {name} = ({lo}, {hi}) is too wide: high - low must be a finite "
+                         "number (below 1.8e308)")
     return lo, hi
 
 

@@ -65,9 +65,30 @@ def test_gif_and_mp4(tmp_path):
     assert "data:image/gif;base64" in anim._repr_html_()
 
 
+def test_a_still_gif_at_the_slowest_rate(tmp_path):
+    """Frames equal to the one before lengthen its hold, which a GIF keeps to 655.35 s:
+    ten equal frames at 0.01 fps (1000 s) are one frame held that long (Pillow merged
+    them into a hold its 16 bits could not hold: OverflowError); different frames keep
+    their own holds."""
+    still = fc.render("u*v", size=(20, 16)).rgba
+    fc.Animation([still] * 10, list(range(10)), 0.01).save(tmp_path / "still.gif")
+    im = Image.open(tmp_path / "still.gif")
+    assert (im.n_frames, im.info["duration"]) == (1, 655_350)
+    a, b = (fc.render(e, size=(20, 16)).rgba for e in ("u*v", "u*v + u"))
+    fc.Animation([a, a, b, b, b], list(range(5)), 10).save(tmp_path / "two.gif")
+    im = Image.open(tmp_path / "two.gif")
+    holds = []
+    for k in range(im.n_frames):
+        im.seek(k)
+        holds.append(im.info["duration"])
+    assert holds == [200, 300]
+
+
 @pytest.mark.parametrize("kw,needle", [
     (dict(frames=0), "frames"), (dict(t=(1, 1)), "time range"), (dict(t=5), "t must be"),
     (dict(fps=0), "fps"), (dict(output="clip.avi"), "must end in"),
+    # (0.001 fps crashed in Pillow's GIF writer: a frame's hold past its 16 bits)
+    (dict(fps=0.001, output="slow.gif"), r"fps must be a number in \[0.01, 120\]"),
 ])
 def test_bad_animation_options(kw, needle, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)

@@ -30,6 +30,9 @@ CASES = [
     (dict(expr="u", v=(2, -2)), "range v = (2.0, -2.0) is reversed"),
     (dict(expr="u", u=("a", 1)), "range u must be a pair"),
     (dict(expr="u", u=(0, float("inf"))), "must be finite"),
+    # (its width overflowed: "box's stretch factors must be positive numbers, got (1.0,
+    # inf, 1.0)" after numpy's overflow warnings)
+    (dict(expr="u", u=(-1e308, 1e308)), "range u = (-1e+308, 1e+308) is too wide"),
     (dict(expr="u", size=(0, 10)), "size width must be positive"),
     (dict(expr="u", size=(10, -3)), "size height must be positive"),
     (dict(expr="u", size=(10.5, 3)), "whole number"),

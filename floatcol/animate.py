@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import base64
 import math
-import os
 
 import numpy as np
 
+from ._memory import fits
 from .output import atomic_file, check_output
 from .plot import parse_ranges, plot_surface, render_view
 from .render import box_factors
@@ -140,24 +140,14 @@ class _Envelope:
         return np.where(np.isfinite(out), out, np.nan)
 
 
-def _memory_bytes():
-    """Half the machine's memory where the system tells it, else 8 GiB: what a clip's
-    pictures may take."""
-    try:
-        return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE") // 2
-    except (AttributeError, ValueError, OSError):
-        return 8 << 30
-
-
 def _check_memory(frames, size):
     """A clip holds every frame's picture (Animation.frames): refuse one that cannot
-    fit rather than be killed for memory while it renders."""
+    fit in the machine's memory (_memory.fits) rather than be killed for memory while
+    it renders."""
     need = frames * int(size[0]) * int(size[1]) * 4
-    have = _memory_bytes()
-    if need > have:
+    if not fits(need):
         raise ValueError(f"{frames} frames of {size[0]}x{size[1]} take {need / 2**30:.1f} GiB, more "
-                         f"than the {have / 2**30:.1f} GiB a clip may hold here: give fewer "
-                         "frames or a smaller size")
+                         "than this machine has: give fewer frames or a smaller size")
 
 
 def _time_range(t):

@@ -22,6 +22,7 @@ import os
 
 import numpy as np
 
+from ._memory import fits
 from .surface import HeightField
 
 #: DEM files read_dem takes (suffix -> kind)
@@ -31,6 +32,11 @@ SUFFIXES = {".npy": "npy", ".npz": "npz", ".png": "png", ".tif": "tiff", ".tiff"
 AUTO_RELIEF = 0.08
 #: names of the height array in an .npz, in the order they are looked for
 NPZ_NAMES = ("elevation", "z", "dem", "heights", "height", "Z")
+#: bytes a DEM's height takes at most from its file to its first picture (`floatcol
+#: terrain` of 4097^2 heights peaked at 1.29-1.40 GB: 77-83 bytes a height), which
+#: each reader checks from the file's header before it decodes the heights: a 1.8 MB
+#: zlib-compressed TIFF of 30000 x 30000 zeros took the whole machine's memory
+BYTES_PER_HEIGHT = 96
 
 
 def read_dem(path, *, extent=None, nodata=None, vert_exag=1.0, geographic=None):
@@ -166,7 +172,9 @@ def _read(path):
         if kind == "open npz":
             return _npz_data(path)
         if kind == "npy":
-            return _array(np.load(path, allow_pickle=False)), {}
+            heights = np.load(path, mmap_mode="r", allow_pickle=False)   # (its header)
+            _check_size(heights.shape)
+            return _array(np.array(heights)), {}
         if kind == "npz":
             return _npz(path)
         if kind == "png":
@@ -180,6 +188,27 @@ def _read(path):
 
 class _DemError(ValueError):
     """What is wrong with a DEM file that could be read (its message names it)."""
+
+
+def _check_size(shape):
+    """_DemError where heights of this shape (from a file's header) could not be drawn
+    in the machine's memory (BYTES_PER_HEIGHT each), before they are decoded."""
+    cells = math.prod(int(n) for n in shape)
+    need = cells * BYTES_PER_HEIGHT
+    if not fits(need):
+        size = " x ".join(str(int(n)) for n in shape)
+        raise _DemError(f"its {size} heights need about {need / 2**30:.1f} GiB to draw, more "
+                         "than this machine has: crop or downsample it first")
+
+
+def _npz_shape(data, name):
+    """The shape of an open NpzFile's array ``name`` from its header (the array itself
+    not decompressed)."""
+    with data.zip.open(name + ".npy") as f:
+        version = np.lib.format.read_magic(f)
+        read = (np.lib.format.read_array_header_1_0 if version == (1, 0)
+                else np.lib.format.read_array_header_2_0)
+        return read(f)[0]
 
 
 def _array(z):
@@ -203,11 +232,12 @@ def _npz_data(data):
     only 2-D array), the extent of matplotlib's sample DEMs or of x and y, nodata."""
     name = next((n for n in NPZ_NAMES if n in data.files), None)
     if name is None:
-        two_d = [n for n in data.files if data[n].ndim == 2]
+        two_d = [n for n in data.files if len(_npz_shape(data, n)) == 2]
         if len(two_d) != 1:
             raise _DemError(f"no height array: name it one of {', '.join(NPZ_NAMES)} "
                              f"(found {', '.join(data.files) or 'nothing'})")
         name = two_d[0]
+    _check_size(_npz_shape(data, name))
     z = _array(data[name])
     meta = {}
     keys = set(data.files)
@@ -242,8 +272,16 @@ def _npz_data(data):
 
 
 def _png(path):
+    import warnings
+
     from PIL import Image
-    with Image.open(path) as im:
+    with warnings.catch_warnings():
+        # (Pillow warns of pictures over 89 M pixels, past the CLI's one line: the
+        # size check says what is too big; it still refuses over 179 M itself)
+        warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+        im = Image.open(path)
+    with im:
+        _check_size((im.size[1], im.size[0]))
         if im.mode in ("I;16", "I;16B", "I;16L", "I", "F", "L"):
             z = np.array(im)
         elif im.mode in ("LA", "La", "P", "PA", "RGB", "RGBA"):
@@ -270,6 +308,7 @@ def _geotiff(path):
             if not tif.pages:
                 raise _DemError("no image in the file")
             page = tif.pages[0]
+            _check_size(page.shape)
             z = page.asarray()
             if z.ndim == 3 and z.shape[-1] == 1:
                 z = z[..., 0]

@@ -161,6 +161,42 @@ def test_bad_files_are_value_errors(tmp_path):
         fc.read_dem(np.zeros((3, 3)), extent=(0, 0, 1, 2))
 
 
+def test_a_dem_too_big_to_draw_is_refused_from_its_header(tmp_path, monkeypatch):
+    """Each reader checks the heights' count in the file's header against the machine's
+    memory (terrain.BYTES_PER_HEIGHT each) before it decodes them: a 1.8 MB
+    zlib-compressed TIFF of 30000 x 30000 zeros filled a 24 GiB machine. Here the
+    machine is made small instead (16 x 12 heights need 18 KiB); the TIFF's and PNG's
+    decoders are made to fail the test if they are reached."""
+    from PIL import Image
+
+    import sys
+
+    import floatcol._memory as memory
+    terrain = sys.modules["floatcol.terrain"]        # (fc.terrain is the function)
+    z = np.zeros((12, 16), np.uint16)
+    np.save(tmp_path / "a.npy", z)
+    np.savez_compressed(tmp_path / "b.npz", elevation=z)
+    np.savez_compressed(tmp_path / "c.npz", anything=z, x=np.arange(16.0))
+    Image.fromarray(z).save(tmp_path / "d.png")
+    files = ["a.npy", "b.npz", "c.npz", "d.png"]
+    tifffile = pytest.importorskip("tifffile", reason="the optional extra floatcol[geotiff]")
+    tifffile.imwrite(tmp_path / "e.tif", z, compression="zlib")
+    files.append("e.tif")
+    need = 12 * 16 * terrain.BYTES_PER_HEIGHT
+    for name in files:          # (they read while the machine is as large as they need)
+        assert fc.read_dem(tmp_path / name).hf.shape == (12, 16)
+
+    def decoded(*a, **k):
+        raise AssertionError("decoded before its size was checked")
+    monkeypatch.setattr(memory, "machine_bytes", lambda: (need - 1) / memory.SHARE)
+    monkeypatch.setattr(tifffile.TiffPage, "asarray", decoded)
+    monkeypatch.setattr(Image.Image, "load", decoded)
+    for name in files:
+        with pytest.raises(ValueError, match=f"{name}': its 12 x 16 heights need about 0.0 GiB "
+                                             "to draw, more than this machine has"):
+            fc.read_dem(tmp_path / name)
+
+
 def test_a_damaged_geotiff_is_one_line_from_the_cli(tmp_path):
     """tifffile logs what it finds wrong in a damaged file (its own names) through
     Python's logging, which a command line without handlers prints to stderr: the CLI

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass
 
 import numpy as np
 
 from .. import _pool
+from .._memory import fits
 from ..kernels import layout as L
 from ..kernels.column import H_SIZE, column_kernel
 from ..kernels.layout import G_SIZE
@@ -145,10 +145,6 @@ def check_memory(W, H, n_tiles, n_lines, sub_columns):
 
 def check_bytes(W, H, need):
     """ValueError (too_large) where ``need`` bytes of buffers would not fit in 80 % of
-    the machine's memory."""
-    try:
-        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    except (AttributeError, ValueError, OSError):      # (not POSIX: MemoryError decides)
-        return
-    if need > 0.8 * total:
+    the machine's memory (_memory.fits)."""
+    if not fits(need):
         raise ValueError(too_large(W, H, need))

@@ -125,7 +125,8 @@ class HeightField(Surface):
 
     def __init__(self, z, u=None, v=None):
         try:
-            z = np.array(z, dtype=np.float64)
+            with np.errstate(invalid="ignore"):          # (signalling NaNs: holes below)
+                z = np.array(z, dtype=np.float64)
         except (TypeError, ValueError) as exc:
             raise ValueError(f"HeightField needs a 2-D array of numbers: {exc}") from None
         if z.ndim != 2 or z.shape[0] < 2 or z.shape[1] < 2:

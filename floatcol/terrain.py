@@ -58,7 +58,11 @@ def read_dem(path, *, extent=None, nodata=None, vert_exag=1.0, geographic=None):
     else:
         z, meta = _array(path), {}
     vert_exag = _positive("vert_exag", vert_exag)
-    z = np.array(z, dtype=np.float64)
+    with np.errstate(invalid="ignore"):
+        # (a damaged file may hold signalling NaNs: every operation on them warns, a
+        # second line on the CLI's stderr; they are holes, quiet NaNs from here on)
+        z = np.array(z, dtype=np.float64)
+    z[np.isnan(z)] = np.nan
     for value in (meta.get("nodata"), nodata):
         if value is not None:
             z[z == float(value)] = np.nan

@@ -197,6 +197,25 @@ def test_a_dem_too_big_to_draw_is_refused_from_its_header(tmp_path, monkeypatch)
             fc.read_dem(tmp_path / name)
 
 
+def test_signalling_nans_in_a_file_are_holes_without_warnings(tmp_path):
+    """A damaged file can hold signalling NaNs (found by flipping bytes of DEM files):
+    casting or multiplying them warned "invalid value encountered", a second line on
+    the CLI's stderr. They are holes like any NaN, and nothing warns."""
+    import warnings
+    z64 = corner_peak()
+    z64[3, 4] = np.array([0x7FF0000000000001], dtype=np.uint64).view(np.float64)[0]
+    z32 = corner_peak().astype(np.float32)
+    z32[3, 4] = np.array([0x7F800001], dtype=np.uint32).view(np.float32)[0]
+    np.save(tmp_path / "a.npy", z64)
+    np.save(tmp_path / "b.npy", z32)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for name in ("a.npy", "b.npy"):
+            hf = fc.read_dem(tmp_path / name, vert_exag=2)
+            assert np.isnan(hf.hf[-4, 4]) and np.isfinite(hf.hf).sum() == z64.size - 1
+        assert np.isnan(fc.HeightField(z32).hf[3, 4])
+
+
 def test_a_damaged_geotiff_is_one_line_from_the_cli(tmp_path):
     """tifffile logs what it finds wrong in a damaged file (its own names) through
     Python's logging, which a command line without handlers prints to stderr: the CLI

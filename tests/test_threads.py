@@ -64,3 +64,41 @@ def test_one_thread_equals_default(tmp_path, kw, monkeypatch):
     for name in ("rgba", "intensity", "side", "depth"):
         np.testing.assert_array_equal(one[name], getattr(r, name), err_msg=name)
     assert int(one["samples"]) == r.stats["samples"]
+
+
+CONCURRENT = """
+import sys, threading, numpy as np, numba, floatcol as fc
+exprs = ["3*sin(u*cos(v))", "u*v/5", "sin(u) + cos(v)", "exp(-(u*u + v*v)/8)*4"]
+kws = [dict(), dict(projection="perspective"), dict(antialias="area", lightsource=(315, 25),
+                                                    shadows=True), dict(opacity=0.6)]
+alone = [fc.render(e, size=(96, 72), **kw).rgba for e, kw in zip(exprs, kws)]
+assert numba.threading_layer() == "workqueue", numba.threading_layer()
+same, errors = [], []
+def work(k):
+    try:
+        for _ in range(6):
+            same.append(np.array_equal(fc.render(exprs[k], size=(96, 72), **kws[k]).rgba,
+                                       alone[k]))
+    except Exception as exc:
+        errors.append(repr(exc))
+threads = [threading.Thread(target=work, args=(k,)) for k in range(4)]
+for t in threads:
+    t.start()
+for t in threads:
+    t.join()
+assert not errors, errors
+assert len(same) == 24 and all(same), same
+print("ok")
+"""
+
+
+def test_renders_from_several_threads_with_numbas_workqueue_layer():
+    """Numba's workqueue threading layer (where neither TBB nor OpenMP loads: a Mac
+    without libomp, a slim container) is not thread-safe: two Python threads launching
+    parallel kernels at once made it abort the process ("Concurrent access has been
+    detected"). Four threads render at once under it (its kernels' launches take one
+    lock there, kernels/_jit.py _Exclusive): every picture as rendered alone."""
+    env = dict(os.environ, NUMBA_THREADING_LAYER="workqueue", FLOATCOL_DRAFT="0")
+    res = subprocess.run([sys.executable, "-c", CONCURRENT], env=env, capture_output=True,
+                         text=True, timeout=900)
+    assert res.returncode == 0 and res.stdout.strip().endswith("ok"), res.stderr[-2000:]

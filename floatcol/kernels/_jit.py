@@ -1,4 +1,6 @@
 """The one place where Numba decorator options are spelled."""
+import threading
+
 import numba
 from numba import types
 from numba.core import cgutils
@@ -68,13 +70,67 @@ ngjit_inline = numba.njit(cache=True, nogil=True, error_model="numpy", **_NRT_OF
 #: (each call then a null test). Allocating here is a compile error.
 ngjit_nrt_free = numba.njit(cache=True, nogil=True, error_model="numpy", **_NRT_OFF,
                             **_LLVM_CALL)
-#: Kernels: ``prange`` over pixel columns.
-ngjit_parallel = numba.njit(cache=True, nogil=True, parallel=True, error_model="numpy",
-                            **_LLVM_CALL)
+#: Kernels: ``prange`` over pixel columns (launched from Python only, through
+#: _Exclusive).
+_parallel = numba.njit(cache=True, nogil=True, parallel=True, error_model="numpy",
+                       **_LLVM_CALL)
 #: ... and one that allocates nothing and calls helpers with arrays per pixel (the
 #: finishing pass): no reference counting, as ngjit_nrt_free.
-ngjit_parallel_nrt_free = numba.njit(cache=True, nogil=True, parallel=True,
-                                     error_model="numpy", **_NRT_OFF, **_LLVM_CALL)
+_parallel_nrt_free = numba.njit(cache=True, nogil=True, parallel=True, error_model="numpy",
+                                **_NRT_OFF, **_LLVM_CALL)
+
+#: held by a parallel kernel's launch while Numba's threading layer may be workqueue
+_LAUNCH = threading.RLock()
+#: the threading layer, once Numba has chosen it (at the first parallel launch)
+_layer = None
+
+
+def _thread_safe_layer():
+    """Whether Numba's threading layer is known to take launches from several Python
+    threads at once (TBB, OpenMP): workqueue does not, nor is it known before the
+    first launch."""
+    global _layer
+    if _layer is None:
+        try:
+            _layer = numba.threading_layer()
+        except ValueError:                 # (no parallel function has run yet)
+            return False
+    return _layer != "workqueue"
+
+
+class _Exclusive:
+    """A parallel kernel whose launches take one lock while Numba's threading layer is
+    workqueue (or not yet chosen): that layer is not thread-safe, and two Python
+    threads rendering at once (a notebook's widgets, a web server's requests) made it
+    abort the whole process ("Concurrent access has been detected"). Numba takes it
+    where neither TBB nor OpenMP loads (a Mac without libomp, a slim container
+    without libgomp). With TBB or OpenMP the kernel is called as it is. Attributes are
+    the dispatcher's (py_func, signatures, ...)."""
+
+    def __init__(self, dispatcher):
+        self._dispatcher = dispatcher
+        self.__doc__ = dispatcher.__doc__
+        self.__name__ = dispatcher.__name__
+        self.__wrapped__ = dispatcher
+
+    def __call__(self, *args, **kwargs):
+        if _thread_safe_layer():
+            return self._dispatcher(*args, **kwargs)
+        with _LAUNCH:
+            return self._dispatcher(*args, **kwargs)
+
+    def __getattr__(self, name):
+        return getattr(self._dispatcher, name)
+
+
+def ngjit_parallel(fn):
+    """Kernels: ``prange`` over pixel columns (_parallel), launched through _Exclusive."""
+    return _Exclusive(_parallel(fn))
+
+
+def ngjit_parallel_nrt_free(fn):
+    """As ngjit_parallel, without reference counting (_parallel_nrt_free)."""
+    return _Exclusive(_parallel_nrt_free(fn))
 
 
 def compile_surface_fn(pyfunc):

@@ -146,8 +146,8 @@ def _check_memory(frames, size):
     it renders."""
     need = frames * int(size[0]) * int(size[1]) * 4
     if not fits(need):
-        raise ValueError(f"{frames} frames of {size[0]}x{size[1]} take {need / 2**30:.1f} GiB, more "
-                         "than this machine has: give fewer frames or a smaller size")
+        raise ValueError(f"{frames} frames of {size[0]}x{size[1]} take {need / 2**30:.1f} GiB, "
+                         "more than this machine has: give fewer frames or a smaller size")
 
 
 def _time_range(t):
@@ -173,11 +173,12 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     (symbol, low, high) (the symbol defaults to t). ``endpoint=False`` leaves out
     t = high, so a periodic clip loops without a repeated frame. ``output``: a .gif or
     .mp4 file to write, ``fps`` frames a second (0.01 to 120). Other options as
-    :func:`floatcol.plot_surface`; ``lightsource``
-    may be a function of t giving (azdeg, altdeg) (a moving sun, with ``shadows=True``
-    its shadows move). ``client``: a dask.distributed Client: the frames are rendered
-    as its tasks (each worker compiles the expression once; floatcol/cluster.py), the
-    same pictures in the same order. Returns an :class:`Animation`.
+    :func:`floatcol.plot_surface`; ``lightsource`` may be a function of t giving
+    (azdeg, altdeg) (a moving sun, with ``shadows=True`` its shadows move).
+    ``client``: a dask.distributed Client: the frames are rendered as its tasks (each
+    worker compiles the expression once; floatcol/cluster.py), the same pictures in
+    the same order. A clip whose pictures would not fit in the machine's memory is a
+    ValueError before its first frame. Returns an :class:`Animation`.
     """
     import time as _time
 

@@ -250,7 +250,8 @@ def build_parser():
                    metavar="LOW:HIGH", help="time range (default 0:2pi)")
     a.add_argument("--time-var", default="t", help="name of the time variable (default t)")
     a.add_argument("--frames", type=int, default=60, help="number of frames (default 60)")
-    a.add_argument("--fps", type=float, default=20.0, help="frames per second, 0.01 to 120 (default 20)")
+    a.add_argument("--fps", type=float, default=20.0,
+                   help="frames per second, 0.01 to 120 (default 20)")
     t = sub.add_parser("terrain", help="render a DEM file (a terrain) to an image",
                        epilog=TERRAIN_EXAMPLES,
                        formatter_class=argparse.RawDescriptionHelpFormatter)

@@ -462,8 +462,14 @@ def _client(address):
                          "'floatcol[dask]'") from None
     try:
         return Client(address, timeout=10)
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise UsageError(f"cannot reach the scheduler {address!r}: {exc}") from None
+    except Exception as exc:
+        # (any failure to connect: a wrong address, no answer, or something there that
+        # is not a dask scheduler: a stranger's bytes read as a message length made
+        # distributed ask for 3 EiB, a MemoryError and its traceback)
+        reason = (str(exc).strip().splitlines() or [type(exc).__name__])[0]
+        if not isinstance(exc, (OSError, TimeoutError, ValueError)):
+            reason = f"it did not answer as a dask scheduler ({type(exc).__name__}: {reason})"
+        raise UsageError(f"cannot reach the scheduler {address!r}: {reason}") from None
 
 
 def _gallery(args):

@@ -151,6 +151,38 @@ def test_columns_say_what_to_fix():
                                         columns=(30, 20)))
 
 
+def test_a_scheduler_address_where_no_scheduler_answers(tmp_path, capsys):
+    """--scheduler pointing at a service that is not a dask scheduler (found trying an
+    address of this machine's network, where a web proxy answers): its answer's first
+    bytes, read as a message's length, made distributed ask for exabytes, a MemoryError
+    and its traceback. One line and exit 2, as any bad option; nothing written."""
+    import socket
+    import threading
+
+    pytest.importorskip("distributed", reason="the dask extra (in the test extras): pip "
+                        "install 'floatcol[dask]'")
+    from floatcol.cli import main
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(1)
+
+    def stranger():                      # (a web server, as the one found was)
+        conn, _ = server.accept()
+        conn.recv(1024)
+        conn.sendall(b"HTTP/1.1 400 Bad Request\r\nconnection: close\r\n"
+                     b"content-length: 0\r\n\r\n")
+        conn.close()
+    threading.Thread(target=stranger, daemon=True).start()
+    address = "tcp://127.0.0.1:%d" % server.getsockname()[1]
+    assert main(["gallery", "build", "-o", str(tmp_path / "g"), "--only", "saddle",
+                 "--scheduler", address]) == 2
+    server.close()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"floatcol: error: cannot reach the scheduler "
+                                               f"'{address}'"), err
+    assert not (tmp_path / "g").exists()
+
+
 @pytest.fixture(scope="module")
 def client():
     distributed = pytest.importorskip("distributed", reason="the dask extra (in the test "

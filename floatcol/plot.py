@@ -19,6 +19,7 @@ from .color import colormap_lut
 from .output import png_bytes, save_image
 from .light import world_to_screen_direction  # noqa: F401 (kept importable here)
 from .render import DEFAULT_RANGE, Render, render
+from .view import _number
 from .surface import HeightField, Surface, as_surface, check_range, free_names
 from .view import _robust_range
 
@@ -287,9 +288,9 @@ class SurfacePlot(_ScalarMappable):
     def view_init(self, elev=None, azim=None):
         """Set the view as matplotlib's Axes3D.view_init does (degrees)."""
         if elev is not None:
-            self.elev = float(np.clip(elev, -90.0, 90.0))
+            self.elev = float(np.clip(_number("elev", elev), -90.0, 90.0))
         if azim is not None:
-            self.azim = float(azim)
+            self.azim = _number("azim", azim)
         ax = None if self.artist is None else self.artist.axes
         if getattr(ax, "name", "") == "3d":      # a 3-D Axes owns the camera
             ax.view_init(elev=self.elev, azim=self.azim)

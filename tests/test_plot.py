@@ -192,6 +192,20 @@ def test_save_refuses_unknown_format_and_writes_nothing(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.parametrize("call,needle", [
+    # (numpy's UFuncTypeError from clipping a string; Python's TypeError dividing by one)
+    (lambda p, d: p.view_init("x"), "elev must be a number, got 'x'"),
+    (lambda p, d: p.view_init(30, float("inf")), "azim must be finite"),
+    (lambda p, d: p.save(d / "s.pdf", dpi="x"), "dpi must be a number, got 'x'"),
+    (lambda p, d: p.save(d / "s.svg", dpi=-1), "dpi must be a positive number"),
+])
+def test_a_plots_methods_name_what_to_fix(tmp_path, call, needle):
+    p = fc.plot_surface("x", ("x", 0, 1), ("y", 0, 1), size=SMALL)
+    with pytest.raises(ValueError, match=needle):
+        call(p, tmp_path)
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_repr_png_is_the_picture():
     p = fc.plot_surface("cos(x)*cos(y)", ("x", -3, 3), ("y", -3, 3), size=SMALL)
     data = p._repr_png_()

@@ -251,10 +251,13 @@ class SurfacePlot(_ScalarMappable):
         try:
             p = np.column_stack([np.ravel(np.asarray(a, dtype=float)) for a in (x, y, z)])
             d = np.column_stack([np.ravel(np.asarray(a, dtype=float))
-                                 for a in (u, v, w)]) * float(length)
+                                 for a in (u, v, w)]) * _number("length", length)
         except (TypeError, ValueError):
+            p = d = None
+        if p is None or p.shape != d.shape:
             raise ValueError("quiver: x, y, z, u, v, w must be numbers or arrays of one "
-                             "length") from None
+                             "length, and length a number")
+        arrow_length_ratio = _number("arrow_length_ratio", arrow_length_ratio)
         tip = p + d
         # the head: two strokes back from the tip, in the plane of the arrow and z
         side = np.cross(d, np.array([0.0, 0.0, 1.0]))

@@ -198,6 +198,11 @@ def test_save_refuses_unknown_format_and_writes_nothing(tmp_path):
     (lambda p, d: p.view_init(30, float("inf")), "azim must be finite"),
     (lambda p, d: p.save(d / "s.pdf", dpi="x"), "dpi must be a number, got 'x'"),
     (lambda p, d: p.save(d / "s.svg", dpi=-1), "dpi must be a positive number"),
+    # (numpy's "operands could not be broadcast together with shapes (5,3) (10,3)")
+    (lambda p, d: p.quiver(*[np.zeros(5)] * 3, *[np.zeros((5, 2))] * 3),
+     "quiver: x, y, z, u, v, w must be numbers or arrays of one length"),
+    (lambda p, d: p.quiver(0, 0, 0, 1, 1, 1, arrow_length_ratio="x"),
+     "arrow_length_ratio must be a number"),
 ])
 def test_a_plots_methods_name_what_to_fix(tmp_path, call, needle):
     p = fc.plot_surface("x", ("x", 0, 1), ("y", 0, 1), size=SMALL)

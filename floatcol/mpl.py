@@ -417,6 +417,7 @@ class OccludedObjects(Artist):
         super().__init__()
         self.plot = plot
         self.xyz = np.asarray(xyz, dtype=float)
+        _check_style(kind, style, len(self.xyz))
         self.kind = kind                  # "points", "line" or "text"
         self.text = ""
         self.style = style
@@ -484,6 +485,38 @@ class OccludedObjects(Artist):
                 line.set_clip_box(self.axes.bbox)
                 line.draw(renderer)
         self.stale = False
+
+
+def _check_style(kind, style, n):
+    """ValueError where matplotlib could not draw ``n`` points (kind "points"), a line
+    or a text in ``style``, as OccludedObjects.draw would make them: checked when they
+    are added, since a style that failed at the figure's draw (an unknown keyword, a
+    colour or size for each of a different number of points) failed at every later
+    draw of it."""
+    from matplotlib.collections import PathCollection
+    from matplotlib.colors import to_rgba_array
+    from matplotlib.lines import Line2D
+    from matplotlib.markers import MarkerStyle
+    from matplotlib.text import Text
+    try:
+        if kind == "text":
+            Text(0, 0, "", **style)
+        elif kind == "points":
+            st = dict(style)
+            MarkerStyle(st.pop("marker", "o"))
+            sizes = np.ravel(np.asarray(st.pop("s", 20.0), float))
+            if sizes.size not in (1, n):
+                raise ValueError(f"{sizes.size} sizes for {n} points")
+            colors = to_rgba_array(st.pop("c", st.pop("color", "k")))
+            if len(colors) not in (1, n):
+                raise ValueError(f"{len(colors)} colours for {n} points")
+            PathCollection([], sizes=sizes, facecolors=colors, **st)
+        else:
+            Line2D([0.0], [0.0], **style)
+    except Exception as exc:
+        first = (str(exc).strip().splitlines() or [type(exc).__name__])[0]
+        what = {"points": "scatter", "line": "plot", "text": "text"}[kind]
+        raise ValueError(f"{what}: a style matplotlib cannot draw ({first})") from None
 
 
 def _per_point(color, keep):

@@ -339,6 +339,31 @@ def test_objects_far_off_or_not_numbers_are_simply_not_shown():
         p.scatter(["a"], [0], [0])
 
 
+@pytest.mark.parametrize("add,needle", [
+    (lambda p: p.scatter([0, 1, 0.5], [0, 1, 0], [0, 1, 0], bogus=1),
+     "scatter: a style matplotlib cannot draw .*unexpected keyword argument 'bogus'"),
+    (lambda p: p.scatter([0, 1, 0.5], [0, 1, 0], [0, 1, 0], s=[1, 2]), r"2 sizes for 3 points"),
+    (lambda p: p.scatter([0, 1, 0.5], [0, 1, 0], [0, 1, 0], c=["r", "g"]),
+     r"2 colours for 3 points"),
+    (lambda p: p.plot([0, 1], [0, 1], [0, 1], color="nope"), "plot: a style matplotlib"),
+    (lambda p: p.text(0, 0, 0, "peak", fontsize="huge"), "text: a style matplotlib"),
+])
+def test_a_style_matplotlib_cannot_draw_is_refused_when_added(add, needle):
+    """A style that failed at the figure's draw (an unknown keyword, sizes or colours
+    for another number of points) was kept, and every later draw of the figure failed
+    with it (found by fuzzing the plot's methods): a ValueError when it is added
+    instead, and the figure draws on."""
+    fig = plt.figure()
+    ax = fig.add_subplot(projection="3d")
+    p = fc.plot_surface("x*y", ("x", -1, 1), ("y", -1, 1), ax=ax)
+    with pytest.raises(ValueError, match=needle):
+        add(p)
+    good = p.scatter([0, 1, 0.5], [0, 1, 0], [0, 1, 0], c=["r", "g", "b"], s=[5, 6, 7])
+    fig.canvas.draw()
+    plt.close(fig)
+    assert good.visible is not None and len(good.visible) == 3
+
+
 def test_mplot3d_preview_shrinks_and_stays_in_place():
     """A preview rendered MAX_SHRINK times smaller each way lands where the full
     frame of the same view does (its pixels enlarged)."""

@@ -22,6 +22,10 @@ from matplotlib.image import AxesImage
 
 DRAG_PIXEL_STEP = 3.0
 ZOOM_PER_STEP = 1.1
+#: the scroll wheel's zoom stays within 1 / ZOOM_LIMIT .. ZOOM_LIMIT of the fitted view;
+#: one event counts at most ZOOM_STEPS_MAX steps
+ZOOM_LIMIT = 1e6
+ZOOM_STEPS_MAX = 50
 #: A drag's preview frame should render in about this many seconds (with
 #: matplotlib's own drawing, 30 frames a second at 1920x1080 on 2 cores)
 PREVIEW_SECONDS = 0.012
@@ -194,7 +198,11 @@ class SurfaceImage(AxesImage):
     def on_scroll(self, event):
         if event.inaxes is not self.axes:
             return
-        self.plot.zoom *= ZOOM_PER_STEP ** event.step
+        # (a wheel's steps are small, but a stream of them or a driver's huge one must
+        # not overflow the zoom to infinity: it stays within ZOOM_LIMIT either way)
+        step = min(max(float(event.step), -ZOOM_STEPS_MAX), ZOOM_STEPS_MAX)
+        self.plot.zoom = min(max(self.plot.zoom * ZOOM_PER_STEP ** step, 1.0 / ZOOM_LIMIT),
+                             ZOOM_LIMIT)
         self.stale = True
         self.axes.figure.canvas.draw_idle()
 

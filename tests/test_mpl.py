@@ -113,6 +113,29 @@ def test_interactive_drag_rotates_and_scroll_zooms(fig_ax):
     assert plot.render.view.scale == pytest.approx(final.view.scale * 1.1 ** 2, rel=1e-9)
 
 
+def test_the_scroll_wheels_zoom_stays_finite(fig_ax):
+    """A scroll event of 1e9 steps overflowed the zoom (1.1 ** 1e9: OverflowError in the
+    callback; a stream of large ones reached infinity): one event counts at most
+    ZOOM_STEPS_MAX steps and the zoom stays within ZOOM_LIMIT, and the picture draws."""
+    from floatcol.mpl import ZOOM_LIMIT, ZOOM_PER_STEP, ZOOM_STEPS_MAX
+    fig, ax = fig_ax
+    plot = fc.plot_surface(EXPR, *RNG, ax=ax, interactive=True)
+    fig.canvas.draw()
+    bb = ax.bbox
+    cx, cy = bb.x0 + bb.width / 2, bb.y0 + bb.height / 2
+    _mouse(fig, "scroll_event", cx, cy, button="up", step=1e9)
+    assert plot.zoom == pytest.approx(ZOOM_PER_STEP ** ZOOM_STEPS_MAX)
+    for _ in range(10):
+        _mouse(fig, "scroll_event", cx, cy, button="up", step=1e9)
+    assert plot.zoom == ZOOM_LIMIT
+    fig.canvas.draw()
+    assert (plot.render.side != 0).all()          # (the surface fills the picture)
+    for _ in range(30):
+        _mouse(fig, "scroll_event", cx, cy, button="down", step=-1e9)
+    assert plot.zoom == 1 / ZOOM_LIMIT
+    fig.canvas.draw()
+
+
 def test_cursor_data_is_the_surface_point(fig_ax):
     fig, ax = fig_ax
     plot = fc.plot_surface("x + 2*y", ("x", -1, 1), ("y", -1, 1), ax=ax, proj_type="ortho")

@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import contextlib
-import math
 import os
 import tempfile
 
@@ -65,12 +64,6 @@ def save_image(rgba, path, dpi=100):
     EPS or PS through matplotlib (the picture at ``dpi``, so it keeps its pixel size in
     inches)."""
     path, ext = check_output(path)
-    try:
-        dpi = float(dpi)
-    except (TypeError, ValueError):
-        raise ValueError(f"dpi must be a number, got {dpi!r}") from None
-    if not (math.isfinite(dpi) and dpi > 0):
-        raise ValueError(f"dpi must be a positive number, got {dpi!r}")
     rgba = np.ascontiguousarray(rgba)
     fmt = IMAGE_FORMATS[ext]
     with atomic_file(path) as tmp:

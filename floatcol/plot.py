@@ -421,7 +421,8 @@ class SurfacePlot(_ScalarMappable):
         (atomically)."""
         from .output import check_output
         check_output(path)
-        return save_image(self._current().rgba, path, dpi=dpi or self.dpi)
+        dpi = self.dpi if dpi is None else _number("dpi", dpi, positive=True)
+        return save_image(self._current().rgba, path, dpi=dpi)
 
     def show(self):
         """Show the picture in a matplotlib window (or inline in Jupyter)."""

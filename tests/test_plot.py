@@ -197,7 +197,7 @@ def test_save_refuses_unknown_format_and_writes_nothing(tmp_path):
     (lambda p, d: p.view_init("x"), "elev must be a number, got 'x'"),
     (lambda p, d: p.view_init(30, float("inf")), "azim must be finite"),
     (lambda p, d: p.save(d / "s.pdf", dpi="x"), "dpi must be a number, got 'x'"),
-    (lambda p, d: p.save(d / "s.svg", dpi=-1), "dpi must be a positive number"),
+    (lambda p, d: p.save(d / "s.svg", dpi=-1), "dpi must be positive"),
     # (numpy's "operands could not be broadcast together with shapes (5,3) (10,3)")
     (lambda p, d: p.quiver(*[np.zeros(5)] * 3, *[np.zeros((5, 2))] * 3),
      "quiver: x, y, z, u, v, w must be numbers or arrays of one length"),

@@ -19,9 +19,8 @@ from .color import colormap_lut
 from .output import png_bytes, save_image
 from .light import world_to_screen_direction  # noqa: F401 (kept importable here)
 from .render import DEFAULT_RANGE, Render, render
-from .view import _number
 from .surface import HeightField, Surface, as_surface, check_range, free_names
-from .view import _robust_range
+from .view import _number, _robust_range
 
 #: plot_surface's own defaults where they differ from render()'s
 DEFAULT_SIZE = (800, 600)

@@ -34,9 +34,9 @@ AUTO_RELIEF = 0.08
 NPZ_NAMES = ("elevation", "z", "dem", "heights", "height", "Z")
 #: bytes a DEM's height takes at most from its file to its first picture (`floatcol
 #: terrain` of 4097^2 heights peaked at 1.32-1.43 GB: 79-85 bytes a height, the
-#: process's own ~0.12 GB included), which
-#: each reader checks from the file's header before it decodes the heights: a 1.8 MB
-#: zlib-compressed TIFF of 30000 x 30000 zeros took the whole machine's memory
+#: process's own ~0.12 GB included), which each reader checks from the file's header
+#: before it decodes the heights: a 1.8 MB zlib-compressed TIFF of 30000 x 30000
+#: zeros took the whole machine's memory
 BYTES_PER_HEIGHT = 96
 
 

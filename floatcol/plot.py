@@ -126,7 +126,7 @@ class SurfacePlot(_ScalarMappable):
                  azim=DEFAULT_AZIM, proj_type=DEFAULT_PROJ, focal_length=None, cmap=None,
                  norm=None, vmin=None, vmax=None, color=None, shade=True, lightsource=None,
                  light=None, ambient=None, dpi=100, label="", render_options=None, others=()):
-        from .view import _number, check_size
+        from .view import check_size
 
         self.surface = surface
         self.domain = domain

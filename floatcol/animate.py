@@ -27,9 +27,9 @@ class Animation:
     the plot_surface options the whole clip was drawn with (scale, center, vmin, ...)."""
 
     def __init__(self, frames, times, fps, stats=None):
-        self.frames = frames
+        self.frames = _check_frames(frames)
         self.times = times
-        self.fps = fps
+        self.fps = _check_fps(fps)
         self.stats = stats or {}
 
     def __len__(self):
@@ -46,9 +46,7 @@ class Animation:
     def _repr_html_(self):
         import io
         buf = io.BytesIO()
-        _gif_images(self.frames)[0].save(buf, format="GIF", save_all=True,
-                                          append_images=_gif_images(self.frames)[1:],
-                                          duration=round(1000 / self.fps), loop=0)
+        _save_gif(self.frames, buf, self.fps)
         data = base64.b64encode(buf.getvalue()).decode("ascii")
         return f'<img src="data:image/gif;base64,{data}"/>'
 
@@ -70,11 +68,45 @@ MIN_FPS = 0.01
 GIF_MAX_MS = 655_350
 
 
+def _check_fps(fps):
+    if not isinstance(fps, (int, float)) or isinstance(fps, bool) or not MIN_FPS <= fps <= 120:
+        raise ValueError(f"fps must be a number in [{MIN_FPS}, 120], got {fps!r}")
+    return fps
+
+
+def _check_frames(frames):
+    """An Animation's frames: one or more (H, W, 4) uint8 pictures (an (H, W, 3) one
+    taken as opaque) of one size, as a list; ValueError says what is wrong."""
+    try:
+        out = [np.asarray(f) for f in frames]
+    except TypeError:
+        raise ValueError("frames must be a list of (H, W, 4) uint8 pictures, got "
+                         f"{frames!r}") from None
+    if not out:
+        raise ValueError("frames is empty: give at least one (H, W, 4) uint8 picture")
+    for k, f in enumerate(out):
+        if f.dtype != np.uint8 or f.ndim != 3 or f.shape[2] not in (3, 4) or min(f.shape[:2]) < 1:
+            raise ValueError(f"frame {k} must be an (H, W, 4) uint8 picture, got shape "
+                             f"{f.shape} of {f.dtype}")
+        if f.shape[2] == 3:
+            out[k] = np.dstack([f, np.full(f.shape[:2], 255, np.uint8)])
+        if out[k].shape != out[0].shape:
+            raise ValueError(f"frame {k} is {f.shape[1]}x{f.shape[0]}, frame 0 "
+                             f"{out[0].shape[1]}x{out[0].shape[0]}: frames must be of one size")
+    return out
+
+
 def write_gif(frames, path, fps):
     """The frames as a looping GIF, 1 / fps s each (20 ms at least). Frames that equal
     the one before lengthen its hold instead (as Pillow would merge them), which a GIF
     keeps for at most GIF_MAX_MS: a picture held longer (a still surface at a slow
     frame rate) is shown that long."""
+    with atomic_file(path) as tmp:
+        _save_gif(frames, tmp, fps)
+
+
+def _save_gif(frames, target, fps):
+    """write_gif's GIF to a path or a binary file object."""
     images = _gif_images(frames)
     step = min(max(20, round(1000 / fps)), GIF_MAX_MS)
     kept, holds, last = [], [], None
@@ -86,9 +118,8 @@ def write_gif(frames, path, fps):
         kept.append(im)
         holds.append(step)
         last = key
-    with atomic_file(path) as tmp:
-        kept[0].save(tmp, format="GIF", save_all=True, append_images=kept[1:],
-                     duration=holds if len(kept) > 1 else holds[0], loop=0)
+    kept[0].save(target, format="GIF", save_all=True, append_images=kept[1:],
+                 duration=holds if len(kept) > 1 else holds[0], loop=0)
 
 
 def write_mp4(frames, path, fps):
@@ -187,8 +218,7 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     t_name, t_lo, t_hi = _time_range(t)
     if isinstance(frames, bool) or not isinstance(frames, (int, np.integer)) or frames < 1:
         raise ValueError(f"frames must be a positive whole number, got {frames!r}")
-    if not isinstance(fps, (int, float)) or isinstance(fps, bool) or not MIN_FPS <= fps <= 120:
-        raise ValueError(f"fps must be a number in [{MIN_FPS}, 120], got {fps!r}")
+    _check_fps(fps)
     if output is not None:
         output, _ = check_output(output, ANIMATION_FORMATS)
     start = _time.perf_counter()

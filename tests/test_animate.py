@@ -98,6 +98,32 @@ def test_a_clip_too_big_to_hold_is_refused_before_it_renders(tmp_path, monkeypat
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.parametrize("frames,fps,needle", [
+    ([], 20, "frames is empty"),
+    ([np.zeros((16, 20, 4), np.uint8), np.zeros((17, 20, 4), np.uint8)], 20,
+     "frame 1 is 20x17, frame 0 20x16: frames must be of one size"),
+    ([np.zeros((16, 20, 4))], 20, r"frame 0 must be an \(H, W, 4\) uint8 picture"),
+    ([np.zeros((0, 0, 4), np.uint8)], 20, "frame 0 must be"),
+    ([np.zeros((16, 20, 4), np.uint8)], 0, "fps must be a number in"),
+    ([np.zeros((16, 20, 4), np.uint8)], "x", "fps must be a number in"),
+])
+def test_an_animation_made_by_hand_says_what_is_wrong(frames, fps, needle, tmp_path):
+    """fc.Animation is public: empty frames, frames of two sizes or of another type, or a
+    bad fps crashed at save (IndexError, TypeError, ffmpeg's own lines on stderr)."""
+    with pytest.raises(ValueError, match=needle):
+        fc.Animation(frames, list(range(len(frames))), fps).save(tmp_path / "a.gif")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_animation_of_opaque_rgb_frames(tmp_path):
+    rgb = np.zeros((16, 20, 3), np.uint8)
+    rgb[:, 10:] = (255, 0, 0)
+    anim = fc.Animation([rgb, rgb[::-1].copy()], [0, 1], 10)
+    assert anim.frames[0].shape == (16, 20, 4) and (anim.frames[0][..., 3] == 255).all()
+    anim.save(tmp_path / "a.gif")
+    assert Image.open(tmp_path / "a.gif").convert("RGB").getpixel((15, 3)) == (255, 0, 0)
+
+
 @pytest.mark.parametrize("kw,needle", [
     (dict(frames=0), "frames"), (dict(t=(1, 1)), "time range"), (dict(t=5), "t must be"),
     (dict(fps=0), "fps"), (dict(output="clip.avi"), "must end in"),

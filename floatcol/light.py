@@ -114,7 +114,17 @@ def _direction(d, kind):
         raise ValueError(f"light must be finite, got {d!r}")
     if x == y == z == 0.0:
         raise ValueError(f"light must be a non-zero direction {frame[:9]}, got {d!r}")
-    return (x, y, z)
+    return tame_direction((x, y, z))
+
+
+def tame_direction(d):
+    """A direction whose squares neither overflow nor underflow: d itself, or where its
+    largest component is beyond 1e+-150, d over that component ((1e300, 1e300, 1)
+    overflowed in its length, three 1e-300s underflowed to a zero length)."""
+    m = max(abs(c) for c in d)
+    if m == 0.0 or 1e-150 < m < 1e150:
+        return tuple(d)
+    return tuple(c / m for c in d)
 
 
 #: the largest angular radius of a light, degrees

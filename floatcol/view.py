@@ -280,6 +280,9 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
             lv = np.array([_number("light", c) for c in light], dtype=float)
         except TypeError:
             raise ValueError(f"light must be a direction (x, y, z) in screen coordinates, got {light!r}") from None
+        if lv.shape == (3,):
+            from .light import tame_direction
+            lv = np.array(tame_direction(lv))
         if lv.shape != (3,) or not np.linalg.norm(lv) > 0:
             raise ValueError(f"light must be a non-zero direction (x, y, z), got {light!r}")
         light = tuple(lv / np.linalg.norm(lv))

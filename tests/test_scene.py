@@ -113,6 +113,25 @@ def test_parts_say_what_to_fix(make, message):
         make()
 
 
+def test_a_lights_direction_at_any_scale():
+    """A direction is only a direction: (1e300, 1e300, 2e300) overflowed in its length
+    (numpy's warning, with shadows too) and three 1e-300s underflowed to "a non-zero
+    direction" error. The same pictures as (1, 1, 2), warning-free; an ordinary
+    direction is kept as given."""
+    import warnings
+    kw = dict(u=(-3, 3), v=(-3, 3), size=(40, 30))
+    ref = fc.render("sin(u)*v", light=fc.Light.directional((1, 1, 2), shadows=True), **kw).rgba
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for s in (1e300, 1e-300):
+            light = fc.Light.directional((s, s, 2 * s), shadows=True)
+            assert np.array_equal(fc.render("sin(u)*v", light=light, **kw).rgba, ref)
+        screen = fc.render("sin(u)*v", light=(1, 2, 3), **kw).rgba
+        assert np.array_equal(fc.render("sin(u)*v", light=(1e-300, 2e-300, 3e-300), **kw).rgba,
+                              screen)
+    assert fc.Light.directional((3, 0, 4)).direction == (3.0, 0.0, 4.0)
+
+
 def test_one_camera_for_every_layer():
     """camera.fit: one scale, centre and viewpoint for all the layers, and the union
     of them fits the picture (the farther surface widens the fit)."""

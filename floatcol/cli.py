@@ -7,6 +7,7 @@ temporary name and renamed at the end.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import sys
 import warnings
@@ -469,7 +470,24 @@ def _client(address):
         reason = (str(exc).strip().splitlines() or [type(exc).__name__])[0]
         if not isinstance(exc, (OSError, TimeoutError, ValueError)):
             reason = f"it did not answer as a dask scheduler ({type(exc).__name__}: {reason})"
+        _close_half_made(exc, Client)
         raise UsageError(f"cannot reach the scheduler {address!r}: {reason}") from None
+
+
+def _close_half_made(exc, client_type):
+    """Close the Client whose constructor raised ``exc`` (found in its traceback's
+    frames) now: left to the garbage collector, its Client.__del__ stopped
+    distributed's shared event loop whenever a collection happened, once while another
+    Client was starting it, a deadlock (a LocalCluster made after it in the same
+    process hung)."""
+    tb = exc.__traceback__
+    while tb is not None:
+        half = tb.tb_frame.f_locals.get("self")
+        if isinstance(half, client_type):
+            with contextlib.suppress(Exception):
+                half.close()
+            break
+        tb = tb.tb_next
 
 
 def _gallery(args):

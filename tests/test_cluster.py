@@ -177,6 +177,15 @@ def test_a_scheduler_address_where_no_scheduler_answers(tmp_path, capsys):
     assert main(["gallery", "build", "-o", str(tmp_path / "g"), "--only", "saddle",
                  "--scheduler", address]) == 2
     server.close()
+    # the half-made Client is closed at once: left to a garbage collection, its __del__
+    # stopped distributed's event loop while the next test's LocalCluster started it,
+    # and the suite hung (a clean clone's run)
+    import gc
+
+    from distributed import Client
+    assert all(c.status in ("closed", "newly-created") for c in gc.get_objects()
+               if isinstance(c, Client))
+    gc.collect()
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(f"floatcol: error: cannot reach the scheduler "
                                                f"'{address}'"), err

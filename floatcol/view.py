@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .kernels import layout as L
+from .light import tame_direction
 from .surface import fit_grid
 
 PROJECTIONS = {"orthographic": True, "ortho": True, "perspective": False, "persp": False}
@@ -281,7 +282,6 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
         except TypeError:
             raise ValueError(f"light must be a direction (x, y, z) in screen coordinates, got {light!r}") from None
         if lv.shape == (3,):
-            from .light import tame_direction
             lv = np.array(tame_direction(lv))
         if lv.shape != (3,) or not np.linalg.norm(lv) > 0:
             raise ValueError(f"light must be a non-zero direction (x, y, z), got {light!r}")

@@ -20,7 +20,7 @@ import time
 import warnings
 from dataclasses import dataclass
 
-from . import color, warmup
+from . import color
 from .camera import fit
 from .light import as_light
 from .passes import (antialias, area, colour, draft, finish, geometry, horizon, lod, overlays,
@@ -123,7 +123,7 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
     if not many and texture is None and draft.supports(quality, views[0]) \
             and quality.device == "cpu" \
             and scene.camera.columns is None \
-            and not first.colored and not first.overlaid and warmup.drafting():
+            and not first.colored and not first.overlaid and _drafting():
         return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
                             stacklevel + 1)
     if not many:
@@ -362,3 +362,10 @@ def empty_message(surface, domain):
     return (f"{what} is NaN, infinite or complex everywhere on {a} in [{ua:g}, {ub:g}], "
             f"{b} in [{va:g}, {vb:g}]: the picture is empty (check the expression and the "
             "ranges)")
+
+
+def _drafting():
+    """warmup.drafting(), warmup imported here: ``python -m floatcol.warmup`` runs that
+    module as __main__, which Python warns about where the package imported it first."""
+    from . import warmup
+    return warmup.drafting()

@@ -155,11 +155,54 @@ def warm():
         r.intensity
 
 
+def warm_all():
+    """Compile (or load) every CPU kernel into Numba's cache, not only the default
+    picture's: small pictures with each engine and pass (antialiasing by sub-columns
+    and by area, translucency, shadows of each kind, textures, colour fields,
+    contours and wireframes, floating horizons, adaptive planes, height fields with
+    objects, a fly-through's level-of-detail engine, Guedes's variants, composites),
+    in both projections. ``python -m floatcol.warmup --all`` runs it: what a machine
+    image or a CI job can do once, so that no later picture waits for a compile
+    (about 3 minutes on 2 cores with an empty cache)."""
+    import numpy as np
+
+    import floatcol as fc
+    from .terrain import GUEDES_VARIANTS, guedes
+    warm()
+    expr = "3*sin(u*cos(v))"
+    for proj in ("orthographic", "perspective"):
+        kw = dict(u=(-5, 5), v=(-5, 5), size=(64, 48), projection=proj)
+        for opts in (dict(antialias=3), dict(antialias="area"), dict(opacity=0.5),
+                     dict(shadows=True), dict(shadows="on-the-fly"),
+                     dict(shadows=True, light_radius=1.0), dict(opacity=0.5, shadows=True),
+                     dict(texture=np.linspace(0, 1, 48).reshape(4, 4, 3)),
+                     dict(color="u + v"), dict(contours=[0.0]), dict(wireframe=(5, 5)),
+                     dict(color="u + v", contours=[0.0]),
+                     dict(color="u + v", contours=[0.0]),
+                     dict(method="horizon"), dict(sampling="adaptive")):
+            fc.render(expr, **kw, **opts).intensity
+    z = np.sin(np.linspace(0, 6, 33))[:, None] * np.cos(np.linspace(0, 5, 33))[None, :]
+    hf = fc.HeightField(3 * z, u=(0, 32), v=(0, 32))
+    for opts in (dict(), dict(antialias="area"), dict(shadows=True),
+                 dict(objects=[fc.tree(16, 16, 3), fc.box(8, 8, 2, 2, 2), fc.pole(20, 20, 4),
+                               fc.marker(24, 8, 1)])):
+        fc.render(hf, size=(64, 48), **opts).intensity
+    cam = fc.fly(hf, (16, 1), heading=0, size=(64, 36), above=4)
+    for area in (False, True):
+        fc.render(hf, **cam, antialias="area" if area else True).intensity
+    for variant in GUEDES_VARIANTS:
+        guedes(hf, (16, 1), size=(32, 18), variant=variant)
+    fc.render_many([fc.Layer(expr, ((-5, 5), (-5, 5))), fc.Layer("u*v/5", ((-5, 5), (-5, 5)))],
+                   size=(64, 48))
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
     os.environ[ENV] = "0"
+    everything = "--all" in argv
+    argv = [a for a in argv if a != "--all"]
     try:
-        warm()
+        warm_all() if everything else warm()
     finally:
         if argv:
             try:

@@ -1,5 +1,8 @@
 import os
+import subprocess
 import sys
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -86,3 +89,132 @@ def demo():
     """Gordon's 3 sin(u cos v), orthographic, rendered once."""
     return fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(160, 120), elev=30, azim=20,
                      shading="lambert")
+
+
+# ---------------------------------------------------------------------------------
+# Background jobs. A clean clone's suite (CI) spent about 160 of its 580 s on two
+# compiles that share nothing with the other tests and run in processes of their own:
+# the kernels with Numba's bounds checks (test_fuzz, its own cache, about 110 s) and
+# the GPU kernels' PTX (test_cuda, about 50 s). Numba compiles on one core, so the
+# other core sat idle through them. A test module registers such work as a job
+# (background_job); once the tests are collected, the jobs of the selected tests run
+# one after another in one thread of this process, each waiting on its subprocess,
+# while the suite goes on; the test takes the outcome (background_result, which
+# waits for it, or runs the job itself where it was not started) and asserts on it
+# as before.
+# ---------------------------------------------------------------------------------
+
+class _Job:
+    def __init__(self, name, consumer, fn, order):
+        self.name = name
+        self.consumer = consumer        # the test function that asserts on the outcome
+        self.fn = fn
+        self.order = order              # the jobs run in this order
+        self.started = False
+        self.done = threading.Event()
+        self.value = None
+        self.error = None
+        self.procs = []                 # subprocesses to stop if the session ends first
+        self._lock = threading.Lock()
+
+    def run(self):
+        """Run the job here, unless it has been started (then: nothing)."""
+        with self._lock:
+            if self.started:
+                return
+            self.started = True
+        try:
+            self.value = self.fn(self)
+        except BaseException as exc:     # (pytest.skip's too: re-raised in the test)
+            self.error = exc
+        finally:
+            self.done.set()
+
+
+_JOBS = {}
+
+
+def background_job(name, consumer, order):
+    """Register fn(job) as the background job ``name`` whose outcome the test function
+    named ``consumer`` asserts on (None: the suite's, run where many tests are
+    selected); fn may add the subprocesses it starts to job.procs (stopped if the
+    session ends before they do). The jobs run by ``order``; their consumers run
+    after every other test, so that the jobs have the whole session to finish."""
+    def register(fn):
+        _JOBS[name] = _Job(name, consumer, fn, order)
+        return fn
+    return register
+
+
+def background_result(name):
+    """The value that job ``name`` returned (waiting for it), or the exception it raised,
+    raised again here."""
+    job = _JOBS[name]
+    job.run()
+    job.done.wait()
+    if job.error is not None:
+        raise job.error
+    return job.value
+
+
+def _run_jobs(jobs):
+    for job in jobs:
+        job.run()
+
+
+#: the suite's own jobs run where at least this many tests are selected
+SUITE_JOBS_MIN_TESTS = 200
+
+
+def _test_name(item):
+    return getattr(item, "originalname", item.name)
+
+
+def pytest_collection_modifyitems(session, config, items):
+    consumers = {job.consumer for job in _JOBS.values()}
+    last = [item for item in items if _test_name(item) in consumers]
+    if last:
+        items[:] = [item for item in items if _test_name(item) not in consumers] + last
+
+
+def pytest_collection_finish(session):
+    wanted = {_test_name(item) for item in session.items}
+    many = len(session.items) >= SUITE_JOBS_MIN_TESTS
+    jobs = sorted((job for job in _JOBS.values()
+                   if job.consumer in wanted or job.consumer is None and many),
+                  key=lambda job: job.order)
+    if jobs:
+        threading.Thread(target=_run_jobs, args=(jobs,), name="floatcol-test-jobs",
+                         daemon=True).start()
+
+
+def pytest_sessionfinish(session):
+    for job in _JOBS.values():
+        for proc in job.procs:
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait()
+
+
+@background_job("kernels", consumer="test_warm_all_compiles_every_kernel", order=1)
+def _compile_every_kernel(job):
+    """A clean clone's suite compiled its CPU kernels as the tests came to them, one
+    after another in the test process (about 140 s): this job compiles those that the
+    default picture does not use (floatcol.warmup.warm_all: sub-columns, area
+    sampling, translucency, shadows, textures, the fly engine, ...) into the same
+    Numba cache in a process of its own, after the first tests have compiled the
+    default picture's (which the others call too: waited for, not compiled twice).
+    Where the cache holds the default kernels already it does nothing."""
+    from floatcol import warmup
+    if warmup.kernels_ready():
+        return None
+    deadline = time.monotonic() + 600.0
+    while not warmup.kernels_ready() and time.monotonic() < deadline:
+        time.sleep(0.5)
+    proc = subprocess.Popen([sys.executable, "-m", "floatcol.warmup", "--all"],
+                            env=dict(os.environ, FLOATCOL_DRAFT="0"),
+                            stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
+    job.procs.append(proc)
+    _, err = proc.communicate()
+    return proc.returncode, err

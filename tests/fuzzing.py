@@ -286,6 +286,7 @@ class Worker:
         self.timeout = timeout
         self.env = env
         self.proc = None
+        self.on_start = None            # called with each process started
 
     def _start(self):
         here = os.path.dirname(os.path.abspath(__file__))
@@ -294,6 +295,8 @@ class Worker:
         self.proc = subprocess.Popen(
             [sys.executable, "-c", "import fuzzing; fuzzing.serve()"], stdin=subprocess.PIPE,
             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, env=env)
+        if self.on_start is not None:
+            self.on_start(self.proc)
         line = self._read(self.timeout * 4)
         if line is None or not json.loads(line).get("ready"):
             raise RuntimeError("the fuzz worker did not start")

@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 import floatcol as fc
-from conftest import reference_for
+from conftest import background_job, background_result, reference_for
 from reference import numpy_surface, psnr, raycast
 from test_fold import ANNULUS, KW as FOLD_KW
 from test_reference import CASES
@@ -201,6 +201,26 @@ def _ptx_key():
     return h.hexdigest()
 
 
+def _ptx_marker():
+    return os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".pytest_cache",
+                        "floatcol-ptx", _ptx_key() + ".ok")
+
+
+@background_job("ptx", order=0, consumer="test_the_column_kernel_compiles_for_a_gpu")
+def _compile_ptx(job):
+    """PTX_SCRIPT in a process of its own (a background job, conftest.py: about 50 s of
+    compiling beside the other tests); nothing where its outcome is remembered."""
+    if os.path.exists(_ptx_marker()) and not os.environ.get("FLOATCOL_PTX_RECOMPILE"):
+        return None
+    proc = subprocess.Popen([sys.executable, "-c", PTX_SCRIPT, PTX_EXPR],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={k: x for k, x in os.environ.items()
+                                 if k != "NUMBA_ENABLE_CUDASIM"})
+    job.procs.append(proc)
+    out, err = proc.communicate(timeout=1200)
+    return subprocess.CompletedProcess(proc.args, proc.returncode, out, err)
+
+
 def test_the_column_kernel_compiles_for_a_gpu():
     """The column kernel, the area-sampling kernel and the translucent layers' kernel,
     all the code they call and the surface's fused function as a device function,
@@ -215,16 +235,13 @@ def test_the_column_kernel_compiles_for_a_gpu():
     compiles: a run on unchanged sources (a warm machine) reads it instead of
     compiling again for 50 s; a clean clone (CI) or any change to floatcol compiles.
     FLOATCOL_PTX_RECOMPILE=1 compiles regardless."""
-    marker = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".pytest_cache",
-                          "floatcol-ptx", _ptx_key() + ".ok")
-    if os.path.exists(marker) and not os.environ.get("FLOATCOL_PTX_RECOMPILE"):
+    marker = _ptx_marker()
+    run = background_result("ptx")
+    if run is None:
         with open(marker) as fh:
             lines = fh.read().split()
         assert len(lines) == 6, lines           # (three kernels: length, seconds)
         return
-    run = subprocess.run([sys.executable, "-c", PTX_SCRIPT, PTX_EXPR],
-                         capture_output=True, text=True, timeout=1200,
-                         env={k: x for k, x in os.environ.items() if k != "NUMBA_ENABLE_CUDASIM"})
     if run.returncode == 77:
         pytest.skip("no CUDA toolkit NVVM here (pip install 'floatcol[cuda]'): " + run.stdout)
     assert run.returncode == 0, run.stderr[-3000:]

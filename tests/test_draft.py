@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import floatcol as fc
-from conftest import reference_for
+from conftest import background_result, reference_for
 from floatcol import warmup
 from reference import psnr
 
@@ -188,3 +188,43 @@ def test_fresh_install_draws_a_draft_and_starts_the_warmup(tmp_path):
             except OSError:
                 pass
             time.sleep(0.2)
+
+
+#: a subprocess: warm_all, then the CPU kernels (the parallel launches, and any other
+#: *_kernel) that have no compiled signature in that process, printed
+WARM_ALL_CHECK = """
+import importlib, pkgutil
+import floatcol.kernels as K
+from floatcol.kernels._jit import _Exclusive
+from floatcol.warmup import warm_all
+warm_all()
+missing = []
+for m in pkgutil.iter_modules(K.__path__):
+    if m.name == "cuda" or m.name.startswith("_"):
+        continue
+    mod = importlib.import_module("floatcol.kernels." + m.name)
+    for name, obj in vars(mod).items():
+        if getattr(obj, "__module__", mod.__name__) != mod.__name__ and not isinstance(obj, _Exclusive):
+            continue
+        if isinstance(obj, _Exclusive) or name.endswith("_kernel") and hasattr(obj, "signatures"):
+            if getattr(obj, "py_func", None) is not None and obj.py_func.__module__ != mod.__name__:
+                continue                       # (imported from another module)
+            if not obj.signatures:
+                missing.append(mod.__name__ + "." + name)
+print(sorted(set(missing)))
+"""
+
+
+def test_warm_all_compiles_every_kernel():
+    """floatcol.warmup.warm_all (``python -m floatcol.warmup --all``) reaches every CPU
+    kernel: in a process of its own, after it, none lacks a compiled signature (loaded
+    from the cache that the suite's background job filled, conftest.py, or that
+    earlier tests did). The job itself, where it ran, ended well."""
+    outcome = background_result("kernels")
+    if outcome is not None:
+        code, err = outcome
+        assert code == 0, err[-3000:]
+    out = subprocess.run([sys.executable, "-c", WARM_ALL_CHECK], capture_output=True,
+                         text=True, timeout=900, env=dict(os.environ, FLOATCOL_DRAFT="0"))
+    assert out.returncode == 0, out.stderr[-3000:]
+    assert out.stdout.strip() == "[]", out.stdout

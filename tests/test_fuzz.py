@@ -13,6 +13,7 @@ import random
 import pytest
 
 import fuzzing
+from conftest import background_job, background_result
 
 hypothesis = pytest.importorskip("hypothesis")
 from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E402
@@ -101,21 +102,32 @@ def test_the_reproducers_render(worker):
         _check(worker, {"expr": expr, "kwargs": kw})
 
 
-def test_bounds_checked_kernels():
-    """A few renders with Numba's bounds checks on (its own kernel cache: the checks
-    change the compiled code): an index out of range is an IndexError there, not a
-    write past a buffer. Compiles the kernels once (about a minute on 2 cores)."""
+@background_job("bounds-checked kernels", order=2, consumer="test_bounds_checked_kernels")
+def _bounds_checked_cases(job):
+    """The cases of test_bounds_checked_kernels and their outcomes, run in a worker with
+    Numba's bounds checks on (its own kernel cache: the checks change the compiled
+    code). Compiles the kernels once (about 110 s on 2 cores): a background job
+    (conftest.py), which the suite runs beside the other tests."""
     cache = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".pytest_cache",
                          "numba-boundscheck")
     w = fuzzing.Worker(timeout=600.0, env={"NUMBA_BOUNDSCHECK": "1",
                                            "NUMBA_CACHE_DIR": os.path.abspath(cache)})
+    w.on_start = job.procs.append
     try:
         rnd = random.Random(7)
         cases = [{"expr": e, "kwargs": kw} for e, kw in REPRODUCERS]
         cases += [fuzzing.case(rnd) for _ in range(12)]
         cases.append({"expr": "3*sin(u*cos(v))", "kwargs": dict(size=[160, 120],
                                                                projection="perspective")})
-        for c in cases:
-            _check(w, c)
+        return [(c, w.run(c)) for c in cases]
     finally:
         w.close()
+
+
+def test_bounds_checked_kernels():
+    """A few renders with Numba's bounds checks on: an index out of range is an
+    IndexError there, not a write past a buffer (_bounds_checked_cases)."""
+    outcomes = background_result("bounds-checked kernels")
+    assert len(outcomes) == len(REPRODUCERS) + 13
+    for case, res in outcomes:
+        assert res["outcome"] in ("ok", "value"), f"{res['outcome']}: {res['message']}\n{case}"

@@ -197,19 +197,28 @@ def warm_all():
 
 
 def main(argv=None):
+    """``python -m floatcol.warmup [--all]``: warm() (warm_all() with --all). The
+    warm-up process that drafting() starts passes its lock file's path, which it
+    removes when done (nothing else is ever removed: a path that is not a lock file
+    named LOCK_NAME is an error)."""
     argv = sys.argv[1:] if argv is None else argv
-    os.environ[ENV] = "0"
     everything = "--all" in argv
-    argv = [a for a in argv if a != "--all"]
+    rest = [a for a in argv if a != "--all"]
+    if len(rest) > 1 or rest and os.path.basename(rest[0]) != LOCK_NAME:
+        print(f"usage: python -m floatcol.warmup [--all] (got {' '.join(argv)})",
+              file=sys.stderr)
+        return 2
+    os.environ[ENV] = "0"
     try:
         warm_all() if everything else warm()
     finally:
-        if argv:
+        if rest:
             try:
-                os.unlink(argv[0])
+                os.unlink(rest[0])
             except OSError:
                 pass
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

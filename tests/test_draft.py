@@ -159,6 +159,21 @@ def test_warmup_main_removes_its_lock(monkeypatch, tmp_path):
     assert done == ["0"] and not lock.exists()
 
 
+def test_warmup_main_removes_nothing_but_a_lock(monkeypatch, tmp_path, capsys):
+    """``python -m floatcol.warmup FILE`` (a typo of --all, say) neither warms nor
+    removes FILE: a usage line and exit status 2."""
+    keep = tmp_path / "precious.txt"
+    keep.write_text("x")
+    done = []
+    monkeypatch.setattr(warmup, "warm", lambda: done.append(1))
+    monkeypatch.setattr(warmup, "warm_all", lambda: done.append(2))
+    for argv in ([str(keep)], ["--all", str(keep)], ["--al"]):
+        assert warmup.main(argv) == 2
+    assert keep.read_text() == "x" and done == []
+    assert capsys.readouterr().err.count("usage: python -m floatcol.warmup [--all]") == 3
+    assert warmup.main(["--all"]) == 0 and done == [2]
+
+
 COLD = """
 import os, time
 import floatcol as fc

@@ -228,7 +228,9 @@ def _array(z):
 
 
 def _npz(path):
-    with np.load(path, allow_pickle=False) as data:
+    # the file opened here, so that it is closed where np.load fails on it (numpy
+    # leaves the file it opened itself open then: a ResourceWarning)
+    with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as data:
         return _npz_data(data)
 
 

@@ -216,6 +216,21 @@ def test_signalling_nans_in_a_file_are_holes_without_warnings(tmp_path):
         assert np.isnan(fc.HeightField(z32).hf[3, 4])
 
 
+def test_a_damaged_npz_is_a_value_error_that_leaves_no_file_open(tmp_path):
+    """np.load left the file of a damaged .npz open when it failed on it (found by
+    byte-mutating DEM files): a ResourceWarning once collected."""
+    import gc
+    import warnings
+    bad = tmp_path / "bad.npz"
+    bad.write_bytes(b"PK\x03\x04" + bytes(40))          # a zip's magic, then nothing
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        with pytest.raises(ValueError, match="bad.npz' cannot be read"):
+            fc.read_dem(bad)
+        gc.collect()
+    assert not [w for w in caught if issubclass(w.category, ResourceWarning)]
+
+
 def test_a_damaged_geotiff_is_one_line_from_the_cli(tmp_path):
     """tifffile logs what it finds wrong in a damaged file (its own names) through
     Python's logging, which a command line without handlers prints to stderr: the CLI

@@ -115,6 +115,7 @@ class _Job:
         self.value = None
         self.error = None
         self.procs = []                 # subprocesses to stop if the session ends first
+        self.wanted = threading.Event()  # set once its consumer waits for it
         self._lock = threading.Lock()
 
     def run(self):
@@ -150,6 +151,7 @@ def background_result(name):
     """The value that job ``name`` returned (waiting for it), or the exception it raised,
     raised again here."""
     job = _JOBS[name]
+    job.wanted.set()
     job.run()
     job.done.wait()
     if job.error is not None:
@@ -178,6 +180,8 @@ def pytest_collection_modifyitems(session, config, items):
 
 
 def pytest_collection_finish(session):
+    if session.config.option.collectonly:
+        return
     wanted = {_test_name(item) for item in session.items}
     many = len(session.items) >= SUITE_JOBS_MIN_TESTS
     jobs = sorted((job for job in _JOBS.values()
@@ -204,12 +208,13 @@ def _compile_every_kernel(job):
     sampling, translucency, shadows, textures, the fly engine, ...) into the same
     Numba cache in a process of its own, after the first tests have compiled the
     default picture's (which the others call too: waited for, not compiled twice).
-    Where the cache holds the default kernels already it does nothing."""
+    Where the cache holds the default kernels already it does nothing; where its
+    consumer asks for it first (it alone selected, say), it waits no longer."""
     from floatcol import warmup
     if warmup.kernels_ready():
         return None
     deadline = time.monotonic() + 600.0
-    while not warmup.kernels_ready() and time.monotonic() < deadline:
+    while not (warmup.kernels_ready() or job.wanted.is_set()) and time.monotonic() < deadline:
         time.sleep(0.5)
     proc = subprocess.Popen([sys.executable, "-m", "floatcol.warmup", "--all"],
                             env=dict(os.environ, FLOATCOL_DRAFT="0"),

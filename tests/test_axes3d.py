@@ -255,17 +255,16 @@ def test_a_line_through_a_hill():
 
 
 @pytest.mark.parametrize("ext", [".png", ".jpg", ".tif", ".webp", ".pdf", ".svg", ".eps"])
-def test_every_savefig_format_from_plot_save_and_the_cli(tmp_path, ext):
-    import subprocess
-    import sys
+def test_every_savefig_format_from_plot_save_and_the_cli(tmp_path, ext, capsys):
+    # (the CLI's main in this process: its own process start is test_cli's)
+    from floatcol.cli import main
     p = fc.plot_surface("sin(x*y)", ("x", -2, 2), ("y", -2, 2), size=(60, 40))
     out = tmp_path / f"p{ext}"
     p.save(out)
     assert out.stat().st_size > 200
     cli = tmp_path / f"c{ext}"
-    run = subprocess.run([sys.executable, "-m", "floatcol.cli", "render", "x*y", "--size",
-                          "40x30", "-o", str(cli)], capture_output=True, text=True)
-    assert run.returncode == 0, run.stderr
+    assert main(["render", "x*y", "--size", "40x30", "-o", str(cli)]) == 0, \
+        capsys.readouterr().err
     assert cli.stat().st_size > 200
 
 

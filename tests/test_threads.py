@@ -36,27 +36,40 @@ CASES = [dict(projection="orthographic", method="column"),
          dict(projection="perspective", batch=True),
          dict(projection="perspective", batch=True, antialias=3, lightsource=(315, 25),
               shadows=True)]
+#: every case rendered in one process with one thread (one process start and kernel
+#: load for all, instead of one a case: 16 s of the suite), each case's arrays saved to
+#: <folder>/<k>.npz
 SCRIPT = """
-import sys, numpy as np, numba, floatcol as fc
+import os, sys, numpy as np, numba, floatcol as fc
 from floatcol.passes import geometry
 assert numba.get_num_threads() == 1
-kw = eval(sys.argv[2])
-if kw.pop("batch", False):
-    geometry.BATCH_MIN_SAMPLES = 0
-e, dom = kw.pop("expr", "3*sin(u*cos(v))"), kw.pop("dom", (-5, 5))
-r = fc.render(e, u=dom, v=dom, size=(160, 120), **kw)
-np.savez(sys.argv[1], rgba=r.rgba, intensity=r.intensity, side=r.side, depth=r.depth,
-         samples=r.stats["samples"])
+sys.path.insert(0, sys.argv[2])
+from test_threads import CASES
+batch_min = geometry.BATCH_MIN_SAMPLES
+for k, kw in enumerate(CASES):
+    kw = dict(kw)
+    geometry.BATCH_MIN_SAMPLES = 0 if kw.pop("batch", False) else batch_min
+    e, dom = kw.pop("expr", "3*sin(u*cos(v))"), kw.pop("dom", (-5, 5))
+    r = fc.render(e, u=dom, v=dom, size=(160, 120), **kw)
+    np.savez(os.path.join(sys.argv[1], f"{k}.npz"), rgba=r.rgba, intensity=r.intensity,
+             side=r.side, depth=r.depth, samples=r.stats["samples"])
 """
 
 
-@pytest.mark.parametrize("kw", CASES)
-def test_one_thread_equals_default(tmp_path, kw, monkeypatch):
-    out = tmp_path / "one.npz"
+@pytest.fixture(scope="module")
+def one_thread(tmp_path_factory):
+    """The folder of SCRIPT's pictures, rendered with NUMBA_NUM_THREADS=1."""
+    folder = tmp_path_factory.mktemp("one-thread")
     env = dict(os.environ, NUMBA_NUM_THREADS="1")
-    subprocess.run([sys.executable, "-c", SCRIPT, str(out), repr(kw)], check=True, env=env)
-    one = np.load(out)
-    kw = dict(kw)
+    subprocess.run([sys.executable, "-c", SCRIPT, str(folder), os.path.dirname(__file__)],
+                   check=True, env=env)
+    return folder
+
+
+@pytest.mark.parametrize("k", range(len(CASES)))
+def test_one_thread_equals_default(one_thread, k, monkeypatch):
+    one = np.load(one_thread / f"{k}.npz")
+    kw = dict(CASES[k])
     if kw.pop("batch", False):
         monkeypatch.setattr(sys.modules["floatcol.passes.geometry"], "BATCH_MIN_SAMPLES", 0)
     e, dom = kw.pop("expr", "3*sin(u*cos(v))"), kw.pop("dom", (-5, 5))

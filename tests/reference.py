@@ -120,6 +120,75 @@ def _rays(u_rng, v_rng, size, elev, azim, projection, d1, d2, scale, w_bound, ce
     return org, dirn, lam_lo, lam_hi, live, world
 
 
+#: _march takes this many of a ray's steps at a time (one numpy call for all of them),
+#: for this many rays at a time (their arrays stay in the processor's cache)
+MARCH_BLOCK = 16
+MARCH_RAYS = 2048
+
+
+def _march(f, org, dirn, lam_lo, lam_hi, live, world, steps):
+    """The first crossing of each ray: steps uniform steps from lam_lo to lam_hi, a hit
+    where w - f changes sign between two finite values (from a non-zero one). Returns
+    (found, side: +1 from above, -1 from below, and the step's ends l_a, l_b), each the
+    rays' shape. The same values, step for step, as marching every ray through every
+    step at once (what this did before); only the rays still marching are evaluated,
+    MARCH_RAYS rays and MARCH_BLOCK steps at a time: a third of the suite's time
+    before, most rays hit early."""
+    shape = lam_lo.shape
+    found = np.zeros(shape, bool)
+    side = np.zeros(shape, np.int8)
+    l_a = np.zeros(shape)
+    l_b = np.zeros(shape)
+    rays = np.flatnonzero(live)
+    org = org.reshape(3, -1)
+    dirn = dirn.reshape(3, -1)
+    lam_lo = lam_lo.reshape(-1)
+    lam_hi = lam_hi.reshape(-1)
+
+    def g_at(o, d, lam):
+        p = o + d * lam
+        u, w, v, _ = world(*p)
+        return w - f(u, v)
+
+    for c0 in range(0, rays.size, MARCH_RAYS):
+        idx = rays[c0:c0 + MARCH_RAYS]
+        o, d, lo = org[:, idx], dirn[:, idx], lam_lo[idx]
+        span = lam_hi[idx] - lo
+        with np.errstate(all="ignore"):
+            g_prev = g_at(o, d, lo)
+        g_prev = np.where(np.isfinite(g_prev), g_prev, np.nan)
+        s_prev = np.sign(g_prev)
+        lam_prev = lo.copy()
+        k0 = 1
+        while k0 <= steps and idx.size:
+            q = np.array([k / steps for k in range(k0, min(k0 + MARCH_BLOCK, steps + 1))])
+            lam = lo[None, :] + span[None, :] * q[:, None]        # (the block's steps, rays)
+            with np.errstate(all="ignore"):
+                g = g_at(o[:, None, :], d[:, None, :], lam)
+            g[~np.isfinite(g)] = np.nan
+            sg = np.sign(g)                      # (NaN where g is: never a crossing)
+            sp = np.concatenate([s_prev[None, :], sg[:-1]], axis=0)   # a step before
+            # a crossing: both finite, their signs differ, the one before not zero
+            cross = (sg != sp) & (sp != 0) & (sg == sg) & (sp == sp)
+            hit = cross.any(axis=0)
+            if hit.any():
+                cols = np.flatnonzero(hit)
+                first = cross[:, cols].argmax(axis=0)
+                lp = np.concatenate([lam_prev[None, :], lam[:-1]], axis=0)
+                at = idx[cols]
+                found.reshape(-1)[at] = True
+                side.reshape(-1)[at] = np.where(sp[first, cols] > 0, 1, -1)
+                l_a.reshape(-1)[at] = lp[first, cols]
+                l_b.reshape(-1)[at] = lam[first, cols]
+                keep = ~hit
+                idx, o, d, lo, span = idx[keep], o[:, keep], d[:, keep], lo[keep], span[keep]
+                sg, lam = sg[:, keep], lam[:, keep]
+            s_prev = sg[-1]
+            lam_prev = lam[-1]
+            k0 += q.size
+    return found, side, l_a, l_b
+
+
 def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1=None, d2=None,
             scale=None, steps=1500, bisections=40, w_bound=None, center=(0.0, 0.0, 0.0),
             wall_normal=None, yscale=None):
@@ -134,33 +203,22 @@ def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1
                                                    d1, d2, scale, w_bound, center, yscale)
     ortho = projection.startswith("ortho")
     x0 = org[0]
+    found, side, l_a, l_b = _march(f, org, dirn, lam_lo, lam_hi, live, world, steps)
 
     def g_at(lam):
         p = org + dirn * lam
         u, w, v, _ = world(*p)
         return w - f(u, v)
 
-    found = np.zeros(x0.shape, bool)
-    side = np.zeros(x0.shape, np.int8)
-    l_a = np.zeros_like(x0)
-    l_b = np.zeros_like(x0)
-    g_prev = np.where(live, g_at(lam_lo), np.nan)
-    lam_prev = lam_lo.copy()
-    for k in range(1, steps + 1):
-        lam = lam_lo + (lam_hi - lam_lo) * (k / steps)
-        g = g_at(lam)
-        hit = live & ~found & np.isfinite(g) & np.isfinite(g_prev) & (np.sign(g) != np.sign(g_prev)) & (g_prev != 0)
-        side[hit] = np.where(g_prev[hit] > 0, 1, -1)
-        l_a[hit], l_b[hit] = lam_prev[hit], lam[hit]
-        found |= hit
-        g_prev = np.where(np.isfinite(g), g, np.nan)
-        lam_prev = lam
-    for _ in range(bisections):     # refine: the root lies in [l_a, l_b]
+    # refine: the root lies in [l_a, l_b] (g at l_a carried over: the one computed)
+    ga = g_at(l_a)
+    for _ in range(bisections):
         m = 0.5 * (l_a + l_b)
-        gm, ga = g_at(m), g_at(l_a)
+        gm = g_at(m)
         same = np.sign(gm) == np.sign(ga)
         l_a = np.where(same, m, l_a)
         l_b = np.where(same, l_b, m)
+        ga = np.where(same, gm, ga)
     lam = np.where(found, 0.5 * (l_a + l_b), np.nan)
     p = org + dirn * np.where(found, lam, 0.0)
     u, w, v, t = world(*p)
@@ -286,12 +344,21 @@ def _cast(f, u, v, w, side, L, u_rng, v_rng, steps, start):
     diag = np.hypot(u_rng[1] - u_rng[0], v_rng[1] - v_rng[0])
     s_max = np.minimum(s_max, diag / max(np.hypot(L[0], L[1]), 1e-12))
     cast = np.zeros(u.shape, bool)
-    with np.errstate(all="ignore"):
-        for k in range(1, steps + 1):
-            s = start * diag + (s_max - start * diag) * (k / steps)
-            live = s <= s_max
-            g = (w + s * L[2]) - f(u + s * L[0], v + s * L[1])
-            cast |= live & np.isfinite(g) & (side * g < 0)
+    # each ray stepped until it is stopped (the same steps as stepping all to the end),
+    # MARCH_RAYS rays and MARCH_BLOCK steps at a time
+    s0 = start * diag
+    for c0 in range(0, u.size, MARCH_RAYS):
+        idx = np.arange(c0, min(c0 + MARCH_RAYS, u.size))
+        k0 = 1
+        while k0 <= steps and idx.size:
+            q = np.array([k / steps for k in range(k0, min(k0 + MARCH_BLOCK, steps + 1))])
+            s = s0 + (s_max[idx] - s0)[None, :] * q[:, None]      # (the block's steps, rays)
+            with np.errstate(all="ignore"):
+                g = (w[idx] + s * L[2]) - f(u[idx] + s * L[0], v[idx] + s * L[1])
+                stop = ((s <= s_max[idx]) & np.isfinite(g) & (side[idx] * g < 0)).any(axis=0)
+            cast[idx[stop]] = True
+            idx = idx[~stop]
+            k0 += q.size
     return cast
 
 

@@ -92,11 +92,13 @@ def demo():
 
 
 # ---------------------------------------------------------------------------------
-# Background jobs. A clean clone's suite (CI) spent about 160 of its 580 s on two
-# compiles that share nothing with the other tests and run in processes of their own:
-# the kernels with Numba's bounds checks (test_fuzz, its own cache, about 110 s) and
-# the GPU kernels' PTX (test_cuda, about 50 s). Numba compiles on one core, so the
-# other core sat idle through them. A test module registers such work as a job
+# Background jobs. A clean clone's suite (CI) spent about 300 of its 580 s compiling,
+# on one core (Numba compiles on one), the other idle: the kernels with Numba's bounds
+# checks (test_fuzz, its own cache, about 110 s) and the GPU kernels' PTX (test_cuda,
+# about 50 s) share nothing with the other tests and run in processes of their own;
+# the CPU kernels that the default picture does not use (about 85 s) compile into the
+# suite's cache as the tests first meet them (_compile_every_kernel, below, does it
+# beside them instead). A test module registers such work as a job
 # (background_job); once the tests are collected, the jobs of the selected tests run
 # one after another in one thread of this process, each waiting on its subprocess,
 # while the suite goes on; the test takes the outcome (background_result, which

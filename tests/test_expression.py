@@ -136,9 +136,31 @@ def _cli(*args, cwd):
                           capture_output=True, text=True, timeout=300)
 
 
+#: the CLI's doors in one process: each argument list a fresh call of the CLI's main, its
+#: exit status and what it printed to stderr (json)
+DOORS = """
+import contextlib, io, json, sys
+from floatcol.cli import main
+out = []
+for args in json.loads(sys.argv[1]):
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        try:
+            code = main(args)
+        except SystemExit as exc:
+            code = exc.code
+    out.append([code, err.getvalue()])
+print(json.dumps(out))
+"""
+
+
 def test_injection_through_the_cli_runs_nothing(tmp_path):
-    """Every string argument of the CLI, one process per door (with all the injection
-    strings of a door in one run where the CLI stops at the first: the expression)."""
+    """Every string argument of the CLI (with all the injection strings of a door in one
+    call where the CLI stops at the first: the expression): each door a call of the CLI's
+    main in one process of its own (one process a door took 8 s of the suite; the
+    process-level exit status and stderr line are test_cli's), and the first door as a
+    user runs it, ``python -m floatcol.cli``."""
+    import json
     marker = tmp_path / "pwned"
     payload = f"__import__('os').system('touch {marker}')"
     calls = [
@@ -154,11 +176,18 @@ def test_injection_through_the_cli_runs_nothing(tmp_path):
         ["animate", payload, "--frames", "2", "-o", "a.gif"],
         ["animate", "sin(u+t)", f"--t=0:{payload}", "--frames", "2", "-o", "a.gif"],
     ]
-    for args in calls:
-        res = _cli(*args, cwd=tmp_path)
-        assert res.returncode == 2, (args, res.stderr)
-        assert res.stderr.startswith("floatcol: error:") and res.stderr.count("\n") == 1
-        assert not (tmp_path / "a.png").exists() and not (tmp_path / "a.gif").exists()
+    res = _cli(*calls[0], cwd=tmp_path)
+    assert res.returncode == 2, (calls[0], res.stderr)
+    assert res.stderr.startswith("floatcol: error:") and res.stderr.count("\n") == 1
+    run = subprocess.run([sys.executable, "-c", DOORS, json.dumps(calls)], cwd=tmp_path,
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    outcomes = json.loads(run.stdout)
+    assert len(outcomes) == len(calls)
+    for args, (code, err) in zip(calls, outcomes):
+        assert code == 2, (args, err)
+        assert err.startswith("floatcol: error:") and err.count("\n") == 1, (args, err)
+    assert not (tmp_path / "a.png").exists() and not (tmp_path / "a.gif").exists()
     assert not marker.exists()
     assert not any(p.name.startswith(".floatcol-") for p in tmp_path.iterdir())
 

@@ -139,9 +139,9 @@ _JOBS = {}
 
 def background_job(name, consumer, order):
     """Register fn(job) as the background job ``name`` whose outcome the test function
-    named ``consumer`` asserts on (None: the suite's, run where many tests are
-    selected); fn may add the subprocesses it starts to job.procs (stopped if the
-    session ends before they do). The jobs run by ``order``; their consumers run
+    named ``consumer`` asserts on (the job runs where that test is selected); fn may
+    add the subprocesses it starts to job.procs (stopped if the session ends before
+    they do). The jobs run by ``order``; their consumers run
     after every other test, so that the jobs have the whole session to finish."""
     def register(fn):
         _JOBS[name] = _Job(name, consumer, fn, order)
@@ -166,10 +166,6 @@ def _run_jobs(jobs):
         job.run()
 
 
-#: the suite's own jobs run where at least this many tests are selected
-SUITE_JOBS_MIN_TESTS = 200
-
-
 def _test_name(item):
     return getattr(item, "originalname", item.name)
 
@@ -185,9 +181,7 @@ def pytest_collection_finish(session):
     if session.config.option.collectonly:
         return
     wanted = {_test_name(item) for item in session.items}
-    many = len(session.items) >= SUITE_JOBS_MIN_TESTS
-    jobs = sorted((job for job in _JOBS.values()
-                   if job.consumer in wanted or job.consumer is None and many),
+    jobs = sorted((job for job in _JOBS.values() if job.consumer in wanted),
                   key=lambda job: job.order)
     if jobs:
         threading.Thread(target=_run_jobs, args=(jobs,), name="floatcol-test-jobs",

@@ -146,6 +146,26 @@ def write_mp4(frames, path, fps):
             writer.close()
 
 
+class _Lazy:
+    """A sequence of n items made when asked, make(k): a clip's surfaces (base.at(t),
+    box-scaled) without one object a frame held through the clip."""
+
+    def __init__(self, n, make):
+        self.n = n
+        self.make = make
+
+    def __len__(self):
+        return self.n
+
+    def __getitem__(self, k):
+        if not 0 <= k < self.n:
+            raise IndexError(k)
+        return self.make(k)
+
+    def __iter__(self):
+        return (self.make(k) for k in range(self.n))
+
+
 class _Envelope:
     """The upper or lower envelope of several surfaces: what the clip's camera fits."""
 
@@ -157,7 +177,9 @@ class _Envelope:
         self.variables = surfaces[0].variables
 
     def scaled(self, a, b, c):
-        return _Envelope([s.scaled(a, b, c) for s in self.surfaces], self.upper)
+        surfaces = self.surfaces
+        return _Envelope(_Lazy(len(surfaces), lambda k: surfaces[k].scaled(a, b, c)),
+                         self.upper)
 
     def evaluate(self, u, v):
         # a running maximum (minimum): a long clip's frames are never stacked (100 000
@@ -230,7 +252,8 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     domain = tuple(check_range(n, b if b is not None else (-10.0, 10.0))
                    for n, b in zip(names, bounds))
     times = np.linspace(t_lo, t_hi, frames, endpoint=endpoint and frames > 1)
-    surfaces = [base.at(tk) for tk in times]      # one compilation for the clip
+    # one compilation for the clip; a frame's surface made when its turn comes
+    surfaces = _Lazy(len(times), lambda k: base.at(times[k]))
     ranges_ = [(names[0], *domain[0]), (names[1], *domain[1])]
 
     # a moving sun: lightsource a function of t, called per frame
@@ -273,8 +296,9 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
         for rgba, n in render_frames(tasks, client):
             out.append(rgba)
             samples += n
-    here = [] if client is not None else list(zip(surfaces, suns))
-    for s, sun_k in tqdm(here, desc="floatcol animate", unit="frame", delay=1.0,
+    here = () if client is not None else zip(surfaces, suns)
+    for s, sun_k in tqdm(here, total=0 if client is not None else len(times),
+                         desc="floatcol animate", unit="frame", delay=1.0,
                          disable=not progress, leave=False):
         if sun_k is not None:
             options["lightsource"] = sun_k

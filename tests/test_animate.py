@@ -98,6 +98,37 @@ def test_a_clip_too_big_to_hold_is_refused_before_it_renders(tmp_path, monkeypat
     assert list(tmp_path.iterdir()) == []
 
 
+def test_a_clip_holds_no_surface_a_frame(monkeypatch):
+    """A frame's surface (base.at(t), box-scaled for the camera's fit) is made when its
+    turn comes: while a 40-frame clip renders, a handful are alive at a time, not one a
+    frame (a million frames held a million Surfaces besides their pictures)."""
+    import gc
+    import sys
+    import weakref
+    from floatcol.surface import Surface
+    anim_mod = sys.modules["floatcol.animate"]     # (fc.animate is the function)
+    made = []
+    at = Surface.at
+
+    def tracked(self, t):
+        s = at(self, t)
+        made.append(weakref.ref(s))
+        return s
+    monkeypatch.setattr(Surface, "at", tracked)
+    alive = []
+    plot = anim_mod.plot_surface
+
+    def counting(*a, **k):
+        gc.collect()
+        alive.append(sum(r() is not None for r in made))
+        return plot(*a, **k)
+    monkeypatch.setattr(anim_mod, "plot_surface", counting)
+    a = fc.animate("sin(x - t)*cos(y)", ("x", -2, 2), ("y", -2, 2), size=(24, 18), frames=40,
+                   progress=False)
+    assert len(a.frames) == 40 and len(made) >= 40
+    assert max(alive) <= 4, alive
+
+
 @pytest.mark.parametrize("frames,fps,needle", [
     ([], 20, "frames is empty"),
     ([np.zeros((16, 20, 4), np.uint8), np.zeros((17, 20, 4), np.uint8)], 20,

@@ -126,6 +126,18 @@ MARCH_BLOCK = 16
 MARCH_RAYS = 2048
 
 
+def _gap(f, world, o, d, lam):
+    """w - f(u, v) at the points o + d lam (screen coordinates) of rays."""
+    u, w, v, _ = world(*(o + d * lam))
+    return w - f(u, v)
+
+
+def _step_blocks(steps):
+    """The fractions k / steps, k = 1 .. steps, MARCH_BLOCK at a time (arrays)."""
+    for k0 in range(1, steps + 1, MARCH_BLOCK):
+        yield np.array([k / steps for k in range(k0, min(k0 + MARCH_BLOCK, steps + 1))])
+
+
 def _march(f, org, dirn, lam_lo, lam_hi, live, world, steps):
     """The first crossing of each ray: steps uniform steps from lam_lo to lam_hi, a hit
     where w - f changes sign between two finite values (from a non-zero one). Returns
@@ -144,27 +156,21 @@ def _march(f, org, dirn, lam_lo, lam_hi, live, world, steps):
     dirn = dirn.reshape(3, -1)
     lam_lo = lam_lo.reshape(-1)
     lam_hi = lam_hi.reshape(-1)
-
-    def g_at(o, d, lam):
-        p = o + d * lam
-        u, w, v, _ = world(*p)
-        return w - f(u, v)
-
     for c0 in range(0, rays.size, MARCH_RAYS):
         idx = rays[c0:c0 + MARCH_RAYS]
         o, d, lo = org[:, idx], dirn[:, idx], lam_lo[idx]
         span = lam_hi[idx] - lo
         with np.errstate(all="ignore"):
-            g_prev = g_at(o, d, lo)
+            g_prev = _gap(f, world, o, d, lo)
         g_prev = np.where(np.isfinite(g_prev), g_prev, np.nan)
         s_prev = np.sign(g_prev)
         lam_prev = lo.copy()
-        k0 = 1
-        while k0 <= steps and idx.size:
-            q = np.array([k / steps for k in range(k0, min(k0 + MARCH_BLOCK, steps + 1))])
+        for q in _step_blocks(steps):
+            if not idx.size:
+                break
             lam = lo[None, :] + span[None, :] * q[:, None]        # (the block's steps, rays)
             with np.errstate(all="ignore"):
-                g = g_at(o[:, None, :], d[:, None, :], lam)
+                g = _gap(f, world, o[:, None, :], d[:, None, :], lam)
             g[~np.isfinite(g)] = np.nan
             sg = np.sign(g)                      # (NaN where g is: never a crossing)
             sp = np.concatenate([s_prev[None, :], sg[:-1]], axis=0)   # a step before
@@ -185,7 +191,6 @@ def _march(f, org, dirn, lam_lo, lam_hi, live, world, steps):
                 sg, lam = sg[:, keep], lam[:, keep]
             s_prev = sg[-1]
             lam_prev = lam[-1]
-            k0 += q.size
     return found, side, l_a, l_b
 
 
@@ -202,19 +207,12 @@ def raycast(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1
     org, dirn, lam_lo, lam_hi, live, world = _rays(u_rng, v_rng, size, elev, azim, projection,
                                                    d1, d2, scale, w_bound, center, yscale)
     ortho = projection.startswith("ortho")
-    x0 = org[0]
     found, side, l_a, l_b = _march(f, org, dirn, lam_lo, lam_hi, live, world, steps)
-
-    def g_at(lam):
-        p = org + dirn * lam
-        u, w, v, _ = world(*p)
-        return w - f(u, v)
-
     # refine: the root lies in [l_a, l_b] (g at l_a carried over: the one computed)
-    ga = g_at(l_a)
+    ga = _gap(f, world, org, dirn, l_a)
     for _ in range(bisections):
         m = 0.5 * (l_a + l_b)
-        gm = g_at(m)
+        gm = _gap(f, world, org, dirn, m)
         same = np.sign(gm) == np.sign(ga)
         l_a = np.where(same, m, l_a)
         l_b = np.where(same, l_b, m)
@@ -349,16 +347,15 @@ def _cast(f, u, v, w, side, L, u_rng, v_rng, steps, start):
     s0 = start * diag
     for c0 in range(0, u.size, MARCH_RAYS):
         idx = np.arange(c0, min(c0 + MARCH_RAYS, u.size))
-        k0 = 1
-        while k0 <= steps and idx.size:
-            q = np.array([k / steps for k in range(k0, min(k0 + MARCH_BLOCK, steps + 1))])
+        for q in _step_blocks(steps):
+            if not idx.size:
+                break
             s = s0 + (s_max[idx] - s0)[None, :] * q[:, None]      # (the block's steps, rays)
             with np.errstate(all="ignore"):
                 g = (w[idx] + s * L[2]) - f(u[idx] + s * L[0], v[idx] + s * L[1])
                 stop = ((s <= s_max[idx]) & np.isfinite(g) & (side[idx] * g < 0)).any(axis=0)
             cast[idx[stop]] = True
             idx = idx[~stop]
-            k0 += q.size
     return cast
 
 
@@ -379,8 +376,7 @@ def layer_hits(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic",
     ortho = projection.startswith("ortho")
 
     def g_at(lam, o=org, d=dirn):
-        u, w, v, _ = world(*(o + d * lam))
-        return w - f(u, v)
+        return _gap(f, world, o, d, lam)
 
     idx, la, lb, sides = [], [], [], []
     g_prev = np.where(live, g_at(lam_lo), np.nan)

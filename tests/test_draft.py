@@ -219,14 +219,11 @@ for m in pkgutil.iter_modules(K.__path__):
         continue
     mod = importlib.import_module("floatcol.kernels." + m.name)
     for name, obj in vars(mod).items():
-        if getattr(obj, "__module__", mod.__name__) != mod.__name__ and not isinstance(obj, _Exclusive):
-            continue
-        if isinstance(obj, _Exclusive) or name.endswith("_kernel") and hasattr(obj, "signatures"):
-            if getattr(obj, "py_func", None) is not None and obj.py_func.__module__ != mod.__name__:
-                continue                       # (imported from another module)
-            if not obj.signatures:
-                missing.append(mod.__name__ + "." + name)
-print(sorted(set(missing)))
+        kernel = isinstance(obj, _Exclusive) or name.endswith("_kernel") and hasattr(obj, "py_func")
+        # (a kernel imported from another module is that module's)
+        if kernel and obj.py_func.__module__ == mod.__name__ and not obj.signatures:
+            missing.append(mod.__name__ + "." + name)
+print(sorted(missing))
 """
 
 

@@ -36,21 +36,30 @@ CASES = [dict(projection="orthographic", method="column"),
          dict(projection="perspective", batch=True),
          dict(projection="perspective", batch=True, antialias=3, lightsource=(315, 25),
               shadows=True)]
+def render_case(k):
+    """CASES[k] rendered at 160x120 ("batch": the SIMD batches at any size)."""
+    from floatcol.passes import geometry
+    kw = dict(CASES[k])
+    batch_min = geometry.BATCH_MIN_SAMPLES
+    if kw.pop("batch", False):
+        geometry.BATCH_MIN_SAMPLES = 0
+    try:
+        e, dom = kw.pop("expr", "3*sin(u*cos(v))"), kw.pop("dom", (-5, 5))
+        return fc.render(e, u=dom, v=dom, size=(160, 120), **kw)
+    finally:
+        geometry.BATCH_MIN_SAMPLES = batch_min
+
+
 #: every case rendered in one process with one thread (one process start and kernel
 #: load for all, instead of one a case: 16 s of the suite), each case's arrays saved to
 #: <folder>/<k>.npz
 SCRIPT = """
-import os, sys, numpy as np, numba, floatcol as fc
-from floatcol.passes import geometry
+import os, sys, numpy as np, numba
 assert numba.get_num_threads() == 1
 sys.path.insert(0, sys.argv[2])
-from test_threads import CASES
-batch_min = geometry.BATCH_MIN_SAMPLES
-for k, kw in enumerate(CASES):
-    kw = dict(kw)
-    geometry.BATCH_MIN_SAMPLES = 0 if kw.pop("batch", False) else batch_min
-    e, dom = kw.pop("expr", "3*sin(u*cos(v))"), kw.pop("dom", (-5, 5))
-    r = fc.render(e, u=dom, v=dom, size=(160, 120), **kw)
+from test_threads import CASES, render_case
+for k in range(len(CASES)):
+    r = render_case(k)
     np.savez(os.path.join(sys.argv[1], f"{k}.npz"), rgba=r.rgba, intensity=r.intensity,
              side=r.side, depth=r.depth, samples=r.stats["samples"])
 """
@@ -67,13 +76,9 @@ def one_thread(tmp_path_factory):
 
 
 @pytest.mark.parametrize("k", range(len(CASES)))
-def test_one_thread_equals_default(one_thread, k, monkeypatch):
+def test_one_thread_equals_default(one_thread, k):
     one = np.load(one_thread / f"{k}.npz")
-    kw = dict(CASES[k])
-    if kw.pop("batch", False):
-        monkeypatch.setattr(sys.modules["floatcol.passes.geometry"], "BATCH_MIN_SAMPLES", 0)
-    e, dom = kw.pop("expr", "3*sin(u*cos(v))"), kw.pop("dom", (-5, 5))
-    r = fc.render(e, u=dom, v=dom, size=(160, 120), **kw)
+    r = render_case(k)
     for name in ("rgba", "intensity", "side", "depth"):
         np.testing.assert_array_equal(one[name], getattr(r, name), err_msg=name)
     assert int(one["samples"]) == r.stats["samples"]

@@ -75,6 +75,8 @@ def test_intensity_interpolation_close_to_reference():
     ("sqrt(1-u**2-v**2)", (-1.2, 1.2), -35, "orthographic"),      # holes, the lower side
     ("Piecewise((exp(-u**2-v**2), u < 0.3), (0.4 + 0.2*v, True))", (-2, 2), 30,
      "orthographic"),                                              # a jump
+    ("0.5 + 0.01*u", (-1, 1), 30, "perspective"),     # a thin slab: crossings at its edges
+    ("0.5 - 0.01*u", (-1, 1), -30, "orthographic"),   # ... from below
 ])
 def test_the_ray_casters_march_is_every_ray_through_every_step(expr, dom, elev, proj):
     """reference._march (only the rays still looking, in blocks) finds what marching every
@@ -108,7 +110,72 @@ def test_the_ray_casters_march_is_every_ray_through_every_step(expr, dom, elev, 
             found |= hit
             g_prev = np.where(np.isfinite(g), g, np.nan)
             lam_prev = lam
-    got = reference._march(f, org, dirn, lam_lo, lam_hi, live, world, steps)
     assert found.sum() > 100 and (~found & live).any()
-    for want, have in zip((found, side, l_a, l_b), got):
-        np.testing.assert_array_equal(want, have)
+    # with and without f's bounds (the steps of a ray beyond them left out)
+    bounds = numpy_surface(expr).bounds(dom, dom)
+    for b in ((-np.inf, np.inf), bounds):
+        got = reference._march(f, org, dirn, lam_lo, lam_hi, live, world, steps, b)
+        for want, have in zip((found, side, l_a, l_b), got):
+            np.testing.assert_array_equal(want, have)
+
+
+def test_the_window_leaves_out_steps():
+    """The march's bounds leave out most steps of the rays that miss (else the test
+    above compares nothing new)."""
+    import reference
+    from reference import _rays, _window, numpy_surface
+    dom = (-5, 5)
+    r = fc.render("3*sin(u*cos(v))", u=dom, v=dom, size=(48, 36), elev=30, azim=30)
+    vw = r.view
+    org, dirn, lam_lo, lam_hi, live, world = _rays(dom, dom, (48, 36), 30, 30, "orthographic",
+                                                   vw.d1, vw.d2, vw.scale, None, vw.center)
+    b = numpy_surface("3*sin(u*cos(v))").bounds(dom, dom)
+    assert -3.001 < b[0] <= -3 and 3 <= b[1] < 3.001
+    ks, ke = _window(world, org.reshape(3, -1), dirn.reshape(3, -1), lam_lo.ravel(),
+                     lam_hi.ravel(), 300, b)
+    found = reference._march(numpy_surface("3*sin(u*cos(v))")[0], org, dirn, lam_lo, lam_hi,
+                             live, world, 300, b)[0].ravel()
+    miss = live.ravel() & ~found
+    assert miss.sum() > 100
+    # measured: a miss's window is 5.7 % of its steps on average here
+    assert (np.maximum(ke - ks, 0)[miss]).mean() < 0.5 * 300
+
+
+@pytest.mark.parametrize("expr, dom", [
+    ("3*sin(u*cos(v))", (-5, 5)),
+    ("2*exp(-(u**2+v**2))*cos(3*sqrt(u**2+v**2))", (-3, 3)),
+    ("4.181540550352056*(sqrt(4 - u**2 - v**2) + sqrt(u**2 + v**2 - 1) - 2)", (-2, 2)),
+    ("sqrt(1-u**2-v**2)", (-1.2, 1.2)),
+    ("log(u+3)*v**3 - u/(v + 7)", (-2, 2)),
+    ("sin(u)*cos(v) + cos(3*u*v)**2", (-4, 4)),
+    ("u**2 - v**2", (-2, 2)),
+])
+def test_the_bounds_hold_every_value(expr, dom):
+    """reference.expr_bounds (interval arithmetic) encloses f at a million points."""
+    from reference import numpy_surface
+    f = numpy_surface(expr)
+    lo, hi = f.bounds(dom, dom)
+    assert np.isfinite(lo) and np.isfinite(hi)
+    g = np.linspace(dom[0], dom[1], 1001)
+    w = f[0](*np.meshgrid(g, g))
+    w = w[np.isfinite(w)]
+    assert w.size > 1000 and lo <= w.min() and w.max() <= hi
+    # not so wide that it leaves nothing out (measured: within 0.4 of the range here)
+    assert hi - lo < 2.5 * (w.max() - w.min())
+
+
+@pytest.mark.parametrize("expr, dom, elev, proj", [
+    ("2*exp(-(u**2+v**2))*cos(3*sqrt(u**2+v**2))", (-3, 3), 25, "perspective"),
+    ("0.5 + 0.01*u", (-1, 1), -30, "orthographic"),
+])
+def test_every_crossing_is_found_within_the_bounds(expr, dom, elev, proj):
+    """layer_hits (every crossing, for translucency) with f's bounds finds what it finds
+    marching every step of every ray."""
+    from reference import Funcs, layer_hits, numpy_surface
+    f = numpy_surface(expr)
+    kw = dict(d1=8.0, d2=2.0, scale=12.0, steps=400)
+    want = layer_hits(Funcs(tuple(f)), dom, dom, (60, 45), elev, 30, proj, **kw)
+    have = layer_hits(f, dom, dom, (60, 45), elev, 30, proj, **kw)
+    assert np.isfinite(f.bounds(dom, dom)).all() and want[0].size > 100
+    for a, b in zip(want, have):
+        np.testing.assert_array_equal(a, b)

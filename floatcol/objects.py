@@ -7,7 +7,9 @@ picture. Here the objects are small triangle meshes standing on the surface (the
 base at f(u, v)); the objects pass projects them with the picture's own camera,
 rasterises each triangle at the pixel centres with perspective-correct depth, keeps
 the nearest of them and of the surface (Render.depth), and lights each face flat by
-the picture's light (ambient 0.35). ``Render.window_depth(near, far)`` (his eq. 7)
+the picture's light (ambient 0.35). With shadows (a shadow texture, passes/shadow.py)
+they cast shadows on the surfaces and on each other (Occluders: exact, hard-edged) and
+take the surfaces' (the texture's horizons). ``Render.window_depth(near, far)`` (his eq. 7)
 gives the surface's depth as OpenGL's depth buffer holds it, for the opposite way
 round: a floatcol terrain under an OpenGL scene.
 
@@ -65,10 +67,24 @@ class Mesh:
             cols = list(cols)                   # (one RGB row a triangle)
         if isinstance(cols, (list, tuple)) and len(cols) == len(tris) \
                 and not isinstance(cols[0], (int, float, np.number)):
-            rgb = np.array([color.to_rgb(c, "object color") for c in cols])
+            # (each colour converted once: a tree's triangles name two)
+            seen = {}
+            rgb = np.array([seen[k] if (k := _colour_key(c)) in seen
+                            else seen.setdefault(k, color.to_rgb(c, "object color"))
+                            for c in cols])
         else:
             rgb = np.tile(color.to_rgb(cols, "object color"), (len(tris), 1))
         return u, v, verts, tris, rgb
+
+
+def _colour_key(c):
+    """A colour as a dictionary key (a name, or an RGB(A) sequence as a tuple)."""
+    if isinstance(c, str):
+        return c
+    try:
+        return tuple(float(x) for x in c)
+    except (TypeError, ValueError):
+        return id(c)
 
 
 def box(u, v, width, depth, height, color="lightgrey", heading=0.0, base=None):
@@ -147,10 +163,12 @@ def _positive(name, x):
 
 
 def clip_near(pts, tris, rgb, z_near):
-    """Triangles (vertex indices ``tris`` into ``pts`` (n, 3) screen x, y, z; colours
-    ``rgb``) cut by the plane z = z_near: the parts at or behind it (Sutherland and
-    Hodgman's clipping of each triangle that crosses it: a triangle or a quad, in two
-    triangles, of the same colour; new vertices appended). Returns (pts, tris, rgb)."""
+    """Triangles (vertex indices ``tris`` into ``pts`` (n, 3 or more) screen x, y, z
+    and any other columns, interpolated as they; a row ``rgb`` of each, its colour and
+    any other columns) cut by the plane z = z_near: the parts at or behind it
+    (Sutherland and Hodgman's clipping of each triangle that crosses it: a triangle or
+    a quad, in two triangles, with the same row; new vertices appended). Returns (pts,
+    tris, rgb)."""
     inside = pts[tris, 2] >= z_near                    # (m, 3)
     count = inside.sum(axis=1)
     keep = count == 3
@@ -183,31 +201,20 @@ def clip_near(pts, tris, rgb, z_near):
     return np.vstack(new_pts), np.vstack(new_tris).astype(np.int64), np.vstack(new_rgb)
 
 
-def objects_pass(r, objects, surface, light_dir):
-    """Draw ``objects`` (Mesh) into Render ``r`` in place: its rgba, and its depth
-    where an object is nearer than the surface (side, intensity and the G-buffer stay
-    the surface's); ``stats["objects"]`` and ``stats["object_pixels"]``. They stand
-    on ``surface`` (in its own units; r.box stretches them as the picture); light_dir
-    is the screen direction toward the light (None or zeros: the headlight). The
-    meshes are projected and lit here (numpy), rasterised by kernels/raster.py."""
-    # (an object far larger than the scene overflows its normals' products: a face
-    # without a normal takes the ambient light, and numpy's warnings are no news)
-    with np.errstate(over="ignore", invalid="ignore"):
-        return _objects_pass(r, objects, surface, light_dir)
-
-
-def _objects_pass(r, objects, surface, light_dir):
-    from .kernels.raster import raster_kernel
-    view = r.view
-    H, W = r.side.shape
-    a, b, c = r.box
-    ortho = view.orthographic
+def meshes(objects, surface, box):
+    """The objects' triangles in the picture's box: (vertices (n, 3) as (u, v, w)
+    stretched by ``box``, triangles (m, 3), colours (m, 3)), each standing on
+    ``surface`` (its foot at f(u, v), or its ``base``; one over a hole is left out)."""
+    a, b, c = box
+    checked = [obj.check() for obj in objects]
+    # the feet on the surface, in one call
+    feet = surface.evaluate(np.array([x[0] for x in checked], dtype=np.float64),
+                            np.array([x[1] for x in checked], dtype=np.float64))
     verts, tris, rgbs = [], [], []
     n = 0
-    for obj in objects:
-        u0, v0, vv, tt, rgb = obj.check()
+    for obj, (u0, v0, vv, tt, rgb), foot in zip(objects, checked, np.atleast_1d(feet)):
         if obj.base is None:
-            foot = float(np.asarray(surface.evaluate(np.array([u0]), np.array([v0])))[0])
+            foot = float(foot)
             if not math.isfinite(foot):
                 continue                        # (over a hole: nothing to stand on)
         else:
@@ -216,13 +223,166 @@ def _objects_pass(r, objects, surface, light_dir):
         tris.append(tt + n)
         rgbs.append(rgb)
         n += len(vv)
+    if not verts:
+        return np.zeros((0, 3)), np.zeros((0, 3), np.int64), np.zeros((0, 3))
+    return np.vstack(verts), np.vstack(tris).astype(np.int64), np.vstack(rgbs)
+
+
+#: the occluders' grid: about this many cells a triangle, at most this many a side,
+#: and at most this many (cell, triangle) entries in all
+CELLS_PER_TRIANGLE = 4
+MAX_CELLS_SIDE = 512
+MAX_ENTRIES = 4_000_000
+#: a triangle blocks a point lying below it toward the light by more than this
+#: part of the objects' size (its own triangle never does)
+OCCLUDER_BIAS = 1e-7
+
+
+class Occluders:
+    """The objects' triangles as casters of shadows from a directional light ``light``
+    (toward it, in the box's (u, v, w)): in the light's frame, where a ray toward the
+    light is a point, each triangle is a 2-D triangle with a height toward the light,
+    binned in a grid (kernels/raster.py occluded_kernel). Exact for points: a point is
+    in an object's shadow where some triangle's projection holds it and lies nearer
+    the light (shadows with hard edges: no penumbra, no antialiasing)."""
+
+    def __init__(self, verts, tris, light):
+        L = np.asarray(light, dtype=np.float64)
+        L = L / np.linalg.norm(L)
+        ref = np.array([0.0, 0.0, 1.0]) if abs(L[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+        e1 = np.cross(L, ref)
+        e1 /= np.linalg.norm(e1)
+        e2 = np.cross(L, e1)
+        #: rows e1, e2 (across the light) and L
+        self.frame = np.ascontiguousarray(np.vstack([e1, e2, L]))
+        pa, pb, pd = (verts @ self.frame.T).T
+        A, B, D = pa[tris], pb[tris], pd[tris]               # (m, 3) each
+        det = (A[:, 1] - A[:, 0]) * (B[:, 2] - B[:, 0]) - (A[:, 2] - A[:, 0]) * (B[:, 1] - B[:, 0])
+        size = float(np.ptp(verts, axis=0).max()) if len(verts) else 0.0
+        # a triangle seen edge-on from the light blocks nothing (its neighbours do); one
+        # beyond floating point (an object 1e300 tall) is left out
+        with np.errstate(all="ignore"):
+            keep = (np.abs(det) > 1e-12 * np.float64(max(size, 1e-300)) ** 2) & np.isfinite(det) \
+                & np.isfinite(A).all(axis=1) & np.isfinite(B).all(axis=1) \
+                & np.isfinite(D).all(axis=1)
+        A, B, D, det = A[keep], B[keep], D[keep], det[keep]
+        #: the triangles' index among ``tris`` (a point's own is left out)
+        self.index = np.nonzero(keep)[0]
+        self.coef = np.ascontiguousarray(np.c_[
+            A[:, 0], B[:, 0],
+            (B[:, 2] - B[:, 0]) / det, -(A[:, 2] - A[:, 0]) / det,
+            -(B[:, 1] - B[:, 0]) / det, (A[:, 1] - A[:, 0]) / det,
+            D[:, 0], D[:, 1] - D[:, 0], D[:, 2] - D[:, 0]])
+        ok = np.isfinite(self.coef).all(axis=1)
+        if not ok.all():
+            self.index, self.coef = self.index[ok], np.ascontiguousarray(self.coef[ok])
+            A, B = A[ok], B[ok]
+        self.bias = OCCLUDER_BIAS * size if math.isfinite(size) else 0.0
+        self._grid(A, B)
+
+    def _grid(self, A, B):
+        m = len(A)
+        if m == 0:
+            self.ga = self.gb = 0.0
+            self.inv_cell, self.na, self.nb = 1.0, 1, 1
+            self.start = np.zeros(2, np.int64)
+            self.items = np.zeros(0, np.int64)
+            return
+        lo_a, hi_a, lo_b, hi_b = A.min(axis=1), A.max(axis=1), B.min(axis=1), B.max(axis=1)
+        self.ga, self.gb = float(lo_a.min()), float(lo_b.min())
+        span = max(float(hi_a.max()) - self.ga, float(hi_b.max()) - self.gb, 1e-300)
+        side = int(min(max(math.sqrt(CELLS_PER_TRIANGLE * m), 1), MAX_CELLS_SIDE))
+        if not math.isfinite(span * 2.0):       # (a footprint near float's limit: one cell)
+            span, side = float(np.finfo(np.float64).max) / 4, 1
+            self.ga, self.gb = -span, -span
+        while True:
+            cell = span / side * (1 + 1e-9)
+            na = int(min((float(hi_a.max()) - self.ga) / cell, side - 1)) + 1
+            nb = int(min((float(hi_b.max()) - self.gb) / cell, side - 1)) + 1
+            ia0 = np.clip(((lo_a - self.ga) / cell).astype(np.int64), 0, na - 1)
+            ia1 = np.clip(((hi_a - self.ga) / cell).astype(np.int64), 0, na - 1)
+            ib0 = np.clip(((lo_b - self.gb) / cell).astype(np.int64), 0, nb - 1)
+            ib1 = np.clip(((hi_b - self.gb) / cell).astype(np.int64), 0, nb - 1)
+            wa = ia1 - ia0 + 1
+            counts = wa * (ib1 - ib0 + 1)
+            total = int(counts.sum())
+            if total <= MAX_ENTRIES or side == 1:
+                break
+            side = max(side // 2, 1)
+        tri = np.repeat(np.arange(m), counts)
+        local = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
+        w = wa[tri]
+        cells = (ib0[tri] + local // w) * na + ia0[tri] + local % w
+        order = np.argsort(cells, kind="stable")
+        self.items = np.ascontiguousarray(tri[order])
+        self.start = np.r_[0, np.cumsum(np.bincount(cells, minlength=na * nb))].astype(np.int64)
+        self.inv_cell, self.na, self.nb = 1.0 / cell, na, nb
+
+    def blocked(self, point, test, drawn=None, src=None):
+        """(H, W) uint8: 1 where the ray from a pixel's point toward the light meets a
+        triangle, for the pixels where ``test`` is set. ``point``: (H, W, 3) in the box,
+        or (H, n, T, 3) as a tiled G-buffer holds them (kernels/raster.py
+        occluded_kernel). A point on an object does not meet its own triangle: ``drawn``
+        (H, W) the rasteriser's triangle + 1 at each pixel, ``src`` each rasterised
+        triangle's index among ``tris``."""
+        from .kernels.raster import occluded_kernel
+        H, W = test.shape
+        if point.ndim == 3:
+            point = point.reshape(H, W, 1, 3)
+        own = np.zeros((0, 0), np.int32)
+        grid_index = np.zeros(0, np.int64)
+        if drawn is not None:
+            # (the grid's triangles are numbered among those kept)
+            where = np.full(max(int(src.max(initial=0)), int(self.index.max(initial=0))) + 1,
+                            -1, np.int64)
+            where[self.index] = np.arange(len(self.index))
+            own, grid_index = drawn, where[src]
+        out = np.empty((H, W), np.uint8)
+        occluded_kernel(point, test, own, grid_index, self.frame, self.coef, self.start,
+                        self.items, self.ga, self.gb, self.inv_cell, self.na, self.nb,
+                        self.bias, out)
+        return out
+
+
+def occluders(objects, surface, box, light):
+    """The objects' Occluders for the shadow texture (passes/shadow.py), or None; it
+    keeps their ``meshes`` (the objects pass draws the same)."""
+    m = meshes(objects, surface, box)
+    if not len(m[1]):
+        return None
+    with np.errstate(all="ignore"):             # (objects near float's limit: left out)
+        out = Occluders(m[0], m[1], light)
+    out.meshes = m
+    return out
+
+
+def objects_pass(r, objects, surface, light_dir, texture=None):
+    """Draw ``objects`` (Mesh) into Render ``r`` in place: its rgba, and its depth
+    where an object is nearer than the surface (side, intensity and the G-buffer stay
+    the surface's); ``stats["objects"]`` and ``stats["object_pixels"]``. They stand
+    on ``surface`` (in its own units; r.box stretches them as the picture); light_dir
+    is the screen direction toward the light (None or zeros: the headlight). The
+    meshes are projected and lit here (numpy), rasterised by kernels/raster.py. With
+    the shadow ``texture`` (passes/shadow.py; shadows on) an object's point takes the
+    surfaces' shadows (their horizons in the texture) and the other triangles' (the
+    texture's occluders), and r.shadow holds its shadow where an object is seen."""
+    # (an object far larger than the scene overflows its normals' products: a face
+    # without a normal takes the ambient light, and numpy's warnings are no news)
+    with np.errstate(over="ignore", invalid="ignore"):
+        return _objects_pass(r, objects, surface, light_dir, texture)
+
+
+def _objects_pass(r, objects, surface, light_dir, texture):
+    from .kernels.raster import raster_kernel
+    view = r.view
+    H, W = r.side.shape
+    ortho = view.orthographic
     r.stats["objects"] = len(objects)
     r.stats["object_pixels"] = 0
-    if not verts:
+    casters = None if texture is None else texture.occluders
+    p, tris, base = casters.meshes if casters is not None else meshes(objects, surface, r.box)
+    if not len(tris):
         return r
-    p = np.vstack(verts)
-    tris = np.vstack(tris).astype(np.int64)
-    rgb = np.vstack(rgbs)
     x, y, z = view.to_screen(p[:, 0], p[:, 1], p[:, 2])
     # flat light: each face's normal turned toward the eye, against the light
     pts = np.c_[x, y, z]
@@ -237,12 +397,18 @@ def _objects_pass(r, objects, surface, light_dir):
     nrm *= np.sign(np.sum(nrm * to_eye, axis=1, keepdims=True) + 1e-300)
     ld = np.zeros(3) if light_dir is None else np.asarray(light_dir, dtype=float)
     lv = to_eye if not ld.any() else np.tile(ld / np.linalg.norm(ld), (len(tris), 1))
-    shade = AMBIENT + (1 - AMBIENT) * np.clip(np.sum(nrm * lv, axis=1), 0.0, None)
-    rgb = np.clip(rgb * shade[:, None], 0.0, 1.0)
+    facing = np.clip(np.sum(nrm * lv, axis=1), 0.0, None)
+    rgb = np.clip(base * (AMBIENT + (1 - AMBIENT) * facing)[:, None], 0.0, 1.0)
+    # the points seen where shadows are asked: each vertex's place in the box goes
+    # through the clipping and the rasteriser with it; each triangle's own index too
+    shadows = texture is not None
+    pts = np.c_[pts, p] if shadows else pts
+    attrs = np.c_[rgb, np.arange(len(tris))]
     if not ortho:
         # the parts of the triangles behind the screen plane (a fly-through's objects
         # reach past the eye)
-        pts, tris, rgb = clip_near(pts, tris, rgb, view.d1 - view.d3)
+        pts, tris, attrs = clip_near(pts, tris, attrs, view.d1 - view.d3)
+    rgb, src = attrs[:, :3], attrs[:, 3].astype(np.int64)
     x, y, z = pts[:, 0], pts[:, 1], pts[:, 2]
     e = z + view.d3                              # distance along the view axis
     m = np.ones_like(e) if ortho else view.d1 / e
@@ -250,12 +416,42 @@ def _objects_pass(r, objects, surface, light_dir):
     row = (H - 1) / 2 - y * m * view.scale
     depth = r.depth
     zbuf = np.where(np.isfinite(depth), depth.astype(np.float64), np.inf)
-    drawn = np.zeros((H, W), np.uint8)
-    raster_kernel(col, row, e, tris, rgb, ortho, float(view.d3), zbuf, r.rgba, drawn)
-    hit = drawn.astype(bool)
+    drawn = np.zeros((H, W), np.int32)
+    wp = np.ascontiguousarray(pts[:, 3:]) if shadows else np.zeros((0, 3))
+    point = np.empty((H, W, 3) if shadows else (0, 0, 3))    # (read where drawn only)
+    raster_kernel(col, row, e, tris, np.ascontiguousarray(rgb), ortho, float(view.d3), zbuf,
+                  r.rgba, drawn, wp, point)
+    hit = drawn > 0
     r.stats["object_pixels"] = int(hit.sum())
     if hit.any():
         d = depth.copy()
         d[hit] = zbuf[hit].astype(np.float32)
         r._depth = d
+        if shadows:
+            _receive(r, hit, drawn, src, point, base, facing, texture)
     return r
+
+
+def _receive(r, hit, drawn, src, point, base, facing, texture):
+    """The objects' seen points in shadow (objects_pass with shadows): attached where
+    the face turns away from the light, cast by the surfaces (the texture's horizons,
+    kernels/shadow.py points_shadow) and by the other triangles (its occluders); the
+    face lit again with the light that reaches it, and r.shadow set there."""
+    from .kernels.shadow import points_shadow
+    at = np.nonzero(hit)
+    k = src[drawn[at] - 1]                      # each pixel's triangle among the meshes
+    shadow = (facing[k] <= 0.0).astype(np.float64)         # attached
+    test = np.zeros(hit.shape, bool)
+    test[at] = shadow < 1.0
+    if texture.texels and not texture.zenith:
+        cast = np.empty(hit.shape)
+        points_shadow(point, test, texture.hmax, texture.gu, texture.gv, texture.tan_theta,
+                      texture.s0, texture.t0, texture.h, cast)
+        shadow = np.maximum(shadow, cast[at])
+        test[at] = shadow < 1.0
+    if texture.occluders is not None:
+        shadow = np.maximum(shadow, texture.occluders.blocked(point, test, drawn, src)[at])
+    lit = (1.0 - shadow)[:, None]
+    rgb = np.clip(base[k] * (AMBIENT + (1 - AMBIENT) * facing[k][:, None] * lit), 0.0, 1.0)
+    r.rgba[at[0], at[1], :3] = np.round(rgb * 255.0).astype(np.uint8)
+    r.shadow[at] = shadow                  # (the Render's own array: the shadow pass's)

@@ -54,13 +54,13 @@ def render_scene(scene, stacklevel=2, composite=False) -> Render:
     the scene's objects, by z-buffer (floatcol/objects.py)."""
     t_start = time.perf_counter()
     objects = _objects(scene.objects)            # (checked before the work)
-    out = _render_layers(scene, stacklevel + 1, composite, t_start)
+    out, texture = _render_layers(scene, stacklevel + 1, composite, t_start, objects)
     if objects:
         from .objects import objects_pass
         first = scene.layers[0]
         light = as_light(scene.light, first.material.shading)
         objects_pass(out, objects, as_surface(first.surface, scene.vars),
-                     _screen_light(light, scene.camera.elev, scene.camera.azim))
+                     _screen_light(light, scene.camera.elev, scene.camera.azim), texture)
         out.stats["seconds"] = time.perf_counter() - t_start
     return out
 
@@ -80,8 +80,9 @@ def _objects(objects):
     return objects
 
 
-def _render_layers(scene, stacklevel, composite, t_start) -> Render:
-    """render_scene's layers."""
+def _render_layers(scene, stacklevel, composite, t_start, objects):
+    """render_scene's layers: (Render, the light's shadow texture or None). With shadows
+    the ``objects`` cast theirs on the layers (the texture's occluders)."""
     quality = scene.quality
     quality.check_method()
     quality.check_device()
@@ -98,6 +99,8 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
     if background is None:
         background = default_background(quality.method, first.shading)
     texture = _shadow_texture(layers[0].light, scene.camera, quality, drawn, views[0])
+    if texture is not None and objects:
+        texture.occluders = _occluders(texture, objects, layers[0].surface, box)
     if any(p.material.opacity < 1.0 for p in layers):
         if quality.method != "column":
             raise ValueError("opacity below 1 needs shaded pictures: method='column' (a line "
@@ -119,16 +122,16 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
                              "use shadows=True (shadows='on-the-fly' draws one opaque "
                              "surface)")
         return render_translucent(layers, views, drawn, box, quality, background, texture,
-                                  t_start)
+                                  t_start), texture
     if not many and texture is None and draft.supports(quality, views[0]) \
             and quality.device == "cpu" \
             and scene.camera.columns is None \
             and not first.colored and not first.overlaid and _drafting():
         return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
-                            stacklevel + 1)
+                            stacklevel + 1), texture
     if not many:
         return _layer(layers[0], views[0], drawn[0], box, quality, background, t_start,
-                      stacklevel + 1, texture)
+                      stacklevel + 1, texture), texture
     renders = []
     for k, (p, view, (s, dom)) in enumerate(zip(layers, views, drawn)):
         if p.light_dir is not layers[0].light_dir:
@@ -137,7 +140,7 @@ def _render_layers(scene, stacklevel, composite, t_start) -> Render:
                               time.perf_counter(), stacklevel + 1, texture, k))
     out = merge(renders, color.to_rgba8(background))
     out.stats["seconds"] = time.perf_counter() - t_start
-    return out
+    return out, texture
 
 
 def _prepare(layer, scene):
@@ -169,6 +172,15 @@ def _shadow_texture(light, camera, quality, drawn, view):
     from .view import _number
     direction = light.world_direction(_number("elev", camera.elev), _number("azim", camera.azim))
     return shadows.Texture(drawn, view, direction, light.radius, light.shadow_method)
+
+
+def _occluders(texture, objects, surface, box):
+    """The objects as casters of the texture's light (objects.Occluders), or None."""
+    from .objects import occluders
+    if texture.on_the_fly:
+        raise ValueError("objects take their shadows from the shadow texture: use "
+                         "shadows=True (shadows='on-the-fly' draws one surface's)")
+    return occluders(objects, surface, box, texture.light)
 
 
 def _band(views, columns):

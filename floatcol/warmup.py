@@ -160,7 +160,7 @@ def warm_all():
     picture's: small pictures with each engine and pass (antialiasing by sub-columns
     and by area, translucency, shadows of each kind, textures, colour fields,
     contours and wireframes, floating horizons, adaptive planes, height fields with
-    objects, a fly-through's level-of-detail engine, Guedes's variants, composites),
+    objects and their shadows, a fly-through's level-of-detail engine, Guedes's variants, composites),
     in both projections. ``python -m floatcol.warmup --all`` runs it: what a machine
     image or a CI job can do once, so that no later picture waits for a compile
     (about 140 s on 2 cores with an empty cache, a second or two with a full one)."""
@@ -182,9 +182,9 @@ def warm_all():
             fc.render(expr, **kw, **opts).intensity
     z = np.sin(np.linspace(0, 6, 33))[:, None] * np.cos(np.linspace(0, 5, 33))[None, :]
     hf = fc.HeightField(3 * z, u=(0, 32), v=(0, 32))
-    for opts in (dict(), dict(antialias="area"), dict(shadows=True),
-                 dict(objects=[fc.tree(16, 16, 3), fc.box(8, 8, 2, 2, 2), fc.pole(20, 20, 4),
-                               fc.marker(24, 8, 1)])):
+    objects = [fc.tree(16, 16, 3), fc.box(8, 8, 2, 2, 2), fc.pole(20, 20, 4), fc.marker(24, 8, 1)]
+    for opts in (dict(), dict(antialias="area"), dict(shadows=True), dict(objects=objects),
+                 dict(objects=objects, shadows=True)):
         fc.render(hf, size=(64, 48), **opts).intensity
     cam = fc.fly(hf, (16, 1), heading=0, size=(64, 36), above=4)
     for area in (False, True):

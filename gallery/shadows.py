@@ -6,7 +6,8 @@ ambient light only) and the cast ones (section 6.2.1's shadow texture: floating-
 sweeps over the domain along the sun's ground direction). The sun is matplotlib's
 LightSource(azdeg, altdeg), fixed to the surface: it stays where it is as the camera
 turns. ``light_radius`` makes the sun a disk of that angular radius (soft shadows);
-``shadows="on-the-fly"`` is section 6.2.2's method, without a texture.
+``shadows="on-the-fly"`` is section 6.2.2's method, without a texture. Objects standing
+on the surface (fc.box, fc.pole, fc.tree, fc.marker) cast shadows and take them.
 """
 import numpy as np
 from matplotlib.cbook import get_sample_data
@@ -36,6 +37,14 @@ pillar = "Piecewise((2, (Abs(u) < 0.25) & (Abs(v) < 0.25)), (0.6*exp(-((u+1.5)**
 fc.render(pillar, u=(-3, 3), v=(-2, 2.5), size=(800, 600), elev=55, azim=20,
           lightsource=(250, 22), shadows=True, light_radius=2.5, upper_color="0.85",
           ambient=0.3, specular=0.0).save("soft_shadow.png")
+
+# objects on a gentle surface: each casts its shadow on the ground and on the others
+# (the small tree stands in the big one's shadow)
+objects = [fc.box(-1, 0, 1, 1, 1.5, color="firebrick"), fc.pole(1.5, 1, 2.0, color="white"),
+           fc.tree(0, -2, 2.0), fc.marker(2, -1, 0.5), fc.tree(0.6, -1.0, 1.2)]
+fc.render("0.2*sin(u)*cos(v)", u=(-4, 4), v=(-4, 4), size=(800, 500), elev=35, azim=20,
+          projection="perspective", lightsource=(300, 30), shadows=True,
+          objects=objects).save("object_shadows.png")
 
 # a moving sun: a day over two bumps
 fc.animate("2*exp(-((x-1)**2+y**2)) + exp(-((x+1.5)**2+(y-1)**2)/0.5) + 0*t",

@@ -611,3 +611,86 @@ def composite_layers(surfaces, size, elev, azim, projection="orthographic", **kw
     count = np.bincount(idx, minlength=W * H)
     out = np.where(count > 0, out, np.nan)
     return out.reshape(H, W), count.reshape(H, W)
+
+
+def triangle_hits(o, d, tris, t_min=0.0, chunk=256):
+    """The nearest crossing of each ray o + t d (o, d: (k, 3)) with the triangles
+    (m, 3, 3) at t > t_min (Moeller and Trumbore's test, every ray against every
+    triangle). Returns (t: inf where none, the triangle's index: -1 where none)."""
+    k = len(o)
+    best_t = np.full(k, np.inf)
+    best_i = np.full(k, -1)
+    v0, e1, e2 = tris[:, 0], tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]
+    for c0 in range(0, k, chunk):
+        oo, dd = o[c0:c0 + chunk, None, :], d[c0:c0 + chunk, None, :]
+        p = np.cross(dd, e2[None])
+        det = np.sum(e1[None] * p, axis=2)
+        with np.errstate(all="ignore"):
+            inv = 1.0 / det
+            s = oo - v0[None]
+            a = np.sum(s * p, axis=2) * inv
+            q = np.cross(s, e1[None])
+            b = np.sum(dd * q, axis=2) * inv
+            t = np.sum(e2[None] * q, axis=2) * inv
+            ok = (np.abs(det) > 1e-300) & (a >= 0) & (b >= 0) & (a + b <= 1) & (t > t_min)
+        t = np.where(ok, t, np.inf)
+        i = t.argmin(axis=1)
+        best_t[c0:c0 + chunk] = t[np.arange(len(i)), i]
+        best_i[c0:c0 + chunk] = np.where(np.isfinite(best_t[c0:c0 + chunk]), i, -1)
+    return best_t, best_i
+
+
+def objects_reference(funcs, u_rng, v_rng, size, elev, azim, projection, d1, d2, scale,
+                      center, tris, light, steps=2000):
+    """A picture of a surface with triangles standing on it (tris (m, 3, 3) in world
+    (u, v, w)) and their shadows from a directional light (``light`` toward it, world
+    (u, v, w)), independently of floatcol: each pixel's ray meets the surface
+    (raycast) or a triangle (triangle_hits), the nearer seen; a seen point is in
+    shadow where its seen side (the surface's, or the triangle's turned toward the
+    eye) faces away from the light, or where its ray toward the light meets the
+    surface (_cast) or another triangle. Returns (kind (H, W): 0 nothing, 1 the
+    surface, 2 a triangle; depth (screen z); shadow: 1 / 0, NaN where nothing)."""
+    f, fu, fv = funcs
+    ref = raycast(funcs, u_rng, v_rng, size, elev, azim, projection, d1, d2, scale,
+                  center=center)
+    org, dirn, _, _, _, world = _rays(u_rng, v_rng, size, elev, azim, projection, d1, d2,
+                                      scale, None, center)
+    ow = np.stack(world(*org)[:3])                          # (u, w, v) at lam = 0
+    dw = np.stack(world(*(org + dirn))[:3]) - ow
+    o = np.stack([ow[0], ow[2], ow[1]], axis=-1).reshape(-1, 3)    # (u, v, w)
+    d = np.stack([dw[0], dw[2], dw[1]], axis=-1).reshape(-1, 3)
+    t_tri, i_tri = triangle_hits(o, d, tris, t_min=0.0 if projection.startswith("ortho")
+                                 else 1.0)
+    hit = i_tri.reshape(org[2].shape) >= 0
+    depth_tri = np.where(hit, org[2] + dirn[2] * np.where(hit, t_tri.reshape(hit.shape), 0.0),
+                         np.inf)
+    H, W = ref.side.shape
+    on_tri = (i_tri.reshape(H, W) >= 0) & (depth_tri < ref.depth)
+    kind = np.where(on_tri, 2, np.where(ref.side != 0, 1, 0))
+    depth = np.where(on_tri, depth_tri, ref.depth)
+    L = np.asarray(light, float)
+    L = L / np.linalg.norm(L)
+    shadow = np.full((H, W), np.nan)
+    # the surface's points
+    s1 = kind == 1
+    u, v = ref.u[s1], ref.v[s1]
+    w = f(u, v)
+    side = ref.side[s1].astype(float)
+    n = np.stack([-fu(u, v), -fv(u, v), np.ones_like(u)], axis=1)
+    attached = side * (n @ L) <= 0.0
+    cast = _cast(f, u, v, w, side, L, u_rng, v_rng, steps, 1e-4)
+    pts = np.c_[u, v, w]
+    by_tri = triangle_hits(pts, np.tile(L, (len(pts), 1)), tris, t_min=1e-9)[1] >= 0
+    shadow[s1] = (attached | cast | by_tri).astype(float)
+    # the triangles' points
+    s2 = kind == 2
+    k = i_tri.reshape(H, W)[s2]
+    p = o.reshape(H, W, 3)[s2] + t_tri.reshape(H, W)[s2][:, None] * d.reshape(H, W, 3)[s2]
+    nrm = np.cross(tris[k, 1] - tris[k, 0], tris[k, 2] - tris[k, 0])
+    nrm *= -np.sign(np.sum(nrm * d.reshape(H, W, 3)[s2], axis=1))[:, None]   # toward the eye
+    attached = nrm @ L <= 0.0
+    cast = _cast(f, p[:, 0], p[:, 1], p[:, 2], np.ones(len(p)), L, u_rng, v_rng, steps, 1e-4)
+    t_o, i_o = triangle_hits(p, np.tile(L, (len(p), 1)), tris, t_min=1e-9)
+    by_tri = (i_o >= 0) & (i_o != k)
+    shadow[s2] = (attached | cast | by_tri).astype(float)
+    return kind, depth, shadow

@@ -35,7 +35,10 @@ CASES = [dict(projection="orthographic", method="column"),
          # the batches are not used otherwise
          dict(projection="perspective", batch=True),
          dict(projection="perspective", batch=True, antialias=3, lightsource=(315, 25),
-              shadows=True)]
+              shadows=True),
+         # objects' shadows (kernels/raster.py occluded_kernel, a column per thread)
+         dict(projection="perspective", lightsource=(300, 30), shadows=True,
+              objects=[fc.box(-1, 0, 1.5, 1.5, 2), fc.tree(2, -2, 3), fc.pole(0, 2, 3)])]
 def render_case(k):
     """CASES[k] rendered at 160x120 ("batch": the SIMD batches at any size)."""
     from floatcol.passes import geometry

@@ -566,3 +566,32 @@ def shadow_sweep(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, t0, h, n_s
                                    t0 + k0 * h, h, grazing, bias)
                 shadow[r, c] = val
                 lit[r, c] = 1.0 - val
+
+
+@ngjit_parallel
+def points_shadow(point, test, hmax, gu, gv, tan_theta, s0, t0, h, out):
+    """The surfaces' cast shadow on points above them (the objects' seen points,
+    floatcol/objects.py): point (H, W, 3) in the box where ``test`` (H, W) is set. A
+    point's ray toward the light is blocked where some layer's horizon beyond it
+    (hmax, the texture's) rises above the ray's H = w - sigma tan(theta); the margin
+    over one texel's rise antialiases the edge as the surface's own (point_shadow).
+    out (H, W): 1 in shadow, 0 lit, between at an edge; 0 where not tested. In
+    parallel over the columns."""
+    H, W = test.shape
+    width_m = max(abs(tan_theta) * h, 1e-300)
+    for j in prange(W):
+        for i in range(H):
+            out[i, j] = 0.0
+            if not test[i, j]:
+                continue
+            u, v, w = point[i, j, 0], point[i, j, 1], point[i, j, 2]
+            along = u * gu + v * gv
+            ps = (along - s0) / h
+            pt = (-u * gv + v * gu - t0) / h
+            hp = w - along * tan_theta
+            margin = -np.inf
+            for k in range(hmax.shape[0]):
+                m = _bilinear(hmax, k, pt, ps) - hp
+                if m > margin:
+                    margin = m
+            out[i, j] = min(max(margin / width_m + 0.5, 0.0), 1.0)

@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from .. import _pool
-from ..kernels.layout import SURF_FUNCTION
+from ..kernels.layout import G_U, G_W, SURF_FUNCTION
 from ..kernels.shadow import (
     BAND, horizon_slopes, horizon_sweeps, shadow_lookup, shadow_sweep, sweep_cells, sweep_order,
 )
@@ -73,6 +73,8 @@ class Texture:
 
     def __init__(self, drawn, view, light_world, radius=0.0, method="texture"):
         lw = np.asarray(light_world, dtype=np.float64)
+        #: the objects' triangles as casters (objects.Occluders), or None
+        self.occluders = None
         #: the light's angular radius in radians (0: a point at infinity, hard shadows)
         self.rho = math.radians(radius)
         #: soft shadows' horizons (4 layers, lines, samples: horizon_slopes'), or empty
@@ -157,6 +159,24 @@ def shadow_pass(texture, view, geom, W, H, layer=0):
     light = np.asarray(view.light, dtype=np.float64)
     if texture.on_the_fly and not texture.zenith:
         return _on_the_fly(texture, geom, W, H, light, shadow, lit)
+    _lookup(texture, geom, W, light, shadow, lit, layer)
+    if texture.occluders is not None:
+        _objects_cast(texture.occluders, geom, W, H, shadow, lit)
+    return shadow, lit
+
+
+def _objects_cast(occluders, geom, W, H, shadow, lit):
+    """The objects' cast shadows on a layer's seen points (objects.Occluders), in
+    place: 1 where a triangle stands between the point and the light (hard edges)."""
+    # the G-buffer's seen points, top row first: (H, tiles, lanes, u v w), a view
+    point = geom.gbuf[:, ::-1, :, G_U:G_W + 1].transpose(1, 0, 2, 3)
+    blocked = occluders.blocked(point, shadow < 1.0) > 0     # (NaN: nothing seen)
+    shadow[blocked] = 1.0
+    lit[blocked] = 0.0
+
+
+def _lookup(texture, geom, W, light, shadow, lit, layer):
+    """shadow_pass's texture lookup (kernels/shadow.py shadow_lookup)."""
     if texture.zenith:
         none = np.zeros((0, 1, 1), dtype=np.float32)
         shadow_lookup(geom.gbuf, geom.ebuf, W, light, none, none, none, none, layer, 0.0, 0.0,
@@ -166,7 +186,6 @@ def shadow_pass(texture, view, geom, W, H, layer=0):
                       texture.hsurf, texture.slopes, layer, texture.gu, texture.gv,
                       texture.tan_theta, texture.s0, texture.t0, texture.h, GRAZING,
                       BIAS_TEXELS, texture.rho, shadow, lit)
-    return shadow, lit
 
 
 def _on_the_fly(sweep, geom, W, H, light, shadow, lit):

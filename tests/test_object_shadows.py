@@ -1,0 +1,110 @@
+"""Objects' shadows (floatcol/objects.py Occluders; passes/shadow.py): the objects cast
+shadows on the surface and on each other, and take the surface's, against an
+independent reference (tests/reference.py objects_reference: every ray against every
+triangle, the surface ray-cast and marched toward the light).
+
+Bounds measured on 2026-12-05 (160x120, antialias=False), then loosened a little:
+agreement is the part of the pixels, among those where both see the same thing (the
+surface or an object, at the same depth), whose shadow (>= 0.5) agrees.
+
+    case, projection     surface pixels  agree     object pixels  agree    shadowed by
+                                                                           objects alone
+    gentle, ortho        7178            100 %     816            100 %    683, 100 %
+    gentle, persp        6174            100 %     748            100 %    637, 100 %
+    hill, ortho          7155            99.97 %   793            100 %    301, 99.67 %
+    hill, persp          6175            100 %     618            100 %    224, 100 %
+"""
+import math
+
+import numpy as np
+import pytest
+
+import floatcol as fc
+from reference import numpy_surface, objects_reference
+
+BUMP = "1.6*exp(-((u-0.5)**2 + v**2)/0.6) + 0.1*sin(2*u)*cos(v)"
+
+
+def _scene(expr, objects, proj, sun, elev=35, azim=20, size=(160, 120), **kw):
+    dom = (-4, 4)
+    r = fc.render(expr, u=dom, v=dom, size=size, elev=elev, azim=azim, projection=proj,
+                  lightsource=sun, shadows=True, objects=objects, antialias=False,
+                  **kw)
+    f = numpy_surface(expr)
+    tris = []
+    for obj in objects:
+        foot = float(f[0](np.array([obj.u]), np.array([obj.v]))[0])
+        p = np.asarray(obj.vertices, float) + [obj.u, obj.v, foot]
+        tris.append(p[np.asarray(obj.triangles)])
+    vw = r.view
+    kind, depth, shadow = objects_reference(
+        f, dom, dom, size, elev, azim, proj, vw.d1, vw.d2, vw.scale, vw.center,
+        np.vstack(tris), fc.Light.sun(*sun).direction)
+    return r, kind, depth, shadow
+
+
+def _behind(sun, center, k):
+    """A point k units from ``center`` away from the sun along the ground."""
+    L = fc.Light.sun(*sun).direction
+    g = np.array(L[:2]) / math.hypot(L[0], L[1])
+    return tuple(np.asarray(center) - k * g)
+
+
+CASES = [
+    # objects on a gentle surface: their shadows on it and on each other
+    ("0.2*sin(u)*cos(v)", (300, 30), lambda: [
+        fc.box(-1, 0, 1, 1, 1.5, color="firebrick"), fc.pole(1.5, 1, 2.0),
+        fc.tree(0, -2, 2.0), fc.marker(2, -1, 0.5), fc.tree(0.6, -1.0, 1.2)]),
+    # a hill's shadow falling on the objects behind it
+    (BUMP, (120, 20), lambda: [
+        fc.box(*_behind((120, 20), (0.5, 0.0), 2.2), 1.4, 1.4, 1.0, color="firebrick"),
+        fc.pole(*_behind((120, 20), (0.5, 0.0), 1.2), 1.5, radius=0.12),
+        fc.tree(*_behind((120, 20), (0.5, 0.0), 3.4), 1.8)]),
+]
+
+
+@pytest.mark.parametrize("proj", ["orthographic", "perspective"])
+@pytest.mark.parametrize("case", range(len(CASES)))
+def test_object_shadows_agree_with_the_reference(case, proj):
+    expr, sun, objects = CASES[case]
+    r, kind, depth, shadow = _scene(expr, objects(), proj, sun)
+    d = r.depth.astype(float)
+    with np.errstate(invalid="ignore"):            # (inf - inf where nothing is seen)
+        same = np.isfinite(d) & (kind > 0) & (np.abs(d - depth) < 0.02)
+    for k, what in ((1, "surface"), (2, "objects")):
+        at = same & (kind == k)
+        assert at.sum() > 300, what
+        agree = ((r.shadow[at] >= 0.5) == (shadow[at] >= 0.5)).mean()
+        assert agree >= 0.998, (what, agree)
+    # objects' shadows are there: surface pixels the objects alone shadow
+    plain = fc.render(expr, u=(-4, 4), v=(-4, 4), size=(160, 120), elev=35, azim=20,
+                      projection=proj, lightsource=sun, shadows=True, antialias=False)
+    by_objects = same & (kind == 1) & (shadow >= 0.5) & (plain.shadow < 0.5)
+    assert by_objects.sum() > 200
+    assert (r.shadow[by_objects] >= 0.5).mean() >= 0.99
+
+
+def test_a_poles_shadow_on_flat_ground_is_as_long_as_trig_says():
+    """A pole h tall under a sun at altitude a throws a shadow h / tan(a) long, straight
+    away from the sun, as wide as the pole."""
+    h, alt, az = 2.0, 30.0, 300.0
+    r = fc.render("0.0*u + 0.0*v", u=(-4, 4), v=(-4, 4), size=(320, 320), elev=70, azim=10,
+                  lightsource=(az, alt), shadows=True, objects=[fc.pole(0, 0, h, radius=0.08)],
+                  antialias=False)
+    L = fc.Light.sun(az, alt).direction
+    g = -np.array(L[:2]) / math.hypot(L[0], L[1])          # away from the sun
+    across = np.array([-g[1], g[0]])
+    length = h / math.tan(math.radians(alt))               # 3.46
+    pts = {"shadow": [g * k for k in (0.5, 1.5, 2.5, 0.97 * length)],
+           "lit": [g * 1.03 * length, g * 3.9, g * 1.5 + across * 0.2, -g * 1.0]}
+    for want, ps in pts.items():
+        for p in ps:
+            col, row = r.view.project(np.array([p[0]]), np.array([p[1]]), np.array([0.0]))
+            s = r.shadow[int(round(row[0])), int(round(col[0]))]
+            assert (s >= 0.5) == (want == "shadow"), (want, p, s)
+
+
+def test_objects_take_their_shadows_from_the_texture():
+    with pytest.raises(ValueError, match="shadows=True"):
+        fc.render("u*v", size=(40, 30), lightsource=(300, 30), shadows="on-the-fly",
+                  objects=[fc.pole(0, 0, 2.0)])

@@ -1,11 +1,12 @@
 """Shadows (Gordon 6.2, issue 28): cost and agreement.
 
-    python benchmarks/bench_shadow.py [--cost | --agreement]
+    python benchmarks/bench_shadow.py [--cost | --agreement | --objects]
 
 Prints (1) the cost of shadows at 1920x1080 and 1024x768: render time without
 shadows and with each method (the texture of 6.2.1, the sweep on the fly of 6.2.2;
 hard and soft), best and median of N after a warm-up, the shadow pass's own time and
-the memory it keeps; (2) the agreement of the lit/shadow state
+the memory it keeps; (1b) the cost of objects' shadows (202 objects on a surface,
+1920x1080: shadows, objects, both); (2) the agreement of the lit/shadow state
 with the reference ray caster's shadow rays (tests/reference.py) on surfaces, views and
 lights that are not in tests/test_shadow.py, both projections.
 """
@@ -110,8 +111,38 @@ def agreement():
           "from the texture)")
 
 
+def objects_cost():
+    """Objects' shadows (objects.Occluders): 200 trees, a box and a pole on a gentle
+    surface at 1920x1080, the variants interleaved, median of N after a warm-up."""
+    rng = np.random.default_rng(1)
+    objs = [fc.tree(u, v, 0.6) for u, v in rng.uniform(-4, 4, (200, 2))]
+    objs += [fc.box(-1, 0, 1, 1, 1.5), fc.pole(1.5, 1, 2.0)]
+    variants = [("shadows", dict(shadows=True)), ("objects", dict(objects=objs)),
+                ("objects and their shadows", dict(objects=objs, shadows=True))]
+    print("\n| 1920x1080, 202 objects | " + " | ".join(n for n, _ in variants)
+          + " | object pixels |")
+    print("|---|---|---|---|---|")
+    for proj in ("orthographic", "perspective"):
+        kw = dict(u=(-4, 4), v=(-4, 4), size=(1920, 1080), elev=35, azim=20,
+                  projection=proj, lightsource=(300, 30))
+        ts = {n: [] for n, _ in variants}
+        for k in range(N + 1):
+            for n, extra in variants:
+                t = time.perf_counter()
+                r = fc.render("0.2*sin(u)*cos(v)", **kw, **extra)
+                if k:
+                    ts[n].append(time.perf_counter() - t)
+        print(f"| {proj} | " + " | ".join(f"{sorted(x)[N // 2] * 1e3:.1f} ms" for x in ts.values())
+              + f" | {r.stats['object_pixels']} |", flush=True)
+
+
 if __name__ == "__main__":
-    if "--agreement" not in sys.argv[1:]:
-        cost()
-    if "--cost" not in sys.argv[1:]:
-        agreement()
+    args = sys.argv[1:]
+    if "--objects" in args:
+        objects_cost()
+    else:
+        if "--agreement" not in args:
+            cost()
+            objects_cost()
+        if "--cost" not in args:
+            agreement()

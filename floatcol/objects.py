@@ -9,7 +9,9 @@ rasterises each triangle at the pixel centres with perspective-correct depth, ke
 the nearest of them and of the surface (Render.depth), and lights each face flat by
 the picture's light (ambient 0.35). With shadows (a shadow texture, passes/shadow.py)
 they cast shadows on the surfaces and on each other (Occluders: exact, hard-edged) and
-take the surfaces' (the texture's horizons). ``Render.window_depth(near, far)`` (his eq. 7)
+take the surfaces' (the texture's horizons). With antialiasing their edges are
+antialiased by 16 sub-samples (kernels/raster.py object_edges_kernel).
+``Render.window_depth(near, far)`` (his eq. 7)
 gives the surface's depth as OpenGL's depth buffer holds it, for the opposite way
 round: a floatcol terrain under an OpenGL scene.
 
@@ -356,7 +358,7 @@ def occluders(objects, surface, box, light):
     return out
 
 
-def objects_pass(r, objects, surface, light_dir, texture=None):
+def objects_pass(r, objects, surface, light_dir, texture=None, antialias=False):
     """Draw ``objects`` (Mesh) into Render ``r`` in place: its rgba, and its depth
     where an object is nearer than the surface (side, intensity and the G-buffer stay
     the surface's); ``stats["objects"]`` and ``stats["object_pixels"]``. They stand
@@ -365,15 +367,18 @@ def objects_pass(r, objects, surface, light_dir, texture=None):
     meshes are projected and lit here (numpy), rasterised by kernels/raster.py. With
     the shadow ``texture`` (passes/shadow.py; shadows on) an object's point takes the
     surfaces' shadows (their horizons in the texture) and the other triangles' (the
-    texture's occluders), and r.shadow holds its shadow where an object is seen."""
+    texture's occluders), and r.shadow holds its shadow where an object is seen. With
+    ``antialias`` the objects' edges are antialiased (kernels/raster.py
+    object_edges_kernel: 16 sub-samples in each pixel where the objects' edges pass;
+    depth, shadow and object_pixels stay the pixel centre's)."""
     # (an object far larger than the scene overflows its normals' products: a face
     # without a normal takes the ambient light, and numpy's warnings are no news)
     with np.errstate(over="ignore", invalid="ignore"):
-        return _objects_pass(r, objects, surface, light_dir, texture)
+        return _objects_pass(r, objects, surface, light_dir, texture, antialias)
 
 
-def _objects_pass(r, objects, surface, light_dir, texture):
-    from .kernels.raster import raster_kernel
+def _objects_pass(r, objects, surface, light_dir, texture, antialias):
+    from .kernels.raster import TOUCH_SLOTS, raster_kernel
     view = r.view
     H, W = r.side.shape
     ortho = view.orthographic
@@ -419,8 +424,10 @@ def _objects_pass(r, objects, surface, light_dir, texture):
     drawn = np.zeros((H, W), np.int32)
     wp = np.ascontiguousarray(pts[:, 3:]) if shadows else np.zeros((0, 3))
     point = np.empty((H, W, 3) if shadows else (0, 0, 3))    # (read where drawn only)
+    under = (zbuf.copy(), r.rgba.copy()) if antialias else (np.zeros((0, 0)), None)
+    touched = np.zeros((H, W, TOUCH_SLOTS) if antialias else (0, 0, 0), np.int32)
     raster_kernel(col, row, e, tris, np.ascontiguousarray(rgb), ortho, float(view.d3), zbuf,
-                  r.rgba, drawn, wp, point)
+                  r.rgba, drawn, wp, point, under[0], touched)
     hit = drawn > 0
     r.stats["object_pixels"] = int(hit.sum())
     if hit.any():
@@ -429,6 +436,10 @@ def _objects_pass(r, objects, surface, light_dir, texture):
         r._depth = d
         if shadows:
             _receive(r, hit, drawn, src, point, base, facing, texture)
+    if antialias and (hit.any() or touched.any()):
+        from .kernels.raster import object_edges_kernel
+        object_edges_kernel(drawn, touched, col, row, e, tris, np.ascontiguousarray(rgb),
+                            ortho, float(view.d3), under[0], under[1], r.rgba.copy(), r.rgba)
     return r
 
 

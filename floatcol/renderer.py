@@ -60,7 +60,8 @@ def render_scene(scene, stacklevel=2, composite=False) -> Render:
         first = scene.layers[0]
         light = as_light(scene.light, first.material.shading)
         objects_pass(out, objects, as_surface(first.surface, scene.vars),
-                     _screen_light(light, scene.camera.elev, scene.camera.azim), texture)
+                     _screen_light(light, scene.camera.elev, scene.camera.azim), texture,
+                     scene.quality.antialiasing(first.material.shading)[0])
         out.stats["seconds"] = time.perf_counter() - t_start
     return out
 

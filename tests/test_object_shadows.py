@@ -108,3 +108,29 @@ def test_objects_take_their_shadows_from_the_texture():
     with pytest.raises(ValueError, match="shadows=True"):
         fc.render("u*v", size=(40, 30), lightsource=(300, 30), shadows="on-the-fly",
                   objects=[fc.pole(0, 0, 2.0)])
+
+
+@pytest.mark.parametrize("proj", ["orthographic", "perspective"])
+def test_antialiased_object_edges_approach_the_supersampled_picture(proj):
+    """At the objects' edges (pixels they cover in part), an antialiased picture is the
+    box filter of a picture drawn at 4 x 4 the pixels (point sampled) within a fraction
+    of the point-sampled picture's error, shadows on. Measured (mean |error| of the RGB
+    levels over the edge pixels): orthographic 4.6 against 17.6, perspective 5.1
+    against 19.8 (before slivers between the pixel centres were found, 8.4 and 12.8)."""
+    expr, sun, objects = CASES[0]
+    kw = dict(u=(-4, 4), v=(-4, 4), elev=35, azim=20, projection=proj, lightsource=sun,
+              shadows=True, objects=objects())
+    big = dict(kw, size=(480, 360), antialias=False)
+    r4 = fc.render(expr, **big)
+    # the objects' footprint at 4 x 4: where they change the picture without shadows
+    plain4 = fc.render(expr, **dict(big, shadows=False, objects=()))
+    obj4 = fc.render(expr, **dict(big, shadows=False))
+    cover = np.any(obj4.rgba != plain4.rgba, axis=-1).reshape(90, 4, 120, 4).mean(axis=(1, 3))
+    want = r4.rgba[..., :3].astype(float).reshape(90, 4, 120, 4, 3).mean(axis=(1, 3))
+    edge = (cover > 0.2) & (cover < 0.8)
+    assert edge.sum() > 60
+    err = {}
+    for aa in (True, False):
+        r = fc.render(expr, **dict(kw, size=(120, 90), antialias=aa))
+        err[aa] = np.abs(r.rgba[..., :3].astype(float) - want)[edge].mean()
+    assert err[True] < 0.35 * err[False]

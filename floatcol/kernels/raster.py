@@ -10,7 +10,8 @@ from ._jit import ngjit, ngjit_parallel
 
 
 @ngjit
-def raster_kernel(cx, cy, e, tris, rgb, ortho, d3, zbuf, rgba, drawn, wp, point):
+def raster_kernel(cx, cy, e, tris, rgb, ortho, d3, zbuf, rgba, drawn, wp, point, z_under,
+                  touched):
     """Draw triangles ``tris`` (m, 3) of vertices at pixel coordinates (cx, cy)
     (column, array row) and distance e along the view axis, each of colour rgb (m, 3)
     in [0, 1], where nearer than zbuf (H, W) screen z (e - d3; updated): the depth
@@ -18,7 +19,11 @@ def raster_kernel(cx, cy, e, tris, rgb, ortho, d3, zbuf, rgba, drawn, wp, point)
     perspective (perspective-correct). rgba (H, W, 4) uint8 and drawn (H, W) int32 (the
     triangle's index + 1) are written where a triangle wins, and where ``point`` (H, W,
     3) is not empty the point seen there, interpolated as the depth from the vertices'
-    ``wp`` (n, 3). Serial, in the triangles' order."""
+    ``wp`` (n, 3). Where ``touched`` (H, W, TOUCH_SLOTS) is not empty (antialiasing) it
+    takes, at each pixel, the first triangles that do not win the centre but cover one
+    of the pixel's EDGE_SS x EDGE_SS sub-samples in front of z_under (H, W: what lies
+    under the objects), for object_edges_kernel: an object thinner than a pixel between
+    the centres. Serial, in the triangles' order."""
     H, W = zbuf.shape
     for k in range(tris.shape[0]):
         i0 = tris[k, 0]
@@ -41,18 +46,41 @@ def raster_kernel(cx, cy, e, tris, rgb, ortho, d3, zbuf, rgba, drawn, wp, point)
         r8 = np.uint8(min(max(round(rgb[k, 0] * 255.0), 0.0), 255.0))
         g8 = np.uint8(min(max(round(rgb[k, 1] * 255.0), 0.0), 255.0))
         b8 = np.uint8(min(max(round(rgb[k, 2] * 255.0), 0.0), 255.0))
+        # (antialiasing: a pixel centre within SUB_REACH of the triangle may have a
+        # sub-sample in it; its distance to edge k is l_k |det| / |edge k|)
+        g0 = g1 = g2 = 0.0
+        if touched.shape[0] > 0:
+            c0 = max(c0 - 1, 0)
+            c1 = min(c1 + 1, W - 1)
+            r0 = max(r0 - 1, 0)
+            r1 = min(r1 + 1, H - 1)
+            g0 = abs(det) / max(math.hypot(x1 - x2, y1 - y2), 1e-300)
+            g1 = abs(det) / max(math.hypot(x2 - x0, y2 - y0), 1e-300)
+            g2 = abs(det) / max(math.hypot(x0 - x1, y0 - y1), 1e-300)
         for r in range(r0, r1 + 1):
             for c in range(c0, c1 + 1):
                 l0 = ((y1 - y2) * (c - x2) + (x2 - x1) * (r - y2)) / det
                 l1 = ((y2 - y0) * (c - x2) + (x0 - x2) * (r - y2)) / det
                 l2 = 1.0 - l0 - l1
                 if l0 < -1e-9 or l1 < -1e-9 or l2 < -1e-9:
+                    if touched.shape[0] > 0 and touched[r, c, TOUCH_SLOTS - 1] == 0 \
+                            and l0 * g0 > -SUB_REACH and l1 * g1 > -SUB_REACH \
+                            and l2 * g2 > -SUB_REACH \
+                            and _covers_a_subsample(x0, x1, x2, y0, y1, y2, det, e[i0],
+                                                    e[i1], e[i2], ortho, d3, r, c,
+                                                    z_under[r, c]):
+                        _touch(touched, r, c, k + 1)
                     continue
                 if ortho:
                     depth = l0 * e[i0] + l1 * e[i1] + l2 * e[i2]
                 else:
                     depth = 1.0 / (l0 / e[i0] + l1 / e[i1] + l2 / e[i2])
                 z = depth - d3
+                if touched.shape[0] > 0 and z >= zbuf[r, c] \
+                        and touched[r, c, TOUCH_SLOTS - 1] == 0 \
+                        and _covers_a_subsample(x0, x1, x2, y0, y1, y2, det, e[i0], e[i1],
+                                                e[i2], ortho, d3, r, c, z_under[r, c]):
+                    _touch(touched, r, c, k + 1)  # (hidden at the centre, not everywhere)
                 if z < zbuf[r, c]:
                     zbuf[r, c] = z
                     rgba[r, c, 0] = r8
@@ -70,6 +98,48 @@ def raster_kernel(cx, cy, e, tris, rgb, ortho, d3, zbuf, rgba, drawn, wp, point)
                             m2 = l2 / e[i2] * depth
                         for q in range(3):
                             point[r, c, q] = m0 * wp[i0, q] + m1 * wp[i1, q] + m2 * wp[i2, q]
+
+
+#: sub-samples along each side of an object's edge pixel (antialiasing: 16 a pixel)
+EDGE_SS = 4
+
+
+@ngjit
+def _covers_a_subsample(x0, x1, x2, y0, y1, y2, det, e0, e1, e2, ortho, d3, r, c, z_max):
+    """Whether the triangle covers one of pixel (r, c)'s EDGE_SS x EDGE_SS sub-samples
+    nearer than screen z z_max (raster_kernel's depth)."""
+    S = EDGE_SS
+    for a in range(S):
+        y = r + (a + 0.5) / S - 0.5
+        for b in range(S):
+            x = c + (b + 0.5) / S - 0.5
+            l0 = ((y1 - y2) * (x - x2) + (x2 - x1) * (y - y2)) / det
+            l1 = ((y2 - y0) * (x - x2) + (x0 - x2) * (y - y2)) / det
+            l2 = 1.0 - l0 - l1
+            if l0 < -1e-9 or l1 < -1e-9 or l2 < -1e-9:
+                continue
+            if ortho:
+                depth = l0 * e0 + l1 * e1 + l2 * e2
+            else:
+                depth = 1.0 / (l0 / e0 + l1 / e1 + l2 / e2)
+            if depth - d3 < z_max:
+                return True
+    return False
+
+
+#: the farthest a sub-sample lies from its pixel's centre (pixels), and a little more
+SUB_REACH = 0.375 * math.sqrt(2.0) + 1e-6
+#: triangles a pixel keeps that cover its sub-samples but not its centre
+TOUCH_SLOTS = 3
+
+
+@ngjit
+def _touch(touched, r, c, t):
+    """Triangle t (index + 1) into pixel (r, c)'s first free slot."""
+    for q in range(TOUCH_SLOTS):
+        if touched[r, c, q] == 0:
+            touched[r, c, q] = t
+            return
 
 
 #: a point on a triangle's edge counts as inside (barycentric tolerance)
@@ -130,3 +200,123 @@ def occluded_kernel(point, test, own, grid_index, frame, coef, start, items, ga,
                 if coef[t, 6] + l1 * coef[t, 7] + l2 * coef[t, 8] > pd + bias:
                     out[i, j] = 1
                     break
+
+
+@ngjit_parallel
+def object_edges_kernel(drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_under, before,
+                        after, rgba):
+    """Antialias the objects' edges (floatcol/objects.py): a pixel whose 3 x 3
+    neighbourhood shows more than one thing (drawn (H, W): raster_kernel's triangle + 1,
+    0 where none), or that a triangle touches without winning its centre (``touched``
+    (H, W, TOUCH_SLOTS), raster_kernel's), takes the mean of EDGE_SS x EDGE_SS sub-samples spread evenly over
+    it. At each sub-sample the nearest of the triangles drawn or touching in the
+    neighbourhood that covers it (its depth as raster_kernel's) is seen, else what lies
+    under the objects
+    (z_under (H, W) its screen z, ``before`` (H, W, 4) its colour); a triangle's colour
+    is the one ``after`` (H, W, 4) holds at the nearest pixel of the neighbourhood where
+    it won (its light and shadow there), else its own ``rgb`` (m, 3; lit, unshadowed:
+    a sliver no pixel centre lies on). Writes rgba at the edge pixels only. In parallel
+    over the columns, each pixel alone (reads drawn, before, after)."""
+    H, W = drawn.shape
+    S = EDGE_SS
+    for jp in prange(W):
+        j = np.int64(jp)                # (a signed index: j + dj stays an integer)
+        cand = np.empty(9 * (1 + TOUCH_SLOTS), np.int64)
+        pl = np.empty((9 * (1 + TOUCH_SLOTS), 9))
+        col = np.empty((9 * (1 + TOUCH_SLOTS), 4))
+        acc = np.empty(4)
+        for i in range(H):
+            d0 = drawn[i, j]
+            n = 0
+            edge = touched[i, j, 0] > 0
+            for di in range(-1, 2):
+                for dj in range(-1, 2):
+                    ii = i + di
+                    jj = j + dj
+                    if ii < 0 or ii >= H or jj < 0 or jj >= W:
+                        continue
+                    if drawn[ii, jj] != d0:
+                        edge = True
+                    for slot in range(-1, TOUCH_SLOTS):
+                        d = drawn[ii, jj] if slot < 0 else touched[ii, jj, slot]
+                        if d > 0:
+                            new = True
+                            for p in range(n):
+                                if cand[p] == d:
+                                    new = False
+                            if new:
+                                cand[n] = d
+                                n += 1
+            if not edge:
+                continue
+            # each candidate once: its barycentric planes l = a + bx x + by y, its
+            # vertices' e (1 / e in perspective) and its colour at this pixel
+            m = 0
+            for q in range(n):
+                k = cand[q] - 1
+                i0 = tris[k, 0]
+                i1 = tris[k, 1]
+                i2 = tris[k, 2]
+                x0, x1, x2 = cx[i0], cx[i1], cx[i2]
+                y0, y1, y2 = cy[i0], cy[i1], cy[i2]
+                det = (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2)
+                if det == 0.0 or det != det:
+                    continue
+                inv = 1.0 / det
+                pl[m, 1] = (y1 - y2) * inv
+                pl[m, 2] = (x2 - x1) * inv
+                pl[m, 0] = -(pl[m, 1] * x2 + pl[m, 2] * y2)
+                pl[m, 4] = (y2 - y0) * inv
+                pl[m, 5] = (x0 - x2) * inv
+                pl[m, 3] = -(pl[m, 4] * x2 + pl[m, 5] * y2)
+                for v in range(3):
+                    ev = e[tris[k, v]]
+                    pl[m, 6 + v] = ev if ortho else 1.0 / ev
+                # its colour: the nearest pixel of the neighbourhood where it won (the
+                # centre, the 4 neighbours, the corners), else its own lit colour
+                found = False
+                for step in range(3):
+                    for di in range(-1, 2):
+                        for dj in range(-1, 2):
+                            if found or abs(di) + abs(dj) != step:
+                                continue
+                            ii = i + di
+                            jj = j + dj
+                            if 0 <= ii < H and 0 <= jj < W and drawn[ii, jj] == k + 1:
+                                for v in range(4):
+                                    col[m, v] = after[ii, jj, v]
+                                found = True
+                if not found:
+                    for v in range(3):
+                        col[m, v] = min(max(round(rgb[k, v] * 255.0), 0.0), 255.0)
+                    col[m, 3] = 255.0
+                m += 1
+            for q in range(4):
+                acc[q] = 0.0
+            for a in range(S):
+                y = i + (a + 0.5) / S - 0.5
+                for b in range(S):
+                    x = j + (b + 0.5) / S - 0.5
+                    best = -1
+                    best_z = z_under[i, j]
+                    for q in range(m):
+                        l0 = pl[q, 0] + pl[q, 1] * x + pl[q, 2] * y
+                        l1 = pl[q, 3] + pl[q, 4] * x + pl[q, 5] * y
+                        l2 = 1.0 - l0 - l1
+                        if l0 < -1e-9 or l1 < -1e-9 or l2 < -1e-9:
+                            continue
+                        if ortho:
+                            depth = l0 * pl[q, 6] + l1 * pl[q, 7] + l2 * pl[q, 8]
+                        else:
+                            depth = 1.0 / (l0 * pl[q, 6] + l1 * pl[q, 7] + l2 * pl[q, 8])
+                        if depth - d3 < best_z:
+                            best_z = depth - d3
+                            best = q
+                    if best < 0:
+                        for q in range(4):
+                            acc[q] += before[i, j, q]
+                    else:
+                        for q in range(4):
+                            acc[q] += col[best, q]
+            for q in range(4):
+                rgba[i, j, q] = np.uint8(min(max(round(acc[q] / (S * S)), 0.0), 255.0))

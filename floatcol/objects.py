@@ -8,7 +8,8 @@ base at f(u, v)); the objects pass projects them with the picture's own camera,
 rasterises each triangle at the pixel centres with perspective-correct depth, keeps
 the nearest of them and of the surface (Render.depth), and lights each face flat by
 the picture's light (ambient 0.35). With shadows (a shadow texture, passes/shadow.py)
-they cast shadows on the surfaces and on each other (Occluders: exact, hard-edged) and
+they cast shadows on the surfaces and on each other (Occluders: exact for a point;
+antialiased on the surfaces, passes/shadow.py) and
 take the surfaces' (the texture's horizons). With antialiasing their edges are
 antialiased by 16 sub-samples (kernels/raster.py object_edges_kernel).
 ``Render.window_depth(near, far)`` (his eq. 7)
@@ -246,7 +247,8 @@ class Occluders:
     light is a point, each triangle is a 2-D triangle with a height toward the light,
     binned in a grid (kernels/raster.py occluded_kernel). Exact for points: a point is
     in an object's shadow where some triangle's projection holds it and lies nearer
-    the light (shadows with hard edges: no penumbra, no antialiasing)."""
+    the light (no penumbra; passes/shadow.py antialiases the edges on the surfaces by
+    points over each edge pixel's footprint)."""
 
     def __init__(self, verts, tris, light):
         L = np.asarray(light, dtype=np.float64)
@@ -344,6 +346,15 @@ class Occluders:
                         self.items, self.ga, self.gb, self.inv_cell, self.na, self.nb,
                         self.bias, out)
         return out
+
+
+    def edges(self, point, seen, edge, out):
+        """The part of each ``edge`` pixel's footprint in the objects' shadow, into out
+        (H, W) float32 there (kernels/raster.py shadow_edges_kernel; point as
+        blocked's, tiled)."""
+        from .kernels.raster import shadow_edges_kernel
+        shadow_edges_kernel(point, seen, edge, self.frame, self.coef, self.start, self.items,
+                            self.ga, self.gb, self.inv_cell, self.na, self.nb, self.bias, out)
 
 
 def occluders(objects, surface, box, light):

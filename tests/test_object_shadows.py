@@ -9,10 +9,14 @@ surface or an object, at the same depth), whose shadow (>= 0.5) agrees.
 
     case, projection     surface pixels  agree     object pixels  agree    shadowed by
                                                                            objects alone
-    gentle, ortho        7178            100 %     816            100 %    683, 100 %
-    gentle, persp        6174            100 %     748            100 %    637, 100 %
-    hill, ortho          7155            99.97 %   793            100 %    301, 99.67 %
-    hill, persp          6175            100 %     618            100 %    224, 100 %
+    gentle, ortho        7178            99.86 %   816            100 %    683, 100 %
+    gentle, persp        6174            99.77 %   748            100 %    637, 100 %
+    hill, ortho          7155            99.94 %   793            100 %    301, 99.67 %
+    hill, persp          6175            99.95 %   618            100 %    224, 100 %
+
+(the surface's 0.05-0.23 % are pixels at the objects' shadow edges, antialiased: the
+part of the footprint in shadow is on the other side of 0.5 from the centre; with hard
+edges they had agreed at 99.97-100 %.)
 """
 import math
 
@@ -75,7 +79,7 @@ def test_object_shadows_agree_with_the_reference(case, proj):
         at = same & (kind == k)
         assert at.sum() > 300, what
         agree = ((r.shadow[at] >= 0.5) == (shadow[at] >= 0.5)).mean()
-        assert agree >= 0.998, (what, agree)
+        assert agree >= 0.996, (what, agree)
     # objects' shadows are there: surface pixels the objects alone shadow
     plain = fc.render(expr, u=(-4, 4), v=(-4, 4), size=(160, 120), elev=35, azim=20,
                       projection=proj, lightsource=sun, shadows=True, antialias=False)
@@ -134,3 +138,26 @@ def test_antialiased_object_edges_approach_the_supersampled_picture(proj):
         r = fc.render(expr, **dict(kw, size=(120, 90), antialias=aa))
         err[aa] = np.abs(r.rgba[..., :3].astype(float) - want)[edge].mean()
     assert err[True] < 0.35 * err[False]
+
+
+def test_object_shadow_edges_are_the_part_of_the_pixel_in_shadow():
+    """At the edge of an object's shadow on the surface a pixel holds the part of its
+    footprint in shadow: against the reference at 2 x 2 the pixels, box-filtered, it is
+    nearer than the reference's own shadow at the pixel centre (what hard edges would
+    give at best). Measured (mean |error| over the edge pixels, 154 of them): 0.092
+    against 0.406."""
+    expr, sun, objects = CASES[0]
+    objs = objects()
+    r, kind, depth, shadow = _scene(expr, objs, "perspective", sun)
+    _, kind3, _, shadow3 = _scene(expr, objs, "perspective", sun, size=(320, 240))
+    plain = fc.render(expr, u=(-4, 4), v=(-4, 4), size=(160, 120), elev=35, azim=20,
+                      projection="perspective", lightsource=sun, shadows=True,
+                      antialias=False)
+    ground = (kind3 == 1).reshape(120, 2, 160, 2).all(axis=(1, 3))
+    frac = np.nan_to_num(shadow3).reshape(120, 2, 160, 2).mean(axis=(1, 3))
+    edge = ground & (kind == 1) & (frac > 0) & (frac < 1) & (plain.shadow < 0.05) \
+        & (r.shadow == r.shadow)
+    assert edge.sum() > 50
+    err_aa = np.abs(r.shadow[edge] - frac[edge]).mean()
+    err_centre = np.abs(shadow[edge] - frac[edge]).mean()
+    assert err_aa < 0.5 * err_centre

@@ -6,7 +6,7 @@ import numpy as np
 
 from numba import prange
 
-from ._jit import ngjit, ngjit_parallel
+from ._jit import ngjit, ngjit_inline, ngjit_parallel
 
 
 @ngjit
@@ -146,6 +146,33 @@ def _touch(touched, r, c, t):
 EDGE_TOL = 1e-12
 
 
+@ngjit_inline
+def _blocked_at(px, py, pz, mine, frame, coef, start, items, ga, gb, inv_cell, na, nb, bias):
+    """Whether a triangle other than ``mine`` hides the point (px, py, pz) from the
+    light (occluded_kernel's test)."""
+    pa = px * frame[0, 0] + py * frame[0, 1] + pz * frame[0, 2]
+    pb = px * frame[1, 0] + py * frame[1, 1] + pz * frame[1, 2]
+    pd = px * frame[2, 0] + py * frame[2, 1] + pz * frame[2, 2]
+    x = (pa - ga) * inv_cell
+    y = (pb - gb) * inv_cell
+    if not (x >= 0.0 and x < na and y >= 0.0 and y < nb):
+        return False                    # (NaN too)
+    cell = int(y) * na + int(x)
+    for q in range(start[cell], start[cell + 1]):
+        t = items[q]
+        if t == mine:
+            continue
+        da = pa - coef[t, 0]
+        db = pb - coef[t, 1]
+        l1 = coef[t, 2] * da + coef[t, 3] * db
+        l2 = coef[t, 4] * da + coef[t, 5] * db
+        if l1 < -EDGE_TOL or l2 < -EDGE_TOL or l1 + l2 > 1.0 + EDGE_TOL:
+            continue
+        if coef[t, 6] + l1 * coef[t, 7] + l2 * coef[t, 8] > pd + bias:
+            return True
+    return False
+
+
 @ngjit_parallel
 def occluded_kernel(point, test, own, grid_index, frame, coef, start, items, ga, gb, inv_cell,
                     na, nb, bias, out):
@@ -166,40 +193,79 @@ def occluded_kernel(point, test, own, grid_index, frame, coef, start, items, ga,
     number of threads."""
     H, W = test.shape
     T = point.shape[2]
-    for j in prange(W):
+    for jp in prange(W):
+        j = np.int64(jp)
         b = j // T
         lane = j - b * T
         for i in range(H):
             out[i, j] = 0
             if not test[i, j]:
                 continue
-            px = np.float64(point[i, b, lane, 0])
-            py = np.float64(point[i, b, lane, 1])
-            pz = np.float64(point[i, b, lane, 2])
             mine = -1
             if own.shape[0] > 0 and own[i, j] > 0:
                 mine = grid_index[own[i, j] - 1]
-            pa = px * frame[0, 0] + py * frame[0, 1] + pz * frame[0, 2]
-            pb = px * frame[1, 0] + py * frame[1, 1] + pz * frame[1, 2]
-            pd = px * frame[2, 0] + py * frame[2, 1] + pz * frame[2, 2]
-            x = (pa - ga) * inv_cell
-            y = (pb - gb) * inv_cell
-            if not (x >= 0.0 and x < na and y >= 0.0 and y < nb):
-                continue                # (NaN too)
-            cell = int(y) * na + int(x)
-            for q in range(start[cell], start[cell + 1]):
-                t = items[q]
-                if t == mine:
-                    continue
-                da = pa - coef[t, 0]
-                db = pb - coef[t, 1]
-                l1 = coef[t, 2] * da + coef[t, 3] * db
-                l2 = coef[t, 4] * da + coef[t, 5] * db
-                if l1 < -EDGE_TOL or l2 < -EDGE_TOL or l1 + l2 > 1.0 + EDGE_TOL:
-                    continue
-                if coef[t, 6] + l1 * coef[t, 7] + l2 * coef[t, 8] > pd + bias:
-                    out[i, j] = 1
-                    break
+            if _blocked_at(np.float64(point[i, b, lane, 0]), np.float64(point[i, b, lane, 1]),
+                           np.float64(point[i, b, lane, 2]), mine, frame, coef, start, items,
+                           ga, gb, inv_cell, na, nb, bias):
+                out[i, j] = 1
+
+
+#: points along each side of a pixel's footprint at the edge of an object's shadow
+SHADOW_EDGE_SAMPLES = 4
+
+
+@ngjit_parallel
+def shadow_edges_kernel(point, seen, edge, frame, coef, start, items, ga, gb, inv_cell, na,
+                        nb, bias, out):
+    """At the edge of the objects' shadows (``edge`` (H, W)), the part of each pixel's
+    footprint on the surface that a triangle hides from the light: the mean over
+    SHADOW_EDGE_SAMPLES^2 points spread over it, the footprint spanned by the pixel's
+    steps to its neighbours (point as occluded_kernel's; the shorter of the two steps
+    each way among the ``seen`` neighbours, so that a silhouette's far side does not
+    stretch it). out (H, W) written at the edge pixels. In parallel over the columns."""
+    H, W = edge.shape
+    T = point.shape[2]
+    S = SHADOW_EDGE_SAMPLES
+    for jp in prange(W):
+        j = np.int64(jp)
+        step = np.empty((2, 3))
+        for i in range(H):
+            if not edge[i, j]:
+                continue
+            b = j // T
+            p0 = np.empty(3)
+            for q in range(3):
+                p0[q] = point[i, b, j - b * T, q]
+            for axis in range(2):
+                best = np.inf
+                for q in range(3):
+                    step[axis, q] = 0.0
+                for sgn in (-1, 1):
+                    i2 = i + sgn if axis == 1 else i
+                    j2 = j + sgn if axis == 0 else j
+                    if i2 < 0 or i2 >= H or j2 < 0 or j2 >= W or not seen[i2, j2]:
+                        continue
+                    b2 = j2 // T
+                    d0 = sgn * (point[i2, b2, j2 - b2 * T, 0] - p0[0])
+                    d1 = sgn * (point[i2, b2, j2 - b2 * T, 1] - p0[1])
+                    d2 = sgn * (point[i2, b2, j2 - b2 * T, 2] - p0[2])
+                    length = d0 * d0 + d1 * d1 + d2 * d2
+                    if length < best:
+                        best = length
+                        step[axis, 0] = d0
+                        step[axis, 1] = d1
+                        step[axis, 2] = d2
+            hits = 0
+            for a in range(S):
+                oy = (a + 0.5) / S - 0.5
+                for c in range(S):
+                    ox = (c + 0.5) / S - 0.5
+                    if _blocked_at(p0[0] + ox * step[0, 0] + oy * step[1, 0],
+                                   p0[1] + ox * step[0, 1] + oy * step[1, 1],
+                                   p0[2] + ox * step[0, 2] + oy * step[1, 2], -1, frame,
+                                   coef, start, items, ga, gb, inv_cell, na, nb, bias):
+                        hits += 1
+            out[i, j] = hits / (S * S)
 
 
 @ngjit_parallel

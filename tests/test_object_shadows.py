@@ -161,3 +161,19 @@ def test_object_shadow_edges_are_the_part_of_the_pixel_in_shadow():
     err_aa = np.abs(r.shadow[edge] - frac[edge]).mean()
     err_centre = np.abs(shadow[edge] - frac[edge]).mean()
     assert err_aa < 0.5 * err_centre
+
+
+def test_objects_near_floats_limit_cast_without_a_warning():
+    """Objects 1e50 to 1e300 tall: their triangles' products overflow; those beyond
+    floating point cast nothing, the rest their shadows, and no warning or error shows
+    (an OverflowError before the grid was guarded)."""
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for h in (1e50, 1e300):
+            for proj in ("orthographic", "perspective"):
+                r = fc.render("0.2*sin(u)", u=(-4, 4), v=(-4, 4), size=(60, 40),
+                              lightsource=(300, 30), shadows=True, projection=proj,
+                              objects=[fc.tree(0, 0, h), fc.pole(1, 1, h),
+                                       fc.box(2, 2, h, h, h)])
+                assert np.isfinite(r.shadow[r.side != 0]).all()

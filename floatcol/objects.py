@@ -357,14 +357,76 @@ class Occluders:
                             self.ga, self.gb, self.inv_cell, self.na, self.nb, self.bias, out)
 
 
-def occluders(objects, surface, box, light):
-    """The objects' Occluders for the shadow texture (passes/shadow.py), or None; it
-    keeps their ``meshes`` (the objects pass draws the same)."""
+    def cast(self, point, test, seen):
+        """The objects' shadow on the surface's points (H, W) float32, where ``test``:
+        1 blocked, 0 not, and at the shadow's edge (a pixel whose 3 x 3 neighbourhood
+        has points in it and out of it) the part of its footprint in shadow (edges;
+        ``seen``: the pixels whose points count as neighbours)."""
+        blocked = self.blocked(point, test) > 0
+        edge = test & _dilate(blocked) & _dilate(test & ~blocked)
+        out = blocked.astype(np.float32)
+        if edge.any():
+            self.edges(point, seen, edge, out)
+        return out
+
+
+#: a light of a radius: the directions over its disk the objects' shadows take
+DISK_DIRECTIONS = 16
+
+
+class DiskOccluders:
+    """The objects as casters of a light of angular radius ``rho`` (radians): an
+    Occluders for each of DISK_DIRECTIONS directions spread evenly over the disk (a
+    sunflower spiral); a point's shadow is the part of them blocked (penumbrae that
+    widen with the distance from the caster, in steps of 1/16)."""
+
+    def __init__(self, verts, tris, light, rho):
+        L = np.asarray(light, dtype=np.float64)
+        L = L / np.linalg.norm(L)
+        ref = np.array([0.0, 0.0, 1.0]) if abs(L[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+        e1 = np.cross(L, ref)
+        e1 /= np.linalg.norm(e1)
+        e2 = np.cross(L, e1)
+        k = np.arange(DISK_DIRECTIONS) + 0.5
+        r = math.tan(rho) * np.sqrt(k / DISK_DIRECTIONS)
+        a = k * math.pi * (3.0 - math.sqrt(5.0))
+        dirs = L + r[:, None] * (np.cos(a)[:, None] * e1 + np.sin(a)[:, None] * e2)
+        self.parts = [Occluders(verts, tris, d) for d in dirs]
+
+    def blocked(self, point, test, drawn=None, src=None):
+        """(H, W) float32: the part of the directions in which a triangle hides the
+        point (Occluders.blocked's arguments)."""
+        out = np.zeros(test.shape, np.float32)
+        for part in self.parts:
+            out += part.blocked(point, test, drawn, src)
+        return out / len(self.parts)
+
+    def cast(self, point, test, seen):
+        """Occluders.cast for the disk: the part of the directions blocked (the
+        penumbra stands for the edge's antialiasing)."""
+        return self.blocked(point, test)
+
+
+def _dilate(mask):
+    """Where mask holds in a pixel's 3 x 3 neighbourhood."""
+    m = np.pad(mask, 1)
+    out = np.zeros_like(mask)
+    for di in range(3):
+        for dj in range(3):
+            out |= m[di:di + mask.shape[0], dj:dj + mask.shape[1]]
+    return out
+
+
+def occluders(objects, surface, box, light, rho=0.0):
+    """The objects as casters for the shadow texture (passes/shadow.py): Occluders, or
+    DiskOccluders for a light of angular radius rho > 0 (radians), or None; it keeps
+    their ``meshes`` (the objects pass draws the same)."""
     m = meshes(objects, surface, box)
     if not len(m[1]):
         return None
     with np.errstate(all="ignore"):             # (objects near float's limit: left out)
-        out = Occluders(m[0], m[1], light)
+        out = Occluders(m[0], m[1], light) if rho <= 0.0 else \
+            DiskOccluders(m[0], m[1], light, rho)
     out.meshes = m
     return out
 
@@ -472,7 +534,8 @@ def _receive(r, hit, drawn, src, point, base, facing, texture):
         shadow = np.maximum(shadow, cast[at])
         test[at] = shadow < 1.0
     if texture.occluders is not None:
-        shadow = np.maximum(shadow, texture.occluders.blocked(point, test, drawn, src)[at])
+        blocked = texture.occluders.blocked(point, test, drawn, src)[at]
+        shadow = np.maximum(shadow, blocked.astype(np.float64))
     lit = (1.0 - shadow)[:, None]
     rgb = np.clip(base[k] * (AMBIENT + (1 - AMBIENT) * facing[k][:, None] * lit), 0.0, 1.0)
     r.rgba[at[0], at[1], :3] = np.round(rgb * 255.0).astype(np.uint8)

@@ -181,7 +181,7 @@ def _occluders(texture, objects, surface, box):
     if texture.on_the_fly:
         raise ValueError("objects take their shadows from the shadow texture: use "
                          "shadows=True (shadows='on-the-fly' draws one surface's)")
-    return occluders(objects, surface, box, texture.light)
+    return occluders(objects, surface, box, texture.light, texture.rho)
 
 
 def _band(views, columns):

@@ -476,17 +476,7 @@ def shadow_rays(funcs, ref, u_rng, v_rng, light, steps=2000, start=1e-4, radius=
     side = ref.side[seen].astype(float)
     n = np.stack([-fu(u, v), -fv(u, v), np.ones_like(u)], axis=1)
     attached = side * (n @ L) <= 0.0
-    if radius > 0.0:
-        e1 = np.cross(L, [0.0, 0.0, 1.0] if abs(L[2]) < 0.9 else [1.0, 0.0, 0.0])
-        e1 /= np.linalg.norm(e1)
-        e2 = np.cross(L, e1)
-        k = np.arange(n_disk) + 0.5
-        r = math.tan(math.radians(radius)) * np.sqrt(k / n_disk)
-        a = k * math.pi * (3.0 - math.sqrt(5.0))
-        rays = L + r[:, None] * (np.cos(a)[:, None] * e1 + np.sin(a)[:, None] * e2)
-        rays /= np.linalg.norm(rays, axis=1, keepdims=True)
-    else:
-        rays = L[None]
+    rays = _disk(L, radius, n_disk)
     cast = np.zeros(u.shape)
     for Lk in rays:
         cast += _cast(f, u, v, w, side, Lk, u_rng, v_rng, steps, start)
@@ -641,15 +631,17 @@ def triangle_hits(o, d, tris, t_min=0.0, chunk=256):
 
 
 def objects_reference(funcs, u_rng, v_rng, size, elev, azim, projection, d1, d2, scale,
-                      center, tris, light, steps=2000):
+                      center, tris, light, steps=2000, radius=0.0, n_disk=24):
     """A picture of a surface with triangles standing on it (tris (m, 3, 3) in world
     (u, v, w)) and their shadows from a directional light (``light`` toward it, world
     (u, v, w)), independently of floatcol: each pixel's ray meets the surface
     (raycast) or a triangle (triangle_hits), the nearer seen; a seen point is in
     shadow where its seen side (the surface's, or the triangle's turned toward the
     eye) faces away from the light, or where its ray toward the light meets the
-    surface (_cast) or another triangle. Returns (kind (H, W): 0 nothing, 1 the
-    surface, 2 a triangle; depth (screen z); shadow: 1 / 0, NaN where nothing)."""
+    surface (_cast) or another triangle; with ``radius`` (degrees) the light is a disk
+    and the cast part the share of ``n_disk`` rays over it (a sunflower spiral, as
+    shadow_rays') that are stopped. Returns (kind (H, W): 0 nothing, 1 the surface, 2 a
+    triangle; depth (screen z); shadow: 1 / 0 or the share, NaN where nothing)."""
     f, fu, fv = funcs
     ref = raycast(funcs, u_rng, v_rng, size, elev, azim, projection, d1, d2, scale,
                   center=center)
@@ -678,10 +670,14 @@ def objects_reference(funcs, u_rng, v_rng, size, elev, azim, projection, d1, d2,
     side = ref.side[s1].astype(float)
     n = np.stack([-fu(u, v), -fv(u, v), np.ones_like(u)], axis=1)
     attached = side * (n @ L) <= 0.0
-    cast = _cast(f, u, v, w, side, L, u_rng, v_rng, steps, 1e-4)
     pts = np.c_[u, v, w]
-    by_tri = triangle_hits(pts, np.tile(L, (len(pts), 1)), tris, t_min=1e-9)[1] >= 0
-    shadow[s1] = (attached | cast | by_tri).astype(float)
+    rays = _disk(L, radius, n_disk)
+    part = np.zeros(len(pts))
+    for Lk in rays:
+        cast = _cast(f, u, v, w, side, Lk, u_rng, v_rng, steps, 1e-4)
+        by_tri = triangle_hits(pts, np.tile(Lk, (len(pts), 1)), tris, t_min=1e-9)[1] >= 0
+        part += cast | by_tri
+    shadow[s1] = np.where(attached, 1.0, part / len(rays))
     # the triangles' points
     s2 = kind == 2
     k = i_tri.reshape(H, W)[s2]
@@ -689,8 +685,26 @@ def objects_reference(funcs, u_rng, v_rng, size, elev, azim, projection, d1, d2,
     nrm = np.cross(tris[k, 1] - tris[k, 0], tris[k, 2] - tris[k, 0])
     nrm *= -np.sign(np.sum(nrm * d.reshape(H, W, 3)[s2], axis=1))[:, None]   # toward the eye
     attached = nrm @ L <= 0.0
-    cast = _cast(f, p[:, 0], p[:, 1], p[:, 2], np.ones(len(p)), L, u_rng, v_rng, steps, 1e-4)
-    t_o, i_o = triangle_hits(p, np.tile(L, (len(p), 1)), tris, t_min=1e-9)
-    by_tri = (i_o >= 0) & (i_o != k)
-    shadow[s2] = (attached | cast | by_tri).astype(float)
+    part = np.zeros(len(p))
+    for Lk in rays:
+        cast = _cast(f, p[:, 0], p[:, 1], p[:, 2], np.ones(len(p)), Lk, u_rng, v_rng, steps,
+                     1e-4)
+        t_o, i_o = triangle_hits(p, np.tile(Lk, (len(p), 1)), tris, t_min=1e-9)
+        part += cast | ((i_o >= 0) & (i_o != k))
+    shadow[s2] = np.where(attached, 1.0, part / len(rays))
     return kind, depth, shadow
+
+
+def _disk(L, radius, n_disk):
+    """Directions spread evenly over a light's disk of ``radius`` degrees around L (a
+    sunflower spiral), or L alone."""
+    if radius <= 0.0:
+        return L[None]
+    e1 = np.cross(L, [0.0, 0.0, 1.0] if abs(L[2]) < 0.9 else [1.0, 0.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(L, e1)
+    k = np.arange(n_disk) + 0.5
+    r = math.tan(math.radians(radius)) * np.sqrt(k / n_disk)
+    a = k * math.pi * (3.0 - math.sqrt(5.0))
+    rays = L + r[:, None] * (np.cos(a)[:, None] * e1 + np.sin(a)[:, None] * e2)
+    return rays / np.linalg.norm(rays, axis=1, keepdims=True)

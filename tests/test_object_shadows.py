@@ -29,11 +29,12 @@ from reference import numpy_surface, objects_reference
 BUMP = "1.6*exp(-((u-0.5)**2 + v**2)/0.6) + 0.1*sin(2*u)*cos(v)"
 
 
-def _scene(expr, objects, proj, sun, elev=35, azim=20, size=(160, 120), **kw):
+def _scene(expr, objects, proj, sun, elev=35, azim=20, size=(160, 120), radius=0.0,
+           n_disk=32, steps=2000, **kw):
     dom = (-4, 4)
     r = fc.render(expr, u=dom, v=dom, size=size, elev=elev, azim=azim, projection=proj,
                   lightsource=sun, shadows=True, objects=objects, antialias=False,
-                  **kw)
+                  light_radius=radius, **kw)
     f = numpy_surface(expr)
     tris = []
     for obj in objects:
@@ -43,7 +44,8 @@ def _scene(expr, objects, proj, sun, elev=35, azim=20, size=(160, 120), **kw):
     vw = r.view
     kind, depth, shadow = objects_reference(
         f, dom, dom, size, elev, azim, proj, vw.d1, vw.d2, vw.scale, vw.center,
-        np.vstack(tris), fc.Light.sun(*sun).direction)
+        np.vstack(tris), fc.Light.sun(*sun).direction, radius=radius, n_disk=n_disk,
+        steps=steps)
     return r, kind, depth, shadow
 
 
@@ -177,3 +179,25 @@ def test_objects_near_floats_limit_cast_without_a_warning():
                               objects=[fc.tree(0, 0, h), fc.pole(1, 1, h),
                                        fc.box(2, 2, h, h, h)])
                 assert np.isfinite(r.shadow[r.side != 0]).all()
+
+
+def test_a_sun_of_a_radius_gives_the_objects_shadows_penumbrae():
+    """light_radius: an object's shadow on the surface is the part of the sun's disk
+    it hides (16 directions), against the reference's 32 rays over the disk (its march
+    over the surface coarser: the surface is gentle). Measured on the 266 pixels of the
+    surface the objects alone shadow, in part or whole: mean |difference| 0.027; all of
+    the reference's 120 penumbra pixels (0.1 .. 0.9) are in a penumbra here too."""
+    objs = [fc.pole(0.0, 0.0, 2.5, radius=0.1), fc.box(-1.5, 1.0, 0.8, 0.8, 1.2)]
+    sun = (300, 30)
+    r, kind, depth, shadow = _scene("0.2*sin(u)*cos(v)", objs, "perspective", sun,
+                                    size=(120, 90), radius=3.0, steps=300)
+    plain = fc.render("0.2*sin(u)*cos(v)", u=(-4, 4), v=(-4, 4), size=(120, 90), elev=35,
+                      azim=20, projection="perspective", lightsource=sun, shadows=True,
+                      antialias=False, light_radius=3.0)
+    d = r.depth.astype(float)
+    with np.errstate(invalid="ignore"):
+        at = (kind == 1) & (np.abs(d - depth) < 0.02) & (plain.shadow < 0.05) & (shadow > 0)
+    pen = at & (shadow > 0.1) & (shadow < 0.9)
+    assert at.sum() > 150 and pen.sum() > 60
+    assert np.abs(r.shadow[at] - shadow[at]).mean() < 0.045
+    assert ((r.shadow[pen] > 0.05) & (r.shadow[pen] < 0.95)).mean() > 0.8

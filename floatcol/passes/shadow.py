@@ -166,33 +166,16 @@ def shadow_pass(texture, view, geom, W, H, layer=0):
 
 
 def _objects_cast(occluders, geom, W, H, shadow, lit):
-    """The objects' cast shadows on a layer's seen points (objects.Occluders), in
-    place: 1 where a triangle stands between the point and the light. At the shadow's
-    edge (a pixel whose 3 x 3 neighbourhood has points in it and out of it) the part of
-    points spread over the pixel's footprint on the surface that it shadows
-    (kernels/raster.py shadow_edges_kernel): the edge antialiased as the surfaces' own
-    shadows are."""
+    """The objects' cast shadows on a layer's seen points (objects.Occluders or
+    DiskOccluders ``cast``), in place: 1 where a triangle stands between the point and
+    the light, the part of the pixel in shadow at the shadow's edge, the part of the
+    light's disk hidden for a light of a radius."""
     # the G-buffer's seen points, top row first: (H, tiles, lanes, u v w), a view
     point = geom.gbuf[:, ::-1, :, G_U:G_W + 1].transpose(1, 0, 2, 3)
-    test = shadow < 1.0                                       # (NaN: nothing seen)
-    blocked = occluders.blocked(point, test) > 0
-    edge = test & _dilate(blocked) & _dilate(test & ~blocked)
-    cast = blocked.astype(np.float32)
-    if edge.any():
-        occluders.edges(point, ~np.isnan(shadow), edge, cast)
+    cast = occluders.cast(point, shadow < 1.0, ~np.isnan(shadow))   # (NaN: nothing seen)
     np.maximum(shadow, cast, out=shadow)                      # (NaN stays NaN)
     changed = cast > 0.0
     lit[changed] = 1.0 - shadow[changed]
-
-
-def _dilate(mask):
-    """Where mask holds in a pixel's 3 x 3 neighbourhood."""
-    m = np.pad(mask, 1)
-    out = np.zeros_like(mask)
-    for di in range(3):
-        for dj in range(3):
-            out |= m[di:di + mask.shape[0], dj:dj + mask.shape[1]]
-    return out
 
 
 def _lookup(texture, geom, W, light, shadow, lit, layer):

@@ -146,12 +146,14 @@ def test_object_shadow_edges_are_the_part_of_the_pixel_in_shadow():
     """At the edge of an object's shadow on the surface a pixel holds the part of its
     footprint in shadow: against the reference at 2 x 2 the pixels, box-filtered, it is
     nearer than the reference's own shadow at the pixel centre (what hard edges would
-    give at best). Measured (mean |error| over the edge pixels, 154 of them): 0.092
-    against 0.406."""
-    expr, sun, objects = CASES[0]
-    objs = objects()
-    r, kind, depth, shadow = _scene(expr, objs, "perspective", sun)
-    _, kind3, _, shadow3 = _scene(expr, objs, "perspective", sun, size=(320, 240))
+    give at best). Measured (mean |error| over the edge pixels, 110 of them): 0.093
+    against 0.414."""
+    expr, sun, _ = CASES[0]
+    # (a box and a thick pole: few triangles for the reference's every-ray test)
+    objs = [fc.box(-1, 0, 1, 1, 1.5), fc.pole(1.5, 1, 2.0, radius=0.15), fc.box(0, -2, 1.5, 0.5, 1)]
+    # (the reference's march over the surface coarser: the surface is gentle)
+    r, kind, depth, shadow = _scene(expr, objs, "perspective", sun, steps=300)
+    _, kind3, _, shadow3 = _scene(expr, objs, "perspective", sun, size=(320, 240), steps=300)
     plain = fc.render(expr, u=(-4, 4), v=(-4, 4), size=(160, 120), elev=35, azim=20,
                       projection="perspective", lightsource=sun, shadows=True,
                       antialias=False)
@@ -159,7 +161,7 @@ def test_object_shadow_edges_are_the_part_of_the_pixel_in_shadow():
     frac = np.nan_to_num(shadow3).reshape(120, 2, 160, 2).mean(axis=(1, 3))
     edge = ground & (kind == 1) & (frac > 0) & (frac < 1) & (plain.shadow < 0.05) \
         & (r.shadow == r.shadow)
-    assert edge.sum() > 50
+    assert edge.sum() > 60
     err_aa = np.abs(r.shadow[edge] - frac[edge]).mean()
     err_centre = np.abs(shadow[edge] - frac[edge]).mean()
     assert err_aa < 0.5 * err_centre

@@ -603,30 +603,48 @@ def composite_layers(surfaces, size, elev, azim, projection="orthographic", **kw
     return out.reshape(H, W), count.reshape(H, W)
 
 
-def triangle_hits(o, d, tris, t_min=0.0, chunk=256):
+def triangle_hits(o, d, tris, t_min=0.0, chunk=4096):
     """The nearest crossing of each ray o + t d (o, d: (k, 3)) with the triangles
-    (m, 3, 3) at t > t_min (Moeller and Trumbore's test, every ray against every
-    triangle). Returns (t: inf where none, the triangle's index: -1 where none)."""
+    (m, 3, 3) at t > t_min (Moeller and Trumbore's test). Only the pairs whose ray
+    passes within a triangle's bounding sphere are tested (a sphere around its
+    centroid through its farthest vertex, a little widened: no crossing is left out).
+    Returns (t: inf where none, the triangle's index: -1 where none)."""
     k = len(o)
     best_t = np.full(k, np.inf)
     best_i = np.full(k, -1)
     v0, e1, e2 = tris[:, 0], tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]
+    cen = tris.mean(axis=1)
+    rad = np.sqrt(((tris - cen[:, None, :]) ** 2).sum(axis=2).max(axis=1))
+    rad = rad * (1 + 1e-6) + 1e-12 * (1 + np.abs(cen).max(axis=1))
     for c0 in range(0, k, chunk):
-        oo, dd = o[c0:c0 + chunk, None, :], d[c0:c0 + chunk, None, :]
-        p = np.cross(dd, e2[None])
-        det = np.sum(e1[None] * p, axis=2)
+        oo, dd = o[c0:c0 + chunk], d[c0:c0 + chunk]
+        with np.errstate(all="ignore"):
+            dn = dd / np.linalg.norm(dd, axis=1, keepdims=True)
+            oc = cen[None, :, :] - oo[:, None, :]                  # (rays, triangles, 3)
+            along = np.einsum("rtj,rj->rt", oc, dn)
+            near = (oc ** 2).sum(axis=2) - along ** 2 <= rad[None, :] ** 2
+        ri, ti = np.nonzero(near)
+        if not len(ri):
+            continue
+        dr, orr = dd[ri], oo[ri]
+        p = np.cross(dr, e2[ti])
+        det = np.sum(e1[ti] * p, axis=1)
         with np.errstate(all="ignore"):
             inv = 1.0 / det
-            s = oo - v0[None]
-            a = np.sum(s * p, axis=2) * inv
-            q = np.cross(s, e1[None])
-            b = np.sum(dd * q, axis=2) * inv
-            t = np.sum(e2[None] * q, axis=2) * inv
+            sv = orr - v0[ti]
+            a = np.sum(sv * p, axis=1) * inv
+            q = np.cross(sv, e1[ti])
+            b = np.sum(dr * q, axis=1) * inv
+            t = np.sum(e2[ti] * q, axis=1) * inv
             ok = (np.abs(det) > 1e-300) & (a >= 0) & (b >= 0) & (a + b <= 1) & (t > t_min)
-        t = np.where(ok, t, np.inf)
-        i = t.argmin(axis=1)
-        best_t[c0:c0 + chunk] = t[np.arange(len(i)), i]
-        best_i[c0:c0 + chunk] = np.where(np.isfinite(best_t[c0:c0 + chunk]), i, -1)
+        ri, ti, t = ri[ok], ti[ok], t[ok]
+        if not len(ri):
+            continue
+        order = np.lexsort((t, ri))                # each ray's nearest first
+        ri, ti, t = ri[order], ti[order], t[order]
+        first = np.r_[True, ri[1:] != ri[:-1]]
+        best_t[c0 + ri[first]] = t[first]
+        best_i[c0 + ri[first]] = ti[first]
     return best_t, best_i
 
 

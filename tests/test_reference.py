@@ -179,3 +179,31 @@ def test_every_crossing_is_found_within_the_bounds(expr, dom, elev, proj):
     assert np.isfinite(f.bounds(dom, dom)).all() and want[0].size > 100
     for a, b in zip(want, have):
         np.testing.assert_array_equal(a, b)
+
+
+def test_triangle_hits_is_every_ray_against_every_triangle():
+    """reference.triangle_hits (only the pairs within a triangle's bounding sphere)
+    finds what Moeller and Trumbore's test of every pair finds, bit for bit."""
+    from reference import triangle_hits
+    rng = np.random.default_rng(3)
+    objs = [fc.tree(*rng.uniform(-3, 3, 2), 1.5) for _ in range(3)] + [fc.box(0, 0, 1, 1, 1)]
+    tris = np.vstack([(np.asarray(o.vertices, float) + [o.u, o.v, 0.1])[np.asarray(o.triangles)]
+                      for o in objs])
+    o = rng.uniform(-4, 4, (3000, 3))
+    d = rng.normal(size=(3000, 3))
+    t, i = triangle_hits(o, d, tris, t_min=1e-9)
+    v0, e1, e2 = tris[:, 0], tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]
+    p = np.cross(d[:, None], e2[None])
+    det = np.sum(e1[None] * p, axis=2)
+    with np.errstate(all="ignore"):
+        s = o[:, None] - v0[None]
+        a = np.sum(s * p, axis=2) / det
+        q = np.cross(s, e1[None])
+        b = np.sum(d[:, None] * q, axis=2) / det
+        tt = np.sum(e2[None] * q, axis=2) / det
+        ok = (np.abs(det) > 1e-300) & (a >= 0) & (b >= 0) & (a + b <= 1) & (tt > 1e-9)
+    tt = np.where(ok, tt, np.inf)
+    want_i = np.where(np.isfinite(tt.min(axis=1)), tt.argmin(axis=1), -1)
+    assert (want_i >= 0).sum() > 50                       # (97 of 3000 hit)
+    np.testing.assert_array_equal(i, want_i)
+    np.testing.assert_allclose(t, tt.min(axis=1), rtol=1e-12)

@@ -231,6 +231,17 @@ def meshes(objects, surface, box):
     return np.vstack(verts), np.vstack(tris).astype(np.int64), np.vstack(rgbs)
 
 
+def light_frame(light):
+    """(3, 3): rows e1, e2 across a directional light (toward it: ``light``) and its
+    unit direction L."""
+    L = np.asarray(light, dtype=np.float64)
+    L = L / np.linalg.norm(L)
+    ref = np.array([0.0, 0.0, 1.0]) if abs(L[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+    e1 = np.cross(L, ref)
+    e1 /= np.linalg.norm(e1)
+    return np.ascontiguousarray(np.vstack([e1, np.cross(L, e1), L]))
+
+
 #: the occluders' grid: about this many cells a triangle, at most this many a side,
 #: and at most this many (cell, triangle) entries in all
 CELLS_PER_TRIANGLE = 4
@@ -251,14 +262,8 @@ class Occluders:
     points over each edge pixel's footprint)."""
 
     def __init__(self, verts, tris, light):
-        L = np.asarray(light, dtype=np.float64)
-        L = L / np.linalg.norm(L)
-        ref = np.array([0.0, 0.0, 1.0]) if abs(L[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
-        e1 = np.cross(L, ref)
-        e1 /= np.linalg.norm(e1)
-        e2 = np.cross(L, e1)
         #: rows e1, e2 (across the light) and L
-        self.frame = np.ascontiguousarray(np.vstack([e1, e2, L]))
+        self.frame = light_frame(light)
         pa, pb, pd = (verts @ self.frame.T).T
         A, B, D = pa[tris], pb[tris], pd[tris]               # (m, 3) each
         det = (A[:, 1] - A[:, 0]) * (B[:, 2] - B[:, 0]) - (A[:, 2] - A[:, 0]) * (B[:, 1] - B[:, 0])
@@ -381,12 +386,7 @@ class DiskOccluders:
     widen with the distance from the caster, in steps of 1/16)."""
 
     def __init__(self, verts, tris, light, rho):
-        L = np.asarray(light, dtype=np.float64)
-        L = L / np.linalg.norm(L)
-        ref = np.array([0.0, 0.0, 1.0]) if abs(L[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
-        e1 = np.cross(L, ref)
-        e1 /= np.linalg.norm(e1)
-        e2 = np.cross(L, e1)
+        e1, e2, L = light_frame(light)
         k = np.arange(DISK_DIRECTIONS) + 0.5
         r = math.tan(rho) * np.sqrt(k / DISK_DIRECTIONS)
         a = k * math.pi * (3.0 - math.sqrt(5.0))

@@ -128,7 +128,7 @@ def _covers_a_subsample(x0, x1, x2, y0, y1, y2, det, e0, e1, e2, ortho, d3, r, c
 
 
 #: the farthest a sub-sample lies from its pixel's centre (pixels), and a little more
-SUB_REACH = 0.375 * math.sqrt(2.0) + 1e-6
+SUB_REACH = (0.5 - 0.5 / EDGE_SS) * math.sqrt(2.0) + 1e-6
 #: triangles a pixel keeps that cover its sub-samples but not its centre
 TOUCH_SLOTS = 3
 

@@ -16,6 +16,7 @@ import time
 import numba
 import numpy as np
 
+os.environ.setdefault("FLOATCOL_DRAFT", "0")  # time the kernels, never drafts
 import floatcol as fc
 
 render_module = sys.modules["floatcol.render"]

@@ -25,6 +25,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numba  # noqa: E402
 from matplotlib.backend_bases import MouseEvent  # noqa: E402
 
+os.environ.setdefault("FLOATCOL_DRAFT", "0")  # time the kernels, never drafts
 import floatcol as fc  # noqa: E402
 
 DEMO = "3*sin(x*cos(y))"

@@ -20,6 +20,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests"))
 
+os.environ.setdefault("FLOATCOL_DRAFT", "0")  # time the kernels, never drafts
 import floatcol as fc  # noqa: E402
 from reference import bilinear_surface, numpy_surface, psnr, raycast, raycast_box  # noqa: E402
 

@@ -15,6 +15,7 @@ import sys
 import time
 import warnings
 
+os.environ.setdefault("FLOATCOL_DRAFT", "0")  # time the kernels, never drafts
 import floatcol as fc
 from floatcol import view as view_mod
 from floatcol.kernels import layout as L

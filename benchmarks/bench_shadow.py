@@ -17,6 +17,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
+os.environ.setdefault("FLOATCOL_DRAFT", "0")  # time the kernels, never drafts
 import floatcol as fc  # noqa: E402
 from conftest import reference_for  # noqa: E402
 from reference import numpy_surface, shadow_rays  # noqa: E402

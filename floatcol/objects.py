@@ -481,19 +481,15 @@ def _objects_pass(r, objects, surface, light_dir, texture, antialias):
     # through the clipping and the rasteriser with it; each triangle's own index too
     shadows = texture is not None
     pts = np.c_[pts, p] if shadows else pts
-    attrs = np.c_[rgb, np.arange(len(tris))]
-    if not ortho:
-        # the parts of the triangles behind the screen plane (a fly-through's objects
-        # reach past the eye)
-        pts, tris, attrs = clip_near(pts, tris, attrs, view.d1 - view.d3)
+    pts, tris, attrs, col, row, e = _projected(view, pts, tris,
+                                               np.c_[rgb, np.arange(len(tris))], H)
     rgb, src = attrs[:, :3], attrs[:, 3].astype(np.int64)
-    x, y, z = pts[:, 0], pts[:, 1], pts[:, 2]
-    e = z + view.d3                              # distance along the view axis
-    m = np.ones_like(e) if ortho else view.d1 / e
-    col = view.column(x * m)
-    row = (H - 1) / 2 - y * m * view.scale
     depth = r.depth
-    zbuf = np.where(np.isfinite(depth), depth.astype(np.float64), np.inf)
+    # translucent layers (passes/translucency.py): an object shows through them, down
+    # to where the layers over it let nothing more through
+    front = r._front
+    limit = depth if front is None else front[1]
+    zbuf = np.where(np.isfinite(limit), limit.astype(np.float64), np.inf)
     drawn = np.zeros((H, W), np.int32)
     wp = np.ascontiguousarray(pts[:, 3:]) if shadows else np.zeros((0, 3))
     point = np.empty((H, W, 3) if shadows else (0, 0, 3))    # (read where drawn only)
@@ -505,15 +501,111 @@ def _objects_pass(r, objects, surface, light_dir, texture, antialias):
     r.stats["object_pixels"] = int(hit.sum())
     if hit.any():
         d = depth.copy()
-        d[hit] = zbuf[hit].astype(np.float32)
+        d[hit] = np.minimum(d[hit], zbuf[hit].astype(np.float32))
+        behind = hit & (depth < zbuf)            # (a translucent layer over the object)
+        kept = None if r.shadow is None else r.shadow[behind]
         r._depth = d
         if shadows:
             _receive(r, hit, drawn, src, point, base, facing, texture)
+        if front is not None:
+            _through(r, hit, front[0])
+            if kept is not None:
+                r.shadow[behind] = kept          # (the nearest thing's, as depth)
     if antialias and (hit.any() or touched.any()):
         from .kernels.raster import object_edges_kernel
+        if shadows:
+            # (a sliver no pixel centre lies on takes its triangle's colour, in shadow
+            # where it is: lit, it drew thin poles in a shadow white)
+            rgb = _sliver_colours(pts[:, 3:], tris, src, base, facing, texture)
         object_edges_kernel(drawn, touched, col, row, e, tris, np.ascontiguousarray(rgb),
                             ortho, float(view.d3), under[0], under[1], r.rgba.copy(), r.rgba)
     return r
+
+
+def _sliver_colours(wp, tris, src, base, facing, texture):
+    """(m, 3): each rasterised triangle's colour lit at its centroid (wp (n, 3) its
+    vertices in the box) with the shadows there, as _receive lights a pixel's point:
+    the colour object_edges_kernel gives a sliver of it that no pixel centre lies on."""
+    n = len(tris)
+    point = np.ascontiguousarray(wp[tris].mean(axis=1)[None])       # (1, m, 3)
+    shadow = (facing[src] <= 0.0).astype(np.float64)                 # attached
+    test = (shadow < 1.0)[None]
+    if texture.texels and not texture.zenith:
+        shadow = np.maximum(shadow, _surfaces_cast(point, test, texture)[0])
+        test = (shadow < 1.0)[None]
+    if texture.occluders is not None:
+        own = np.arange(1, n + 1, dtype=np.int32)[None]             # (its own: not counted)
+        shadow = np.maximum(shadow, texture.occluders.blocked(point, test, own, src)[0])
+    lit = (1.0 - shadow)[:, None]
+    return np.clip(base[src] * (AMBIENT + (1 - AMBIENT) * facing[src][:, None] * lit), 0.0,
+                   1.0)
+
+
+def _projected(view, pts, tris, attrs, H):
+    """The triangles on the screen: (pts, tris, attrs, col, row, e) with pts (n, k)
+    screen (x, y, z) and any more columns, in perspective the parts of the triangles
+    behind the screen plane cut off (a fly-through's objects reach past the eye: their
+    vertices and per-triangle attrs clipped along), col and row each vertex's pixel
+    coordinates (row 0 at the top), e its distance along the view axis."""
+    ortho = view.orthographic
+    if not ortho:
+        pts, tris, attrs = clip_near(pts, tris, attrs, view.d1 - view.d3)
+    x, y, z = pts[:, 0], pts[:, 1], pts[:, 2]
+    e = z + view.d3                              # distance along the view axis
+    m = np.ones_like(e) if ortho else view.d1 / e
+    return pts, tris, attrs, view.column(x * m), (H - 1) / 2 - y * m * view.scale, e
+
+
+def depth_map(objects, surface, box, view, texture=None):
+    """(H, W) float32: the depth (screen z) of the nearest object at each pixel centre,
+    inf where none: where translucent layers (passes/translucency.py) stop composing
+    what lies over an object. The triangles as objects_pass rasterises them (the
+    texture's occluders keep the meshes where shadows are on)."""
+    from .kernels.raster import raster_kernel
+    casters = None if texture is None else texture.occluders
+    p, tris, _ = casters.meshes if casters is not None else meshes(objects, surface, box)
+    H, W = view.height, view.width
+    zbuf = np.full((H, W), np.inf)
+    if len(tris):
+        with np.errstate(over="ignore", invalid="ignore"):
+            x, y, z = view.to_screen(p[:, 0], p[:, 1], p[:, 2])
+            pts = np.c_[x, y, z]
+            pts, tris, attrs, col, row, e = _projected(view, pts, tris,
+                                                       np.zeros((len(tris), 3)), H)
+        raster_kernel(col, row, e, tris, attrs, view.orthographic, float(view.d3), zbuf,
+                      np.empty((H, W, 4), np.uint8), np.zeros((H, W), np.int32),
+                      np.zeros((0, 3)), np.empty((0, 0, 3)), np.zeros((0, 0)),
+                      np.zeros((0, 0, 0), np.int32))
+    return zbuf.astype(np.float32)
+
+
+def _through(r, hit, front_acc):
+    """Object pixels seen through translucent layers: what lies over the object
+    (front_acc, the layers' premultiplied sums nearer than it: composite_kernel's)
+    over its colour, 1 - ACC_A of which shows."""
+    from .kernels.layers import ACC_A
+    at = np.nonzero(hit)
+    over = front_acc[at]
+    rgb = over[:, :3] + (1.0 - over[:, ACC_A:ACC_A + 1]) * (r.rgba[at][:, :3] / 255.0)
+    r.rgba[at[0], at[1], :3] = np.round(np.clip(rgb, 0.0, 1.0) * 255.0).astype(np.uint8)
+    r.rgba[at[0], at[1], 3] = 255
+
+
+def _surfaces_cast(point, test, texture):
+    """The surfaces' shadow on points above them (H, W, 3), where ``test``: their
+    horizons in the texture (kernels/shadow.py points_shadow: hard, its edge
+    antialiased as the surface's), or under a sun of a radius the part of its disk
+    they hide (points_soft_shadow: the penumbra the surface around takes too)."""
+    from .kernels.shadow import points_shadow, points_soft_shadow
+    cast = np.empty(test.shape)
+    if texture.rho > 0.0 and texture.slopes.shape[0] > 0:
+        points_soft_shadow(point, test, texture.hmax, texture.hsurf, texture.slopes,
+                           texture.gu, texture.gv, texture.tan_theta, texture.s0, texture.t0,
+                           texture.h, texture.rho, cast)
+    else:
+        points_shadow(point, test, texture.hmax, texture.gu, texture.gv, texture.tan_theta,
+                      texture.s0, texture.t0, texture.h, cast)
+    return cast
 
 
 def _receive(r, hit, drawn, src, point, base, facing, texture):
@@ -521,17 +613,13 @@ def _receive(r, hit, drawn, src, point, base, facing, texture):
     the face turns away from the light, cast by the surfaces (the texture's horizons,
     kernels/shadow.py points_shadow) and by the other triangles (its occluders); the
     face lit again with the light that reaches it, and r.shadow set there."""
-    from .kernels.shadow import points_shadow
     at = np.nonzero(hit)
     k = src[drawn[at] - 1]                      # each pixel's triangle among the meshes
     shadow = (facing[k] <= 0.0).astype(np.float64)         # attached
     test = np.zeros(hit.shape, bool)
     test[at] = shadow < 1.0
     if texture.texels and not texture.zenith:
-        cast = np.empty(hit.shape)
-        points_shadow(point, test, texture.hmax, texture.gu, texture.gv, texture.tan_theta,
-                      texture.s0, texture.t0, texture.h, cast)
-        shadow = np.maximum(shadow, cast[at])
+        shadow = np.maximum(shadow, _surfaces_cast(point, test, texture)[at])
         test[at] = shadow < 1.0
     if texture.occluders is not None:
         blocked = texture.occluders.blocked(point, test, drawn, src)[at]

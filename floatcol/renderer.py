@@ -122,8 +122,14 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
             raise ValueError("opacity below 1 takes its shadows from the shadow texture: "
                              "use shadows=True (shadows='on-the-fly' draws one opaque "
                              "surface)")
+        stop = None
+        if objects:
+            # (the objects' depth: where the layers over them stop composing)
+            from .objects import depth_map
+            stop = depth_map(objects, as_surface(scene.layers[0].surface, scene.vars), box,
+                             views[0], texture)
         return render_translucent(layers, views, drawn, box, quality, background, texture,
-                                  t_start), texture
+                                  t_start, stop), texture
     if not many and texture is None and draft.supports(quality, views[0]) \
             and quality.device == "cpu" \
             and scene.camera.columns is None \

@@ -51,6 +51,10 @@ class Render:
     #: and the light), 0 lit, between at antialiased shadow edges, NaN where nothing is
     #: seen; None without shadows
     shadow: np.ndarray = field(default=None, repr=False)
+    #: translucent layers with objects (passes/translucency.py): (front_acc (H, W, 5),
+    #: opaque (H, W)) what lies over the nearest object at each pixel and the depth
+    #: behind which nothing shows, for the objects pass; None otherwise
+    _front: tuple = field(default=None, repr=False)
 
     def _centres(self):
         if self._intensity is None or self._depth is None:

@@ -184,7 +184,9 @@ def warm_all():
     hf = fc.HeightField(3 * z, u=(0, 32), v=(0, 32))
     objects = [fc.tree(16, 16, 3), fc.box(8, 8, 2, 2, 2), fc.pole(20, 20, 4), fc.marker(24, 8, 1)]
     for opts in (dict(), dict(antialias="area"), dict(shadows=True), dict(objects=objects),
-                 dict(objects=objects, shadows=True)):
+                 dict(objects=objects, shadows=True),
+                 dict(objects=objects, shadows=True, light_radius=1.0),
+                 dict(objects=objects, shadows=True, opacity=0.5)):
         fc.render(hf, size=(64, 48), **opts).intensity
     cam = fc.fly(hf, (16, 1), heading=0, size=(64, 36), above=4)
     for area in (False, True):

@@ -1,11 +1,14 @@
 """Translucency (Gordon sections 6.5-6.6): a surface that shows its own hidden folds,
-a function and its Taylor polynomial meeting, and sympy's plot3d(f, g) with alpha.
+a function and its Taylor polynomial meeting, sympy's plot3d(f, g) with alpha, and
+trees seen through a translucent hill, their shadows on it.
 
 ``opacity`` below 1 (matplotlib's ``alpha`` in plot_surface and plot3d) draws every
 layer of the surface along each pixel's ray, lit and coloured as the opaque surface
 would be, composited front to back; several surfaces are merged by depth, so where
 f = g the crossing is exact to the pixel, whatever order they are given in.
 """
+import math
+
 import sympy
 
 import floatcol as fc
@@ -34,3 +37,10 @@ p = sympy.plotting.plot3d(sympy.cos(x * y), x ** 2 / 8 - y ** 2 / 8, (x, -3, 3),
                           backend=SympyBackend, show=False, alpha=0.6, cmap="coolwarm",
                           title="cos(xy) and (x^2 - y^2)/8, alpha = 0.6")
 p.save("plot3d_alpha.png")
+
+# a glass hill in a ring of trees: those behind it show through, their shadows fall on it
+trees = [fc.tree(2.4 * math.cos(k * math.pi / 5), 2.4 * math.sin(k * math.pi / 5), 1.5)
+         for k in range(10)] + [fc.box(0, 0, 0.8, 0.8, 0.6, color="firebrick")]
+fc.render("2.5*exp(-(u**2 + v**2)/2.5)", u=(-3.5, 3.5), v=(-3.5, 3.5), size=(800, 500),
+          elev=18, azim=25, opacity=0.45, cmap="cividis", objects=trees, shadows=True,
+          lightsource=(300, 35)).save("glass_hill.png")

@@ -46,6 +46,7 @@ from .layout import (
 from .sample import column_x0, sample_point
 from .shade import _light, _side_rgb, toward_viewer
 from .texture import layer_texel
+from .raster import _blocked_at
 from .shadow import point_shadow
 
 #: transmittance below which nothing behind shows (1/512: under half a level of 8 bits)
@@ -88,7 +89,16 @@ SH_T0 = 9
 SH_H = 10
 SH_GRAZING = 11
 SH_BIAS = 12
-SH_SIZE = 13
+# the objects' occluders (objects.Occluders; occ = (frame, coef, start, items)): SH_OBJ
+# 1 where a crossing's ray toward the light is tested against their triangles
+SH_OBJ = 13
+SH_OGA = 14       # the grid's origin across the light, its cells per unit, its size
+SH_OGB = 15
+SH_OINV = 16
+SH_ONA = 17
+SH_ONB = 18
+SH_OBIAS = 19     # a triangle blocks a point below it by more than this
+SH_SIZE = 20
 
 # The walker's state, wk (float64): a run's stretch of the curve (monotone in y) and
 # the pixel it is in, whose crossing waits until the stretch leaves it or ends
@@ -173,7 +183,7 @@ def _keep(lists, b, j, off, K, n, rec):
 
 
 @ngjit_nrt_free
-def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, lists, off, K,
+def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, occ, lists, off, K,
           counts, trans, gfirst, hits, b, crec):
     """The crossing of row j's ray at the point p (A_SIZE), covering ``cov`` of the
     pixel: lit, coloured and kept in the pixel's list."""
@@ -194,6 +204,10 @@ def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, lists, off, K,
         shade = point_shadow(side, p[A_U], p[A_V], p[A_W], nx, ny, nz, sh, hmax, hmin,
                              hsurf, int(sh[SH_LAYER]), sh[SH_GU], sh[SH_GV], sh[SH_TAN],
                              sh[SH_S0], sh[SH_T0], sh[SH_H], sh[SH_GRAZING], sh[SH_BIAS])
+        if sh[SH_OBJ] != 0.0 and shade < 1.0 and _blocked_at(
+                p[A_U], p[A_V], p[A_W], -1, occ[0], occ[1], occ[2], occ[3], sh[SH_OGA],
+                sh[SH_OGB], sh[SH_OINV], int(sh[SH_ONA]), int(sh[SH_ONB]), sh[SH_OBIAS]):
+            shade = 1.0                  # in an object's shadow (raster.occluded_kernel's test)
     inten, spec = _light(vp, x0, j, nx, ny, nz, p[A_I], mp, 1.0 - shade)
     # ``lut`` is the tuple (lut, levels, offsets, shapes, tp) of texture.py's TP_*: the
     # side's colour table, and a texture (no levels: none) over it
@@ -234,7 +248,7 @@ def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, lists, off, K,
 
 
 @ngjit_nrt_free
-def _flush(vp, x0, wk, pend, end_y, aa, mp, lut, sh, hmax, hmin, hsurf, lists,
+def _flush(vp, x0, wk, pend, end_y, aa, mp, lut, sh, hmax, hmin, hsurf, occ, lists,
            off, K, counts, trans, gfirst, hits, b, crec):
     """The waiting pixel's crossing, its stretch ending (or leaving it) at end_y."""
     j = wk[W_PJ]
@@ -247,7 +261,7 @@ def _flush(vp, x0, wk, pend, end_y, aa, mp, lut, sh, hmax, hmin, hsurf, lists,
         cov = abs(min(max(end_y, lo), hi) - min(max(wk[W_PSTART], lo), hi))
     else:
         cov = 1.0 if wk[W_PCEN] != 0.0 else 0.0
-    _emit(vp, x0, int(j), pend, cov, mp, lut, sh, hmax, hmin, hsurf, lists, off,
+    _emit(vp, x0, int(j), pend, cov, mp, lut, sh, hmax, hmin, hsurf, occ, lists, off,
           K, counts, trans, gfirst, hits, b, crec)
 
 
@@ -260,7 +274,7 @@ def _wait(wk, pend, j, start, rec, centre):
 
 
 @ngjit_inline
-def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, sh, hmax, hmin, hsurf,
+def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, sh, hmax, hmin, hsurf, occ,
              lists, off, K, counts, trans, gfirst, hits, b, crec):
     """The crossings between successive samples p and q of a run (section 6.5)."""
     H = trans.shape[0]
@@ -270,7 +284,7 @@ def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, sh, hmax, hmin, hsurf,
     d = 1.0 if dy > 0.0 else -1.0
     if wk[W_DIR] != 0.0 and d != wk[W_DIR]:
         # the curve turns at p: the stretch before ends there, a new one begins
-        _flush(vp, x0, wk, pend, p[A_Y], aa, mp, lut, sh, hmax, hmin, hsurf,
+        _flush(vp, x0, wk, pend, p[A_Y], aa, mp, lut, sh, hmax, hmin, hsurf, occ,
                lists, off, K, counts, trans, gfirst, hits, b, crec)
         _wait(wk, pend, _round_row(p[A_Y]), p[A_Y], p, False)
     wk[W_DIR] = d
@@ -292,15 +306,15 @@ def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, sh, hmax, hmin, hsurf,
             wk[W_PCEN] = 1.0
             continue
         _flush(vp, x0, wk, pend, wk[W_PJ] + 0.5 * d, aa, mp, lut, sh, hmax, hmin,
-               hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
+               hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b, crec)
         if j == jq:                      # the stretch is still in this pixel at q
             _wait(wk, pend, j, j - 0.5 * d, tmp, True)
         else:
-            _emit(vp, x0, j, tmp, 1.0, mp, lut, sh, hmax, hmin, hsurf, lists, off,
+            _emit(vp, x0, j, tmp, 1.0, mp, lut, sh, hmax, hmin, hsurf, occ, lists, off,
                   K, counts, trans, gfirst, hits, b, crec)
     if jq != wk[W_PJ]:                   # q lies in a pixel whose centre it has not reached
         _flush(vp, x0, wk, pend, wk[W_PJ] + 0.5 * d, aa, mp, lut, sh, hmax, hmin,
-               hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
+               hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b, crec)
         _wait(wk, pend, jq, jq - 0.5 * d, q, False)
 
 
@@ -320,7 +334,7 @@ def _sample(kind, f, fg, hf, hfp, vp, x0, t, out, guess):
 
 @ngjit_inline
 def _refined(kind, f, fg, hf, hfp, vp, x0, p, q, scr, evals, wk, pend, tmp, aa, mp, lut,
-             sh, hmax, hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b,
+             sh, hmax, hmin, hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b,
              crec):
     """_segment from p to q, the span halved where it needs it (REFINE_*), the halves
     in order (a stack of right ends in scr's rows from SCR_STACK). Returns evals plus
@@ -352,7 +366,7 @@ def _refined(kind, f, fg, hf, hfp, vp, x0, p, q, scr, evals, wk, pend, tmp, aa, 
                 top += 1
                 continue
         _segment(vp, x0, left, right, wk, pend, tmp, aa, mp, lut, sh, hmax, hmin,
-                 hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
+                 hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b, crec)
         _copy(left, right)
         top -= 1
     return evals
@@ -367,7 +381,7 @@ def _start(wk, pend, p):
 
 @ngjit_nrt_free
 def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, sh, hmax, hmin,
-                hsurf, lists, off, K, counts, trans, gfirst, hits, b, scr):
+                hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b, scr):
     """One pass over the planes from ta to tb (front to back along the column's rays:
     the grid's planes t0 + k dt between them, as the opaque column's); returns the
     evaluations of f. Where a run of samples begins or ends between two planes (the
@@ -423,35 +437,35 @@ def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, sh, hmax, hmin,
                 _start(wk, pend, edge if found else cur)
                 if found:
                     evals = _refined(kind, f, fg, hf, hfp, vp, x0, edge, cur, scr, evals, wk, pend,
-                                     tmp, aa, mp, lut, sh, hmax, hmin, hsurf, lists,
+                                     tmp, aa, mp, lut, sh, hmax, hmin, hsurf, occ, lists,
                                      off, K, counts, trans, gfirst, hits, b, crec)
             else:
                 last = prev
                 if found:
                     evals = _refined(kind, f, fg, hf, hfp, vp, x0, prev, edge, scr, evals, wk, pend,
-                                     tmp, aa, mp, lut, sh, hmax, hmin, hsurf, lists,
+                                     tmp, aa, mp, lut, sh, hmax, hmin, hsurf, occ, lists,
                                      off, K, counts, trans, gfirst, hits, b, crec)
                     last = edge
                 _flush(vp, x0, wk, pend, last[A_Y], aa, mp, lut, sh, hmax, hmin,
-                       hsurf, lists, off, K, counts, trans, gfirst, hits, b, crec)
+                       hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b, crec)
         elif ok and i == 0:
             _start(wk, pend, cur)
         elif ok:
             evals = _refined(kind, f, fg, hf, hfp, vp, x0, prev, cur, scr, evals, wk, pend, tmp,
-                             aa, mp, lut, sh, hmax, hmin, hsurf, lists, off, K,
+                             aa, mp, lut, sh, hmax, hmin, hsurf, occ, lists, off, K,
                              counts, trans, gfirst, hits, b, crec)
         if ok:
             _copy(prev, cur)
         prev_ok = ok
         prev_t = t
     if prev_ok:
-        _flush(vp, x0, wk, pend, prev[A_Y], aa, mp, lut, sh, hmax, hmin, hsurf,
+        _flush(vp, x0, wk, pend, prev[A_Y], aa, mp, lut, sh, hmax, hmin, hsurf, occ,
                lists, off, K, counts, trans, gfirst, hits, b, crec)
     return evals
 
 
 @ngjit_nrt_free
-def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf,
+def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf, occ,
                    lists, off, K, counts, trans, gfirst, hits, b, scr):
     """Every crossing of one column (column.py's _column_passes: ascending t in
     orthographic; in perspective from the viewpoint's t outward, both ways, over the
@@ -461,7 +475,7 @@ def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf,
         if not lo <= hi:
             return 0
         return _layer_pass(kind, f, fg, hf, hfp, vp, x0, lo, hi, mp, lut, sh, hmax,
-                           hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b, scr)
+                           hmin, hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b, scr)
     lo, hi = _column_t_range(vp, x0)
     if not lo <= hi:
         return 0
@@ -472,11 +486,11 @@ def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf,
     evals = 0
     if t_hi > t_view and t_hi >= t_lo:
         evals += _layer_pass(kind, f, fg, hf, hfp, vp, x0, max(t_lo, t_view), t_hi, mp, lut,
-                             sh, hmax, hmin, hsurf, lists, off, K, counts, trans,
+                             sh, hmax, hmin, hsurf, occ, lists, off, K, counts, trans,
                              gfirst, hits, b, scr)
     if t_lo < t_view and t_hi >= t_lo:
         evals += _layer_pass(kind, f, fg, hf, hfp, vp, x0, min(t_hi, t_view), t_lo, mp, lut,
-                             sh, hmax, hmin, hsurf, lists, off, K, counts, trans,
+                             sh, hmax, hmin, hsurf, occ, lists, off, K, counts, trans,
                              gfirst, hits, b, scr)
     return evals
 
@@ -489,14 +503,15 @@ def layers_scratch(H):
 
 
 @ngjit_parallel
-def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf,
+def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf, occ,
                   lists, off, K, counts, gfirst, hits, evals):
     """One surface's crossings in the band of columns c0 .. c0 + B - 1 (B =
     lists.shape[0]; columns from vp's VP_W on are left alone): into lists[b, j, off:off
     + K] (records C_*, sorted by depth), counts[b, j] of them, gfirst[b, j] the G-buffer
     record (layout.py G_*) of the nearest, hits[b, j] += every crossing met; evals[b]
-    the evaluations of f. counts must be 0 on entry; the columns in parallel, each with
-    its own scratch."""
+    the evaluations of f. sh, hmax, hmin, hsurf: the shadow texture (SH_*); occ the
+    objects' occluders (frame, coef, start, items), tested where sh's SH_OBJ says.
+    counts must be 0 on entry; the columns in parallel, each with its own scratch."""
     B = lists.shape[0]
     H = lists.shape[1]
     W = int(vp[VP_W])
@@ -507,7 +522,7 @@ def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf,
         trans, scr = layers_scratch(H)
         x0 = column_x0(vp, c)
         evals[b] += _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax,
-                                   hmin, hsurf, lists, off, K, counts, trans, gfirst, hits, b,
+                                   hmin, hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b,
                                    scr)
 
 
@@ -531,21 +546,47 @@ def _before(lists, b, j, x, y):
     return False
 
 
+@ngjit_inline
+def _accumulate(a, first, weight, r, g, bl, tr, it):
+    """acc's pixel a: the sums of one pass (ACC_*), set by a band's first pass (acc is
+    not cleared), added by the others."""
+    if first:
+        a[ACC_R] = weight * r
+        a[ACC_G] = weight * g
+        a[ACC_B] = weight * bl
+        a[ACC_A] = weight * (1.0 - tr)
+        a[ACC_I] = weight * it
+    else:
+        a[ACC_R] += weight * r
+        a[ACC_G] += weight * g
+        a[ACC_B] += weight * bl
+        a[ACC_A] += weight * (1.0 - tr)
+        a[ACC_I] += weight * it
+
+
 @ngjit_parallel
 def composite_kernel(lists, counts, offs, gfirst, c0, weight, first, acc, side, depth, shadow,
-                     which, gbuf):
+                     which, gbuf, stop, front_acc, opaque):
     """Merge the surfaces' lists of a band (layers_kernel's; counts (n, B, H), offs the
     surfaces' first slots, gfirst (n, B, H, G_SIZE)) by depth, front to back, over a
     transmittance that stops below STOP: acc[i, c] += weight * the sums (ACC_*), row i
     = H - 1 - j from the top, column c = c0 + b. With ``first`` (a band's first pass):
     acc[i, c] = weight * the sums, and side, depth, shadow (NaN: none), which (the
     surface in front, -1: none) of the nearest crossing, and its G-buffer record into
-    the tiled gbuf (layout.py; only where a crossing is: gbuf is not cleared)."""
+    the tiled gbuf (layout.py; only where a crossing is: gbuf is not cleared).
+
+    Objects among the layers (objects.py): ``stop`` (H, W) the depth of the nearest
+    object at each pixel (inf: none; empty: no objects). front_acc (H, W, ACC_SIZE)
+    then takes the sums of the crossings nearer than it, as acc the whole list's (what
+    lies over the object: its colour shows through the rest, 1 - ACC_A), and with
+    ``first`` opaque (H, W) the depth at which the transmittance falls below STOP (inf:
+    never), behind which no object shows."""
     n = counts.shape[0]
     B = lists.shape[0]
     H = lists.shape[1]
     W = acc.shape[1]
     T = gbuf.shape[2]
+    objects = stop.shape[0] > 0
     for b in prange(B):
         c = c0 + b
         if c >= W:
@@ -566,6 +607,8 @@ def composite_kernel(lists, counts, offs, gfirst, c0, weight, first, acc, side, 
             f_side = 0.0
             f_depth = np.inf
             f_shadow = np.nan
+            z_stop = stop[i, c] if objects else np.inf
+            snap = False                 # the sums before z_stop taken
             while tr >= STOP:
                 best = -1
                 best_d = np.inf
@@ -579,6 +622,9 @@ def composite_kernel(lists, counts, offs, gfirst, c0, weight, first, acc, side, 
                 if best < 0:
                     break
                 rec = lists[b, j, offs[best] + head[best]]
+                if objects and not snap and rec[C_DEPTH] >= z_stop:
+                    _accumulate(front_acc[i, c], first, weight, r, g, bl, tr, it)
+                    snap = True
                 if front < 0:
                     front = best
                     f_side = rec[C_SIDE]
@@ -590,19 +636,14 @@ def composite_kernel(lists, counts, offs, gfirst, c0, weight, first, acc, side, 
                 bl += tr * rec[C_B]
                 it += tr * rec[C_I]
                 tr *= 1.0 - rec[C_A]
-            a = acc[i, c]
-            if first:                    # (acc's first pass sets it: it is not cleared)
-                a[ACC_R] = weight * r
-                a[ACC_G] = weight * g
-                a[ACC_B] = weight * bl
-                a[ACC_A] = weight * (1.0 - tr)
-                a[ACC_I] = weight * it
-            else:
-                a[ACC_R] += weight * r
-                a[ACC_G] += weight * g
-                a[ACC_B] += weight * bl
-                a[ACC_A] += weight * (1.0 - tr)
-                a[ACC_I] += weight * it
+                if objects and first and tr < STOP:
+                    opaque[i, c] = rec[C_DEPTH]
+            if objects:
+                if not snap:
+                    _accumulate(front_acc[i, c], first, weight, r, g, bl, tr, it)
+                if first and tr >= STOP:
+                    opaque[i, c] = np.inf
+            _accumulate(acc[i, c], first, weight, r, g, bl, tr, it)
             if first:
                 which[i, c] = front
                 side[i, c] = int(f_side)

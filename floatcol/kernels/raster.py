@@ -280,8 +280,9 @@ def object_edges_kernel(drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_under
     under the objects
     (z_under (H, W) its screen z, ``before`` (H, W, 4) its colour); a triangle's colour
     is the one ``after`` (H, W, 4) holds at the nearest pixel of the neighbourhood where
-    it won (its light and shadow there), else its own ``rgb`` (m, 3; lit, unshadowed:
-    a sliver no pixel centre lies on). Writes rgba at the edge pixels only. In parallel
+    it won (its light and shadow there), else its own ``rgb`` (m, 3; a sliver no pixel
+    centre lies on: with shadows, lit and shadowed at its centroid, objects.py
+    _sliver_colours). Writes rgba at the edge pixels only. In parallel
     over the columns, each pixel alone (reads drawn, before, after)."""
     H, W = drawn.shape
     S = EDGE_SS

@@ -237,6 +237,32 @@ STRIP_SPREAD = 0.5
 
 
 @ngjit_inline
+def _disk_below(slopes, k, hsurf, layer, pt, ps, hp, m, D, sgn, theta, tan_theta, rho, h):
+    """The part of the light's disk below the horizon of a point at texel (pt, ps) whose
+    H is hp (soft_shadow's): the horizon rising at m over the light's ray, made at
+    ground distance D (slopes[k], layer's surface: _occluder). Where the disk's rays
+    spread across the light over more than STRIP_SPREAD texels at that distance, it is
+    cut in STRIPS strips, each with the horizon of the line so displaced (a line whose
+    occluder is much nearer than D keeps m)."""
+    spread = D * math.tan(rho) / (math.cos(theta) * h)      # across the light, in texels
+    if not spread > STRIP_SPREAD:
+        return _blocked(sgn * (math.atan(tan_theta + m) - theta) / rho)
+    area = 0.0
+    dx = 2.0 / STRIPS
+    for q in range(STRIPS):
+        x0 = -1.0 + q * dx
+        hk, dk = _occluder(slopes, k, hsurf, layer, pt + (x0 + 0.5 * dx) * spread, ps)
+        if hk != hk:
+            mk = -sgn * SLOPE_NONE                   # nothing beyond: the strip is lit
+        elif dk < 0.5 * D:
+            mk = m
+        else:
+            mk = (hk - hp) / dk
+        area += _strip_blocked(x0, x0 + dx, sgn * (math.atan(tan_theta + mk) - theta) / rho)
+    return min(area / math.pi, 1.0)
+
+
+@ngjit_inline
 def soft_shadow(s, u, v, w, nx, ny, nz, light, hmax, hmin, hsurf, slopes, layer, gu, gv,
                 tan_theta, s0, t0, h, grazing, bias, rho):
     """point_shadow for a light of angular radius rho (radians): the part of the
@@ -267,25 +293,8 @@ def soft_shadow(s, u, v, w, nx, ny, nz, light, hmax, hmin, hsurf, slopes, layer,
     theta = math.atan(tan_theta)
     sgn = 1.0 if s > 0.0 else -1.0
     D = _own_slope(slopes, 4 * layer + 2 + side, hsurf, layer, pt, ps)   # the occluder's
-    spread = D * math.tan(rho) / (math.cos(theta) * h)      # across the light, in texels
-    if not spread > STRIP_SPREAD:
-        val = _blocked(sgn * (math.atan(tan_theta + m) - theta) / rho)
-    else:
-        area = 0.0
-        dx = 2.0 / STRIPS
-        hp = w - along * tan_theta
-        for k in range(STRIPS):
-            x0 = -1.0 + k * dx
-            hk, dk = _occluder(slopes, 4 * layer + side, hsurf, layer,
-                               pt + (x0 + 0.5 * dx) * spread, ps)
-            if hk != hk:
-                mk = -sgn * SLOPE_NONE                   # nothing beyond: the strip is lit
-            elif dk < 0.5 * D:
-                mk = m
-            else:
-                mk = (hk - hp) / dk
-            area += _strip_blocked(x0, x0 + dx, sgn * (math.atan(tan_theta + mk) - theta) / rho)
-        val = min(area / math.pi, 1.0)
+    val = _disk_below(slopes, 4 * layer + side, hsurf, layer, pt, ps, w - along * tan_theta,
+                      m, D, sgn, theta, tan_theta, rho, h)
     if hmax.shape[0] > 1:           # other layers: their hard, antialiased crossings
         hp = w - along * tan_theta
         margin = _crossed(hmax, hmin, layer, pt, ps, hp, -NONE)
@@ -566,6 +575,46 @@ def shadow_sweep(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, t0, h, n_s
                                    t0 + k0 * h, h, grazing, bias)
                 shadow[r, c] = val
                 lit[r, c] = 1.0 - val
+
+
+@ngjit_parallel
+def points_soft_shadow(point, test, hmax, hsurf, slopes, gu, gv, tan_theta, s0, t0, h, rho,
+                       out):
+    """points_shadow for a light of angular radius rho (radians): the part of the disk
+    that a layer's horizon hides from a point above it (the objects' seen points under
+    ``light_radius``), as soft_shadow's along the light. What makes the horizon of the
+    surface's texels around the point (_occluder: its H and distance D, the point at
+    the same distance toward the light) seen from the point rises at m = (H - hp) / D
+    over the light's ray: the disk's part below it (_disk_below: across the light, the
+    strips of the lines beside). Where the texels know no occluder, or where it lies under the
+    ray while the horizon of the hard lookup is above it (a farther ridge makes the
+    point's horizon, higher than the surface's), the hard answer (points_shadow's). The
+    strongest of the layers; out 0 where not tested. In parallel over the columns."""
+    H, W = test.shape
+    width_m = max(abs(tan_theta) * h, 1e-300)
+    theta = math.atan(tan_theta)
+    for j in prange(W):
+        for i in range(H):
+            out[i, j] = 0.0
+            if not test[i, j]:
+                continue
+            u, v, w = point[i, j, 0], point[i, j, 1], point[i, j, 2]
+            along = u * gu + v * gv
+            ps = (along - s0) / h
+            pt = (-u * gv + v * gu - t0) / h
+            hp = w - along * tan_theta
+            val = 0.0
+            for k in range(hmax.shape[0]):
+                margin = _bilinear(hmax, k, pt, ps) - hp
+                hard = min(max(margin / width_m + 0.5, 0.0), 1.0)
+                hk, dk = _occluder(slopes, 4 * k, hsurf, k, pt, ps)
+                m = (hk - hp) / dk if hk == hk else np.nan
+                if m != m or (margin > 0.0 and not m > 0.0):
+                    val = max(val, hard)
+                else:
+                    val = max(val, _disk_below(slopes, 4 * k, hsurf, k, pt, ps, hp, m, dk,
+                                               1.0, theta, tan_theta, rho, h))
+            out[i, j] = val
 
 
 @ngjit_parallel

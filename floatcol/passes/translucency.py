@@ -84,29 +84,46 @@ def layer_texture(source, box):
     return tex.flat, tex.offsets, tex.shapes, tp
 
 
+#: kernels/layers.py's occ where no objects cast shadows
+NO_OCCLUDERS = (np.zeros((3, 3)), np.zeros((0, 9)), np.zeros(2, np.int64),
+                np.zeros(0, np.int64))
+
+
 def shadow_vector(texture, view, layer):
-    """kernels/layers.py's sh (and the texture's planes) of a layer."""
+    """kernels/layers.py's sh, the texture's planes (hmax, hmin, hsurf) and the objects'
+    occluders occ (frame, coef, start, items) of a layer."""
     sh = np.zeros(K.SH_SIZE)
     none = np.zeros((0, 1, 1), dtype=np.float32)
     if texture is None:
-        return sh, none, none, none
+        return sh, none, none, none, NO_OCCLUDERS
     sh[K.SH_LX:K.SH_LZ + 1] = view.light
     sh[K.SH_ON] = 1.0
     sh[K.SH_LAYER] = layer
     sh[K.SH_GRAZING] = GRAZING
     sh[K.SH_BIAS] = BIAS_TEXELS
+    occ = NO_OCCLUDERS
+    o = texture.occluders           # (an Occluders: opacity below 1 takes no light_radius)
+    if o is not None and len(o.items):
+        sh[K.SH_OBJ] = 1.0
+        sh[K.SH_OGA], sh[K.SH_OGB], sh[K.SH_OINV] = o.ga, o.gb, o.inv_cell
+        sh[K.SH_ONA], sh[K.SH_ONB], sh[K.SH_OBIAS] = o.na, o.nb, o.bias
+        occ = (o.frame, o.coef, o.start, o.items)
     if texture.zenith:
         sh[K.SH_H] = 1.0
-        return sh, none, none, none
+        return sh, none, none, none, occ
     sh[K.SH_GU], sh[K.SH_GV], sh[K.SH_TAN] = texture.gu, texture.gv, texture.tan_theta
     sh[K.SH_S0], sh[K.SH_T0], sh[K.SH_H] = texture.s0, texture.t0, texture.h
-    return sh, texture.hmax, texture.hmin, texture.hsurf
+    return sh, texture.hmax, texture.hmin, texture.hsurf, occ
 
 
-def translucent_pass(layers, views, drawn, box, quality, background, texture):
+def translucent_pass(layers, views, drawn, box, quality, background, texture, stop=None):
     """The picture of ``layers`` (renderer.py's prepared layers; one View each, from
     one camera), every layer of each surface composited by depth. Returns
-    (rgba, intensity, side, depth, shadow, which, gbuf, stats)."""
+    (rgba, intensity, side, depth, shadow, which, gbuf, stats, front). With objects,
+    ``stop`` (H, W) float32 the depth of the nearest at each pixel (inf: none), and
+    front (front_acc, opaque) what lies over them (kernels/layers.py composite_kernel:
+    the sums of the crossings nearer than ``stop``, and the depth behind which nothing
+    shows); else front is None."""
     aa_cov, sub = quality.antialiasing(layers[0].material.shading)
     if aa_cov and sub == 1 and quality.antialias is not False:
         sub = SUB_COLUMNS
@@ -121,13 +138,13 @@ def translucent_pass(layers, views, drawn, box, quality, background, texture):
     geometry.check_bytes(W, H, need)
     try:
         return _composited(layers, views, drawn, box, background, texture, ks, slots, B,
-                           aa_cov, sub, quality.device)
+                           aa_cov, sub, quality.device, stop)
     except MemoryError:
         raise ValueError(geometry.too_large(W, H, need)) from None
 
 
 def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa_cov, sub,
-                device="cpu"):
+                device="cpu", stop=None):
     """translucent_pass's work, its sizes settled; the layers of each band on
     ``device`` (kernels/cuda.py's layers_kernel_cuda on "cuda"), their composite
     here."""
@@ -142,9 +159,9 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
         vp[VP_AA] = 1.0 if aa_cov else 0.0
         table = p.material.table(np.array([view.f_range]), box[2])
         w_limits.append(table.w_limits)
-        sh, hmax, hmin, hsurf = shadow_vector(texture, view, k)
+        sh, hmax, hmin, hsurf, occ = shadow_vector(texture, view, k)
         colours = (table.lut, *layer_texture(p.source, box))
-        plans.append((surface, vp, table.mp, colours, sh, hmax, hmin, hsurf))
+        plans.append((surface, vp, table.mp, colours, sh, hmax, hmin, hsurf, occ))
     offsets_px, centre = offsets(sub)
     order = [centre] + [i for i in range(sub) if i != centre]
     # (lists and gfirst are read only below counts, gbuf only where a layer is seen,
@@ -161,6 +178,13 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
     which = _pool.empty((H, W), np.int8)
     layers_seen = np.empty((H, W), dtype=np.int16)
     gbuf = _pool.empty((-(-W // TILE), H, TILE, G_SIZE), np.float32)
+    if stop is None:
+        stop = np.zeros((0, 0), np.float32)
+        front_acc = np.zeros((0, 0, K.ACC_SIZE))
+        opaque = np.zeros((0, 0), np.float32)
+    else:
+        front_acc = np.empty((H, W, K.ACC_SIZE))
+        opaque = np.empty((H, W), np.float32)
     total_evals = 0
     weight = 1.0 / sub
     for c0 in range(0, W, B):
@@ -168,7 +192,7 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
             counts[:] = 0
             hits[:] = 0
             evals[:] = 0
-            for k, (surface, vp, mp, lut, sh, hmax, hmin, hsurf) in enumerate(plans):
+            for k, (surface, vp, mp, lut, sh, hmax, hmin, hsurf, occ) in enumerate(plans):
                 if ks[k] == 0:
                     continue
                 vpk = vp.copy()
@@ -176,17 +200,17 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
                 if device == "cuda":
                     from ..kernels.cuda import layers_kernel_cuda
                     layers_kernel_cuda(surface, vpk, c0, mp, lut, sh, hmax, hmin, hsurf,
-                                       lists, offs[k], ks[k], counts[k], gfirst[k], hits,
+                                       occ, lists, offs[k], ks[k], counts[k], gfirst[k], hits,
                                        evals)
                     continue
                 kind, f, fg, _, hf, hfp = surface.kernel_args(None)
                 K.layers_kernel(kind, f, fg, hf, hfp, vpk, c0, mp, lut, sh, hmax,
-                                hmin, hsurf, lists, offs[k], ks[k], counts[k], gfirst[k], hits,
-                                evals)
+                                hmin, hsurf, occ, lists, offs[k], ks[k], counts[k], gfirst[k],
+                                hits, evals)
             total_evals += int(evals.sum())
             first = m == centre
             K.composite_kernel(lists, counts, offs, gfirst, c0, weight, first, acc, side, depth,
-                               shadow, which, gbuf)
+                               shadow, which, gbuf, stop, front_acc, opaque)
             if first:
                 cols = min(B, W - c0)
                 layers_seen[:, c0:c0 + cols] = hits[:cols, ::-1].T
@@ -196,7 +220,7 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
              "list_bytes": lists.nbytes + counts.nbytes + gfirst.nbytes + hits.nbytes,
              "layers": layers_seen, "w_limits": w_limits if n > 1 else w_limits[0]}
     return (rgba, intensity, side, depth, shadow if texture is not None else None, which,
-            gbuf, stats)
+            gbuf, stats, (front_acc, opaque) if stop.shape[0] else None)
 
 
 def _picture(acc, background):
@@ -208,14 +232,18 @@ def _picture(acc, background):
     return rgba, intensity
 
 
-def render_translucent(layers, views, drawn, box, quality, background, texture, t_start):
-    """translucent_pass as a Render (renderer.py's door for it)."""
+def render_translucent(layers, views, drawn, box, quality, background, texture, t_start,
+                       stop=None):
+    """translucent_pass as a Render (renderer.py's door for it); with objects (their
+    depth ``stop``) the Render keeps what lies over them for the objects pass
+    (Render._front: translucent_pass's front)."""
     import time
-    rgba, intensity, side, depth, shadow, which, gbuf, stats = translucent_pass(
-        layers, views, drawn, box, quality, background, texture)
+    rgba, intensity, side, depth, shadow, which, gbuf, stats, front = translucent_pass(
+        layers, views, drawn, box, quality, background, texture, stop)
     stats.update({"seconds": time.perf_counter() - t_start, "method": "column",
                   "box": box, "planes": views[0].planes, "step": views[0].step,
                   "scale": views[0].scale, "surfaces": len(layers)})
     if len(layers) > 1:
         stats["surface"] = which
-    return Render(rgba, intensity, side, depth, stats, views[0], gbuf, box=box, shadow=shadow)
+    return Render(rgba, intensity, side, depth, stats, views[0], gbuf, box=box, shadow=shadow,
+                  _front=front)

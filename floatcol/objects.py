@@ -341,17 +341,30 @@ class Occluders:
         own = np.zeros((0, 0), np.int32)
         grid_index = np.zeros(0, np.int64)
         if drawn is not None:
-            # (the grid's triangles are numbered among those kept)
-            where = np.full(max(int(src.max(initial=0)), int(self.index.max(initial=0))) + 1,
-                            -1, np.int64)
-            where[self.index] = np.arange(len(self.index))
-            own, grid_index = drawn, where[src]
+            own, grid_index = drawn, self._grid_index(src)
         out = np.empty((H, W), np.uint8)
         occluded_kernel(point, test, own, grid_index, self.frame, self.coef, self.start,
                         self.items, self.ga, self.gb, self.inv_cell, self.na, self.nb,
                         self.bias, out)
         return out
 
+
+    def _grid_index(self, src):
+        """Each of ``src``'s triangles' number among the grid's (those kept), -1: none."""
+        where = np.full(max(int(src.max(initial=0)), int(self.index.max(initial=0))) + 1,
+                        -1, np.int64)
+        where[self.index] = np.arange(len(self.index))
+        return where[src]
+
+    def edges_on_objects(self, drawn, edge, screen, src, out):
+        """The part of each ``edge`` pixel's footprint on its own triangle that another
+        triangle hides, into out (H, W) float32 there (kernels/raster.py
+        object_shadow_edges_kernel; drawn and src as blocked's, screen the rasterised
+        triangles: (cx, cy, e, tris, wp, ortho))."""
+        from .kernels.raster import object_shadow_edges_kernel
+        object_shadow_edges_kernel(drawn, edge, *screen, self._grid_index(src), self.frame,
+                                   self.coef, self.start, self.items, self.ga, self.gb,
+                                   self.inv_cell, self.na, self.nb, self.bias, out)
 
     def edges(self, point, seen, edge, out):
         """The part of each ``edge`` pixel's footprint in the objects' shadow, into out
@@ -506,7 +519,9 @@ def _objects_pass(r, objects, surface, light_dir, texture, antialias):
         kept = None if r.shadow is None else r.shadow[behind]
         r._depth = d
         if shadows:
-            _receive(r, hit, drawn, src, point, base, facing, texture)
+            screen = (col, row, e, tris, np.ascontiguousarray(pts[:, 3:]), ortho)
+            _receive(r, hit, drawn, src, point, base, facing, texture,
+                     screen if antialias else None)
         if front is not None:
             _through(r, hit, front[0])
             if kept is not None:
@@ -608,11 +623,13 @@ def _surfaces_cast(point, test, texture):
     return cast
 
 
-def _receive(r, hit, drawn, src, point, base, facing, texture):
+def _receive(r, hit, drawn, src, point, base, facing, texture, screen=None):
     """The objects' seen points in shadow (objects_pass with shadows): attached where
     the face turns away from the light, cast by the surfaces (the texture's horizons,
     kernels/shadow.py points_shadow) and by the other triangles (its occluders); the
-    face lit again with the light that reaches it, and r.shadow set there."""
+    face lit again with the light that reaches it, and r.shadow set there. With
+    ``screen`` (antialiasing: the rasterised triangles, Occluders.edges_on_objects') the
+    edges of the other triangles' shadows take the part of the pixel in shadow."""
     at = np.nonzero(hit)
     k = src[drawn[at] - 1]                      # each pixel's triangle among the meshes
     shadow = (facing[k] <= 0.0).astype(np.float64)         # attached
@@ -622,8 +639,17 @@ def _receive(r, hit, drawn, src, point, base, facing, texture):
         shadow = np.maximum(shadow, _surfaces_cast(point, test, texture)[at])
         test[at] = shadow < 1.0
     if texture.occluders is not None:
-        blocked = texture.occluders.blocked(point, test, drawn, src)[at]
-        shadow = np.maximum(shadow, blocked.astype(np.float64))
+        blocked = texture.occluders.blocked(point, test, drawn, src)
+        cast = blocked[at].astype(np.float64)
+        if screen is not None and isinstance(texture.occluders, Occluders):
+            # (a sun of a radius: DiskOccluders' part of the disk is the edge's blend)
+            b = blocked > 0
+            edge = test & _dilate(b) & _dilate(test & ~b)
+            if edge.any():
+                part = np.zeros(hit.shape, np.float32)
+                texture.occluders.edges_on_objects(drawn, edge, screen, src, part)
+                cast = np.where(edge[at], part[at], cast)
+        shadow = np.maximum(shadow, cast)
     lit = (1.0 - shadow)[:, None]
     rgb = np.clip(base[k] * (AMBIENT + (1 - AMBIENT) * facing[k][:, None] * lit), 0.0, 1.0)
     r.rgba[at[0], at[1], :3] = np.round(rgb * 255.0).astype(np.uint8)

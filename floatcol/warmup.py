@@ -188,6 +188,11 @@ def warm_all():
                  dict(objects=objects, shadows=True, light_radius=1.0),
                  dict(objects=objects, shadows=True, opacity=0.5)):
         fc.render(hf, size=(64, 48), **opts).intensity
+    # a box with poles on its four sides: one's shadow falls on it (the shadow's edge on
+    # an object), whatever the light
+    ring = [fc.box(16, 16, 6, 6, 3)] + [fc.pole(16 + du, 16 + dv, 10, radius=0.8)
+                                        for du, dv in ((-5, 0), (5, 0), (0, -5), (0, 5))]
+    fc.render(hf, size=(64, 48), objects=ring, shadows=True, lightsource=(0, 30)).intensity
     cam = fc.fly(hf, (16, 1), heading=0, size=(64, 36), above=4)
     for area in (False, True):
         fc.render(hf, **cam, antialias="area" if area else True).intensity

@@ -269,6 +269,59 @@ def shadow_edges_kernel(point, seen, edge, frame, coef, start, items, ga, gb, in
 
 
 @ngjit_parallel
+def object_shadow_edges_kernel(drawn, edge, cx, cy, e, tris, wp, ortho, grid_index, frame, coef,
+                               start, items, ga, gb, inv_cell, na, nb, bias, out):
+    """At the edge of the objects' shadows on the objects themselves (``edge`` (H, W):
+    object pixels whose 3 x 3 neighbourhood has points in them and out of them), the
+    part of each pixel's footprint on its own triangle that another triangle hides from
+    the light: the mean over SHADOW_EDGE_SAMPLES^2 sub-samples spread over the pixel,
+    each the point of the triangle's plane it shows (the screen's barycentric weights,
+    perspective-correct, from the vertices' ``wp`` (n, 3) in the box: raster_kernel's
+    point, extended past the triangle's edges). drawn (H, W) raster_kernel's triangle +
+    1; grid_index that triangle's number among the occluders' (its own does not count,
+    -1: none). out (H, W) written at the edge pixels. In parallel over the columns."""
+    H, W = edge.shape
+    S = SHADOW_EDGE_SAMPLES
+    for jp in prange(W):
+        j = np.int64(jp)
+        for i in range(H):
+            if not edge[i, j] or drawn[i, j] <= 0:
+                continue
+            k = drawn[i, j] - 1
+            i0 = tris[k, 0]
+            i1 = tris[k, 1]
+            i2 = tris[k, 2]
+            x0, x1, x2 = cx[i0], cx[i1], cx[i2]
+            y0, y1, y2 = cy[i0], cy[i1], cy[i2]
+            det = (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2)
+            if det == 0.0 or det != det:
+                continue
+            hits = 0
+            for a in range(S):
+                y = i + (a + 0.5) / S - 0.5
+                for c in range(S):
+                    x = j + (c + 0.5) / S - 0.5
+                    l0 = ((y1 - y2) * (x - x2) + (x2 - x1) * (y - y2)) / det
+                    l1 = ((y2 - y0) * (x - x2) + (x0 - x2) * (y - y2)) / det
+                    l2 = 1.0 - l0 - l1
+                    if not ortho:
+                        l0 /= e[i0]
+                        l1 /= e[i1]
+                        l2 /= e[i2]
+                        q = l0 + l1 + l2
+                        l0 /= q
+                        l1 /= q
+                        l2 /= q
+                    if _blocked_at(l0 * wp[i0, 0] + l1 * wp[i1, 0] + l2 * wp[i2, 0],
+                                   l0 * wp[i0, 1] + l1 * wp[i1, 1] + l2 * wp[i2, 1],
+                                   l0 * wp[i0, 2] + l1 * wp[i1, 2] + l2 * wp[i2, 2],
+                                   grid_index[k], frame, coef, start, items, ga, gb,
+                                   inv_cell, na, nb, bias):
+                        hits += 1
+            out[i, j] = hits / (S * S)
+
+
+@ngjit_parallel
 def object_edges_kernel(drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_under, before,
                         after, rgba):
     """Antialias the objects' edges (floatcol/objects.py): a pixel whose 3 x 3

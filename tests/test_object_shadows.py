@@ -243,7 +243,7 @@ def test_under_a_sun_of_a_radius_objects_take_the_surfaces_penumbra():
     objs = [fc.box(*_behind(sun, (0.5, 0.0), 2.2), 1.4, 1.4, 1.0, color="firebrick"),
             fc.box(*_behind(sun, (0.5, 0.0), 3.4), 1.0, 1.0, 1.4),
             fc.pole(*_behind(sun, (0.5, 0.0), 1.2), 1.5, radius=0.12)]
-    r, kind, depth, shadow = _scene(BUMP, objs, "perspective", sun, radius=4.0, steps=600)
+    r, kind, depth, shadow = _scene(BUMP, objs, "perspective", sun, radius=4.0, steps=300)
     d = r.depth.astype(float)
     with np.errstate(invalid="ignore"):
         same = np.isfinite(d) & (kind == 2) & (np.abs(d - depth) < 0.02)

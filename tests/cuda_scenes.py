@@ -4,7 +4,8 @@ CUDA simulator, which must be chosen before numba.cuda is first imported).
 
     NUMBA_ENABLE_CUDASIM=1 python tests/cuda_scenes.py SCENES.json OUT.npz
 
-SCENES.json: a list of [name, expression or {"heightfield": seed}, render keywords].
+SCENES.json: a list of [name, expression or {"heightfield": seed}, render keywords];
+the keyword "objects" as a list of [kind, arguments...] (fc.box, fc.pole, fc.tree).
 OUT.npz gets NAME/DEVICE/ARRAY for rgba, side, intensity, depth, u, v and samples.
 """
 import json
@@ -31,6 +32,8 @@ def main(scenes_path, out_path):
         scenes = json.load(fh)
     out = {}
     for name, spec, kw in scenes:
+        if "objects" in kw:
+            kw = dict(kw, objects=[getattr(fc, kind)(*args) for kind, *args in kw["objects"]])
         for device in ("cpu", "cuda"):
             r = fc.render(surface(spec), device=device, **kw)
             for key in ("rgba", "side", "intensity", "depth", "u", "v"):

@@ -57,6 +57,11 @@ def _scenes():
     # translucent layers (sections 6.5-6.6): every crossing, composited on the CPU
     scenes.append(["translucent", GORDON, dict(u=DOM, v=DOM, size=(100, 75), opacity=0.5,
                                                projection="perspective")])
+    # ... with objects: their shadows on every crossing (the occluders on the device)
+    scenes.append(["translucent-objects", GORDON, dict(
+        u=DOM, v=DOM, size=(100, 75), opacity=0.5, shadows=True, lightsource=(315, 35),
+        objects=[["box", 0.0, 0.0, 1.5, 1.5, 2.0], ["pole", 2.0, -2.0, 3.0],
+                 ["tree", -2.0, 2.0, 2.5]])])
     scenes.append(["area-heightfield", {"heightfield": 5},
                    dict(size=(120, 90), projection="perspective", elev=25, azim=40,
                         antialias="area")])

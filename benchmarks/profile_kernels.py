@@ -1,0 +1,163 @@
+"""Where a render's CPU time goes, by function, Numba's kernels included: a sampling
+profile by Linux perf with the kernels' names.
+
+perf sees Numba's compiled code as anonymous memory ("[JIT]" addresses). This script
+keeps the object code of every kernel Numba loads from its cache or compiles (its
+object-cache hook, patched before anything is compiled), reads their symbols
+(readelf), looks each one's address up in Numba's engine and writes perf's map file
+(/tmp/perf-PID.map), so that `perf report` names them. It warms up, then attaches
+`perf record` to itself for the timed loop of renders only, and prints the top
+symbols: a kernel's inlined helpers count as the kernel (the column pass's painting
+is _column_pass's), the surface's compiled functions show as their addresses.
+
+    python benchmarks/profile_kernels.py                      # 1920x1080 perspective
+    python benchmarks/profile_kernels.py --projection orthographic --seconds 5
+    python benchmarks/profile_kernels.py --expr "u*v" --top 40
+
+Needs perf (Debian's linux-perf) and readelf (binutils); on a machine whose perf
+cannot count cycles it samples the cpu-clock. See docs/algorithm.md ("Where
+1920x1080 perspective's time goes") for what it measured.
+"""
+import argparse
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+os.environ.setdefault("FLOATCOL_DRAFT", "0")  # time the kernels, never drafts
+
+import numba.core.codegen as _codegen  # noqa: E402
+
+_OBJECTS = []                   # every object file Numba's engine was given
+
+
+def _keeping(hook):
+    def keep(cls, ll_module, *args):
+        out = hook.__func__(cls, ll_module, *args)
+        buf = args[0] if args else out          # (compiled: the new buffer; loaded: the cached)
+        if buf:
+            _OBJECTS.append(bytes(buf))
+        return out
+    return classmethod(keep)
+
+
+# (before any library is made: the engine takes the hooks when the codegen starts)
+_codegen.JITCodeLibrary._object_compiled_hook = _keeping(
+    _codegen.JITCodeLibrary._object_compiled_hook)
+_codegen.JITCodeLibrary._object_getbuffer_hook = _keeping(
+    _codegen.JITCodeLibrary._object_getbuffer_hook)
+
+import floatcol as fc  # noqa: E402
+
+
+def _engine():
+    from numba.core.registry import cpu_target
+    return cpu_target.target_context.codegen()._engine
+
+
+def write_perf_map(path):
+    """perf's map file of every function symbol in the object files kept: 'START SIZE
+    NAME' lines (hex). Returns how many."""
+    engine = _engine()
+    lines = []
+    with tempfile.TemporaryDirectory() as tmp:
+        obj = os.path.join(tmp, "k.o")
+        for buf in _OBJECTS:
+            with open(obj, "wb") as fh:
+                fh.write(buf)
+            out = subprocess.run(["readelf", "-sW", obj], capture_output=True,
+                                 text=True).stdout
+            for ln in out.splitlines():
+                p = ln.split()
+                if len(p) < 8 or p[3] != "FUNC" or p[6] == "UND":
+                    continue
+                try:
+                    addr = engine.get_function_address(p[7])
+                except Exception:
+                    addr = 0
+                if addr:
+                    lines.append(f"{addr:x} {int(p[2]):x} {p[7]}\n")
+    with open(path, "w") as fh:
+        fh.writelines(lines)
+    return len(lines)
+
+
+def short(name):
+    """A Numba symbol's Python name: _ZN8floatcol7kernels6column12_column_passB3v41...
+    -> column._column_pass (its length-prefixed parts); others as they are."""
+    if not name.startswith("_ZN"):
+        return name[:60]
+    rest = name[3:]
+    parts = []
+    while rest[:1].isdigit():
+        digits = re.match(r"\d+", rest).group()
+        n = int(digits)
+        parts.append(rest[len(digits):len(digits) + n])
+        rest = rest[len(digits) + n:]
+    if any("numba_parfor_gufunc" in p for p in parts):
+        return "a prange loop's body (a parallel kernel: finishing, staircase, ...)"
+    out = ".".join(parts).replace("_3c", "<").replace("_3e", ">")
+    for prefix in ("floatcol.kernels.", "floatcol."):
+        if out.startswith(prefix):
+            return out[len(prefix):]
+    return out or name[:60]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--expr", default="3*sin(u*cos(v))")
+    ap.add_argument("--size", default="1920x1080")
+    ap.add_argument("--projection", default="perspective")
+    ap.add_argument("--seconds", type=float, default=10.0)
+    ap.add_argument("--top", type=int, default=25)
+    args = ap.parse_args()
+    for tool in ("perf", "readelf"):
+        if shutil.which(tool) is None:
+            sys.exit(f"profile_kernels needs {tool}")
+    w, h = (int(x) for x in args.size.split("x"))
+    kw = dict(size=(w, h), projection=args.projection, u=(-5, 5), v=(-5, 5))
+    for _ in range(5):
+        fc.render(args.expr, **kw)
+    n_sym = write_perf_map(f"/tmp/perf-{os.getpid()}.map")
+    data = os.path.join(tempfile.mkdtemp(), "perf.data")
+    rec = subprocess.Popen(["perf", "record", "-F", "999", "-p", str(os.getpid()), "-o", data],
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    time.sleep(1.0)                              # (perf attaches)
+    t0 = time.perf_counter()
+    n = 0
+    while time.perf_counter() - t0 < args.seconds:
+        fc.render(args.expr, **kw)
+        n += 1
+    ms = (time.perf_counter() - t0) / n * 1e3
+    rec.send_signal(signal.SIGINT)
+    rec.wait()
+    rep = subprocess.run(["perf", "report", "-i", data, "--no-children", "--sort", "dso,sym",
+                          "-g", "none", "--percent-limit", "0.3", "--stdio"],
+                         capture_output=True, text=True).stdout
+    print(f"{args.expr}, {w}x{h} {args.projection}: {n} renders, {ms:.1f} ms each while "
+          f"profiled; {n_sym} kernel symbols mapped\n")
+    if os.environ.get("PROFILE_RAW"):
+        print(rep)
+    print("| share of the CPU samples (both threads) | function |")
+    print("|---|---|")
+    shown = 0
+    for ln in rep.splitlines():
+        m = re.match(r"\s+([\d.]+)%\s+(.*?)\s+\[[.k]\]\s+(\S+)", ln)
+        if m and shown < args.top:
+            dso, sym = m.group(2), m.group(3)
+            if "libgomp" in dso:
+                what = "libgomp (OpenMP: a thread waiting for work)"
+            elif "[JIT]" in dso:
+                what = short(sym)
+            else:
+                what = f"{short(sym)} ({os.path.basename(dso)})"
+            print(f"| {m.group(1)} % | {what} |")
+            shown += 1
+
+
+if __name__ == "__main__":
+    main()

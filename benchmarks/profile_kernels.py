@@ -13,6 +13,7 @@ is _column_pass's), the surface's compiled functions show as their addresses.
     python benchmarks/profile_kernels.py                      # 1920x1080 perspective
     python benchmarks/profile_kernels.py --projection orthographic --seconds 5
     python benchmarks/profile_kernels.py --expr "u*v" --top 40
+    python benchmarks/profile_kernels.py --fly            # bench_terrain.py's fly-through
 
 Needs perf (Debian's linux-perf) and readelf (binutils); on a machine whose perf
 cannot count cycles it samples the cpu-clock. See docs/algorithm.md ("Where
@@ -59,31 +60,62 @@ def _engine():
     return cpu_target.target_context.codegen()._engine
 
 
-def write_perf_map(path):
+def write_perf_map(path, folder):
     """perf's map file of every function symbol in the object files kept: 'START SIZE
-    NAME' lines (hex). Returns how many."""
+    NAME' lines (hex). The object files go to ``folder``. Returns [(start, size,
+    object file, the symbol's offset in it)]."""
     engine = _engine()
     lines = []
-    with tempfile.TemporaryDirectory() as tmp:
-        obj = os.path.join(tmp, "k.o")
-        for buf in _OBJECTS:
-            with open(obj, "wb") as fh:
-                fh.write(buf)
-            out = subprocess.run(["readelf", "-sW", obj], capture_output=True,
-                                 text=True).stdout
-            for ln in out.splitlines():
-                p = ln.split()
-                if len(p) < 8 or p[3] != "FUNC" or p[6] == "UND":
-                    continue
-                try:
-                    addr = engine.get_function_address(p[7])
-                except Exception:
-                    addr = 0
-                if addr:
-                    lines.append(f"{addr:x} {int(p[2]):x} {p[7]}\n")
+    funcs = []
+    for k, buf in enumerate(_OBJECTS):
+        obj = os.path.join(folder, f"k{k}.o")
+        with open(obj, "wb") as fh:
+            fh.write(buf)
+        out = subprocess.run(["readelf", "-sW", obj], capture_output=True, text=True).stdout
+        for ln in out.splitlines():
+            p = ln.split()
+            if len(p) < 8 or p[3] != "FUNC" or p[6] == "UND":
+                continue
+            try:
+                addr = engine.get_function_address(p[7])
+            except Exception:
+                addr = 0
+            if addr:
+                lines.append(f"{addr:x} {int(p[2]):x} {p[7]}\n")
+                funcs.append((addr, int(p[2]), obj, int(p[1], 16)))
     with open(path, "w") as fh:
         fh.writelines(lines)
-    return len(lines)
+    return funcs
+
+
+def source_lines(data, funcs, top):
+    """The kernels' samples by source line (NUMBA_DEBUGINFO=1 compiles the line
+    tables in): perf's sample addresses inside the mapped functions, each object's
+    offsets looked up by addr2line (-i: the innermost inlined line)."""
+    import bisect
+    from collections import Counter
+    ips = subprocess.run(["perf", "script", "-i", data, "-F", "ip"], capture_output=True,
+                         text=True).stdout.split()
+    starts = sorted(funcs)
+    keys = [f[0] for f in starts]
+    by_obj = {}
+    total = 0
+    for x in ips:
+        ip = int(x, 16)
+        total += 1
+        i = bisect.bisect_right(keys, ip) - 1
+        if i >= 0 and ip < starts[i][0] + starts[i][1]:
+            a, _, obj, off = starts[i]
+            by_obj.setdefault(obj, []).append(ip - a + off)
+    count = Counter()
+    for obj, offs in by_obj.items():
+        out = subprocess.run(["addr2line", "-e", obj] + [hex(o) for o in offs],
+                             capture_output=True, text=True).stdout.split()
+        for loc in out:
+            count[loc.replace(os.path.dirname(os.path.dirname(fc.__file__)) + "/", "")] += 1
+    print("\n| share of the samples | source line (innermost inlined) |\n|---|---|")
+    for loc, n in count.most_common(top):
+        print(f"| {100.0 * n / max(total, 1):.2f} % | {loc} |")
 
 
 def short(name):
@@ -114,23 +146,45 @@ def main():
     ap.add_argument("--projection", default="perspective")
     ap.add_argument("--seconds", type=float, default=10.0)
     ap.add_argument("--top", type=int, default=25)
+    ap.add_argument("--fly", action="store_true",
+                    help="bench_terrain.py's fly-through instead: a 4097^2 fractal DEM at "
+                         "1280x720, fc.fly's level-of-detail engine, point sampled")
+    ap.add_argument("--area", action="store_true", help="with --fly: antialias='area'")
+    ap.add_argument("--lines", action="store_true",
+                    help="also by source line: set NUMBA_DEBUGINFO=1 and NUMBA_CACHE_DIR to "
+                         "a folder of its own (the kernels compile again with line tables)")
     args = ap.parse_args()
     for tool in ("perf", "readelf"):
         if shutil.which(tool) is None:
             sys.exit(f"profile_kernels needs {tool}")
-    w, h = (int(x) for x in args.size.split("x"))
-    kw = dict(size=(w, h), projection=args.projection, u=(-5, 5), v=(-5, 5))
+    if args.fly:
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        from bench_terrain import fractal
+        n = 4097
+        surface = fc.HeightField(fractal(n, seed=3) * 40, u=(0, 4 * (n - 1)),
+                                 v=(0, 4 * (n - 1)))
+        kw = fc.fly(surface, (2000.0, 1000.0), heading=30, pitch=-10, fov=60,
+                    size=(1280, 720), above=300)
+        kw.update(antialias="area" if args.area else False)
+        w, h = kw["size"]
+        args.projection = "fly-through, " + ("area" if args.area else "point") + " sampled"
+    else:
+        surface = args.expr
+        w, h = (int(x) for x in args.size.split("x"))
+        kw = dict(size=(w, h), projection=args.projection, u=(-5, 5), v=(-5, 5))
     for _ in range(5):
-        fc.render(args.expr, **kw)
-    n_sym = write_perf_map(f"/tmp/perf-{os.getpid()}.map")
-    data = os.path.join(tempfile.mkdtemp(), "perf.data")
+        fc.render(surface, **kw)
+    folder = tempfile.mkdtemp()
+    funcs = write_perf_map(f"/tmp/perf-{os.getpid()}.map", folder)
+    n_sym = len(funcs)
+    data = os.path.join(folder, "perf.data")
     rec = subprocess.Popen(["perf", "record", "-F", "999", "-p", str(os.getpid()), "-o", data],
                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     time.sleep(1.0)                              # (perf attaches)
     t0 = time.perf_counter()
     n = 0
     while time.perf_counter() - t0 < args.seconds:
-        fc.render(args.expr, **kw)
+        fc.render(surface, **kw)
         n += 1
     ms = (time.perf_counter() - t0) / n * 1e3
     rec.send_signal(signal.SIGINT)
@@ -138,7 +192,8 @@ def main():
     rep = subprocess.run(["perf", "report", "-i", data, "--no-children", "--sort", "dso,sym",
                           "-g", "none", "--percent-limit", "0.3", "--stdio"],
                          capture_output=True, text=True).stdout
-    print(f"{args.expr}, {w}x{h} {args.projection}: {n} renders, {ms:.1f} ms each while "
+    print(f"{'DEM' if args.fly else args.expr}, {w}x{h} {args.projection}: {n} renders, "
+          f"{ms:.1f} ms each while "
           f"profiled; {n_sym} kernel symbols mapped\n")
     if os.environ.get("PROFILE_RAW"):
         print(rep)
@@ -157,6 +212,8 @@ def main():
                 what = f"{short(sym)} ({os.path.basename(dso)})"
             print(f"| {m.group(1)} % | {what} |")
             shown += 1
+    if args.lines:
+        source_lines(data, funcs, args.top)
 
 
 if __name__ == "__main__":

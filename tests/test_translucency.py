@@ -233,6 +233,26 @@ def test_objects_show_through_translucent_layers(proj):
     np.testing.assert_array_equal(roof.rgba, no_box.rgba)
 
 
+@pytest.mark.parametrize("proj", ["orthographic", "perspective"])
+def test_what_lies_behind_an_object_does_not_show_through_it(proj):
+    """A box behind a translucent hill, one surface: the ground beyond the box (the
+    domain reaching v = 9, or cut at 2.75 just behind the box) must not change the box's
+    pixels. Measured: 0.5 % and 0 % of the inner box pixels (1400, 322) differ by more
+    than a level. A surface alone had kept one record a pixel, every crossing folded
+    into it, so the ground behind the box was laid over it: 85 % and 87 % differed."""
+    box = [fc.box(0, 2.2, 1.0, 1.0, 1.5, color="firebrick")]
+    kw = dict(size=(200, 150), elev=15, azim=0, opacity=0.5, scale=30, center=(0, 0, 1),
+              d1=20, d2=20, projection=proj)
+    hill = "2.5*exp(-u**2 - v**2)"
+    far = fc.render(hill, u=(-3, 3), v=(-3, 9), objects=box, **kw)
+    near = fc.render(hill, u=(-3, 3), v=(-3, 2.75), objects=box, **kw)
+    bare = fc.render(hill, u=(-3, 3), v=(-3, 9), **kw)
+    at = _inside(np.any(far.rgba != bare.rgba, axis=-1))
+    assert at.sum() > 250
+    diff = np.abs(far.rgba[..., :3].astype(int) - near.rgba[..., :3].astype(int))[at]
+    assert (diff.max(axis=-1) > 1).mean() <= 0.02
+
+
 def test_bands_do_not_change_the_picture(monkeypatch):
     """The lists are kept a band of columns at a time: narrower bands, same picture."""
     d = (-1, 1)

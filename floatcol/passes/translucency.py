@@ -130,7 +130,9 @@ def translucent_pass(layers, views, drawn, box, quality, background, texture, st
     view0 = views[0]
     W, H = view0.width, view0.height
     n = len(layers)
-    ks = [records(p.material.opacity, n) for p in layers]
+    # (with objects a surface alone keeps several records too: folding its crossings
+    # into one would put those behind an object over it)
+    ks = [records(p.material.opacity, n if stop is None else max(n, 2)) for p in layers]
     slots = max(int(sum(ks)), 1)
     B = band_columns(W, H, slots, n)
     # the picture's sums and arrays, and a band's lists: a bad size, not a MemoryError

@@ -726,3 +726,14 @@ def _disk(L, radius, n_disk):
     a = k * math.pi * (3.0 - math.sqrt(5.0))
     rays = L + r[:, None] * (np.cos(a)[:, None] * e1 + np.sin(a)[:, None] * e2)
     return rays / np.linalg.norm(rays, axis=1, keepdims=True)
+
+
+def inner(mask):
+    """The pixels of mask whose four neighbours are in it too (away from a silhouette,
+    where antialiasing blends a pixel with what lies beside it)."""
+    m = mask.copy()
+    m[1:] &= mask[:-1]
+    m[:-1] &= mask[1:]
+    m[:, 1:] &= mask[:, :-1]
+    m[:, :-1] &= mask[:, 1:]
+    return m

@@ -160,6 +160,15 @@ def test_antialiased_object_edges_approach_the_supersampled_picture(proj):
     expr, sun, objects = CASES[0]
     kw = dict(u=(-4, 4), v=(-4, 4), elev=35, azim=20, projection=proj, lightsource=sun,
               shadows=True, objects=objects())
+    n, err = _edge_errors(expr, kw, 0.2)
+    assert n > 60
+    assert err[True] < 0.35 * err[False]
+
+
+def _edge_errors(expr, kw, part):
+    """(pixels, {antialias: mean |RGB error|}) at the objects' edges (pixels they cover
+    by part to 1 - part) of 120 x 90 pictures with and without antialiasing, against the
+    picture drawn at 4 x 4 the pixels (point sampled) and box-filtered."""
     big = dict(kw, size=(480, 360), antialias=False)
     r4 = fc.render(expr, **big)
     # the objects' footprint at 4 x 4: where they change the picture without shadows
@@ -167,13 +176,12 @@ def test_antialiased_object_edges_approach_the_supersampled_picture(proj):
     obj4 = fc.render(expr, **dict(big, shadows=False))
     cover = np.any(obj4.rgba != plain4.rgba, axis=-1).reshape(90, 4, 120, 4).mean(axis=(1, 3))
     want = r4.rgba[..., :3].astype(float).reshape(90, 4, 120, 4, 3).mean(axis=(1, 3))
-    edge = (cover > 0.2) & (cover < 0.8)
-    assert edge.sum() > 60
+    edge = (cover > part) & (cover < 1.0 - part)
     err = {}
     for aa in (True, False):
         r = fc.render(expr, **dict(kw, size=(120, 90), antialias=aa))
         err[aa] = np.abs(r.rgba[..., :3].astype(float) - want)[edge].mean()
-    assert err[True] < 0.35 * err[False]
+    return int(edge.sum()), err
 
 
 @pytest.mark.parametrize("proj", ["orthographic", "perspective"])
@@ -191,18 +199,8 @@ def test_thin_poles_in_a_shadow_stay_in_shadow_at_their_edges(proj):
     expr = "0.2*sin(u)*cos(v)"
     kw = dict(u=(-4, 4), v=(-4, 4), elev=30, azim=20, projection=proj, lightsource=(270, 25),
               shadows=True, objects=objs)
-    big = dict(kw, size=(480, 360), antialias=False)
-    r4 = fc.render(expr, **big)
-    plain4 = fc.render(expr, **dict(big, shadows=False, objects=()))
-    obj4 = fc.render(expr, **dict(big, shadows=False))
-    cover = np.any(obj4.rgba != plain4.rgba, axis=-1).reshape(90, 4, 120, 4).mean(axis=(1, 3))
-    want = r4.rgba[..., :3].astype(float).reshape(90, 4, 120, 4, 3).mean(axis=(1, 3))
-    edge = (cover > 0.05) & (cover < 0.95)
-    assert edge.sum() > 500
-    err = {}
-    for aa in (True, False):
-        r = fc.render(expr, **dict(kw, size=(120, 90), antialias=aa))
-        err[aa] = np.abs(r.rgba[..., :3].astype(float) - want)[edge].mean()
+    n, err = _edge_errors(expr, kw, 0.05)
+    assert n > 500
     assert err[True] < 0.5 * err[False], err
 
 

@@ -12,6 +12,7 @@ matplotlib.use("Agg")
 import floatcol as fc  # noqa: E402
 from floatcol.plot import mpl_to_paper_angles  # noqa: E402
 from conftest import matplotlib_agrees  # noqa: E402
+from reference import inner  # noqa: E402
 
 x, y, a, b = sp.symbols("x y a b")
 SMALL = (64, 48)
@@ -100,20 +101,9 @@ def test_lightsource_is_a_world_direction():
         assert np.allclose(low.intensity[low.side != 0], 0.2, atol=1e-5)
 
 
-def _inside(mask):
-    """Pixels of mask whose four neighbours are in it too (antialiasing blends the
-    silhouette pixels with the background)."""
-    m = mask.copy()
-    m[1:] &= mask[:-1]
-    m[:-1] &= mask[1:]
-    m[:, 1:] &= mask[:, :-1]
-    m[:, :-1] &= mask[:, 1:]
-    return m
-
-
 def test_shade_false_gives_flat_colour():
     p = fc.plot_surface("x*y", ("x", -1, 1), ("y", -1, 1), size=SMALL, color="red", shade=False)
-    up = _inside(p.render_kwargs(SMALL) and p.draw().side > 0)
+    up = inner(p.render_kwargs(SMALL) and p.draw().side > 0)
     assert up.sum() > 100
     assert np.all(p.rgba[up][:, :3] == [255, 0, 0])
 
@@ -125,13 +115,13 @@ def test_vmin_vmax_and_norm_set_the_colours():
     p = fc.plot_surface("x + 2", ("x", -1, 1), ("y", -1, 1), size=SMALL, shade=False,
                         cmap="gray", vmin=1, vmax=3, antialias=False)
     r = p.draw()
-    up = _inside(r.side > 0)
+    up = inner(r.side > 0)
     want = np.round((r.w[up] - 1) / 2 * 255)
     assert np.abs(r.rgba[up][:, 0].astype(float) - want).max() <= 1.5
     q = fc.plot_surface("x + 2", ("x", -1, 1), ("y", -1, 1), size=SMALL, shade=False,
                         cmap="gray", norm=LogNorm(1, 3), antialias=False)
     rq = q.draw()
-    upq = _inside(rq.side > 0)
+    upq = inner(rq.side > 0)
     want = np.round(np.log(rq.w[upq]) / np.log(3) * 255)
     assert np.abs(rq.rgba[upq][:, 0].astype(float) - want).max() <= 1.5
     lin = fc.plot_surface("x + 2", ("x", -1, 1), ("y", -1, 1), size=SMALL, norm=Normalize(1, 3))

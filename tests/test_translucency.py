@@ -30,7 +30,7 @@ import pytest
 
 import floatcol as fc
 from floatcol.passes import translucency
-from reference import composite_layers, numpy_surface, psnr, raycast_box
+from reference import composite_layers, inner, numpy_surface, psnr, raycast_box
 
 SIZE = (160, 120)
 
@@ -180,16 +180,6 @@ def test_shadows_reach_hidden_layers():
     assert r.intensity[seen].mean() < lit.intensity[seen].mean() - 0.02
 
 
-def _inside(mask):
-    """mask's pixels whose four neighbours are in it too."""
-    m = mask.copy()
-    m[1:] &= mask[:-1]
-    m[:-1] &= mask[1:]
-    m[:, 1:] &= mask[:, :-1]
-    m[:, :-1] &= mask[:, 1:]
-    return m
-
-
 @pytest.mark.parametrize("proj", ["orthographic", "perspective"])
 def test_objects_show_through_translucent_layers(proj):
     """A box on opaque ground under a glass plane of opacity a: the over operator says
@@ -208,7 +198,7 @@ def test_objects_show_through_translucent_layers(proj):
     without = fc.render_many([ground, glass], opacity=[1, 0.5], **kw)
     alone = fc.render_many([ground], objects=box, **kw)
     bare = fc.render_many([ground], **kw)
-    at = _inside(np.any(alone.rgba != bare.rgba, axis=-1))
+    at = inner(np.any(alone.rgba != bare.rgba, axis=-1))
     assert at.sum() > 150
     assert with_box.stats["object_pixels"] == alone.stats["object_pixels"]
     P, P0, B, G = (x.rgba[..., :3].astype(float) for x in (with_box, without, alone, bare))
@@ -221,7 +211,7 @@ def test_objects_show_through_translucent_layers(proj):
     tall = [fc.box(0, 0, 2, 2, 3.0, color="firebrick")]
     over = fc.render_many([ground, glass], opacity=[1, 0.5], objects=tall, **kw)
     top = fc.render_many([ground], objects=tall, **kw)
-    above = _inside(np.any(top.rgba != bare.rgba, axis=-1)) & (over.depth < without.depth)
+    above = inner(np.any(top.rgba != bare.rgba, axis=-1)) & (over.depth < without.depth)
     assert above.sum() > 50
     # (but 2 of 904 pixels, orthographic: where a side face crosses the glass, the
     # antialiased edges take a triangle's colour from the nearest pixel it won)
@@ -247,7 +237,7 @@ def test_what_lies_behind_an_object_does_not_show_through_it(proj):
     far = fc.render(hill, u=(-3, 3), v=(-3, 9), objects=box, **kw)
     near = fc.render(hill, u=(-3, 3), v=(-3, 2.75), objects=box, **kw)
     bare = fc.render(hill, u=(-3, 3), v=(-3, 9), **kw)
-    at = _inside(np.any(far.rgba != bare.rgba, axis=-1))
+    at = inner(np.any(far.rgba != bare.rgba, axis=-1))
     assert at.sum() > 250
     diff = np.abs(far.rgba[..., :3].astype(int) - near.rgba[..., :3].astype(int))[at]
     assert (diff.max(axis=-1) > 1).mean() <= 0.02

@@ -268,6 +268,18 @@ def shadow_edges_kernel(point, seen, edge, frame, coef, start, items, ga, gb, in
             out[i, j] = hits / (S * S)
 
 
+@ngjit_inline
+def _on_screen(tris, cx, cy, k):
+    """Triangle k's vertices (i0, i1, i2), their pixel coordinates (x0, x1, x2, y0, y1,
+    y2) and the determinant of its barycentric coordinates (0 or NaN: none)."""
+    i0 = tris[k, 0]
+    i1 = tris[k, 1]
+    i2 = tris[k, 2]
+    x0, x1, x2 = cx[i0], cx[i1], cx[i2]
+    y0, y1, y2 = cy[i0], cy[i1], cy[i2]
+    return i0, i1, i2, x0, x1, x2, y0, y1, y2, (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2)
+
+
 @ngjit_parallel
 def object_shadow_edges_kernel(drawn, edge, cx, cy, e, tris, wp, ortho, grid_index, frame, coef,
                                start, items, ga, gb, inv_cell, na, nb, bias, out):
@@ -288,12 +300,7 @@ def object_shadow_edges_kernel(drawn, edge, cx, cy, e, tris, wp, ortho, grid_ind
             if not edge[i, j] or drawn[i, j] <= 0:
                 continue
             k = drawn[i, j] - 1
-            i0 = tris[k, 0]
-            i1 = tris[k, 1]
-            i2 = tris[k, 2]
-            x0, x1, x2 = cx[i0], cx[i1], cx[i2]
-            y0, y1, y2 = cy[i0], cy[i1], cy[i2]
-            det = (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2)
+            i0, i1, i2, x0, x1, x2, y0, y1, y2, det = _on_screen(tris, cx, cy, k)
             if det == 0.0 or det != det:
                 continue
             hits = 0
@@ -374,12 +381,7 @@ def object_edges_kernel(drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_under
             m = 0
             for q in range(n):
                 k = cand[q] - 1
-                i0 = tris[k, 0]
-                i1 = tris[k, 1]
-                i2 = tris[k, 2]
-                x0, x1, x2 = cx[i0], cx[i1], cx[i2]
-                y0, y1, y2 = cy[i0], cy[i1], cy[i2]
-                det = (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2)
+                i0, i1, i2, x0, x1, x2, y0, y1, y2, det = _on_screen(tris, cx, cy, k)
                 if det == 0.0 or det != det:
                     continue
                 inv = 1.0 / det

@@ -577,6 +577,14 @@ def shadow_sweep(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, t0, h, n_s
                 lit[r, c] = 1.0 - val
 
 
+@ngjit_inline
+def _texel_of(u, v, w, gu, gv, tan_theta, s0, t0, h):
+    """(ps, pt, hp): the point (u, v, w)'s place in the shadow texture (texels along
+    and across the light) and its H = w - sigma tan(theta)."""
+    along = u * gu + v * gv
+    return (along - s0) / h, (-u * gv + v * gu - t0) / h, w - along * tan_theta
+
+
 @ngjit_parallel
 def points_soft_shadow(point, test, hmax, hsurf, slopes, gu, gv, tan_theta, s0, t0, h, rho,
                        out):
@@ -598,11 +606,8 @@ def points_soft_shadow(point, test, hmax, hsurf, slopes, gu, gv, tan_theta, s0, 
             out[i, j] = 0.0
             if not test[i, j]:
                 continue
-            u, v, w = point[i, j, 0], point[i, j, 1], point[i, j, 2]
-            along = u * gu + v * gv
-            ps = (along - s0) / h
-            pt = (-u * gv + v * gu - t0) / h
-            hp = w - along * tan_theta
+            ps, pt, hp = _texel_of(point[i, j, 0], point[i, j, 1], point[i, j, 2], gu, gv,
+                                   tan_theta, s0, t0, h)
             val = 0.0
             for k in range(hmax.shape[0]):
                 margin = _bilinear(hmax, k, pt, ps) - hp
@@ -633,11 +638,8 @@ def points_shadow(point, test, hmax, gu, gv, tan_theta, s0, t0, h, out):
             out[i, j] = 0.0
             if not test[i, j]:
                 continue
-            u, v, w = point[i, j, 0], point[i, j, 1], point[i, j, 2]
-            along = u * gu + v * gv
-            ps = (along - s0) / h
-            pt = (-u * gv + v * gu - t0) / h
-            hp = w - along * tan_theta
+            ps, pt, hp = _texel_of(point[i, j, 0], point[i, j, 1], point[i, j, 2], gu, gv,
+                                   tan_theta, s0, t0, h)
             margin = -np.inf
             for k in range(hmax.shape[0]):
                 m = _bilinear(hmax, k, pt, ps) - hp

@@ -609,17 +609,13 @@ def _through(r, hit, front_acc):
 def _surfaces_cast(point, test, texture):
     """The surfaces' shadow on points above them (H, W, 3), where ``test``: their
     horizons in the texture (kernels/shadow.py points_shadow: hard, its edge
-    antialiased as the surface's), or under a sun of a radius the part of its disk
-    they hide (points_soft_shadow: the penumbra the surface around takes too)."""
-    from .kernels.shadow import points_shadow, points_soft_shadow
+    antialiased as the surface's; under a sun of a radius the part of its disk they
+    hide, the penumbra the surface around takes too)."""
+    from .kernels.shadow import points_shadow
     cast = np.empty(test.shape)
-    if texture.rho > 0.0 and texture.slopes.shape[0] > 0:
-        points_soft_shadow(point, test, texture.hmax, texture.hsurf, texture.slopes,
-                           texture.gu, texture.gv, texture.tan_theta, texture.s0, texture.t0,
-                           texture.h, texture.rho, cast)
-    else:
-        points_shadow(point, test, texture.hmax, texture.gu, texture.gv, texture.tan_theta,
-                      texture.s0, texture.t0, texture.h, cast)
+    points_shadow(point, test, texture.hmax, texture.hsurf, texture.slopes, texture.gu,
+                  texture.gv, texture.tan_theta, texture.s0, texture.t0, texture.h,
+                  texture.rho, cast)
     return cast
 
 

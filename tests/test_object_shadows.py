@@ -231,7 +231,7 @@ def test_object_shadow_edges_are_the_part_of_the_pixel_in_shadow():
 
 def test_under_a_sun_of_a_radius_objects_take_the_surfaces_penumbra():
     """light_radius: a hill's penumbra falling on objects is the part of the sun's disk
-    the hill hides from their points (kernels/shadow.py points_soft_shadow: the horizon
+    the hill hides from their points (kernels/shadow.py points_shadow with the radius: the horizon
     of the surface around, seen from the point, and across the light the strips of the
     lines beside), against the reference's 32 rays over the disk. Measured on the object
     pixels the reference puts in a penumbra (106, perspective): mean |difference| 0.097,

@@ -586,20 +586,27 @@ def _texel_of(u, v, w, gu, gv, tan_theta, s0, t0, h):
 
 
 @ngjit_parallel
-def points_soft_shadow(point, test, hmax, hsurf, slopes, gu, gv, tan_theta, s0, t0, h, rho,
-                       out):
-    """points_shadow for a light of angular radius rho (radians): the part of the disk
-    that a layer's horizon hides from a point above it (the objects' seen points under
-    ``light_radius``), as soft_shadow's along the light. What makes the horizon of the
-    surface's texels around the point (_occluder: its H and distance D, the point at
-    the same distance toward the light) seen from the point rises at m = (H - hp) / D
-    over the light's ray: the disk's part below it (_disk_below: across the light, the
-    strips of the lines beside). Where the texels know no occluder, or where it lies under the
-    ray while the horizon of the hard lookup is above it (a farther ridge makes the
-    point's horizon, higher than the surface's), the hard answer (points_shadow's). The
-    strongest of the layers; out 0 where not tested. In parallel over the columns."""
+def points_shadow(point, test, hmax, hsurf, slopes, gu, gv, tan_theta, s0, t0, h, rho, out):
+    """The surfaces' cast shadow on points above them (the objects' seen points,
+    floatcol/objects.py): point (H, W, 3) in the box where ``test`` (H, W) is set. A
+    point's ray toward the light is blocked where some layer's horizon beyond it
+    (hmax, the texture's) rises above the ray's H = w - sigma tan(theta); the margin
+    over one texel's rise antialiases the edge as the surface's own (point_shadow).
+
+    For a light of angular radius rho > 0 (radians; ``slopes`` horizon_slopes', empty
+    where rho is 0) the part of the disk a layer's horizon hides, as soft_shadow's:
+    what makes the horizon of the surface's texels around the point (_occluder: its H
+    and distance D, the point at the same distance toward the light) seen from the
+    point rises at m = (H - hp) / D over the light's ray, and the disk's part below it
+    is _disk_below's (across the light, the strips of the lines beside). Where the
+    texels know no occluder, or where it lies under the ray while the hard horizon is
+    above it (a farther ridge makes the point's horizon, higher than the surface's),
+    the hard answer. The strongest of the layers. out (H, W): 1 in shadow, 0 lit,
+    between at an edge or in a penumbra; 0 where not tested. In parallel over the
+    columns."""
     H, W = test.shape
     width_m = max(abs(tan_theta) * h, 1e-300)
+    soft = rho > 0.0 and slopes.shape[0] > 0
     theta = math.atan(tan_theta)
     for j in prange(W):
         for i in range(H):
@@ -608,41 +615,17 @@ def points_soft_shadow(point, test, hmax, hsurf, slopes, gu, gv, tan_theta, s0, 
                 continue
             ps, pt, hp = _texel_of(point[i, j, 0], point[i, j, 1], point[i, j, 2], gu, gv,
                                    tan_theta, s0, t0, h)
-            val = 0.0
+            margin = -np.inf            # the hard layers' (one clamp of the greatest)
+            val = 0.0                   # the soft layers'
             for k in range(hmax.shape[0]):
-                margin = _bilinear(hmax, k, pt, ps) - hp
-                hard = min(max(margin / width_m + 0.5, 0.0), 1.0)
-                hk, dk = _occluder(slopes, 4 * k, hsurf, k, pt, ps)
-                m = (hk - hp) / dk if hk == hk else np.nan
-                if m != m or (margin > 0.0 and not m > 0.0):
-                    val = max(val, hard)
-                else:
-                    val = max(val, _disk_below(slopes, 4 * k, hsurf, k, pt, ps, hp, m, dk,
-                                               1.0, theta, tan_theta, rho, h))
-            out[i, j] = val
-
-
-@ngjit_parallel
-def points_shadow(point, test, hmax, gu, gv, tan_theta, s0, t0, h, out):
-    """The surfaces' cast shadow on points above them (the objects' seen points,
-    floatcol/objects.py): point (H, W, 3) in the box where ``test`` (H, W) is set. A
-    point's ray toward the light is blocked where some layer's horizon beyond it
-    (hmax, the texture's) rises above the ray's H = w - sigma tan(theta); the margin
-    over one texel's rise antialiases the edge as the surface's own (point_shadow).
-    out (H, W): 1 in shadow, 0 lit, between at an edge; 0 where not tested. In
-    parallel over the columns."""
-    H, W = test.shape
-    width_m = max(abs(tan_theta) * h, 1e-300)
-    for j in prange(W):
-        for i in range(H):
-            out[i, j] = 0.0
-            if not test[i, j]:
-                continue
-            ps, pt, hp = _texel_of(point[i, j, 0], point[i, j, 1], point[i, j, 2], gu, gv,
-                                   tan_theta, s0, t0, h)
-            margin = -np.inf
-            for k in range(hmax.shape[0]):
-                m = _bilinear(hmax, k, pt, ps) - hp
-                if m > margin:
-                    margin = m
-            out[i, j] = min(max(margin / width_m + 0.5, 0.0), 1.0)
+                mk = _bilinear(hmax, k, pt, ps) - hp
+                if soft:
+                    hk, dk = _occluder(slopes, 4 * k, hsurf, k, pt, ps)
+                    m = (hk - hp) / dk if hk == hk else np.nan
+                    if m == m and not (mk > 0.0 and not m > 0.0):
+                        val = max(val, _disk_below(slopes, 4 * k, hsurf, k, pt, ps, hp, m,
+                                                   dk, 1.0, theta, tan_theta, rho, h))
+                        continue
+                if mk > margin:
+                    margin = mk
+            out[i, j] = max(val, min(max(margin / width_m + 0.5, 0.0), 1.0))

@@ -104,6 +104,15 @@ def raster_kernel(cx, cy, e, tris, rgb, ortho, d3, zbuf, rgba, drawn, wp, point,
 EDGE_SS = 4
 
 
+@ngjit_inline
+def _barycentric(x0, x1, x2, y0, y1, y2, det, x, y):
+    """The barycentric coordinates (l0, l1, l2) of the screen point (x, y) in a
+    triangle (det its determinant: _on_screen's)."""
+    l0 = ((y1 - y2) * (x - x2) + (x2 - x1) * (y - y2)) / det
+    l1 = ((y2 - y0) * (x - x2) + (x0 - x2) * (y - y2)) / det
+    return l0, l1, 1.0 - l0 - l1
+
+
 @ngjit
 def _covers_a_subsample(x0, x1, x2, y0, y1, y2, det, e0, e1, e2, ortho, d3, r, c, z_max):
     """Whether the triangle covers one of pixel (r, c)'s EDGE_SS x EDGE_SS sub-samples
@@ -113,9 +122,7 @@ def _covers_a_subsample(x0, x1, x2, y0, y1, y2, det, e0, e1, e2, ortho, d3, r, c
         y = r + (a + 0.5) / S - 0.5
         for b in range(S):
             x = c + (b + 0.5) / S - 0.5
-            l0 = ((y1 - y2) * (x - x2) + (x2 - x1) * (y - y2)) / det
-            l1 = ((y2 - y0) * (x - x2) + (x0 - x2) * (y - y2)) / det
-            l2 = 1.0 - l0 - l1
+            l0, l1, l2 = _barycentric(x0, x1, x2, y0, y1, y2, det, x, y)
             if l0 < -1e-9 or l1 < -1e-9 or l2 < -1e-9:
                 continue
             if ortho:
@@ -308,9 +315,7 @@ def object_shadow_edges_kernel(drawn, edge, cx, cy, e, tris, wp, ortho, grid_ind
                 y = i + (a + 0.5) / S - 0.5
                 for c in range(S):
                     x = j + (c + 0.5) / S - 0.5
-                    l0 = ((y1 - y2) * (x - x2) + (x2 - x1) * (y - y2)) / det
-                    l1 = ((y2 - y0) * (x - x2) + (x0 - x2) * (y - y2)) / det
-                    l2 = 1.0 - l0 - l1
+                    l0, l1, l2 = _barycentric(x0, x1, x2, y0, y1, y2, det, x, y)
                     if not ortho:
                         l0 /= e[i0]
                         l1 /= e[i1]

@@ -113,9 +113,6 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
         if quality.area:
             raise ValueError("antialias='area' needs opaque surfaces: opacity=1 (translucent "
                              "layers are antialiased by their own coverage)")
-        if texture is not None and texture.rho > 0.0:
-            raise ValueError("opacity below 1 casts hard shadows: use light_radius=0 (soft "
-                             "shadows need opaque surfaces)")
         if texture is not None and texture.on_the_fly:
             # (every layer looks its shadow up: section 6.2.2's sweep answers the seen
             # pixels of one opaque surface; it was an AttributeError)

@@ -38,9 +38,10 @@ p = sympy.plotting.plot3d(sympy.cos(x * y), x ** 2 / 8 - y ** 2 / 8, (x, -3, 3),
                           title="cos(xy) and (x^2 - y^2)/8, alpha = 0.6")
 p.save("plot3d_alpha.png")
 
-# a glass hill in a ring of trees: those behind it show through, their shadows fall on it
+# a glass hill in a ring of trees: those behind it show through, their shadows fall on
+# it, soft under a sun 1 degree in radius
 trees = [fc.tree(2.4 * math.cos(k * math.pi / 5), 2.4 * math.sin(k * math.pi / 5), 1.5)
          for k in range(10)] + [fc.box(0, 0, 0.8, 0.8, 0.6, color="firebrick")]
 fc.render("2.5*exp(-(u**2 + v**2)/2.5)", u=(-3.5, 3.5), v=(-3.5, 3.5), size=(800, 500),
           elev=18, azim=25, opacity=0.45, cmap="cividis", objects=trees, shadows=True,
-          lightsource=(300, 35)).save("glass_hill.png")
+          lightsource=(300, 35), light_radius=1.0).save("glass_hill.png")

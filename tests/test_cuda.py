@@ -62,6 +62,10 @@ def _scenes():
         u=DOM, v=DOM, size=(100, 75), opacity=0.5, shadows=True, lightsource=(315, 35),
         objects=[["box", 0.0, 0.0, 1.5, 1.5, 2.0], ["pole", 2.0, -2.0, 3.0],
                  ["tree", -2.0, 2.0, 2.5]])])
+    # ... under a sun of a radius: the horizons' slopes and the disk's 16 directions
+    scenes.append(["translucent-soft", GORDON, dict(
+        u=DOM, v=DOM, size=(100, 75), opacity=0.5, shadows=True, lightsource=(315, 35),
+        light_radius=2.0, objects=[["box", 0.0, 0.0, 1.5, 1.5, 2.0]])])
     scenes.append(["area-heightfield", {"heightfield": 5},
                    dict(size=(120, 90), projection="perspective", elev=25, azim=40,
                         antialias="area")])

@@ -253,7 +253,6 @@ def test_a_steps_penumbra_is_the_hidden_part_of_the_disk():
     (dict(light_radius=1.0), "shadows=True"),
     (dict(shadows=True, light_radius=-1), r"light_radius must be in \[0, 30\]"),
     (dict(shadows=True, light_radius="big"), "light_radius must be an angle"),
-    (dict(shadows=True, light_radius=1.0, opacity=0.5), "light_radius=0"),
 ])
 def test_soft_shadow_options_say_what_to_fix(kw, message):
     with pytest.raises(ValueError, match=message):

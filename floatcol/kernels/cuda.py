@@ -184,12 +184,12 @@ def _layers_source(f, fg, column_layers, x0_of):
     """The translucent layers' kernel's Python function (layers._column_layers a
     thread: one band's columns), as _kernel_source. The colour tuple (lut, texture
     levels, offsets, shapes, tp) comes as five arguments, the objects' occluders
-    (frame, coef, start, items) as four."""
+    (frames, coef, start, items, grids) as five."""
     _cuda()
 
     def kernel(kind, hf, hfp, vp, c0, mp, lut, levels, offsets, shapes, tp, sh, hmax, hmin,
-               hsurf, frame, coef, start, items, lists, off, K, counts, gfirst, hits, evals,
-               trans, scr, width):
+               hsurf, slopes, frames, coef, start, items, grids, lists, off, K, counts,
+               gfirst, hits, evals, trans, scr, width):
         b = cuda.grid(1)
         if b >= lists.shape[0] or c0 + b >= width:
             return
@@ -199,8 +199,8 @@ def _layers_source(f, fg, column_layers, x0_of):
         s[:, :] = 0.0
         evals[b] += column_layers(kind, f, fg, hf, hfp, vp, x0_of(vp, c0 + b), mp,
                                   (lut, levels, offsets, shapes, tp), sh, hmax, hmin, hsurf,
-                                  (frame, coef, start, items), lists, off, K, counts, t,
-                                  gfirst, hits, b, s)
+                                  slopes, (frames, coef, start, items, grids), lists, off,
+                                  K, counts, t, gfirst, hits, b, s)
     return kernel
 
 
@@ -311,8 +311,8 @@ def area_kernel_cuda(surface, flat, lv, vp, slices, lod, gbuf, ebuf, evals, wran
             rows)
 
 
-def layers_kernel_cuda(surface, vp, c0, mp, colours, sh, hmax, hmin, hsurf, occ, lists, off,
-                       K, counts, gfirst, hits, evals):
+def layers_kernel_cuda(surface, vp, c0, mp, colours, sh, hmax, hmin, hsurf, slopes, occ, lists,
+                       off, K, counts, gfirst, hits, evals):
     """layers.layers_kernel's work on the GPU (the same arguments but the surface's
     functions; ``colours`` its (lut, levels, offsets, shapes, tp)): lists, counts,
     gfirst, hits and evals are updated on the host."""
@@ -328,6 +328,7 @@ def layers_kernel_cuda(surface, vp, c0, mp, colours, sh, hmax, hmin, hsurf, occ,
     k[-(-B // THREADS), THREADS](
         kind, d(np.ascontiguousarray(hf)), d(hfp), d(vp), int(c0), d(mp),
         *(d(np.ascontiguousarray(a)) for a in colours), d(sh), d(hmax), d(hmin), d(hsurf),
+        d(np.ascontiguousarray(slopes, dtype=np.float64)),
         *(d(np.ascontiguousarray(a)) for a in occ), *out[:1], int(off), int(K), *out[1:],
         cuda.device_array((B,) + trans.shape), cuda.device_array((B,) + scr.shape),
         int(vp[VP_W]))
@@ -392,8 +393,8 @@ def ptx(surface, cc=(9, 0), opt=True, which="column"):
     elif which == "layers":
         sig = (i64, arr(f64, 2), arr(f64, 1), arr(f64, 1), i64, arr(f64, 1),
                arr(f64, 2), arr(f32, 1), arr(i64, 1), arr(i64, 2), arr(f64, 1),
-               arr(f64, 1), arr(f32, 3), arr(f32, 3), arr(f32, 3),
-               arr(f64, 2), arr(f64, 2), arr(i64, 1), arr(i64, 1),        # the occluders
+               arr(f64, 1), arr(f32, 3), arr(f32, 3), arr(f32, 3), arr(f64, 3),
+               arr(f64, 3), arr(f64, 2), arr(i64, 1), arr(i64, 1), arr(f64, 2),  # occluders
                arr(f32, 4), i64, i64,
                arr(i32, 2), arr(f32, 3), arr(i32, 2), arr(i64, 1), arr(f64, 2), arr(f64, 3),
                i64)

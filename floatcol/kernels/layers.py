@@ -9,7 +9,8 @@ normal, height and intensity interpolated as the opaque column's, in the order o
 planes, which is front to back along each ray (column.py's module note: in
 perspective the passes go from the viewpoint's t outward).
 
-Each crossing is lit (shade.py's _light, the shadow texture's point_shadow) and
+Each crossing is lit (shade.py's _light, the shadow texture's point_shadow, or
+soft_shadow under a light of a radius) and
 coloured (shade._side_rgb) as the opaque surface's pixel would be, and kept in the
 pixel's list: up to K records per surface, sorted by depth, colour and intensity
 premultiplied by alpha. A full list folds its two deepest records into one (the over
@@ -47,7 +48,7 @@ from .sample import column_x0, sample_point
 from .shade import _light, _side_rgb, toward_viewer
 from .texture import layer_texel
 from .raster import _blocked_at
-from .shadow import point_shadow
+from .shadow import point_shadow, soft_shadow
 
 #: transmittance below which nothing behind shows (1/512: under half a level of 8 bits)
 STOP = 1.0 / 512.0
@@ -89,16 +90,24 @@ SH_T0 = 9
 SH_H = 10
 SH_GRAZING = 11
 SH_BIAS = 12
-# the objects' occluders (objects.Occluders; occ = (frame, coef, start, items)): SH_OBJ
-# 1 where a crossing's ray toward the light is tested against their triangles
+# the objects' occluders (objects.Occluders, or DiskOccluders' directions over a
+# light's disk; occ = (frames, coef, start, items, grids)): SH_OBJ how many directions
+# a crossing's ray toward the light is tested in against their triangles (0: none)
 SH_OBJ = 13
-SH_OGA = 14       # the grid's origin across the light, its cells per unit, its size
-SH_OGB = 15
-SH_OINV = 16
-SH_ONA = 17
-SH_ONB = 18
-SH_OBIAS = 19     # a triangle blocks a point below it by more than this
-SH_SIZE = 20
+SH_RHO = 14       # the light's angular radius (radians; 0: hard shadows, point_shadow)
+SH_SIZE = 15
+# a direction's row of occ's grids (float64): its grid's origin across the light, its
+# cells per unit and size, the bias, and where its coef, start and items begin
+OG_A = 0
+OG_B = 1
+OG_INV = 2
+OG_NA = 3
+OG_NB = 4
+OG_BIAS = 5       # a triangle blocks a point below it by more than this
+OG_COEF = 6
+OG_START = 7
+OG_ITEMS = 8
+OG_SIZE = 9
 
 # The walker's state, wk (float64): a run's stretch of the curve (monotone in y) and
 # the pixel it is in, whose crossing waits until the stretch leaves it or ends
@@ -182,8 +191,24 @@ def _keep(lists, b, j, off, K, n, rec):
     return n + 1, pos
 
 
+@ngjit_inline
+def _objects_block(u, v, w, occ, n):
+    """The part of occ's n directions toward the light (one: a point light) in which
+    a triangle hides the point (u, v, w): raster.occluded_kernel's test in each (the
+    objects' cast shadow, as objects.Occluders or DiskOccluders.blocked)."""
+    frames, coef, start, items, grids = occ
+    hit = 0
+    for k in range(n):
+        g = grids[k]
+        if _blocked_at(u, v, w, -1, frames[k], coef[int(g[OG_COEF]):],
+                       start[int(g[OG_START]):], items[int(g[OG_ITEMS]):], g[OG_A], g[OG_B],
+                       g[OG_INV], int(g[OG_NA]), int(g[OG_NB]), g[OG_BIAS]):
+            hit += 1
+    return hit / n
+
+
 @ngjit_nrt_free
-def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, occ, lists, off, K,
+def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists, off, K,
           counts, trans, gfirst, hits, b, crec):
     """The crossing of row j's ray at the point p (A_SIZE), covering ``cov`` of the
     pixel: lit, coloured and kept in the pixel's list."""
@@ -201,13 +226,17 @@ def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, occ, lists, off, K,
     side = 1.0 if nx * vx + ny * vy + nz * vz >= 0.0 else -1.0
     shade = 0.0
     if sh[SH_ON] != 0.0:
-        shade = point_shadow(side, p[A_U], p[A_V], p[A_W], nx, ny, nz, sh, hmax, hmin,
-                             hsurf, int(sh[SH_LAYER]), sh[SH_GU], sh[SH_GV], sh[SH_TAN],
-                             sh[SH_S0], sh[SH_T0], sh[SH_H], sh[SH_GRAZING], sh[SH_BIAS])
-        if sh[SH_OBJ] != 0.0 and shade < 1.0 and _blocked_at(
-                p[A_U], p[A_V], p[A_W], -1, occ[0], occ[1], occ[2], occ[3], sh[SH_OGA],
-                sh[SH_OGB], sh[SH_OINV], int(sh[SH_ONA]), int(sh[SH_ONB]), sh[SH_OBIAS]):
-            shade = 1.0                  # in an object's shadow (raster.occluded_kernel's test)
+        if sh[SH_RHO] > 0.0:             # a light of a radius: the part of its disk hidden
+            shade = soft_shadow(side, p[A_U], p[A_V], p[A_W], nx, ny, nz, sh, hmax, hmin,
+                                hsurf, slopes, int(sh[SH_LAYER]), sh[SH_GU], sh[SH_GV],
+                                sh[SH_TAN], sh[SH_S0], sh[SH_T0], sh[SH_H], sh[SH_GRAZING],
+                                sh[SH_BIAS], sh[SH_RHO])
+        else:
+            shade = point_shadow(side, p[A_U], p[A_V], p[A_W], nx, ny, nz, sh, hmax, hmin,
+                                 hsurf, int(sh[SH_LAYER]), sh[SH_GU], sh[SH_GV], sh[SH_TAN],
+                                 sh[SH_S0], sh[SH_T0], sh[SH_H], sh[SH_GRAZING], sh[SH_BIAS])
+        if sh[SH_OBJ] != 0.0 and shade < 1.0:
+            shade = max(shade, _objects_block(p[A_U], p[A_V], p[A_W], occ, int(sh[SH_OBJ])))
     inten, spec = _light(vp, x0, j, nx, ny, nz, p[A_I], mp, 1.0 - shade)
     # ``lut`` is the tuple (lut, levels, offsets, shapes, tp) of texture.py's TP_*: the
     # side's colour table, and a texture (no levels: none) over it
@@ -248,7 +277,7 @@ def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, occ, lists, off, K,
 
 
 @ngjit_nrt_free
-def _flush(vp, x0, wk, pend, end_y, aa, mp, lut, sh, hmax, hmin, hsurf, occ, lists,
+def _flush(vp, x0, wk, pend, end_y, aa, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists,
            off, K, counts, trans, gfirst, hits, b, crec):
     """The waiting pixel's crossing, its stretch ending (or leaving it) at end_y."""
     j = wk[W_PJ]
@@ -261,7 +290,7 @@ def _flush(vp, x0, wk, pend, end_y, aa, mp, lut, sh, hmax, hmin, hsurf, occ, lis
         cov = abs(min(max(end_y, lo), hi) - min(max(wk[W_PSTART], lo), hi))
     else:
         cov = 1.0 if wk[W_PCEN] != 0.0 else 0.0
-    _emit(vp, x0, int(j), pend, cov, mp, lut, sh, hmax, hmin, hsurf, occ, lists, off,
+    _emit(vp, x0, int(j), pend, cov, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists, off,
           K, counts, trans, gfirst, hits, b, crec)
 
 
@@ -274,7 +303,7 @@ def _wait(wk, pend, j, start, rec, centre):
 
 
 @ngjit_inline
-def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, sh, hmax, hmin, hsurf, occ,
+def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, sh, hmax, hmin, hsurf, slopes, occ,
              lists, off, K, counts, trans, gfirst, hits, b, crec):
     """The crossings between successive samples p and q of a run (section 6.5)."""
     H = trans.shape[0]
@@ -284,7 +313,7 @@ def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, sh, hmax, hmin, hsurf, oc
     d = 1.0 if dy > 0.0 else -1.0
     if wk[W_DIR] != 0.0 and d != wk[W_DIR]:
         # the curve turns at p: the stretch before ends there, a new one begins
-        _flush(vp, x0, wk, pend, p[A_Y], aa, mp, lut, sh, hmax, hmin, hsurf, occ,
+        _flush(vp, x0, wk, pend, p[A_Y], aa, mp, lut, sh, hmax, hmin, hsurf, slopes, occ,
                lists, off, K, counts, trans, gfirst, hits, b, crec)
         _wait(wk, pend, _round_row(p[A_Y]), p[A_Y], p, False)
     wk[W_DIR] = d
@@ -306,15 +335,15 @@ def _segment(vp, x0, p, q, wk, pend, tmp, aa, mp, lut, sh, hmax, hmin, hsurf, oc
             wk[W_PCEN] = 1.0
             continue
         _flush(vp, x0, wk, pend, wk[W_PJ] + 0.5 * d, aa, mp, lut, sh, hmax, hmin,
-               hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b, crec)
+               hsurf, slopes, occ, lists, off, K, counts, trans, gfirst, hits, b, crec)
         if j == jq:                      # the stretch is still in this pixel at q
             _wait(wk, pend, j, j - 0.5 * d, tmp, True)
         else:
-            _emit(vp, x0, j, tmp, 1.0, mp, lut, sh, hmax, hmin, hsurf, occ, lists, off,
+            _emit(vp, x0, j, tmp, 1.0, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists, off,
                   K, counts, trans, gfirst, hits, b, crec)
     if jq != wk[W_PJ]:                   # q lies in a pixel whose centre it has not reached
         _flush(vp, x0, wk, pend, wk[W_PJ] + 0.5 * d, aa, mp, lut, sh, hmax, hmin,
-               hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b, crec)
+               hsurf, slopes, occ, lists, off, K, counts, trans, gfirst, hits, b, crec)
         _wait(wk, pend, jq, jq - 0.5 * d, q, False)
 
 
@@ -334,7 +363,7 @@ def _sample(kind, f, fg, hf, hfp, vp, x0, t, out, guess):
 
 @ngjit_inline
 def _refined(kind, f, fg, hf, hfp, vp, x0, p, q, scr, evals, wk, pend, tmp, aa, mp, lut,
-             sh, hmax, hmin, hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b,
+             sh, hmax, hmin, hsurf, slopes, occ, lists, off, K, counts, trans, gfirst, hits, b,
              crec):
     """_segment from p to q, the span halved where it needs it (REFINE_*), the halves
     in order (a stack of right ends in scr's rows from SCR_STACK). Returns evals plus
@@ -366,7 +395,7 @@ def _refined(kind, f, fg, hf, hfp, vp, x0, p, q, scr, evals, wk, pend, tmp, aa, 
                 top += 1
                 continue
         _segment(vp, x0, left, right, wk, pend, tmp, aa, mp, lut, sh, hmax, hmin,
-                 hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b, crec)
+                 hsurf, slopes, occ, lists, off, K, counts, trans, gfirst, hits, b, crec)
         _copy(left, right)
         top -= 1
     return evals
@@ -381,7 +410,7 @@ def _start(wk, pend, p):
 
 @ngjit_nrt_free
 def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, sh, hmax, hmin,
-                hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b, scr):
+                hsurf, slopes, occ, lists, off, K, counts, trans, gfirst, hits, b, scr):
     """One pass over the planes from ta to tb (front to back along the column's rays:
     the grid's planes t0 + k dt between them, as the opaque column's); returns the
     evaluations of f. Where a run of samples begins or ends between two planes (the
@@ -437,35 +466,35 @@ def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, sh, hmax, hmin,
                 _start(wk, pend, edge if found else cur)
                 if found:
                     evals = _refined(kind, f, fg, hf, hfp, vp, x0, edge, cur, scr, evals, wk, pend,
-                                     tmp, aa, mp, lut, sh, hmax, hmin, hsurf, occ, lists,
+                                     tmp, aa, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists,
                                      off, K, counts, trans, gfirst, hits, b, crec)
             else:
                 last = prev
                 if found:
                     evals = _refined(kind, f, fg, hf, hfp, vp, x0, prev, edge, scr, evals, wk, pend,
-                                     tmp, aa, mp, lut, sh, hmax, hmin, hsurf, occ, lists,
+                                     tmp, aa, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists,
                                      off, K, counts, trans, gfirst, hits, b, crec)
                     last = edge
                 _flush(vp, x0, wk, pend, last[A_Y], aa, mp, lut, sh, hmax, hmin,
-                       hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b, crec)
+                       hsurf, slopes, occ, lists, off, K, counts, trans, gfirst, hits, b, crec)
         elif ok and i == 0:
             _start(wk, pend, cur)
         elif ok:
             evals = _refined(kind, f, fg, hf, hfp, vp, x0, prev, cur, scr, evals, wk, pend, tmp,
-                             aa, mp, lut, sh, hmax, hmin, hsurf, occ, lists, off, K,
+                             aa, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists, off, K,
                              counts, trans, gfirst, hits, b, crec)
         if ok:
             _copy(prev, cur)
         prev_ok = ok
         prev_t = t
     if prev_ok:
-        _flush(vp, x0, wk, pend, prev[A_Y], aa, mp, lut, sh, hmax, hmin, hsurf, occ,
+        _flush(vp, x0, wk, pend, prev[A_Y], aa, mp, lut, sh, hmax, hmin, hsurf, slopes, occ,
                lists, off, K, counts, trans, gfirst, hits, b, crec)
     return evals
 
 
 @ngjit_nrt_free
-def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf, occ,
+def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf, slopes, occ,
                    lists, off, K, counts, trans, gfirst, hits, b, scr):
     """Every crossing of one column (column.py's _column_passes: ascending t in
     orthographic; in perspective from the viewpoint's t outward, both ways, over the
@@ -475,7 +504,8 @@ def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf,
         if not lo <= hi:
             return 0
         return _layer_pass(kind, f, fg, hf, hfp, vp, x0, lo, hi, mp, lut, sh, hmax,
-                           hmin, hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b, scr)
+                           hmin, hsurf, slopes, occ, lists, off, K, counts, trans, gfirst,
+                           hits, b, scr)
     lo, hi = _column_t_range(vp, x0)
     if not lo <= hi:
         return 0
@@ -486,11 +516,11 @@ def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf,
     evals = 0
     if t_hi > t_view and t_hi >= t_lo:
         evals += _layer_pass(kind, f, fg, hf, hfp, vp, x0, max(t_lo, t_view), t_hi, mp, lut,
-                             sh, hmax, hmin, hsurf, occ, lists, off, K, counts, trans,
+                             sh, hmax, hmin, hsurf, slopes, occ, lists, off, K, counts, trans,
                              gfirst, hits, b, scr)
     if t_lo < t_view and t_hi >= t_lo:
         evals += _layer_pass(kind, f, fg, hf, hfp, vp, x0, min(t_hi, t_view), t_lo, mp, lut,
-                             sh, hmax, hmin, hsurf, occ, lists, off, K, counts, trans,
+                             sh, hmax, hmin, hsurf, slopes, occ, lists, off, K, counts, trans,
                              gfirst, hits, b, scr)
     return evals
 
@@ -503,14 +533,16 @@ def layers_scratch(H):
 
 
 @ngjit_parallel
-def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf, occ,
+def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf, slopes, occ,
                   lists, off, K, counts, gfirst, hits, evals):
     """One surface's crossings in the band of columns c0 .. c0 + B - 1 (B =
     lists.shape[0]; columns from vp's VP_W on are left alone): into lists[b, j, off:off
     + K] (records C_*, sorted by depth), counts[b, j] of them, gfirst[b, j] the G-buffer
     record (layout.py G_*) of the nearest, hits[b, j] += every crossing met; evals[b]
-    the evaluations of f. sh, hmax, hmin, hsurf: the shadow texture (SH_*); occ the
-    objects' occluders (frame, coef, start, items), tested where sh's SH_OBJ says.
+    the evaluations of f. sh, hmax, hmin, hsurf: the shadow texture (SH_*), slopes its
+    horizons' slopes where SH_RHO > 0 (passes/shadow.py Texture.slopes); occ the
+    objects' occluders (frames, coef, start, items, grids), tested where sh's SH_OBJ
+    says.
     counts must be 0 on entry; the columns in parallel, each with its own scratch."""
     B = lists.shape[0]
     H = lists.shape[1]
@@ -522,8 +554,8 @@ def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf, 
         trans, scr = layers_scratch(H)
         x0 = column_x0(vp, c)
         evals[b] += _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax,
-                                   hmin, hsurf, occ, lists, off, K, counts, trans, gfirst, hits, b,
-                                   scr)
+                                   hmin, hsurf, slopes, occ, lists, off, K, counts, trans,
+                                   gfirst, hits, b, scr)
 
 
 # The composite's sums per pixel, acc (H, W, ACC_SIZE) float64

@@ -85,35 +85,56 @@ def layer_texture(source, box):
 
 
 #: kernels/layers.py's occ where no objects cast shadows
-NO_OCCLUDERS = (np.zeros((3, 3)), np.zeros((0, 9)), np.zeros(2, np.int64),
-                np.zeros(0, np.int64))
+NO_OCCLUDERS = (np.zeros((1, 3, 3)), np.zeros((0, 9)), np.zeros(2, np.int64),
+                np.zeros(0, np.int64), np.zeros((1, K.OG_SIZE)))
+_NO_TEXTURE_PLANES = np.zeros((0, 1, 1), dtype=np.float32)
+_NO_SLOPES = np.zeros((0, 1, 1))
+
+
+def occluder_arrays(occluders):
+    """kernels/layers.py's occ of objects.Occluders or DiskOccluders (one Occluders a
+    direction over the light's disk): their frames, coef, start and items one after
+    another, and a row of grids (OG_*) a direction, where its own begin."""
+    parts = getattr(occluders, "parts", [occluders])
+    grids = np.zeros((len(parts), K.OG_SIZE))
+    at = np.zeros(3, np.int64)
+    for k, o in enumerate(parts):
+        grids[k, :K.OG_COEF] = o.ga, o.gb, o.inv_cell, o.na, o.nb, o.bias
+        grids[k, K.OG_COEF:] = at
+        at += len(o.coef), len(o.start), len(o.items)
+    return (np.ascontiguousarray([o.frame for o in parts], dtype=np.float64),
+            np.ascontiguousarray(np.concatenate([o.coef for o in parts]), dtype=np.float64),
+            np.concatenate([o.start for o in parts]).astype(np.int64),
+            np.concatenate([o.items for o in parts]).astype(np.int64), grids)
 
 
 def shadow_vector(texture, view, layer):
-    """kernels/layers.py's sh, the texture's planes (hmax, hmin, hsurf) and the objects'
-    occluders occ (frame, coef, start, items) of a layer."""
+    """kernels/layers.py's sh, the texture's planes (hmax, hmin, hsurf), its horizons'
+    slopes (a light of a radius) and the objects' occluders occ of a layer."""
     sh = np.zeros(K.SH_SIZE)
-    none = np.zeros((0, 1, 1), dtype=np.float32)
+    none = _NO_TEXTURE_PLANES
     if texture is None:
-        return sh, none, none, none, NO_OCCLUDERS
+        return sh, none, none, none, _NO_SLOPES, NO_OCCLUDERS
     sh[K.SH_LX:K.SH_LZ + 1] = view.light
     sh[K.SH_ON] = 1.0
     sh[K.SH_LAYER] = layer
     sh[K.SH_GRAZING] = GRAZING
     sh[K.SH_BIAS] = BIAS_TEXELS
     occ = NO_OCCLUDERS
-    o = texture.occluders           # (an Occluders: opacity below 1 takes no light_radius)
-    if o is not None and len(o.items):
-        sh[K.SH_OBJ] = 1.0
-        sh[K.SH_OGA], sh[K.SH_OGB], sh[K.SH_OINV] = o.ga, o.gb, o.inv_cell
-        sh[K.SH_ONA], sh[K.SH_ONB], sh[K.SH_OBIAS] = o.na, o.nb, o.bias
-        occ = (o.frame, o.coef, o.start, o.items)
+    o = texture.occluders
+    if o is not None and len(getattr(o, "parts", [o])[0].items):
+        occ = occluder_arrays(o)
+        sh[K.SH_OBJ] = len(occ[0])
     if texture.zenith:
         sh[K.SH_H] = 1.0
-        return sh, none, none, none, occ
+        return sh, none, none, none, _NO_SLOPES, occ
     sh[K.SH_GU], sh[K.SH_GV], sh[K.SH_TAN] = texture.gu, texture.gv, texture.tan_theta
     sh[K.SH_S0], sh[K.SH_T0], sh[K.SH_H] = texture.s0, texture.t0, texture.h
-    return sh, texture.hmax, texture.hmin, texture.hsurf, occ
+    slopes = _NO_SLOPES
+    if texture.rho > 0.0:
+        sh[K.SH_RHO] = texture.rho
+        slopes = texture.slopes
+    return sh, texture.hmax, texture.hmin, texture.hsurf, slopes, occ
 
 
 def translucent_pass(layers, views, drawn, box, quality, background, texture, stop=None):
@@ -161,9 +182,9 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
         vp[VP_AA] = 1.0 if aa_cov else 0.0
         table = p.material.table(np.array([view.f_range]), box[2])
         w_limits.append(table.w_limits)
-        sh, hmax, hmin, hsurf, occ = shadow_vector(texture, view, k)
+        sh, hmax, hmin, hsurf, slopes, occ = shadow_vector(texture, view, k)
         colours = (table.lut, *layer_texture(p.source, box))
-        plans.append((surface, vp, table.mp, colours, sh, hmax, hmin, hsurf, occ))
+        plans.append((surface, vp, table.mp, colours, sh, hmax, hmin, hsurf, slopes, occ))
     offsets_px, centre = offsets(sub)
     order = [centre] + [i for i in range(sub) if i != centre]
     # (lists and gfirst are read only below counts, gbuf only where a layer is seen,
@@ -194,7 +215,8 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
             counts[:] = 0
             hits[:] = 0
             evals[:] = 0
-            for k, (surface, vp, mp, lut, sh, hmax, hmin, hsurf, occ) in enumerate(plans):
+            for k, plan in enumerate(plans):
+                surface, vp, mp, lut, sh, hmax, hmin, hsurf, slopes, occ = plan
                 if ks[k] == 0:
                     continue
                 vpk = vp.copy()
@@ -202,13 +224,13 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
                 if device == "cuda":
                     from ..kernels.cuda import layers_kernel_cuda
                     layers_kernel_cuda(surface, vpk, c0, mp, lut, sh, hmax, hmin, hsurf,
-                                       occ, lists, offs[k], ks[k], counts[k], gfirst[k], hits,
-                                       evals)
+                                       slopes, occ, lists, offs[k], ks[k], counts[k],
+                                       gfirst[k], hits, evals)
                     continue
                 kind, f, fg, _, hf, hfp = surface.kernel_args(None)
                 K.layers_kernel(kind, f, fg, hf, hfp, vpk, c0, mp, lut, sh, hmax,
-                                hmin, hsurf, occ, lists, offs[k], ks[k], counts[k], gfirst[k],
-                                hits, evals)
+                                hmin, hsurf, slopes, occ, lists, offs[k], ks[k], counts[k],
+                                gfirst[k], hits, evals)
             total_evals += int(evals.sum())
             first = m == centre
             K.composite_kernel(lists, counts, offs, gfirst, c0, weight, first, acc, side, depth,

@@ -183,8 +183,15 @@ def test_a_scheduler_address_where_no_scheduler_answers(tmp_path, capsys):
     import gc
 
     from distributed import Client
-    assert all(c.status in ("closed", "newly-created") for c in gc.get_objects()
-               if isinstance(c, Client))
+
+    def clients():
+        for c in gc.get_objects():
+            try:
+                if isinstance(c, Client):
+                    yield c
+            except ReferenceError:          # (a dead weak proxy among the objects: the
+                continue                    # test failed so in a clean clone's run)
+    assert all(c.status in ("closed", "newly-created") for c in clients())
     gc.collect()
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(f"floatcol: error: cannot reach the scheduler "

@@ -1,6 +1,7 @@
 """Translucency (Gordon sections 6.5-6.6): a surface that shows its own hidden folds,
-a function and its Taylor polynomial meeting, sympy's plot3d(f, g) with alpha, and
-trees seen through a translucent hill, their shadows on it.
+a function and its Taylor polynomial meeting, sympy's plot3d(f, g) with alpha,
+matplotlib's translucent mesh with its edges, and trees seen through a translucent
+hill, their soft shadows on it.
 
 ``opacity`` below 1 (matplotlib's ``alpha`` in plot_surface and plot3d) draws every
 layer of the surface along each pixel's ray, lit and coloured as the opaque surface
@@ -37,6 +38,14 @@ p = sympy.plotting.plot3d(sympy.cos(x * y), x ** 2 / 8 - y ** 2 / 8, (x, -3, 3),
                           backend=SympyBackend, show=False, alpha=0.6, cmap="coolwarm",
                           title="cos(xy) and (x^2 - y^2)/8, alpha = 0.6")
 p.save("plot3d_alpha.png")
+
+# matplotlib's own call form and idiom: a translucent mesh with its edges, every
+# layer's lines showing through
+from mpl_toolkits.mplot3d import axes3d  # noqa: E402
+
+X, Y, Z = axes3d.get_test_data(0.05)
+fc.plot_surface(X, Y, Z, edgecolor="royalblue", lw=0.5, rstride=8, cstride=8, alpha=0.3,
+                size=(800, 600)).save("mesh_alpha_edges.png")
 
 # a glass hill in a ring of trees: those behind it show through, their shadows fall on
 # it, soft under a sun 1 degree in radius

@@ -183,12 +183,12 @@ def _area_source(f, fg, area, x0_of):
 def _layers_source(f, fg, column_layers, x0_of):
     """The translucent layers' kernel's Python function (layers._column_layers a
     thread: one band's columns), as _kernel_source. The colour tuple (lut, texture
-    levels, offsets, shapes, tp) comes as five arguments, the objects' occluders
+    levels, offsets, shapes, tp, lines) comes as six arguments, the objects' occluders
     (frames, coef, start, items, grids) as five."""
     _cuda()
 
-    def kernel(kind, hf, hfp, vp, c0, mp, lut, levels, offsets, shapes, tp, sh, hmax, hmin,
-               hsurf, slopes, frames, coef, start, items, grids, lists, off, K, counts,
+    def kernel(kind, hf, hfp, vp, c0, mp, lut, levels, offsets, shapes, tp, lines, sh, hmax,
+               hmin, hsurf, slopes, frames, coef, start, items, grids, lists, off, K, counts,
                gfirst, hits, evals, trans, scr, width):
         b = cuda.grid(1)
         if b >= lists.shape[0] or c0 + b >= width:
@@ -198,9 +198,9 @@ def _layers_source(f, fg, column_layers, x0_of):
         s = scr[b]
         s[:, :] = 0.0
         evals[b] += column_layers(kind, f, fg, hf, hfp, vp, x0_of(vp, c0 + b), mp,
-                                  (lut, levels, offsets, shapes, tp), sh, hmax, hmin, hsurf,
-                                  slopes, (frames, coef, start, items, grids), lists, off,
-                                  K, counts, t, gfirst, hits, b, s)
+                                  (lut, levels, offsets, shapes, tp, lines), sh, hmax, hmin,
+                                  hsurf, slopes, (frames, coef, start, items, grids), lists,
+                                  off, K, counts, t, gfirst, hits, b, s)
     return kernel
 
 
@@ -314,7 +314,7 @@ def area_kernel_cuda(surface, flat, lv, vp, slices, lod, gbuf, ebuf, evals, wran
 def layers_kernel_cuda(surface, vp, c0, mp, colours, sh, hmax, hmin, hsurf, slopes, occ, lists,
                        off, K, counts, gfirst, hits, evals):
     """layers.layers_kernel's work on the GPU (the same arguments but the surface's
-    functions; ``colours`` its (lut, levels, offsets, shapes, tp)): lists, counts,
+    functions; ``colours`` its (lut, levels, offsets, shapes, tp, lines)): lists, counts,
     gfirst, hits and evals are updated on the host."""
     from .layers import layers_scratch
     from .layout import VP_W
@@ -393,7 +393,7 @@ def ptx(surface, cc=(9, 0), opt=True, which="column"):
     elif which == "layers":
         sig = (i64, arr(f64, 2), arr(f64, 1), arr(f64, 1), i64, arr(f64, 1),
                arr(f64, 2), arr(f32, 1), arr(i64, 1), arr(i64, 2), arr(f64, 1),
-               arr(f64, 1), arr(f32, 3), arr(f32, 3), arr(f32, 3), arr(f64, 3),
+               arr(f64, 1), arr(f64, 1), arr(f32, 3), arr(f32, 3), arr(f32, 3), arr(f64, 3),
                arr(f64, 3), arr(f64, 2), arr(i64, 1), arr(i64, 1), arr(f64, 2),  # occluders
                arr(f32, 4), i64, i64,
                arr(i32, 2), arr(f32, 3), arr(i32, 2), arr(i64, 1), arr(f64, 2), arr(f64, 3),

@@ -29,6 +29,7 @@ full opacity: the composite is then exactly sum_k a (1 - a)^k I_k.
 Memory: the lists of a band of columns (passes/translucency.py picks the band), each
 column's scratch its own (no shared scratch across the parallel columns).
 """
+import math
 
 import numpy as np
 from numba import prange
@@ -42,11 +43,12 @@ from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIZE, G_T, G_U, G_V, G_W,
     M_ALPHA, M_LOWER, M_SPAN, M_WLO, S_OK,
-    VP_AA, VP_CA, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_SCALE, VP_T0, VP_T1, VP_W,
+    VP_AA, VP_CA, VP_CB, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_SA, VP_SB, VP_SCALE,
+    VP_T0, VP_T1, VP_W,
 )
 from .sample import column_x0, sample_point
 from .shade import _light, _side_rgb, toward_viewer
-from .texture import layer_texel
+from .texture import layer_lines, layer_texel
 from .raster import _blocked_at
 from .shadow import point_shadow, soft_shadow
 
@@ -191,6 +193,40 @@ def _keep(lists, b, j, off, K, n, rec):
     return n + 1, pos
 
 
+#: |N.V| below which _axis_grads takes it as this (a silhouette's grazing tangent
+#: plane: the lines there as wide as at 1/GRAZE of the obliquity, not infinitely)
+GRAZE = 0.05
+
+
+@ngjit_inline
+def _axis_grads(vp, nx, ny, nz, vx, vy, vz, depth):
+    """How much u, v and w (the box's units) change from a point of the surface to
+    the one a pixel away on the screen, (nx, ny, nz) its unit normal and (vx, vy, vz)
+    the unit vector toward the viewer there (screen coordinates): the pixel's step m
+    across the ray (1 / scale, times the distance over d1 in perspective) and along
+    the ray back onto the tangent plane, ΔP = m (a, b, 0) + c D with D = -V and
+    N.ΔP = 0, so that Δq = m (a (g_x - n_x k) + b (g_y - n_y k)), k = g.V / N.V,
+    for g the screen image of q's axis (the rotation of eqs. 1-2's columns)."""
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    m = 1.0 / vp[VP_SCALE]
+    if vp[VP_ORTHO] == 0.0:
+        m *= (depth + vp[VP_D3]) / vp[VP_D1]
+    nv = nx * vx + ny * vy + nz * vz
+    if abs(nv) < GRAZE:
+        nv = GRAZE if nv >= 0.0 else -GRAZE
+    # the axes u, v, w on the screen: (cb, -sa sb, ca sb), (-sb, -sa cb, ca cb), (0, ca, sa)
+    k = (cb * vx - sa * sb * vy + ca * sb * vz) / nv
+    grad_u = m * math.hypot(cb - nx * k, -sa * sb - ny * k)
+    k = (-sb * vx - sa * cb * vy + ca * cb * vz) / nv
+    grad_v = m * math.hypot(-sb - nx * k, -sa * cb - ny * k)
+    k = (ca * vy + sa * vz) / nv
+    grad_w = m * math.hypot(-nx * k, ca - ny * k)
+    return grad_u, grad_v, grad_w
+
+
 @ngjit_inline
 def _objects_block(u, v, w, occ, n):
     """The part of occ's n directions toward the light (one: a point light) in which
@@ -238,8 +274,9 @@ def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists,
         if sh[SH_OBJ] != 0.0 and shade < 1.0:
             shade = max(shade, _objects_block(p[A_U], p[A_V], p[A_W], occ, int(sh[SH_OBJ])))
     inten, spec = _light(vp, x0, j, nx, ny, nz, p[A_I], mp, 1.0 - shade)
-    # ``lut`` is the tuple (lut, levels, offsets, shapes, tp) of texture.py's TP_*: the
-    # side's colour table, and a texture (no levels: none) over it
+    # ``lut`` is the tuple (lut, levels, offsets, shapes, tp, lines) of texture.py's
+    # TP_* and LN_*: the side's colour table, a texture (no levels: none) over it, and
+    # lines (empty: none)
     r, g, bl = _side_rgb(side, p[A_W], lut[0], mp[M_WLO], mp[M_SPAN], mp[M_LOWER:])
     if lut[1].shape[0] > 0:
         # the pixel's footprint on the surface: 1 / scale on the screen, at the point's
@@ -259,6 +296,20 @@ def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists,
     crec[C_G] = a * min(g * inten + spec, 1.0)
     crec[C_B] = a * min(bl * inten + spec, 1.0)
     crec[C_I] = a * inten
+    if lut[5].shape[0] > 0:
+        # contour and wireframe lines on the surface, of its opacity (matplotlib's edges
+        # of a translucent surface: its alpha): the lines' part la of the pixel at
+        # alpha a laid over the lit crossing, an unlit colour as the opaque overlays';
+        # the intensity, which those leave alone, the crossing's at the alpha of both
+        gu, gv, gw = _axis_grads(vp, nx, ny, nz, vx, vy, vz, depth)
+        lr, lg, lb, la = layer_lines(lut[5], p[A_U], p[A_V], p[A_W], gu, gv, gw)
+        if la > 0.0:
+            keep = 1.0 - a * la
+            crec[C_R] = a * lr + keep * crec[C_R]
+            crec[C_G] = a * lg + keep * crec[C_G]
+            crec[C_B] = a * lb + keep * crec[C_B]
+            a = a * la + keep * a
+            crec[C_I] = a * inten
     crec[C_A] = a
     crec[C_SIDE] = side
     crec[C_SHADOW] = shade

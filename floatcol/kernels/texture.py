@@ -105,12 +105,93 @@ def texel_at(levels, offsets, shapes, x, y, lod, out):
 
 
 #: A layer's texture for the translucent layers (kernels/layers.py): the tuple
-#: (lut, levels, offsets, shapes, tp), tp[TP_*] the texel map of the box's (u, v)
+#: (lut, levels, offsets, shapes, tp, lines), tp[TP_*] the texel map of the box's (u, v)
 TP_OU = 0        # texel x = (u - ou) su, y = (v - ov) sv
 TP_SU = 1
 TP_OV = 2
 TP_SV = 3
 TP_SIZE = 4
+
+
+#: ... and its lines (the tuple's sixth item, float64; empty: none), drawn on each
+#: crossing as overlays.py draws them on the opaque surface's pixels
+LN_NLEV = 0      # contour levels of w (box units), sorted, from LN_SIZE on
+LN_CW = 1        # their width in pixels, their colour (0-1)
+LN_CR = 2
+LN_CG = 3
+LN_CB = 4
+LN_WIRE = 5      # 1: wireframe lines at u = U0 + k DU and v = V0 + k DV (box units)
+LN_U0 = 6
+LN_DU = 7
+LN_V0 = 8
+LN_DV = 9
+LN_EW = 10       # their width in pixels, their colour
+LN_ER = 11
+LN_EG = 12
+LN_EB = 13
+LN_SIZE = 14
+
+
+@ngjit_inline
+def _line_cover(dist, grad, width):
+    """The part of a pixel a line of ``width`` pixels covers at ``dist`` (q's units)
+    from it, q changing ``grad`` a pixel: clip(width / 2 + 1/2 - d, 0, 1) of d =
+    dist / grad pixels, lines_kernel's."""
+    if not (grad == grad and dist == dist):
+        return 0.0
+    if grad > 0.0:
+        px = dist / grad
+    elif dist == 0.0:
+        px = 0.0
+    else:
+        return 0.0
+    return min(max(width * 0.5 + 0.5 - px, 0.0), 1.0)
+
+
+@ngjit_inline
+def _to_grid(q, q0, dq):
+    """|q - the nearest of q0 + k dq| (lines_kernel's wireframe distance)."""
+    return abs(q - (q0 + math.floor((q - q0) / dq + 0.5) * dq))
+
+
+@ngjit_inline
+def _over(r, g, b, al, lines, k, cov):
+    """The premultiplied (r, g, b, al) under a line of lines[k:k + 3] covering cov."""
+    keep = 1.0 - cov
+    return (cov * lines[k] + keep * r, cov * lines[k + 1] + keep * g,
+            cov * lines[k + 2] + keep * b, cov + keep * al)
+
+
+@ngjit_inline
+def layer_lines(lines, u, v, w, grad_u, grad_v, grad_w):
+    """The lines of a translucent layer's crossing at (u, v, w) (box units): their
+    colour premultiplied by the part of the pixel they cover, and that part, (r, g, b,
+    a); the wireframe's and then the contours over them (LN_*, overlays.py's order),
+    q = u, v and w changing grad_u, grad_v, grad_w a pixel across the picture there."""
+    r = 0.0
+    g = 0.0
+    b = 0.0
+    al = 0.0
+    if lines[LN_WIRE] != 0.0:
+        cov = _line_cover(_to_grid(u, lines[LN_U0], lines[LN_DU]), grad_u, lines[LN_EW])
+        if cov > 0.0:
+            r, g, b, al = _over(r, g, b, al, lines, LN_ER, cov)
+        cov = _line_cover(_to_grid(v, lines[LN_V0], lines[LN_DV]), grad_v, lines[LN_EW])
+        if cov > 0.0:
+            r, g, b, al = _over(r, g, b, al, lines, LN_ER, cov)
+    n = int(lines[LN_NLEV])
+    if n > 0:
+        lv = lines[LN_SIZE:LN_SIZE + n]
+        k = np.searchsorted(lv, w)
+        dist = np.inf
+        if k < n:
+            dist = lv[k] - w
+        if k > 0:
+            dist = min(dist, w - lv[k - 1])
+        cov = _line_cover(dist, grad_w, lines[LN_CW])
+        if cov > 0.0:
+            r, g, b, al = _over(r, g, b, al, lines, LN_CR, cov)
+    return r, g, b, al
 
 
 @ngjit_inline

@@ -30,6 +30,7 @@ from ..kernels import layers as K
 from ..kernels.layout import G_SIZE, TILE, VP_AA, VP_XOFF
 from ..result import Render
 from . import geometry
+from .overlays import contour_levels, wire_counts
 from .shadow import BIAS_TEXELS, GRAZING
 
 #: bytes of crossing lists and their G-buffer records a band of columns may hold
@@ -82,6 +83,34 @@ def layer_texture(source, box):
     tp = np.array([u0 * a, (w - 1) / ((u1 - u0) * a) if w > 1 else 0.0,
                    v0 * b, (h - 1) / ((v1 - v0) * b) if h > 1 else 0.0])
     return tex.flat, tex.offsets, tex.shapes, tp
+
+
+_NO_LINES = np.zeros(0)
+
+
+def layer_lines(material, domain, box, w_limits):
+    """A layer's lines for kernels/layers.py (texture.py's LN_*: its contours of w and
+    its wireframe, as overlays.overlay_pass draws them on an opaque surface, in the
+    box's units), or an empty array: none."""
+    from ..kernels import texture as T
+    if not material.overlaid:
+        return _NO_LINES
+    levels = np.zeros(0)
+    head = np.zeros(T.LN_SIZE)
+    if material.contours is not None:
+        levels = np.sort(contour_levels(material.contours, *w_limits)) * box[2]
+        head[T.LN_NLEV] = len(levels)
+        head[T.LN_CW] = material.contour_width
+        head[T.LN_CR:T.LN_CB + 1] = color.to_rgb(material.contour_color, "contour_color")[:3]
+    if material.wireframe is not None:
+        nu, nv = wire_counts(material.wireframe)
+        (ua, ub), (va, vb) = domain
+        head[T.LN_WIRE] = 1.0
+        head[T.LN_U0], head[T.LN_DU] = ua * box[0], (ub - ua) / (nu - 1) * box[0]
+        head[T.LN_V0], head[T.LN_DV] = va * box[1], (vb - va) / (nv - 1) * box[1]
+        head[T.LN_EW] = material.linewidth
+        head[T.LN_ER:T.LN_EB + 1] = color.to_rgb(material.edgecolor, "edgecolor")[:3]
+    return np.concatenate([head, levels])
 
 
 #: kernels/layers.py's occ where no objects cast shadows
@@ -183,7 +212,8 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
         table = p.material.table(np.array([view.f_range]), box[2])
         w_limits.append(table.w_limits)
         sh, hmax, hmin, hsurf, slopes, occ = shadow_vector(texture, view, k)
-        colours = (table.lut, *layer_texture(p.source, box))
+        colours = (table.lut, *layer_texture(p.source, box),
+                   layer_lines(p.material, p.domain, box, table.w_limits))  # (not the box's)
         plans.append((surface, vp, table.mp, colours, sh, hmax, hmin, hsurf, slopes, occ))
     offsets_px, centre = offsets(sub)
     order = [centre] + [i for i in range(sub) if i != centre]

@@ -271,7 +271,9 @@ class Surface3DImage(Artist):
         kw, T, size = axes_camera(self.plot, ax, *_shrunk((W, H), f), mag / f)
         self.plot.pixel_step = DRAG_PIXEL_STEP if preview else None
         try:
-            r = self.plot.draw_with(size, kw)
+            limits = (ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()) \
+                if self.plot.axlim_clip else None
+            r = self.plot.draw_with(size, kw, limits)
         finally:
             self.plot.pixel_step = None
         if preview:

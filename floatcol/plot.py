@@ -19,6 +19,7 @@ from .color import colormap_lut
 from .output import png_bytes, save_image
 from .light import world_to_screen_direction  # noqa: F401 (kept importable here)
 from .render import DEFAULT_RANGE, Render, render
+from .kernels.layout import SURF_HEIGHTFIELD
 from .surface import HeightField, Surface, as_surface, check_range, free_names
 from .view import _number, _robust_range
 
@@ -37,7 +38,7 @@ _RENDER_OPTIONS = set(inspect.signature(render).parameters) - {
     "vmax", "upper_color", "light", "ambient", "focal_length", "tiles", "client"}
 _OWN_OPTIONS = {"cmap", "norm", "vmin", "vmax", "color", "shade", "lightsource", "elev",
                 "azim", "proj_type", "focal_length", "size", "dpi", "ambient", "light",
-                "upper_color", "projection", "alpha"}
+                "upper_color", "projection", "alpha", "axlim_clip"}
 
 
 def mpl_to_paper_angles(elev, azim):
@@ -125,7 +126,8 @@ class SurfacePlot(_ScalarMappable):
     def __init__(self, surface, domain, *, size=DEFAULT_SIZE, elev=DEFAULT_ELEV,
                  azim=DEFAULT_AZIM, proj_type=DEFAULT_PROJ, focal_length=None, cmap=None,
                  norm=None, vmin=None, vmax=None, color=None, shade=True, lightsource=None,
-                 light=None, ambient=None, dpi=100, label="", render_options=None, others=()):
+                 light=None, ambient=None, dpi=100, label="", render_options=None, others=(),
+                 axlim_clip=False):
         from .view import check_size
 
         self.surface = surface
@@ -161,6 +163,11 @@ class SurfacePlot(_ScalarMappable):
         if norm is not None and (vmin is not None or vmax is not None):
             raise ValueError("give either norm or vmin/vmax, not both (as in matplotlib)")
         self.options = dict(render_options or {})
+        if not isinstance(axlim_clip, (bool, np.bool_)):
+            raise ValueError(f"axlim_clip must be True or False, got {axlim_clip!r}")
+        #: in a 3-D Axes, hide what lies outside its view limits (mplot3d's axlim_clip)
+        self.axlim_clip = bool(axlim_clip)
+        self._clips = {}               # (limits) -> the clipped surfaces (_clipped)
         self.zoom = 1.0
         self.pixel_step = None         # None: the render default (1 pixel)
         self.shrink = 1                # a drag's preview: the picture f times smaller
@@ -377,10 +384,51 @@ class SurfacePlot(_ScalarMappable):
             return scene_from_options([(s, *d) for s, d in self._items()], **kw), True
         return scene_from_options([(self.surface, u, v)], **kw), False
 
-    def draw_with(self, size, camera) -> Render:
+    def _clipped(self, limits):
+        """The plot's (surface, domain) pairs with what lies outside the 3-D Axes' view
+        limits ((x0, x1), (y0, y1), (z0, z1)) made a hole, as mplot3d's axlim_clip
+        hides the patches with a vertex outside them: a mesh's (HeightField's) points
+        outside are holes, so the cells around them are (mplot3d's patches); an
+        expression's surface is cut exactly where it leaves the limits (a Piecewise
+        that is NaN outside). Kept for the last few limits (a drag draws the same)."""
+        key = tuple(tuple(float(x) for x in lim) for lim in limits)
+        if key in self._clips:
+            return self._clips[key]
+        (x0, x1), (y0, y1), (z0, z1) = (sorted(lim) for lim in key)
+        out = []
+        for surface, domain in self._items():
+            if surface.kind == SURF_HEIGHTFIELD:
+                (ua, ub), (va, vb) = surface.default_domain
+                nv, nu = surface.hf.shape
+                x = np.linspace(ua, ub, nu)[None, :]
+                y = np.linspace(va, vb, nv)[:, None]
+                z = surface.hf
+                with np.errstate(invalid="ignore"):
+                    outside = (z < z0) | (z > z1) | (x < x0) | (x > x1) | (y < y0) | (y > y1)
+                out.append((HeightField(np.where(outside, np.nan, z), u=(ua, ub), v=(va, vb)),
+                            domain))
+            elif surface.expr is not None:
+                import sympy
+                e = surface.expr
+                named = {str(x): x for x in e.free_symbols}
+                u, v = (named.get(str(n), sympy.Symbol(str(n))) for n in surface.variables)
+                inside = sympy.And(e >= z0, e <= z1, u >= x0, u <= x1, v >= y0, v <= y1)
+                clipped = sympy.Piecewise((e, inside), (sympy.nan, True))
+                out.append((as_surface(clipped, vars=surface.variables, time=surface.time),
+                            domain))
+            else:
+                raise ValueError("axlim_clip=True clips a mesh (X, Y, Z) or an expression, "
+                                 "not a Python function: give the surface as one of those")
+        if len(self._clips) >= 4:
+            self._clips.pop(next(iter(self._clips)))
+        self._clips[key] = out
+        return out
+
+    def draw_with(self, size, camera, limits=None) -> Render:
         """Render at ``size`` with the camera keywords ``camera`` (a 3-D Axes', mpl.py
         axes_camera: angles, projection, box, centre, scale) over a transparent
-        background, and keep it as ``.render``."""
+        background, and keep it as ``.render``; with ``limits`` (the Axes' view limits
+        ((x0, x1), (y0, y1), (z0, z1)): axlim_clip) what lies outside them hidden."""
         from .renderer import render_scene
         from .scene import scene_from_options
         kw = self.render_kwargs(size)
@@ -389,10 +437,11 @@ class SurfacePlot(_ScalarMappable):
         kw.update(camera)
         kw["background"] = (0, 0, 0, 0)
         u, v = kw.pop("u"), kw.pop("v")
+        items = self._items() if limits is None else self._clipped(limits)
         if self.others:
-            scene, many = scene_from_options([(s, *d) for s, d in self._items()], **kw), True
+            scene, many = scene_from_options([(s, *d) for s, d in items], **kw), True
         else:
-            scene, many = scene_from_options([(self.surface, u, v)], **kw), False
+            scene, many = scene_from_options([(items[0][0], u, v)], **kw), False
         r = render_scene(scene, composite=many)
         self.render = r
         return r

@@ -1,6 +1,6 @@
 """floatcol in matplotlib's own 3-D Axes: the surface3d example with only its
-plot_surface call changed, markers hidden behind a hill, and a terrain with
-matplotlib's LightSource.
+plot_surface call changed, markers hidden behind a hill, a terrain with
+matplotlib's LightSource, and a surface clipped at the Axes' limits (axlim_clip).
 
 ``fc.plot_surface(X, Y, Z, ax=ax, ...)`` takes matplotlib's call form and keywords;
 inside ``fig.add_subplot(projection="3d")`` the Axes keep their panes, ticks, labels
@@ -58,3 +58,14 @@ ls = LightSource(270, 45)
 fc.plot_surface(x, y, z, ax=ax, cmap=cm.gist_earth, lightsource=ls, linewidth=0,
                 antialiased=False, shade=True)
 fig.savefig("hillshading.png")
+
+# axlim_clip=True (matplotlib 3.10): what lies outside the Axes' limits is not drawn,
+# the expression cut exactly where it leaves them
+fig = plt.figure(figsize=(7, 5))
+ax = fig.add_subplot(projection="3d")
+fc.plot_surface("sin(sqrt(x**2 + y**2))", ("x", -5, 5), ("y", -5, 5), ax=ax, cmap="viridis",
+                axlim_clip=True)
+ax.set_xlim(-3, 5)
+ax.set_zlim(-0.6, 0.8)
+ax.set_title("axlim_clip=True: clipped at x = -3, z = -0.6 and 0.8")
+fig.savefig("axlim_clip.png")

@@ -106,9 +106,6 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
         if quality.method != "column":
             raise ValueError("opacity below 1 needs shaded pictures: method='column' (a line "
                              "drawing has no layers to blend)")
-        if any(callable(p.material.texture) for p in layers):
-            raise ValueError("opacity below 1 takes a texture image, a color field or its "
-                             "colormap: a texture function needs opacity=1")
         if any(p.material.contours is not None and p.material.color is not None
                for p in layers):
             raise ValueError("opacity below 1 draws contours of w: contours of a color "

@@ -350,12 +350,30 @@ def prepare(material, domain, vars=None):
     if field is not None and material.opacity < 1.0:
         # the translucent layers read a texture: the field sampled on a grid, coloured
         return Source(_field_texture(material, field, extent), None, extent, "mipmap")
+    if callable(tex) and material.opacity < 1.0:
+        # ... and a texture function's colours on that grid
+        return Source(_function_texture(tex, extent), None, extent, "mipmap")
     return Source(tex, field, extent, material.texture_filter)
 
 
-#: A colour field on a translucent surface is read as a texture of this many texels a
-#: side (the field sampled at their nodes over the extent)
+#: A colour field or a texture function on a translucent surface is read as a texture
+#: of this many texels a side (sampled at their nodes over the extent)
 FIELD_TEXELS = 1024
+
+
+def _function_texture(fn, extent):
+    """Levels of a texture function's colours on a FIELD_TEXELS grid (its alpha kept:
+    the surface's own colour shows where it is transparent)."""
+    n = FIELD_TEXELS
+    u0, u1, v0, v1 = extent
+    gu, gv = np.meshgrid(np.linspace(u0, u1, n), np.linspace(v0, v1, n))
+    pre = _called(fn, gu.ravel(), gv.ravel())            # (premultiplied)
+    img = np.zeros((n * n, 4), dtype=np.float32)
+    a = pre[:, 3]
+    img[:, 3] = a
+    ok = a > 0.0
+    img[ok, :3] = pre[ok, :3] / a[ok, None]              # (pyramid premultiplies again)
+    return Levels(pyramid(img.reshape(n, n, 4)))
 
 
 def _field_texture(material, field, extent):

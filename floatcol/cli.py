@@ -227,6 +227,9 @@ def _surface_options(p, default_size="800x600", many=False, terrain=False):
                    metavar="N", help="N contour lines (of the height, or of --color-by)")
     p.add_argument("--wireframe", type=_count("wireframe", 2, 10000), default=None,
                    metavar="N", help="N lines at x = const and N at y = const")
+    p.add_argument("--lines-only", action="store_true",
+                   help="the --wireframe and --contours lines alone, the surface not drawn "
+                        "but hiding the lines behind it (a hidden-line drawing)")
     p.add_argument("--background", default=None, help="background colour, e.g. white or none")
     p.add_argument("--dpi", type=float, default=100.0, help="dots per inch of PDF/SVG output (default 100)")
 
@@ -414,6 +417,8 @@ def _options(args):
         opts["contours"] = args.contours
     if args.wireframe is not None:
         opts["wireframe"] = args.wireframe
+    if getattr(args, "lines_only", False):
+        opts["fill"] = False
     return opts
 
 

@@ -65,6 +65,8 @@ class Material:
     contour_color, contour_width : their colour and width in pixels.
     wireframe : lines at u = const and v = const: N lines each way, or (nu, nv) (as
         matplotlib's rcount, ccount); ``edgecolor``, ``linewidth`` (pixels).
+    fill : False draws the lines alone (a hidden-line drawing: plot_wireframe): the
+        surface is not drawn but still hides the lines behind it.
     """
     shading: str = "default"
     cmap: Any = "viridis"
@@ -88,6 +90,7 @@ class Material:
     wireframe: Any = None
     edgecolor: Any = "black"
     linewidth: float = 0.75
+    fill: bool = True
 
     def check(self):
         """Validate the fields (ValueError naming what to fix); returns self."""
@@ -101,6 +104,15 @@ class Material:
         self.opacity = fraction("opacity", self.opacity)
         from .passes.colour import check_filter
         check_filter(self.texture_filter)
+        if not isinstance(self.fill, (bool, np.bool_)):
+            raise ValueError(f"fill must be True or False, got {self.fill!r}")
+        if not self.fill:
+            if not self.overlaid:
+                raise ValueError("fill=False draws the surface's lines alone: give "
+                                 "wireframe= or contours=")
+            if self.opacity < 1.0:
+                raise ValueError("fill=False draws no surface to see through: give "
+                                 "opacity=1")
         for name in ("contour_width", "linewidth"):
             x = getattr(self, name)
             if isinstance(x, bool) or not isinstance(x, numbers.Real) or \

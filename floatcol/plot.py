@@ -620,6 +620,29 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     return plot
 
 
+def plot_wireframe(expr, *ranges, ax=None, interactive=False, label="",
+                   **options) -> SurfacePlot:
+    """matplotlib's ``plot_wireframe`` (and its call form): the mesh's lines, the
+    lines behind the surface hidden (mplot3d draws them all). ``fc.plot_wireframe(X, Y,
+    Z, ax=ax, rstride=10, cstride=10)`` or ``fc.plot_wireframe(expr, (x, a, b), (y, c,
+    d))``: rcount, ccount (default 50), rstride, cstride as matplotlib's; ``color``
+    (default "C0") and ``linewidth`` (points, default 1.5) the lines'; any
+    :func:`plot_surface` option else (``contours=`` adds contour lines). The surface
+    itself is not drawn (``fill=False``): it hides the lines behind it and shows the
+    Axes' panes and whatever is behind it where no line runs."""
+    for name in ("fill", "edgecolor", "edgecolors", "ec"):
+        if name in options:
+            raise ValueError(f"plot_wireframe draws the lines alone in ``color``: it takes "
+                             f"no {name}")
+    colour = options.pop("color", options.pop("colors", "C0"))
+    if isinstance(colour, (list, tuple)) and len(colour) and not isinstance(
+            colour[0], (int, float, np.number)):
+        colour = colour[0]                        # (a Line3DCollection's list: the first)
+    options.setdefault("linewidth", 1.5)
+    return plot_surface(expr, *ranges, ax=ax, interactive=interactive, label=label,
+                        edgecolor=colour, fill=False, **options)
+
+
 #: Axes3D.plot_surface's keywords about its polygon mesh: the lines of its edges, drawn
 #: as a wireframe on the exact surface where an edge colour is given (_mesh_lines);
 #: antialiasing by floatcol's own rules (docs/options.md)

@@ -37,7 +37,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            shadows=False, light_radius=0.0, opacity=1.0, texture=None, texture_extent=None,
            texture_filter="mipmap", color=None, contours=None, contour_color="black",
            contour_width=1.0, wireframe=None, edgecolor="black", linewidth=0.75,
-           objects=None, tiles=None, client=None, device="cpu") -> Render:
+           fill=True, objects=None, tiles=None, client=None, device="cpu") -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -163,6 +163,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     wireframe : lines at u = const and v = const: N each way or (nu, nv), spread
         over the domain from edge to edge (matplotlib's rcount, ccount);
         ``edgecolor``, ``linewidth`` in pixels (default 0.75).
+    fill : False draws the lines (wireframe, contours) alone over the background, the
+        surface itself not drawn but hiding the lines behind it: a hidden-line drawing
+        (matplotlib's plot_wireframe, with the hidden lines removed).
     objects : objects standing on the surface (Szenberg 1997): ``fc.box``,
         ``fc.pole``, ``fc.tree``, ``fc.marker`` or any ``fc.Mesh``, drawn by a
         z-buffer against the surface's depth, lit flat by the picture's light.
@@ -201,7 +204,7 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
             interpolation=interpolation, opacity=opacity, texture=texture,
             texture_extent=texture_extent, texture_filter=texture_filter, color=color,
             contours=contours, contour_color=contour_color, contour_width=contour_width,
-            wireframe=wireframe, edgecolor=edgecolor, linewidth=linewidth))],
+            wireframe=wireframe, edgecolor=edgecolor, linewidth=linewidth, fill=fill))],
         camera=Camera(size=size, elev=elev, azim=azim, projection=projection, d1=d1, d2=d2,
                       scale=scale, center=center, focal_length=focal_length, aspect=aspect,
                       box=box),

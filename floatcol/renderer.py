@@ -91,6 +91,9 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
         raise ValueError("surfaces is empty: give at least one expression")
     layers = [_prepare(layer, scene) for layer in scene.layers]
     many = composite or len(layers) > 1
+    if len(layers) > 1 and any(not p.material.fill for p in layers):
+        raise ValueError("fill=False draws one surface's lines alone: render it by itself "
+                         "(several surfaces hide each other with their faces)")
     views, drawn, box = fit([(p.surface, p.domain) for p in layers], scene.camera, quality,
                             layers[0].light_dir, joint=many)
     if scene.camera.columns is not None:
@@ -299,7 +302,7 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
             evals += ev2
         if material.overlaid:
             overlays.overlay_pass(rgba, material, p.source, geom, W, box, w_limits, c_limits,
-                                  p.domain)       # (the surface's domain, not the box's)
+                                  p.domain, bg8)  # (the surface's domain, not the box's)
     t_end = time.perf_counter()
     if nowhere_finite(surface, domain) and not (side != 0 if seen is None else seen).any():
         warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,

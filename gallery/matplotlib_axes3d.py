@@ -1,6 +1,7 @@
 """floatcol in matplotlib's own 3-D Axes: the surface3d example with only its
 plot_surface call changed, markers hidden behind a hill, a terrain with
-matplotlib's LightSource, and a surface clipped at the Axes' limits (axlim_clip).
+matplotlib's LightSource, a surface clipped at the Axes' limits (axlim_clip), and
+plot_wireframe with the hidden lines removed, beside mplot3d's own.
 
 ``fc.plot_surface(X, Y, Z, ax=ax, ...)`` takes matplotlib's call form and keywords;
 inside ``fig.add_subplot(projection="3d")`` the Axes keep their panes, ticks, labels
@@ -69,3 +70,19 @@ ax.set_xlim(-3, 5)
 ax.set_zlim(-0.6, 0.8)
 ax.set_title("axlim_clip=True: clipped at x = -3, z = -0.6 and 0.8")
 fig.savefig("axlim_clip.png")
+
+# plot_wireframe: the mesh's lines with those behind the surface hidden (mplot3d's own
+# draws every line, right)
+from mpl_toolkits.mplot3d import axes3d  # noqa: E402
+
+X, Y, Z = axes3d.get_test_data(0.05)
+fig = plt.figure(figsize=(10, 4.5))
+ax = fig.add_subplot(1, 2, 1, projection="3d")
+fc.plot_wireframe(X, Y, Z, ax=ax, rstride=10, cstride=10)
+ax.set_title("fc.plot_wireframe: hidden lines removed")
+ax = fig.add_subplot(1, 2, 2, projection="3d")
+ax.plot_wireframe(X, Y, Z, rstride=10, cstride=10)
+ax.set_title("mplot3d's plot_wireframe")
+for a in fig.axes:
+    a.view_init(15, -60)
+fig.savefig("wireframe_hidden_lines.png")

@@ -153,6 +153,48 @@ def test_matplotlib_keywords_accepted():
     assert q.options["texture"].shape == Z.shape + (4,)
 
 
+def _blue(fig):
+    fig.canvas.draw()
+    a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
+    return (a[..., 2] > 150) & (a[..., 0] < 100) & (a[..., 2] - a[..., 0] > 80)
+
+
+def test_plot_wireframe_draws_mplot3ds_lines_less_the_hidden_ones():
+    """fc.plot_wireframe(X, Y, Z, ax=ax, rstride=10, cstride=10): the mesh's lines as
+    mplot3d draws them, less those the surface hides (a hidden-line drawing: mplot3d
+    draws them all). Against ax.plot_wireframe of the same data in the same Axes:
+    measured 99.7 % of floatcol's line pixels within 2 pixels of mplot3d's, and 89.5 %
+    of mplot3d's within 2 pixels of floatcol's (the rest are the hidden lines, away
+    from any seen one); the Axes' panes show between the lines."""
+    from mpl_toolkits.mplot3d import axes3d
+    X, Y, Z = axes3d.get_test_data(0.05)
+
+    def lines(draw):
+        fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
+        ax = fig.add_subplot(projection="3d")
+        draw(ax)
+        ax.view_init(15, -60)
+        mask = _blue(fig)
+        plt.close(fig)
+        return mask
+
+    ours = lines(lambda ax: fc.plot_wireframe(X, Y, Z, ax=ax, rstride=10, cstride=10))
+    theirs = lines(lambda ax: ax.plot_wireframe(X, Y, Z, rstride=10, cstride=10))
+
+    def near(mask):
+        m = np.pad(mask, 2)
+        out = np.zeros_like(mask)
+        for di in range(5):
+            for dj in range(5):
+                out |= m[di:di + mask.shape[0], dj:dj + mask.shape[1]]
+        return out
+    assert ours.sum() > 3000
+    assert (ours & near(theirs)).sum() >= 0.95 * ours.sum()
+    assert (theirs & near(ours)).sum() <= 0.95 * theirs.sum()        # (hidden ones gone)
+    with pytest.raises(ValueError, match="takes no edgecolor"):
+        fc.plot_wireframe(X, Y, Z, edgecolor="k")
+
+
 def _clipped_figure(draw, proj, view, xlim, zlim):
     fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
     ax = fig.add_subplot(projection="3d", proj_type=proj)

@@ -56,8 +56,14 @@ def wire_counts(wireframe):
     return int(vals[0]), int(vals[1])
 
 
-def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domain):
-    """Draw the material's contour and wireframe lines into rgba (in place)."""
+def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domain,
+                 bg8=(255, 255, 255, 255)):
+    """Draw the material's contour and wireframe lines into rgba (in place); with
+    ``fill`` False, the lines alone over the background ``bg8`` (a hidden-line
+    drawing: the surface, not drawn, hides those behind it)."""
+    if not material.fill:
+        _lines_alone(rgba, material, source, geom, W, box, w_limits, c_limits, domain, bg8)
+        return
     u, v, w, side = picture_planes(geom, W, box)
     seen = side != 0.0
     if not seen.any():
@@ -79,3 +85,34 @@ def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domai
         levels = contour_levels(material.contours, lo, hi)
         rgb = color.to_rgb(material.contour_color, "contour_color")
         _draw(rgba, q, seen & np.isfinite(q), material.contour_width, rgb, levels=levels)
+
+
+def _lines_alone(rgba, material, source, geom, W, box, w_limits, c_limits, domain, bg8):
+    """overlay_pass with fill=False: each kind of line drawn white on black to find the
+    part of each pixel it covers (the same lines_kernel), then the contours over the
+    wireframe over the background, straight alpha; the surface's own colours gone."""
+    from dataclasses import replace
+    kinds = []
+    for keep in ("wireframe", "contours"):
+        if getattr(material, keep) is None:
+            continue
+        canvas = np.zeros_like(rgba)
+        alone = replace(material, fill=True, edgecolor="white", contour_color="white",
+                        **{k: None for k in ("wireframe", "contours") if k != keep})
+        overlay_pass(canvas, alone, source, geom, W, box, w_limits, c_limits, domain)
+        cov = canvas[..., 0].astype(np.float64) / 255.0
+        rgb = color.to_rgb(material.edgecolor if keep == "wireframe" else
+                           material.contour_color, "edgecolor" if keep == "wireframe"
+                           else "contour_color")
+        kinds.append((cov, np.asarray(rgb, dtype=np.float64)[:3]))
+    bg = np.asarray(bg8, dtype=np.float64) / 255.0
+    pre = np.zeros(rgba.shape[:2] + (3,))
+    a = np.zeros(rgba.shape[:2])
+    for cov, rgb in kinds:                      # (premultiplied: each over the last)
+        pre = cov[..., None] * rgb + (1.0 - cov[..., None]) * pre
+        a = cov + (1.0 - cov) * a
+    pre += (1.0 - a)[..., None] * bg[:3] * bg[3]
+    a += (1.0 - a) * bg[3]
+    out = np.where(a[..., None] > 0.0, pre / np.maximum(a, 1e-12)[..., None], 0.0)
+    rgba[..., :3] = np.round(np.clip(out, 0.0, 1.0) * 255.0).astype(np.uint8)
+    rgba[..., 3] = np.round(np.clip(a, 0.0, 1.0) * 255.0).astype(np.uint8)

@@ -352,14 +352,17 @@ def test_cli_texture_colour_and_lines(tmp_path, capsys, monkeypatch):
     base = ["render", "3*sin(x*cos(y))", "--x=-5:5", "--y=-5:5", "--size", "160x120"]
     assert main(base + ["-o", "plain.png"]) == 0
     for extra in (["--texture", "tex.png"], ["--color-by", "x*y", "--contours", "6"],
-                  ["--wireframe", "12"]):
+                  ["--wireframe", "12"], ["--wireframe", "12", "--lines-only"]):
         assert main(base + extra + ["-o", "out.png"]) == 0
         a = np.asarray(Image.open(tmp_path / "out.png"))
         b = np.asarray(Image.open(tmp_path / "plain.png"))
         assert a.shape == b.shape and (np.abs(a.astype(int) - b).max(-1) > 30).mean() > 0.02
+    # --lines-only: the lines over the white background, no surface
+    assert (a[..., :3].min(-1) > 250).mean() > 0.8
     capsys.readouterr()
     for extra, match in ((["--texture", "none.png"], "cannot be read"),
                          (["--contours", "0"], "contours must be from 1"),
+                         (["--lines-only"], "give wireframe= or contours="),
                          (["--color-by", "__import__('os')"], "not allowed")):
         try:
             code = main(base + extra + ["-o", "bad.png"])

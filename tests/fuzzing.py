@@ -41,6 +41,7 @@ OPTIONS = {
     "opacity": [1.0, 0.5, 0.3, 0.0, 0.8, 0.5, 2.0],
     "contours": [None, 5, 3, 12, [0.0, 0.5], 0, [math.nan]],
     "wireframe": [None, 8, 20, [3, 4], 5, 1e9],
+    "fill": [True, True, False, False, "no"],
     "color": [None, "u*v", "sin(u)", "1/u", "u - v", "u**"],
     "pixel_step": [1.0, 0.5, 3.0, 2.0, 1.5, 0.0],
     "focal_length": [None, 1.0, 0.5, 10.0, 2.0, -2.0],

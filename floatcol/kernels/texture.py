@@ -149,6 +149,19 @@ def _line_cover(dist, grad, width):
 
 
 @ngjit_inline
+def _to_level(levels, q):
+    """|q - the nearest of the sorted ``levels``| (inf: none)."""
+    n = levels.shape[0]
+    k = np.searchsorted(levels, q)
+    dist = np.inf
+    if k < n:
+        dist = levels[k] - q
+    if k > 0:
+        dist = min(dist, q - levels[k - 1])
+    return dist
+
+
+@ngjit_inline
 def _to_grid(q, q0, dq):
     """|q - the nearest of q0 + k dq| (lines_kernel's wireframe distance)."""
     return abs(q - (q0 + math.floor((q - q0) / dq + 0.5) * dq))
@@ -181,14 +194,7 @@ def layer_lines(lines, u, v, w, grad_u, grad_v, grad_w):
             r, g, b, al = _over(r, g, b, al, lines, LN_ER, cov)
     n = int(lines[LN_NLEV])
     if n > 0:
-        lv = lines[LN_SIZE:LN_SIZE + n]
-        k = np.searchsorted(lv, w)
-        dist = np.inf
-        if k < n:
-            dist = lv[k] - w
-        if k > 0:
-            dist = min(dist, w - lv[k - 1])
-        cov = _line_cover(dist, grad_w, lines[LN_CW])
+        cov = _line_cover(_to_level(lines[LN_SIZE:LN_SIZE + n], w), grad_w, lines[LN_CW])
         if cov > 0.0:
             r, g, b, al = _over(r, g, b, al, lines, LN_CR, cov)
     return r, g, b, al
@@ -378,26 +384,12 @@ def lines_kernel(q, seen, levels, origin, spacing, width, rgb, rgba):
             if not seen[i, col] or x != x:
                 continue
             if spacing > 0.0:
-                dist = abs(x - (origin + math.floor((x - origin) / spacing + 0.5) * spacing))
+                dist = _to_grid(x, origin, spacing)
             elif n == 0:
                 continue
             else:
-                k = np.searchsorted(levels, x)
-                dist = np.inf
-                if k < n:
-                    dist = levels[k] - x
-                if k > 0:
-                    dist = min(dist, x - levels[k - 1])
-            g = _grad(q, seen, i, col)
-            if not g == g:
-                continue
-            if g > 0.0:
-                px = dist / g
-            elif dist == 0.0:
-                px = 0.0
-            else:
-                continue
-            cov = min(max(width * 0.5 + 0.5 - px, 0.0), 1.0)
+                dist = _to_level(levels, x)
+            cov = _line_cover(dist, _grad(q, seen, i, col), width)
             if cov <= 0.0:
                 continue
             for ch in range(3):

@@ -28,6 +28,36 @@ def _draw(rgba, q, seen, width, rgb, levels=None, origin=0.0, spacing=0.0):
                  np.asarray(rgb, dtype=np.float64)[:3], rgba)
 
 
+def _draw_rim(rgba, q, qe, seen, width, rgb, origin, spacing):
+    """The wireframe lines q = origin + k spacing on the pixels just off the surface
+    whose edge surface is seen (qe: its q there, NaN elsewhere), each taking the change
+    of q a pixel of its seen neighbours (their own: lines_kernel's smaller one-sided
+    difference each way; the largest of them): the outer half of a line along the
+    domain's edge, which no pixel centre on the surface draws."""
+    rim = ~seen & np.isfinite(qe)
+    if not rim.any():
+        return
+    H, W = seen.shape
+    qs = np.where(seen, q, np.nan)
+    p = np.pad(qs, 1, constant_values=np.nan)
+    centre = p[1:-1, 1:-1]
+    with np.errstate(invalid="ignore"):
+        ways = []
+        for (a, b), (c, d) in (((0, 1), (2, 1)), ((1, 0), (1, 2))):
+            one = np.abs(p[a:a + H, b:b + W] - centre)
+            other = np.abs(p[c:c + H, d:d + W] - centre)
+            ways.append(np.fmin(one, other))
+        grad = np.sqrt(ways[0] ** 2 + ways[1] ** 2)          # (NaN where a way has none)
+        g = np.pad(grad, 1, constant_values=np.nan)
+        near = np.fmax(np.fmax(g[:-2, 1:-1], g[2:, 1:-1]), np.fmax(g[1:-1, :-2], g[1:-1, 2:]))
+        dist = np.abs(qe - (origin + np.floor((qe - origin) / spacing + 0.5) * spacing))
+        cov = np.clip(width * 0.5 + 0.5 - dist / near, 0.0, 1.0)
+    at = rim & np.isfinite(cov) & (near > 0.0) & (cov > 0.0)
+    c = cov[at][:, None]
+    line = np.asarray(rgb, dtype=np.float64)[:3] * 255.0
+    rgba[at, :3] = np.round(rgba[at, :3] * (1.0 - c) + line * c).astype(np.uint8)
+
+
 def contour_levels(contours, lo, hi):
     """The levels of ``contours``: N evenly spaced inside (lo, hi), or the values."""
     if isinstance(contours, bool):
@@ -57,14 +87,17 @@ def wire_counts(wireframe):
 
 
 def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domain,
-                 bg8=(255, 255, 255, 255)):
+                 bg8=(255, 255, 255, 255), edges=False):
     """Draw the material's contour and wireframe lines into rgba (in place); with
     ``fill`` False, the lines alone over the background ``bg8`` (a hidden-line
-    drawing: the surface, not drawn, hides those behind it)."""
+    drawing: the surface, not drawn, hides those behind it). With ``edges`` the
+    wireframe reaches the pixels whose centre is off the surface but whose edge
+    surface (section 6.4's edge buffer) is seen: the lines along the domain's edges
+    are whole there, not their inner half."""
     if not material.fill:
         _lines_alone(rgba, material, source, geom, W, box, w_limits, c_limits, domain, bg8)
         return
-    u, v, w, side = picture_planes(geom, W, box)
+    u, v, w, side, *rim_uv = picture_planes(geom, W, box, edges=edges)
     seen = side != 0.0
     if not seen.any():
         return
@@ -72,8 +105,11 @@ def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domai
         nu, nv = wire_counts(material.wireframe)
         rgb = color.to_rgb(material.edgecolor, "edgecolor")
         (ua, ub), (va, vb) = domain
-        for q, lo, hi, n in ((u, ua, ub, nu), (v, va, vb, nv)):
+        rims = rim_uv if edges else (None, None)
+        for q, qe, lo, hi, n in ((u, rims[0], ua, ub, nu), (v, rims[1], va, vb, nv)):
             _draw(rgba, q, seen, material.linewidth, rgb, origin=lo, spacing=(hi - lo) / (n - 1))
+            if qe is not None:
+                _draw_rim(rgba, q, qe, seen, material.linewidth, rgb, lo, (hi - lo) / (n - 1))
     if material.contours is not None:
         if source is not None and source.field is not None:
             q = np.full(u.shape, np.nan)
@@ -99,7 +135,8 @@ def _lines_alone(rgba, material, source, geom, W, box, w_limits, c_limits, domai
         canvas = np.zeros_like(rgba)
         alone = replace(material, fill=True, edgecolor="white", contour_color="white",
                         **{k: None for k in ("wireframe", "contours") if k != keep})
-        overlay_pass(canvas, alone, source, geom, W, box, w_limits, c_limits, domain)
+        overlay_pass(canvas, alone, source, geom, W, box, w_limits, c_limits, domain,
+                     edges=True)
         cov = canvas[..., 0].astype(np.float64) / 255.0
         rgb = color.to_rgb(material.edgecolor if keep == "wireframe" else
                            material.contour_color, "edgecolor" if keep == "wireframe"

@@ -109,10 +109,6 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
         if quality.method != "column":
             raise ValueError("opacity below 1 needs shaded pictures: method='column' (a line "
                              "drawing has no layers to blend)")
-        if any(p.material.contours is not None and p.material.color is not None
-               for p in layers):
-            raise ValueError("opacity below 1 draws contours of w: contours of a color "
-                             "field need opacity=1")
         if quality.area:
             raise ValueError("antialias='area' needs opaque surfaces: opacity=1 (translucent "
                              "layers are antialiased by their own coverage)")

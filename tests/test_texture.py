@@ -262,8 +262,6 @@ def test_bad_texture_and_line_options_name_what_to_fix(tmp_path):
         fc.render("u*v", wireframe=1, **kw)
     with pytest.raises(ValueError, match="linewidth must be"):
         fc.render("u*v", wireframe=4, linewidth=-1, **kw)
-    with pytest.raises(ValueError, match="contours of a color field need opacity=1"):
-        fc.render("u*v", color="u", contours=3, opacity=0.5, **kw)
     with pytest.raises(ValueError, match="method='column'"):
         fc.render("u*v", contours=3, method="horizon", **kw)
     with pytest.raises(ValueError, match="either texture or color"):

@@ -285,6 +285,30 @@ def test_lines_on_translucent_layers_are_the_opaque_overlays(proj):
 
 
 @pytest.mark.parametrize("proj", ["orthographic", "perspective"])
+def test_contours_of_a_colour_field_on_translucent_layers(proj):
+    """contours= with color= on a translucent layer: the field's contours, from its
+    values on the 1024 x 1024 grid the layers read its colours from (bilinear, its
+    partials the grid's), against the opaque surface's (the field at each pixel's
+    point), opacity 0.999 against 1, the field's limits given (the same levels).
+    Measured (200x150): 99.2 and 99.4 % of the opaque picture's line pixels lines here
+    too (1701 and 1514), 95.5 and 96.0 % of these the opaque one's, 7.7 and 6.5 levels
+    apart on them (r + g + b), the ink 1.03 times. Before, a ValueError."""
+    kw = dict(u=(-3, 3), v=(-3, 3), size=(200, 150), elev=35, azim=20, projection=proj,
+              antialias=False, color="u*v/3 + sin(u)", vmin=-3, vmax=3)
+    e = "sin(u)*cos(v)"
+    o, o0 = fc.render(e, contours=8, **kw), fc.render(e, **kw)
+    t, t0 = fc.render(e, contours=8, opacity=0.999, **kw), fc.render(e, opacity=0.999, **kw)
+    both = (o.side != 0) & (t.side != 0)
+    ink_o = np.abs(_rgb(o) - _rgb(o0)).sum(axis=-1)
+    ink_t = np.abs(_rgb(t) - _rgb(t0)).sum(axis=-1)
+    on_o, on_t = both & (ink_o > 3), both & (ink_t > 3)
+    assert on_o.sum() > 1500
+    assert (on_o & on_t).sum() >= 0.97 * on_o.sum()
+    assert (on_o & on_t).sum() >= 0.93 * on_t.sum()
+    assert 0.9 < ink_t[both].sum() / ink_o[both].sum() < 1.1
+
+
+@pytest.mark.parametrize("proj", ["orthographic", "perspective"])
 def test_lines_on_a_translucent_layer_lie_over_it_and_show_through_another(proj):
     """A line of colour L covering cov of a pixel on a layer of opacity a is laid over
     the crossing at alpha a cov (matplotlib's edges of a translucent surface: its

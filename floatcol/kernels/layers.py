@@ -48,7 +48,7 @@ from .layout import (
 )
 from .sample import column_x0, sample_point
 from .shade import _light, _side_rgb, toward_viewer
-from .texture import layer_lines, layer_texel
+from .texture import LN_FN, layer_field, layer_lines, layer_texel
 from .raster import _blocked_at
 from .shadow import point_shadow, soft_shadow
 
@@ -218,13 +218,34 @@ def _axis_grads(vp, nx, ny, nz, vx, vy, vz, depth):
     if abs(nv) < GRAZE:
         nv = GRAZE if nv >= 0.0 else -GRAZE
     # the axes u, v, w on the screen: (cb, -sa sb, ca sb), (-sb, -sa cb, ca cb), (0, ca, sa)
-    k = (cb * vx - sa * sb * vy + ca * sb * vz) / nv
-    grad_u = m * math.hypot(cb - nx * k, -sa * sb - ny * k)
-    k = (-sb * vx - sa * cb * vy + ca * cb * vz) / nv
-    grad_v = m * math.hypot(-sb - nx * k, -sa * cb - ny * k)
-    k = (ca * vy + sa * vz) / nv
-    grad_w = m * math.hypot(-nx * k, ca - ny * k)
-    return grad_u, grad_v, grad_w
+    return (_along(cb, -sa * sb, ca * sb, nx, ny, vx, vy, vz, nv, m),
+            _along(-sb, -sa * cb, ca * cb, nx, ny, vx, vy, vz, nv, m),
+            _along(0.0, ca, sa, nx, ny, vx, vy, vz, nv, m))
+
+
+@ngjit_inline
+def _along(gx, gy, gz, nx, ny, vx, vy, vz, nv, m):
+    """_axis_grads' Δq a pixel for q's gradient g = (gx, gy, gz) on the screen."""
+    k = (gx * vx + gy * vy + gz * vz) / nv
+    return m * math.hypot(gx - nx * k, gy - ny * k)
+
+
+@ngjit_inline
+def _field_grad(vp, qu, qv, nx, ny, nz, vx, vy, vz, depth):
+    """_axis_grads for a colour field q(u, v) of partials qu, qv (box units): its
+    gradient on the screen qu times u's axis plus qv times v's."""
+    ca = vp[VP_CA]
+    sa = vp[VP_SA]
+    cb = vp[VP_CB]
+    sb = vp[VP_SB]
+    m = 1.0 / vp[VP_SCALE]
+    if vp[VP_ORTHO] == 0.0:
+        m *= (depth + vp[VP_D3]) / vp[VP_D1]
+    nv = nx * vx + ny * vy + nz * vz
+    if abs(nv) < GRAZE:
+        nv = GRAZE if nv >= 0.0 else -GRAZE
+    return _along(qu * cb - qv * sb, -(qu * sb + qv * cb) * sa, (qu * sb + qv * cb) * ca,
+                  nx, ny, vx, vy, vz, nv, m)
 
 
 @ngjit_inline
@@ -302,7 +323,11 @@ def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists,
         # alpha a laid over the lit crossing, an unlit colour as the opaque overlays';
         # the intensity, which those leave alone, the crossing's at the alpha of both
         gu, gv, gw = _axis_grads(vp, nx, ny, nz, vx, vy, vz, depth)
-        lr, lg, lb, la = layer_lines(lut[5], p[A_U], p[A_V], p[A_W], gu, gv, gw)
+        q = p[A_W]
+        if lut[5][LN_FN] > 0.0:          # the contours are a colour field's
+            q, qu, qv = layer_field(lut[5], p[A_U], p[A_V])
+            gw = _field_grad(vp, qu, qv, nx, ny, nz, vx, vy, vz, depth)
+        lr, lg, lb, la = layer_lines(lut[5], p[A_U], p[A_V], q, gu, gv, gw)
         if la > 0.0:
             keep = 1.0 - a * la
             crec[C_R] = a * lr + keep * crec[C_R]

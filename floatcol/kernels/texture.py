@@ -129,7 +129,12 @@ LN_EW = 10       # their width in pixels, their colour
 LN_ER = 11
 LN_EG = 12
 LN_EB = 13
-LN_SIZE = 14
+LN_FN = 14       # > 0: the contours are a colour field's, its values on an LN_FN x LN_FN
+LN_FU0 = 15      # grid after the levels (rows along v), at x = (u - FU0) FSU,
+LN_FSU = 16      # y = (v - FV0) FSV (u, v in box units), the levels in its units
+LN_FV0 = 17
+LN_FSV = 18
+LN_SIZE = 19
 
 
 @ngjit_inline
@@ -146,6 +151,28 @@ def _line_cover(dist, grad, width):
     else:
         return 0.0
     return min(max(width * 0.5 + 0.5 - px, 0.0), 1.0)
+
+
+@ngjit_inline
+def layer_field(lines, u, v):
+    """(q, dq/du, dq/dv): the colour field of ``lines`` (LN_FN) at (u, v) (box units),
+    bilinear on its grid (clamped to it), and its partials; NaN at its holes."""
+    n = int(lines[LN_FN])
+    base = LN_SIZE + int(lines[LN_NLEV])
+    x = min(max((u - lines[LN_FU0]) * lines[LN_FSU], 0.0), n - 1.0)
+    y = min(max((v - lines[LN_FV0]) * lines[LN_FSV], 0.0), n - 1.0)
+    i = min(int(y), n - 2)
+    j = min(int(x), n - 2)
+    fx = x - j
+    fy = y - i
+    g00 = lines[base + i * n + j]
+    g01 = lines[base + i * n + j + 1]
+    g10 = lines[base + (i + 1) * n + j]
+    g11 = lines[base + (i + 1) * n + j + 1]
+    q = (g00 * (1.0 - fx) + g01 * fx) * (1.0 - fy) + (g10 * (1.0 - fx) + g11 * fx) * fy
+    qx = (g01 - g00) * (1.0 - fy) + (g11 - g10) * fy
+    qy = (g10 - g00) * (1.0 - fx) + (g11 - g01) * fx
+    return q, qx * lines[LN_FSU], qy * lines[LN_FSV]
 
 
 @ngjit_inline
@@ -177,10 +204,11 @@ def _over(r, g, b, al, lines, k, cov):
 
 @ngjit_inline
 def layer_lines(lines, u, v, w, grad_u, grad_v, grad_w):
-    """The lines of a translucent layer's crossing at (u, v, w) (box units): their
+    """The lines of a translucent layer's crossing at (u, v) (box units): their
     colour premultiplied by the part of the pixel they cover, and that part, (r, g, b,
     a); the wireframe's and then the contours over them (LN_*, overlays.py's order),
-    q = u, v and w changing grad_u, grad_v, grad_w a pixel across the picture there."""
+    u, v and w (the contours' q: the height in box units, or the colour field's value)
+    changing grad_u, grad_v, grad_w a pixel across the picture there."""
     r = 0.0
     g = 0.0
     b = 0.0

@@ -282,6 +282,11 @@ class Source:
     field: object
     extent: tuple
     filter: str
+    #: a translucent surface's colour field sampled on the FIELD_TEXELS grid over the
+    #: extent (its contours are drawn from it: kernels/texture.py LN_*), and the
+    #: limits of its colours (vmin, vmax or its range)
+    grid: object = None
+    limits: object = None
 
 
 _LEVELS = {}          # a texture's mip-map levels, by its identity and contents
@@ -349,7 +354,9 @@ def prepare(material, domain, vars=None):
             field = as_surface(field, vars)
     if field is not None and material.opacity < 1.0:
         # the translucent layers read a texture: the field sampled on a grid, coloured
-        return Source(_field_texture(material, field, extent), None, extent, "mipmap")
+        vals = _field_grid(field, extent)
+        levels, limits = _field_texture(material, vals)
+        return Source(levels, None, extent, "mipmap", vals, limits)
     if callable(tex) and material.opacity < 1.0:
         # ... and a texture function's colours on that grid
         return Source(_function_texture(tex, extent), None, extent, "mipmap")
@@ -376,21 +383,28 @@ def _function_texture(fn, extent):
     return Levels(pyramid(img.reshape(n, n, 4)))
 
 
-def _field_texture(material, field, extent):
-    """Levels of the colour field's colours on a FIELD_TEXELS grid (NaN: transparent,
-    the surface's own colour shows)."""
+def _field_grid(field, extent):
+    """The colour field's values at the nodes of a FIELD_TEXELS grid over ``extent``
+    (rows along v; NaN at its holes)."""
     n = FIELD_TEXELS
     u0, u1, v0, v1 = extent
     gu, gv = np.meshgrid(np.linspace(u0, u1, n), np.linspace(v0, v1, n))
-    vals = field_values(field, gu, gv, np.ones(gu.shape, dtype=bool), extent).reshape(n, n)
+    return field_values(field, gu, gv, np.ones(gu.shape, dtype=bool), extent).reshape(n, n)
+
+
+def _field_texture(material, vals):
+    """(levels, limits): the mip-map levels of the colour field's colours on its grid
+    ``vals`` (NaN: transparent, the surface's own colour shows) and the limits of its
+    colours (Material.color_table's, in the field's units)."""
+    n = vals.shape[0]
     finite = vals[np.isfinite(vals)]
     rng = np.array([[finite.min(), finite.max()]]) if finite.size else np.array([[0.0, 1.0]])
-    lut, lo, hi, _ = material.color_table(rng)
+    lut, lo, hi, limits = material.color_table(rng)
     img = np.zeros((n, n, 4), dtype=np.float32)
     ok = np.isfinite(vals)
     img[ok, :3] = colour_table_rgb(vals[ok], lut, lo, hi)
     img[ok, 3] = 1.0
-    return Levels(pyramid(img))
+    return Levels(pyramid(img)), limits
 
 
 def check_filter(name):

@@ -88,17 +88,28 @@ def layer_texture(source, box):
 _NO_LINES = np.zeros(0)
 
 
-def layer_lines(material, domain, box, w_limits):
-    """A layer's lines for kernels/layers.py (texture.py's LN_*: its contours of w and
-    its wireframe, as overlays.overlay_pass draws them on an opaque surface, in the
-    box's units), or an empty array: none."""
+def layer_lines(material, domain, box, w_limits, source=None):
+    """A layer's lines for kernels/layers.py (texture.py's LN_*: its contours of w, or
+    of its colour field from the field's grid (``source.grid``), and its wireframe,
+    as overlays.overlay_pass draws them on an opaque surface, in the box's units), or
+    an empty array: none."""
     from ..kernels import texture as T
     if not material.overlaid:
         return _NO_LINES
     levels = np.zeros(0)
+    grid = np.zeros(0)
     head = np.zeros(T.LN_SIZE)
-    if material.contours is not None:
+    if material.contours is not None and source is not None and source.grid is not None:
+        levels = np.sort(contour_levels(material.contours, *source.limits))
+        grid = np.ascontiguousarray(source.grid, dtype=np.float64).ravel()
+        n = source.grid.shape[0]
+        u0, u1, v0, v1 = source.extent
+        head[T.LN_FN] = n
+        head[T.LN_FU0], head[T.LN_FSU] = u0 * box[0], (n - 1) / ((u1 - u0) * box[0])
+        head[T.LN_FV0], head[T.LN_FSV] = v0 * box[1], (n - 1) / ((v1 - v0) * box[1])
+    elif material.contours is not None:
         levels = np.sort(contour_levels(material.contours, *w_limits)) * box[2]
+    if material.contours is not None:
         head[T.LN_NLEV] = len(levels)
         head[T.LN_CW] = material.contour_width
         head[T.LN_CR:T.LN_CB + 1] = color.to_rgb(material.contour_color, "contour_color")[:3]
@@ -110,7 +121,7 @@ def layer_lines(material, domain, box, w_limits):
         head[T.LN_V0], head[T.LN_DV] = va * box[1], (vb - va) / (nv - 1) * box[1]
         head[T.LN_EW] = material.linewidth
         head[T.LN_ER:T.LN_EB + 1] = color.to_rgb(material.edgecolor, "edgecolor")[:3]
-    return np.concatenate([head, levels])
+    return np.concatenate([head, levels, grid])
 
 
 #: kernels/layers.py's occ where no objects cast shadows
@@ -213,7 +224,7 @@ def _composited(layers, views, drawn, box, background, texture, ks, slots, B, aa
         w_limits.append(table.w_limits)
         sh, hmax, hmin, hsurf, slopes, occ = shadow_vector(texture, view, k)
         colours = (table.lut, *layer_texture(p.source, box),
-                   layer_lines(p.material, p.domain, box, table.w_limits))  # (not the box's)
+                   layer_lines(p.material, p.domain, box, table.w_limits, p.source))
         plans.append((surface, vp, table.mp, colours, sh, hmax, hmin, hsurf, slopes, occ))
     offsets_px, centre = offsets(sub)
     order = [centre] + [i for i in range(sub) if i != centre]

@@ -28,31 +28,43 @@ def _draw(rgba, q, seen, width, rgb, levels=None, origin=0.0, spacing=0.0):
                  np.asarray(rgb, dtype=np.float64)[:3], rgba)
 
 
-def _draw_rim(rgba, q, qe, seen, width, rgb, origin, spacing):
-    """The wireframe lines q = origin + k spacing on the pixels just off the surface
-    whose edge surface is seen (qe: its q there, NaN elsewhere), each taking the change
-    of q a pixel of its seen neighbours (their own: lines_kernel's smaller one-sided
-    difference each way; the largest of them): the outer half of a line along the
-    domain's edge, which no pixel centre on the surface draws."""
-    rim = ~seen & np.isfinite(qe)
-    if not rim.any():
-        return
+def _draw_rim(rgba, q, qe, seen, width, rgb, lo, hi, n):
+    """The wireframe lines q = lo + k (hi - lo) / (n - 1) on the pixels just off the
+    surface: the outer half of a line along the domain's edge, which no pixel centre
+    on the surface draws. Where the edge buffer has the surface there (qe: its q, NaN
+    elsewhere: the ends of the columns' runs), any line at its q; elsewhere (across
+    the columns) the edge lines q = lo, hi where q carried on from the two pixels
+    beside it on the surface (2 q1 - q2) lies outside [lo, hi] (a silhouette, where
+    the surface goes on behind, does not). Each takes the change of q a pixel of its
+    seen neighbours (their own: lines_kernel's smaller one-sided difference each way;
+    the largest of them)."""
     H, W = seen.shape
+    spacing = (hi - lo) / (n - 1)
     qs = np.where(seen, q, np.nan)
-    p = np.pad(qs, 1, constant_values=np.nan)
-    centre = p[1:-1, 1:-1]
+    p = np.pad(qs, 2, constant_values=np.nan)
+    centre = p[2:-2, 2:-2]
+
+    def shifted(di, dj):
+        return p[2 + di:2 + di + H, 2 + dj:2 + dj + W]
     with np.errstate(invalid="ignore"):
-        ways = []
-        for (a, b), (c, d) in (((0, 1), (2, 1)), ((1, 0), (1, 2))):
-            one = np.abs(p[a:a + H, b:b + W] - centre)
-            other = np.abs(p[c:c + H, d:d + W] - centre)
-            ways.append(np.fmin(one, other))
-        grad = np.sqrt(ways[0] ** 2 + ways[1] ** 2)          # (NaN where a way has none)
-        g = np.pad(grad, 1, constant_values=np.nan)
-        near = np.fmax(np.fmax(g[:-2, 1:-1], g[2:, 1:-1]), np.fmax(g[1:-1, :-2], g[1:-1, 2:]))
-        dist = np.abs(qe - (origin + np.floor((qe - origin) / spacing + 0.5) * spacing))
+        ways = [np.fmin(np.abs(shifted(-1, 0) - centre), np.abs(shifted(1, 0) - centre)),
+                np.fmin(np.abs(shifted(0, -1) - centre), np.abs(shifted(0, 1) - centre))]
+        grad = np.pad(np.sqrt(ways[0] ** 2 + ways[1] ** 2), 1, constant_values=np.nan)
+        near = np.fmax(np.fmax(grad[:-2, 1:-1], grad[2:, 1:-1]),
+                       np.fmax(grad[1:-1, :-2], grad[1:-1, 2:]))
+        rim = ~seen & np.isfinite(qe)
+        dist = np.where(rim, np.abs(qe - (lo + np.floor((qe - lo) / spacing + 0.5) * spacing)),
+                        np.nan)
+        # across the columns: q carried on from the two pixels beside, each way
+        for di, dj in ((0, -1), (0, 1), (-1, 0), (1, 0)):
+            ext = 2.0 * shifted(di, dj) - shifted(2 * di, 2 * dj)
+            edge = np.where(ext < lo, lo - ext, np.where(ext > hi, ext - hi, np.nan))
+            take = ~seen & ~rim & np.isfinite(edge)
+            dist = np.where(take, np.fmin(dist, edge), dist)
         cov = np.clip(width * 0.5 + 0.5 - dist / near, 0.0, 1.0)
-    at = rim & np.isfinite(cov) & (near > 0.0) & (cov > 0.0)
+    at = ~seen & np.isfinite(cov) & (near > 0.0) & (cov > 0.0)
+    if not at.any():
+        return
     c = cov[at][:, None]
     line = np.asarray(rgb, dtype=np.float64)[:3] * 255.0
     rgba[at, :3] = np.round(rgba[at, :3] * (1.0 - c) + line * c).astype(np.uint8)
@@ -109,7 +121,7 @@ def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domai
         for q, qe, lo, hi, n in ((u, rims[0], ua, ub, nu), (v, rims[1], va, vb, nv)):
             _draw(rgba, q, seen, material.linewidth, rgb, origin=lo, spacing=(hi - lo) / (n - 1))
             if qe is not None:
-                _draw_rim(rgba, q, qe, seen, material.linewidth, rgb, lo, (hi - lo) / (n - 1))
+                _draw_rim(rgba, q, qe, seen, material.linewidth, rgb, lo, hi, n)
     if material.contours is not None:
         if source is not None and source.field is not None:
             q = np.full(u.shape, np.nan)

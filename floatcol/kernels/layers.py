@@ -199,6 +199,19 @@ GRAZE = 0.05
 
 
 @ngjit_inline
+def _pixel_step(vp, nx, ny, nz, vx, vy, vz, depth):
+    """(cos alpha, sin alpha, cos beta, sin beta, m, N.V) of _axis_grads: the view's
+    angles, the pixel's step m across the ray at ``depth``, and N.V kept from GRAZE."""
+    m = 1.0 / vp[VP_SCALE]
+    if vp[VP_ORTHO] == 0.0:
+        m *= (depth + vp[VP_D3]) / vp[VP_D1]
+    nv = nx * vx + ny * vy + nz * vz
+    if abs(nv) < GRAZE:
+        nv = GRAZE if nv >= 0.0 else -GRAZE
+    return vp[VP_CA], vp[VP_SA], vp[VP_CB], vp[VP_SB], m, nv
+
+
+@ngjit_inline
 def _axis_grads(vp, nx, ny, nz, vx, vy, vz, depth):
     """How much u, v and w (the box's units) change from a point of the surface to
     the one a pixel away on the screen, (nx, ny, nz) its unit normal and (vx, vy, vz)
@@ -207,16 +220,7 @@ def _axis_grads(vp, nx, ny, nz, vx, vy, vz, depth):
     the ray back onto the tangent plane, ΔP = m (a, b, 0) + c D with D = -V and
     N.ΔP = 0, so that Δq = m (a (g_x - n_x k) + b (g_y - n_y k)), k = g.V / N.V,
     for g the screen image of q's axis (the rotation of eqs. 1-2's columns)."""
-    ca = vp[VP_CA]
-    sa = vp[VP_SA]
-    cb = vp[VP_CB]
-    sb = vp[VP_SB]
-    m = 1.0 / vp[VP_SCALE]
-    if vp[VP_ORTHO] == 0.0:
-        m *= (depth + vp[VP_D3]) / vp[VP_D1]
-    nv = nx * vx + ny * vy + nz * vz
-    if abs(nv) < GRAZE:
-        nv = GRAZE if nv >= 0.0 else -GRAZE
+    ca, sa, cb, sb, m, nv = _pixel_step(vp, nx, ny, nz, vx, vy, vz, depth)
     # the axes u, v, w on the screen: (cb, -sa sb, ca sb), (-sb, -sa cb, ca cb), (0, ca, sa)
     return (_along(cb, -sa * sb, ca * sb, nx, ny, vx, vy, vz, nv, m),
             _along(-sb, -sa * cb, ca * cb, nx, ny, vx, vy, vz, nv, m),
@@ -234,16 +238,7 @@ def _along(gx, gy, gz, nx, ny, vx, vy, vz, nv, m):
 def _field_grad(vp, qu, qv, nx, ny, nz, vx, vy, vz, depth):
     """_axis_grads for a colour field q(u, v) of partials qu, qv (box units): its
     gradient on the screen qu times u's axis plus qv times v's."""
-    ca = vp[VP_CA]
-    sa = vp[VP_SA]
-    cb = vp[VP_CB]
-    sb = vp[VP_SB]
-    m = 1.0 / vp[VP_SCALE]
-    if vp[VP_ORTHO] == 0.0:
-        m *= (depth + vp[VP_D3]) / vp[VP_D1]
-    nv = nx * vx + ny * vy + nz * vz
-    if abs(nv) < GRAZE:
-        nv = GRAZE if nv >= 0.0 else -GRAZE
+    ca, sa, cb, sb, m, nv = _pixel_step(vp, nx, ny, nz, vx, vy, vz, depth)
     return _along(qu * cb - qv * sb, -(qu * sb + qv * cb) * sa, (qu * sb + qv * cb) * ca,
                   nx, ny, vx, vy, vz, nv, m)
 

@@ -257,6 +257,22 @@ def _rgb(r):
     return r.rgba[..., :3].astype(float)
 
 
+def _against_opaque_lines(e, lines, kw):
+    """The lines of ``e`` drawn translucent (opacity 0.999) and opaque: (their line
+    pixels (changed by the lines by more than 3 levels, r + g + b) opaque, translucent,
+    the translucent ink over the opaque one, the mean difference on their line
+    pixels)."""
+    o, o0 = fc.render(e, **lines, **kw), fc.render(e, **kw)
+    t, t0 = fc.render(e, opacity=0.999, **lines, **kw), fc.render(e, opacity=0.999, **kw)
+    assert t.stats["translucent"]
+    both = (o.side != 0) & (t.side != 0)
+    ink_o = np.abs(_rgb(o) - _rgb(o0)).sum(axis=-1)
+    ink_t = np.abs(_rgb(t) - _rgb(t0)).sum(axis=-1)
+    on_o, on_t = both & (ink_o > 3), both & (ink_t > 3)
+    apart = np.abs(_rgb(o) - _rgb(t)).sum(axis=-1)[on_o | on_t].mean()
+    return on_o, on_t, ink_t[both].sum() / ink_o[both].sum(), apart
+
+
 @pytest.mark.parametrize("proj", ["orthographic", "perspective"])
 def test_lines_on_translucent_layers_are_the_opaque_overlays(proj):
     """Contours and a wireframe on a translucent layer (kernels/layers.py: each
@@ -269,19 +285,13 @@ def test_lines_on_translucent_layers_are_the_opaque_overlays(proj):
     lines' ink 1.029 and 1.031 times the opaque one's. Before, a ValueError."""
     kw = dict(u=(-3, 3), v=(-3, 3), size=(200, 150), elev=35, azim=20, projection=proj,
               antialias=False)
-    e, lines = "sin(u)*cos(v)", dict(contours=10, wireframe=9)
-    o, o0 = fc.render(e, **lines, **kw), fc.render(e, **kw)
-    t, t0 = fc.render(e, opacity=0.999, **lines, **kw), fc.render(e, opacity=0.999, **kw)
-    assert t.stats["translucent"]
-    both = (o.side != 0) & (t.side != 0)
-    ink_o = np.abs(_rgb(o) - _rgb(o0)).sum(axis=-1)
-    ink_t = np.abs(_rgb(t) - _rgb(t0)).sum(axis=-1)
-    on_o, on_t = both & (ink_o > 3), both & (ink_t > 3)
+    on_o, on_t, ink, apart = _against_opaque_lines(
+        "sin(u)*cos(v)", dict(contours=10, wireframe=9), kw)
     assert on_o.sum() > 4000
     assert (on_o & on_t).sum() >= 0.99 * on_o.sum()
     assert (on_o & on_t).sum() >= 0.96 * on_t.sum()
-    assert np.abs(_rgb(o) - _rgb(t)).sum(axis=-1)[on_o | on_t].mean() < 8.0
-    assert 0.95 < ink_t[both].sum() / ink_o[both].sum() < 1.08
+    assert apart < 8.0
+    assert 0.95 < ink < 1.08
 
 
 @pytest.mark.parametrize("proj", ["orthographic", "perspective"])
@@ -295,17 +305,11 @@ def test_contours_of_a_colour_field_on_translucent_layers(proj):
     apart on them (r + g + b), the ink 1.03 times. Before, a ValueError."""
     kw = dict(u=(-3, 3), v=(-3, 3), size=(200, 150), elev=35, azim=20, projection=proj,
               antialias=False, color="u*v/3 + sin(u)", vmin=-3, vmax=3)
-    e = "sin(u)*cos(v)"
-    o, o0 = fc.render(e, contours=8, **kw), fc.render(e, **kw)
-    t, t0 = fc.render(e, contours=8, opacity=0.999, **kw), fc.render(e, opacity=0.999, **kw)
-    both = (o.side != 0) & (t.side != 0)
-    ink_o = np.abs(_rgb(o) - _rgb(o0)).sum(axis=-1)
-    ink_t = np.abs(_rgb(t) - _rgb(t0)).sum(axis=-1)
-    on_o, on_t = both & (ink_o > 3), both & (ink_t > 3)
+    on_o, on_t, ink, _ = _against_opaque_lines("sin(u)*cos(v)", dict(contours=8), kw)
     assert on_o.sum() > 1500
     assert (on_o & on_t).sum() >= 0.97 * on_o.sum()
     assert (on_o & on_t).sum() >= 0.93 * on_t.sum()
-    assert 0.9 < ink_t[both].sum() / ink_o[both].sum() < 1.1
+    assert 0.9 < ink < 1.1
 
 
 @pytest.mark.parametrize("proj", ["orthographic", "perspective"])

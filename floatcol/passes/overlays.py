@@ -12,6 +12,8 @@ itself is seen: a hidden part of a line is never drawn.
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from .. import color
@@ -139,7 +141,6 @@ def _lines_alone(rgba, material, source, geom, W, box, w_limits, c_limits, domai
     """overlay_pass with fill=False: each kind of line drawn white on black to find the
     part of each pixel it covers (the same lines_kernel), then the contours over the
     wireframe over the background, straight alpha; the surface's own colours gone."""
-    from dataclasses import replace
     kinds = []
     for keep in ("wireframe", "contours"):
         if getattr(material, keep) is None:

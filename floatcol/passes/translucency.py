@@ -99,17 +99,17 @@ def layer_lines(material, domain, box, w_limits, source=None):
     levels = np.zeros(0)
     grid = np.zeros(0)
     head = np.zeros(T.LN_SIZE)
-    if material.contours is not None and source is not None and source.grid is not None:
-        levels = np.sort(contour_levels(material.contours, *source.limits))
-        grid = np.ascontiguousarray(source.grid, dtype=np.float64).ravel()
-        n = source.grid.shape[0]
-        u0, u1, v0, v1 = source.extent
-        head[T.LN_FN] = n
-        head[T.LN_FU0], head[T.LN_FSU] = u0 * box[0], (n - 1) / ((u1 - u0) * box[0])
-        head[T.LN_FV0], head[T.LN_FSV] = v0 * box[1], (n - 1) / ((v1 - v0) * box[1])
-    elif material.contours is not None:
-        levels = np.sort(contour_levels(material.contours, *w_limits)) * box[2]
     if material.contours is not None:
+        if source is not None and source.grid is not None:     # a colour field's
+            levels = np.sort(contour_levels(material.contours, *source.limits))
+            grid = np.ascontiguousarray(source.grid, dtype=np.float64).ravel()
+            n = source.grid.shape[0]
+            u0, u1, v0, v1 = source.extent
+            head[T.LN_FN] = n
+            head[T.LN_FU0], head[T.LN_FSU] = u0 * box[0], (n - 1) / ((u1 - u0) * box[0])
+            head[T.LN_FV0], head[T.LN_FSV] = v0 * box[1], (n - 1) / ((v1 - v0) * box[1])
+        else:                                                   # w's, in the box's units
+            levels = np.sort(contour_levels(material.contours, *w_limits)) * box[2]
         head[T.LN_NLEV] = len(levels)
         head[T.LN_CW] = material.contour_width
         head[T.LN_CR:T.LN_CB + 1] = color.to_rgb(material.contour_color, "contour_color")[:3]

@@ -170,16 +170,24 @@ def warm_all():
     from .terrain import GUEDES_VARIANTS, guedes
     warm()
     expr = "3*sin(u*cos(v))"
-    for proj in ("orthographic", "perspective"):
-        kw = dict(u=(-5, 5), v=(-5, 5), size=(64, 48), projection=proj)
-        for opts in (dict(antialias=3), dict(antialias="area"), dict(opacity=0.5),
-                     dict(shadows=True), dict(shadows="on-the-fly"),
-                     dict(shadows=True, light_radius=1.0), dict(opacity=0.5, shadows=True),
-                     dict(texture=np.linspace(0, 1, 48).reshape(4, 4, 3)),
-                     dict(color="u + v"), dict(contours=[0.0]), dict(wireframe=(5, 5)),
-                     dict(color="u + v", contours=[0.0]),
-                     dict(method="horizon"), dict(sampling="adaptive")):
-            fc.render(expr, **kw, **opts).intensity
+
+    def both(**opts):
+        for proj in ("orthographic", "perspective"):
+            fc.render(expr, u=(-5, 5), v=(-5, 5), size=(64, 48), projection=proj,
+                      **opts).intensity
+    # (in about the order in which the test suite first meets them: its tests wait
+    # for this process's kernels rather than compile them beside it, tests/conftest.py)
+    both(antialias=3)
+    both(antialias="area")
+    fc.render_many([fc.Layer(expr, ((-5, 5), (-5, 5))), fc.Layer("u*v/5", ((-5, 5), (-5, 5)))],
+                   size=(64, 48))
+    for opts in (dict(wireframe=(5, 5)), dict(opacity=0.5),
+                 dict(texture=np.linspace(0, 1, 48).reshape(4, 4, 3)), dict(contours=[0.0]),
+                 dict(color="u + v"), dict(color="u + v", contours=[0.0]), dict(method="horizon"),
+                 dict(shadows=True), dict(shadows="on-the-fly"),
+                 dict(shadows=True, light_radius=1.0), dict(opacity=0.5, shadows=True),
+                 dict(sampling="adaptive")):
+        both(**opts)
     z = np.sin(np.linspace(0, 6, 33))[:, None] * np.cos(np.linspace(0, 5, 33))[None, :]
     hf = fc.HeightField(3 * z, u=(0, 32), v=(0, 32))
     objects = [fc.tree(16, 16, 3), fc.box(8, 8, 2, 2, 2), fc.pole(20, 20, 4), fc.marker(24, 8, 1)]
@@ -198,8 +206,6 @@ def warm_all():
         fc.render(hf, **cam, antialias="area" if area else True).intensity
     for variant in GUEDES_VARIANTS:
         guedes(hf, (16, 1), size=(32, 18), variant=variant)
-    fc.render_many([fc.Layer(expr, ((-5, 5), (-5, 5))), fc.Layer("u*v/5", ((-5, 5), (-5, 5)))],
-                   size=(64, 48))
 
 
 def main(argv=None):

@@ -92,26 +92,28 @@ def demo():
 
 
 # ---------------------------------------------------------------------------------
-# Background jobs. A clean clone's suite (CI) spent about 300 of its 580 s compiling,
-# on one core (Numba compiles on one), the other idle: the kernels with Numba's bounds
-# checks (test_fuzz, its own cache, about 110 s) and the GPU kernels' PTX (test_cuda,
-# about 50 s) share nothing with the other tests and run in processes of their own;
-# the CPU kernels that the default picture does not use (about 85 s) compile into the
-# suite's cache as the tests first meet them (_compile_every_kernel, below, does it
-# beside them instead). A test module registers such work as a job
-# (background_job); once the tests are collected, the jobs of the selected tests run
-# one after another in one thread of this process, each waiting on its subprocess,
-# while the suite goes on; the test takes the outcome (background_result, which
-# waits for it, or runs the job itself where it was not started) and asserts on it
-# as before.
+# Background jobs. A clean clone's suite (CI) is CPU-bound on 2 cores, and about 450
+# of its 660 s of CPU go to Numba compiling: the kernels with Numba's bounds checks
+# (test_fuzz, its own cache, about 110 s) and the GPU kernels' PTX (test_cuda, about
+# 80 s) share nothing with the other tests and run in processes of their own; every
+# CPU kernel (about 170 s: the default picture's and those that sub-columns, area
+# sampling, translucency, shadows, textures, ... add) is compiled into the suite's
+# cache by one more process (_compile_every_kernel, below), which the tests wait for
+# rather than compile a kernel a second time beside it (_wait_for_the_kernels_job).
+# A test module registers such work as a job (background_job); once the tests are
+# collected, the jobs of the selected tests run in threads of this process, one
+# after another within a lane, each thread waiting on its subprocess, while the
+# suite goes on; the test takes the outcome (background_result, which waits for it,
+# or runs the job itself where it was not started) and asserts on it as before.
 # ---------------------------------------------------------------------------------
 
 class _Job:
-    def __init__(self, name, consumer, fn, order):
+    def __init__(self, name, consumer, fn, order, lane):
         self.name = name
         self.consumer = consumer        # the test function that asserts on the outcome
         self.fn = fn
-        self.order = order              # the jobs run in this order
+        self.order = order              # the jobs of a lane run in this order
+        self.lane = lane                # lanes run side by side
         self.started = False
         self.done = threading.Event()
         self.value = None
@@ -137,14 +139,15 @@ class _Job:
 _JOBS = {}
 
 
-def background_job(name, consumer, order):
+def background_job(name, consumer, order, lane=0):
     """Register fn(job) as the background job ``name`` whose outcome the test function
     named ``consumer`` asserts on (the job runs where that test is selected); fn may
     add the subprocesses it starts to job.procs (stopped if the session ends before
-    they do). The jobs run by ``order``; their consumers run
-    after every other test, so that the jobs have the whole session to finish."""
+    they do). The jobs of a ``lane`` run one after another by ``order``, the lanes
+    side by side; their consumers run after every other test, so that the jobs have
+    the whole session to finish."""
     def register(fn):
-        _JOBS[name] = _Job(name, consumer, fn, order)
+        _JOBS[name] = _Job(name, consumer, fn, order, lane)
         return fn
     return register
 
@@ -159,6 +162,29 @@ def background_result(name):
     if job.error is not None:
         raise job.error
     return job.value
+
+
+#: the CPU priority (nice) of the background jobs' processes that no test waits for
+#: until the last tests
+BEHIND = 10
+
+
+#: the repository's folder: a job's process starts there, not in the current folder,
+#: which a test may have changed to a temporary one that is gone by the time the job
+#: runs (test_bounds_checked_kernels failed with a FileNotFoundError from os.getcwd())
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def _behind():
+    os.nice(BEHIND)
+
+
+#: preexec_fn of a background job's process whose outcome only the last tests take
+#: (the PTX, the bounds-checked kernels): a lower CPU priority, so that the tests
+#: (which cannot use both cores) go on at full speed while it runs, and it takes the
+#: core they leave idle, and the whole of it once the tests are done (None where
+#: processes have no nice value: Windows, which takes no preexec_fn either)
+behind_the_tests = _behind if hasattr(os, "nice") else None
 
 
 def _run_jobs(jobs):
@@ -190,9 +216,9 @@ def pytest_collection_finish(session):
     wanted = {_test_name(item) for item in session.items}
     jobs = sorted((job for job in _JOBS.values() if job.consumer in wanted),
                   key=lambda job: job.order)
-    if jobs:
-        threading.Thread(target=_run_jobs, args=(jobs,), name="floatcol-test-jobs",
-                         daemon=True).start()
+    for lane in sorted({job.lane for job in jobs}):
+        threading.Thread(target=_run_jobs, args=([j for j in jobs if j.lane == lane],),
+                         name=f"floatcol-test-jobs-{lane}", daemon=True).start()
 
 
 def pytest_sessionfinish(session):
@@ -203,19 +229,19 @@ def pytest_sessionfinish(session):
                 proc.wait()
 
 
-@background_job("kernels", consumer="test_warm_all_compiles_every_kernel", order=1)
+@background_job("kernels", consumer="test_warm_all_compiles_every_kernel", order=0, lane=1)
 def _compile_every_kernel(job):
-    """A clean clone's suite compiled its CPU kernels as the tests came to them, one
-    after another in the test process (about 140 s): this job compiles those that the
-    default picture does not use (floatcol.warmup.warm_all: sub-columns, area
-    sampling, translucency, shadows, textures, the fly engine, ...) into the same
-    Numba cache in a process of its own, after the first tests have compiled the
-    default picture's (which the others call too: waited for, not compiled twice).
-    Where the cache held the default kernels when the tests began it does nothing
-    (not where the first tests have compiled them since: it had been skipped in every
-    clean clone whose PTX job outlasted that compile, and the tests compiled the rest
-    one after another, a clean clone's suite 375 s against 330 with it); where its
-    consumer asks for it first (it alone selected, say), it waits no longer."""
+    """Compile the CPU kernels that the default picture does not use
+    (floatcol.warmup.warm_all: sub-columns, area sampling, translucency, shadows,
+    textures, colour fields, the fly engine, ...) into the suite's Numba cache in a
+    process of its own, once the first tests have compiled the default picture's
+    (which the others call too: waited for, not compiled twice). A test that meets
+    one of them meanwhile waits for it there (_wait_for_the_kernels_job): before, each
+    such kernel that a test met before the job had compiled it was compiled twice, by
+    both (about 60 s of CPU in a clean clone: sub-columns, translucent layers,
+    textures, area sampling, ...). Where the cache held the default kernels when the
+    tests began it does nothing (not where the first tests have compiled them since);
+    where its consumer asks for it first (it alone selected, say), it waits no longer."""
     from floatcol import warmup
     if (_WARM_AT_START[0] if _WARM_AT_START else warmup.kernels_ready()):
         return None
@@ -223,9 +249,58 @@ def _compile_every_kernel(job):
     while not (warmup.kernels_ready() or job.wanted.is_set()) and time.monotonic() < deadline:
         time.sleep(0.5)
     proc = subprocess.Popen([sys.executable, "-m", "floatcol.warmup", "--all"],
-                            env=dict(os.environ, FLOATCOL_DRAFT="0"),
+                            env=dict(os.environ, FLOATCOL_DRAFT="0"), cwd=ROOT,
                             stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, text=True)
     job.procs.append(proc)
     _, err = proc.communicate()
     return proc.returncode, err
+
+
+def _kernel_dispatchers():
+    """{id: dispatcher} of floatcol's CPU kernels, as test_draft's WARM_ALL_CHECK
+    counts them (every one of which warm_all compiles)."""
+    import importlib
+    import pkgutil
+
+    import floatcol.kernels as K
+    from floatcol.kernels._jit import _Exclusive
+    found = {}
+    for m in pkgutil.iter_modules(K.__path__):
+        if m.name == "cuda" or m.name.startswith("_"):
+            continue
+        mod = importlib.import_module("floatcol.kernels." + m.name)
+        for name, obj in vars(mod).items():
+            if isinstance(obj, _Exclusive):
+                obj = obj._dispatcher
+            elif not (name.endswith("_kernel") and hasattr(obj, "py_func")):
+                continue
+            found[id(obj)] = obj
+    return found
+
+
+def _wait_for_the_kernels_job(compile_):
+    """Dispatcher.compile, but a kernel that no process has compiled yet (no index in
+    Numba's cache) waits while the kernels job's process runs, until that process has
+    compiled it: then it is loaded from the cache (or, for a signature the job did not
+    compile, compiled here). Numba's compiles are not shared between processes: the
+    test and the job compiled such a kernel each, side by side. (Before the job's
+    process starts, the tests compile the default picture's kernels themselves.)"""
+    kernels = {}
+
+    def compile(self, sig):
+        job = _JOBS.get("kernels")
+        if job is not None and job.procs and not job.done.is_set():
+            if not kernels:
+                kernels.update(_kernel_dispatchers())
+            cache_file = getattr(self._cache, "_cache_file", None)
+            if id(self) in kernels and not self.overloads and cache_file is not None:
+                while not os.path.exists(cache_file._index_path) and not job.done.is_set():
+                    time.sleep(0.2)
+        return compile_(self, sig)
+    return compile
+
+
+def pytest_sessionstart(session):
+    from numba.core.dispatcher import Dispatcher
+    Dispatcher.compile = _wait_for_the_kernels_job(Dispatcher.compile)

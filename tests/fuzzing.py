@@ -283,9 +283,10 @@ def serve():
 class Worker:
     """A process that runs cases one after another; restarted after a crash or hang."""
 
-    def __init__(self, timeout=60.0, env=None):
+    def __init__(self, timeout=60.0, env=None, preexec_fn=None):
         self.timeout = timeout
         self.env = env
+        self.preexec_fn = preexec_fn    # (POSIX) run in the process before it starts
         self.proc = None
         self.on_start = None            # called with each process started
 
@@ -293,9 +294,12 @@ class Worker:
         here = os.path.dirname(os.path.abspath(__file__))
         env = dict(os.environ, **(self.env or {}))
         env["PYTHONPATH"] = here + os.pathsep + env.get("PYTHONPATH", "")
+        # (in the repository's folder: a background job starts it while a test may have
+        # made a temporary folder the current one, which is gone by the time it runs)
         self.proc = subprocess.Popen(
             [sys.executable, "-c", "import fuzzing; fuzzing.serve()"], stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, env=env)
+            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, env=env,
+            preexec_fn=self.preexec_fn, cwd=os.path.dirname(here))
         if self.on_start is not None:
             self.on_start(self.proc)
         line = self._read(self.timeout * 4)

@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 import floatcol as fc
-from conftest import background_job, background_result, reference_for
+from conftest import background_job, background_result, behind_the_tests, reference_for
 from reference import numpy_surface, psnr, raycast
 from test_fold import ANNULUS, KW as FOLD_KW
 from test_reference import CASES
@@ -224,7 +224,8 @@ def _compile_ptx(job):
     proc = subprocess.Popen([sys.executable, "-c", PTX_SCRIPT, PTX_EXPR],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             env={k: x for k, x in os.environ.items()
-                                 if k != "NUMBA_ENABLE_CUDASIM"})
+                                 if k != "NUMBA_ENABLE_CUDASIM"},
+                            preexec_fn=behind_the_tests, cwd=os.path.dirname(HERE))
     job.procs.append(proc)
     out, err = proc.communicate(timeout=1200)
     return subprocess.CompletedProcess(proc.args, proc.returncode, out, err)

@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import os
+import re
 import sys
 import warnings
 
@@ -347,8 +348,11 @@ def _main(argv):
         if args.gallery_command is None:
             raise UsageError("say what to do: floatcol gallery build -o DIR")
         return _gallery(args)
-    except (UsageError, ValueError) as exc:
+    except UsageError as exc:
         print(f"floatcol: error: {exc}", file=sys.stderr)
+        return 2
+    except ValueError as exc:
+        print(f"floatcol: error: {cli_words(str(exc))}", file=sys.stderr)
         return 2
     except OSError as exc:
         print(f"floatcol: error: cannot write {getattr(exc, 'filename', '') or 'output'}: "
@@ -357,6 +361,55 @@ def _main(argv):
     except KeyboardInterrupt:
         print("floatcol: interrupted", file=sys.stderr)
         return 130
+
+
+#: the library's keywords (and keyword=value forms) that the command line spells as
+#: options of its own (_options)
+_API_TO_CLI = {
+    "fill=False": "--lines-only", "shade=False": "--no-shade", "shadows=True": "--shadows",
+    "alpha": "--opacity", "lightsource": "--light", "color_field": "--color-by",
+    "proj_type": "--proj", "projection": "--proj", "focal_length": "--focal-length",
+    "lower_color": "--lower-color", "light_radius": "--light-radius",
+    "vert_exag": "--vert-exag",
+}
+#: keywords spelled the same way, --NAME
+_SAME = ("opacity", "wireframe", "contours", "shading", "shadows", "antialias", "sampling",
+         "corrections", "interpolation", "aspect", "vmin", "vmax", "cmap", "texture",
+         "background", "device", "method", "lines", "size", "elev", "azim", "dpi", "pitch",
+         "fov", "heading", "above", "extent", "nodata", "frames", "fps")
+
+
+def cli_words(message):
+    """An error message of the library in the command line's words: its keywords as
+    the options that set them ("fill=False draws ... give wireframe= or contours=" ->
+    "--lines-only draws ... give --wireframe or --contours"). A keyword is replaced
+    where it cannot be a plain word: as ``name=`` (``name='value'`` becomes
+    ``--name value``, and so does advice such as "give opacity=1"), with an
+    underscore, or starting the message ("opacity must be ...")."""
+    for api, flag in _API_TO_CLI.items():
+        if "=" in api or "_" in api:
+            message = re.sub(rf"\b{re.escape(api)}\b", flag, message)
+    names = [n for n in list(_API_TO_CLI) + list(_SAME) if "=" not in n and "_" not in n]
+    flag_of = {n: _API_TO_CLI.get(n, "--" + n) for n in names}
+    pattern = "|".join(sorted(names, key=len, reverse=True))
+    # name='value' -> --name value; name= -> --name
+    message = re.sub(rf"(?<![\w-])({pattern})='([^']*)'",
+                     lambda m: f"{flag_of[m.group(1)]} {m.group(2)}", message)
+    message = re.sub(rf"(?<![\w-])({pattern})=(?![=\w'])", lambda m: flag_of[m.group(1)],
+                     message)
+    # advice with a value: "give opacity=1" -> "give --opacity 1" (not a value reported
+    # back: "got vmin=3")
+    def advice(m):
+        flag, value = flag_of[m.group(2)], m.group(3)
+        if flag == "--antialias":
+            value = {"True": "on", "False": "off"}.get(value, value)
+        elif value == "True":
+            return f"{m.group(1)} {flag}"
+        return f"{m.group(1)} {flag} {value}"
+    message = re.sub(rf"\b(give|use|with|set|pass|or) ({pattern})=([\w.+-]+)", advice,
+                     message)
+    message = re.sub(rf"^({pattern})(?= )", lambda m: flag_of[m.group(1)], message)
+    return message
 
 
 def _check_output(path, allowed):

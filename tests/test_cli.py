@@ -148,6 +148,40 @@ def test_user_mistakes_exit_2_with_one_line(capsys, monkeypatch, tmp_path, args,
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.parametrize("args,words,not_words", [
+    (["--lines-only"], ["--lines-only draws", "give --wireframe or --contours"],
+     ["fill=", "wireframe=", "contours="]),
+    (["--opacity", "2"], ["--opacity must be in [0, 1], got 2.0"], ["alpha"]),
+    (["--light-radius", "1"], ["--light-radius gives soft shadows", "with --shadows"],
+     ["light_radius", "shadows=True"]),
+    (["--lines-only", "--wireframe", "8", "--opacity", "0.5"], ["give --opacity 1"],
+     ["opacity=", "fill="]),
+])
+def test_errors_of_the_library_speak_the_command_lines_words(capsys, monkeypatch, tmp_path,
+                                                               args, words, not_words):
+    """The library's errors name its keywords (fill=False, light_radius, shadows=True);
+    the command line names its own options for them (cli.cli_words)."""
+    code, _, err = run_here(capsys, monkeypatch, tmp_path, "render", "sin(u*v)", "--size",
+                            "40x30", *args, "-o", "x.png")
+    assert code == 2 and len(err.strip().splitlines()) == 1, err
+    for w in words:
+        assert w in err, err
+    for w in not_words:
+        assert w not in err, err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_cli_words_leave_plain_words_and_reported_values():
+    from floatcol.cli import cli_words
+    assert cli_words("the surface's lines alone, its size and shading") == \
+        "the surface's lines alone, its size and shading"
+    assert cli_words("vmin must not exceed vmax, got vmin=3 > vmax=1") == \
+        "--vmin must not exceed vmax, got vmin=3 > vmax=1"
+    assert cli_words("shading='lambert' lights from the viewpoint") == \
+        "--shading lambert lights from the viewpoint"
+    assert cli_words("use antialias=True or antialias=2") == "use --antialias on or --antialias 2"
+
+
 def test_output_that_is_a_folder(capsys, monkeypatch, tmp_path):
     (tmp_path / "x.png").mkdir()
     code, _, err = run_here(capsys, monkeypatch, tmp_path, "render", "u", "-o", "x.png")

@@ -385,20 +385,31 @@ def cli_words(message):
     "--lines-only draws ... give --wireframe or --contours"). A keyword is replaced
     where it cannot be a plain word: as ``name=`` (``name='value'`` becomes
     ``--name value``, and so does advice such as "give opacity=1"), with an
-    underscore, or starting the message ("opacity must be ...")."""
-    for api, flag in _API_TO_CLI.items():
-        if "=" in api or "_" in api:
-            message = re.sub(rf"\b{re.escape(api)}\b", flag, message)
+    underscore, or starting the message ("opacity must be ..."). What the message
+    quotes (the user's expression, a value given) stays as it is."""
+    if "\x00" in message:              # (the marks of the quoted parts, below)
+        return message
     names = [n for n in list(_API_TO_CLI) + list(_SAME) if "=" not in n and "_" not in n]
     flag_of = {n: _API_TO_CLI.get(n, "--" + n) for n in names}
     pattern = "|".join(sorted(names, key=len, reverse=True))
-    # name='value' -> --name value; name= -> --name
-    message = re.sub(rf"(?<![\w-])({pattern})='([^']*)'",
+    # name='value' -> --name value (the library's own advice)
+    message = re.sub(rf"(?<![\w-])({pattern})='([\w -]*)'",
                      lambda m: f"{flag_of[m.group(1)]} {m.group(2)}", message)
-    message = re.sub(rf"(?<![\w-])({pattern})=(?![=\w'])", lambda m: flag_of[m.group(1)],
+    # the rest of what is quoted is kept: out of the way while the words are replaced
+    quoted = []
+
+    def keep(m):
+        quoted.append(m.group(0))
+        return f"\x00{len(quoted) - 1}\x00"
+    message = re.sub(r"'[^']*'|\"[^\"]*\"", keep, message)
+    for api, flag in _API_TO_CLI.items():
+        if "=" in api or "_" in api:
+            message = re.sub(rf"\b{re.escape(api)}\b", flag, message)
+    message = re.sub(rf"(?<![\w-])({pattern})=(?![=\w])", lambda m: flag_of[m.group(1)],
                      message)
     # advice with a value: "give opacity=1" -> "give --opacity 1" (not a value reported
     # back: "got vmin=3")
+
     def advice(m):
         flag, value = flag_of[m.group(2)], m.group(3)
         if flag == "--antialias":
@@ -409,7 +420,7 @@ def cli_words(message):
     message = re.sub(rf"\b(give|use|with|set|pass|or) ({pattern})=([\w.+-]+)", advice,
                      message)
     message = re.sub(rf"^({pattern})(?= )", lambda m: flag_of[m.group(1)], message)
-    return message
+    return re.sub(r"\x00(\d+)\x00", lambda m: quoted[int(m.group(1))], message)
 
 
 def _check_output(path, allowed):

@@ -395,6 +395,7 @@ def cli_words(message):
     # name='value' -> --name value (the library's own advice)
     message = re.sub(rf"(?<![\w-])({pattern})='([\w -]*)'",
                      lambda m: f"{flag_of[m.group(1)]} {m.group(2)}", message)
+    message = re.sub(r"\bvars=\('(\w+)', '(\w+)'\)", r"--vars \1,\2", message)
     # the rest of what is quoted is kept: out of the way while the words are replaced
     quoted = []
 
@@ -405,7 +406,7 @@ def cli_words(message):
     for api, flag in _API_TO_CLI.items():
         if "=" in api or "_" in api:
             message = re.sub(rf"\b{re.escape(api)}\b", flag, message)
-    message = re.sub(rf"(?<![\w-])({pattern})=(?![=\w])", lambda m: flag_of[m.group(1)],
+    message = re.sub(rf"(?<![\w-])({pattern})=(?=\s|[,;:)]|$)", lambda m: flag_of[m.group(1)],
                      message)
     # advice with a value: "give opacity=1" -> "give --opacity 1" (not a value reported
     # back: "got vmin=3")

@@ -180,6 +180,10 @@ def test_cli_words_leave_plain_words_and_reported_values():
     assert cli_words("shading='lambert' lights from the viewpoint") == \
         "--shading lambert lights from the viewpoint"
     assert cli_words("use antialias=True or antialias=2") == "use --antialias on or --antialias 2"
+    assert cli_words("got vmin=5 > vmax=-5 (as in matplotlib)") == \
+        "got vmin=5 > vmax=-5 (as in matplotlib)"
+    assert cli_words("the variables are x and y (or pass vars=('u', 'v') to use them)") == \
+        "the variables are x and y (or pass --vars u,v to use them)"
     # what it quotes is the user's: kept as it is
     quoted = "could not parse expression 'give opacity=1 fill=False light_radius' at 3"
     assert cli_words(quoted) == quoted

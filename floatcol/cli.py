@@ -402,7 +402,8 @@ def cli_words(message):
     def keep(m):
         quoted.append(m.group(0))
         return f"\x00{len(quoted) - 1}\x00"
-    message = re.sub(r"'[^']*'|\"[^\"]*\"", keep, message)
+    # (a quote opens after no letter: "the surface's" is a possessive)
+    message = re.sub(r"(?<!\w)'[^']*'(?!\w)|\"[^\"]*\"", keep, message)
     for api, flag in _API_TO_CLI.items():
         if "=" in api or "_" in api:
             message = re.sub(rf"\b{re.escape(api)}\b", flag, message)

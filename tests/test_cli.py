@@ -184,6 +184,8 @@ def test_cli_words_leave_plain_words_and_reported_values():
         "got vmin=5 > vmax=-5 (as in matplotlib)"
     assert cli_words("the variables are x and y (or pass vars=('u', 'v') to use them)") == \
         "the variables are x and y (or pass --vars u,v to use them)"
+    assert cli_words("the surface's lines: give wireframe= (the picture's)") == \
+        "the surface's lines: give --wireframe (the picture's)"
     # what it quotes is the user's: kept as it is
     quoted = "could not parse expression 'give opacity=1 fill=False light_radius' at 3"
     assert cli_words(quoted) == quoted

@@ -387,7 +387,7 @@ def test_cli_texture_colour_and_lines(tmp_path, capsys, monkeypatch):
     capsys.readouterr()
     for extra, match in ((["--texture", "none.png"], "cannot be read"),
                          (["--contours", "0"], "contours must be from 1"),
-                         (["--lines-only"], "give wireframe= or contours="),
+                         (["--lines-only"], "give --wireframe or --contours"),
                          (["--color-by", "__import__('os')"], "not allowed")):
         try:
             code = main(base + extra + ["-o", "bad.png"])

@@ -279,6 +279,11 @@ def _kernel_dispatchers():
     return found
 
 
+#: seconds a test waits at most for the kernels job's compile of a kernel (a job that
+#: hangs: the test compiles it itself after that)
+WAIT_FOR_THE_JOB = 600.0
+
+
 def _wait_for_the_kernels_job(compile_):
     """Dispatcher.compile, but a kernel that no process has compiled yet (no index in
     Numba's cache) waits while the kernels job's process runs, until that process has
@@ -295,7 +300,9 @@ def _wait_for_the_kernels_job(compile_):
                 kernels.update(_kernel_dispatchers())
             cache_file = getattr(self._cache, "_cache_file", None)
             if id(self) in kernels and not self.overloads and cache_file is not None:
-                while not os.path.exists(cache_file._index_path) and not job.done.is_set():
+                deadline = time.monotonic() + WAIT_FOR_THE_JOB
+                while not os.path.exists(cache_file._index_path) and not job.done.is_set() \
+                        and time.monotonic() < deadline:
                     time.sleep(0.2)
         return compile_(self, sig)
     return compile

@@ -298,8 +298,9 @@ def _wait_for_the_kernels_job(compile_):
         if job is not None and job.procs and not job.done.is_set():
             if not kernels:
                 kernels.update(_kernel_dispatchers())
-            cache_file = getattr(self._cache, "_cache_file", None)
-            if id(self) in kernels and not self.overloads and cache_file is not None:
+            cache_file = (getattr(getattr(self, "_cache", None), "_cache_file", None)
+                          if id(self) in kernels and not self.overloads else None)
+            if cache_file is not None:
                 deadline = time.monotonic() + WAIT_FOR_THE_JOB
                 while not os.path.exists(cache_file._index_path) and not job.done.is_set() \
                         and time.monotonic() < deadline:

@@ -396,6 +396,8 @@ def cli_words(message):
     message = re.sub(rf"(?<![\w-])({pattern})='([\w -]*)'",
                      lambda m: f"{flag_of[m.group(1)]} {m.group(2)}", message)
     message = re.sub(r"\bvars=\('(\w+)', '(\w+)'\)", r"--vars \1,\2", message)
+    message = message.replace("(give a range (symbol, low, high) for each variable)",
+                              "(name the two with --vars X,Y)")
     # the rest of what is quoted is kept: out of the way while the words are replaced
     quoted = []
 

@@ -186,6 +186,9 @@ def test_cli_words_leave_plain_words_and_reported_values():
         "the variables are x and y (or pass --vars u,v to use them)"
     assert cli_words("the surface's lines: give wireframe= (the picture's)") == \
         "the surface's lines: give --wireframe (the picture's)"
+    assert cli_words("unknown symbols u, v: the variables are x and y (give a range (symbol, "
+                     "low, high) for each variable)") == \
+        "unknown symbols u, v: the variables are x and y (name the two with --vars X,Y)"
     # what it quotes is the user's: kept as it is
     quoted = "could not parse expression 'give opacity=1 fill=False light_radius' at 3"
     assert cli_words(quoted) == quoted

@@ -39,6 +39,31 @@ def _dispatchers():
     return column_kernel, finish_kernel, silhouette_kernel, centre_kernel
 
 
+def every_kernel():
+    """{name: dispatcher} of every CPU kernel in floatcol.kernels (a parallel kernel's
+    own dispatcher, not its launcher), each under the module that defines it: what
+    warm_all compiles."""
+    import importlib
+    import pkgutil
+
+    from . import kernels
+    from .kernels._jit import _Exclusive
+    found = {}
+    for m in pkgutil.iter_modules(kernels.__path__):
+        if m.name == "cuda" or m.name.startswith("_"):
+            continue
+        mod = importlib.import_module("floatcol.kernels." + m.name)
+        for name, obj in vars(mod).items():
+            if isinstance(obj, _Exclusive):
+                obj = obj._dispatcher
+            elif not (name.endswith("_kernel") and hasattr(obj, "py_func")):
+                continue
+            # (a kernel imported from another module is that module's)
+            if obj.py_func.__module__ == mod.__name__:
+                found[mod.__name__ + "." + name] = obj
+    return found
+
+
 def kernels_ready():
     """Whether every kernel of a default picture is compiled in this process or in
     Numba's disk cache (its index file is there)."""

@@ -257,28 +257,6 @@ def _compile_every_kernel(job):
     return proc.returncode, err
 
 
-def _kernel_dispatchers():
-    """{id: dispatcher} of floatcol's CPU kernels, as test_draft's WARM_ALL_CHECK
-    counts them (every one of which warm_all compiles)."""
-    import importlib
-    import pkgutil
-
-    import floatcol.kernels as K
-    from floatcol.kernels._jit import _Exclusive
-    found = {}
-    for m in pkgutil.iter_modules(K.__path__):
-        if m.name == "cuda" or m.name.startswith("_"):
-            continue
-        mod = importlib.import_module("floatcol.kernels." + m.name)
-        for name, obj in vars(mod).items():
-            if isinstance(obj, _Exclusive):
-                obj = obj._dispatcher
-            elif not (name.endswith("_kernel") and hasattr(obj, "py_func")):
-                continue
-            found[id(obj)] = obj
-    return found
-
-
 #: seconds a test waits at most for the kernels job's compile of a kernel (a job that
 #: hangs: the test compiles it itself after that)
 WAIT_FOR_THE_JOB = 600.0
@@ -297,7 +275,8 @@ def _wait_for_the_kernels_job(compile_):
         job = _JOBS.get("kernels")
         if job is not None and job.procs and not job.done.is_set():
             if not kernels:
-                kernels.update(_kernel_dispatchers())
+                from floatcol.warmup import every_kernel
+                kernels.update((id(k), k) for k in every_kernel().values())
             cache_file = (getattr(getattr(self, "_cache", None), "_cache_file", None)
                           if id(self) in kernels and not self.overloads else None)
             if cache_file is not None:

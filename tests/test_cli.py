@@ -171,28 +171,29 @@ def test_errors_of_the_library_speak_the_command_lines_words(capsys, monkeypatch
     assert list(tmp_path.iterdir()) == []
 
 
-def test_cli_words_leave_plain_words_and_reported_values():
-    from floatcol.cli import cli_words
-    assert cli_words("the surface's lines alone, its size and shading") == \
-        "the surface's lines alone, its size and shading"
-    assert cli_words("vmin must not exceed vmax, got vmin=3 > vmax=1") == \
-        "--vmin must not exceed vmax, got vmin=3 > vmax=1"
-    assert cli_words("shading='lambert' lights from the viewpoint") == \
-        "--shading lambert lights from the viewpoint"
-    assert cli_words("use antialias=True or antialias=2") == "use --antialias on or --antialias 2"
-    assert cli_words("got vmin=5 > vmax=-5 (as in matplotlib)") == \
-        "got vmin=5 > vmax=-5 (as in matplotlib)"
-    assert cli_words("the variables are x and y (or pass vars=('u', 'v') to use them)") == \
-        "the variables are x and y (or pass --vars u,v to use them)"
-    assert cli_words("the surface's lines: give wireframe= (the picture's)") == \
-        "the surface's lines: give --wireframe (the picture's)"
-    assert cli_words("unknown symbols u, v: the variables are x and y (give a range (symbol, "
-                     "low, high) for each variable)") == \
-        "unknown symbols u, v: the variables are x and y (name the two with --vars X,Y)"
+@pytest.mark.parametrize("message,expected", [
+    ("the surface's lines alone, its size and shading",
+     "the surface's lines alone, its size and shading"),
+    ("vmin must not exceed vmax, got vmin=3 > vmax=1",
+     "--vmin must not exceed vmax, got vmin=3 > vmax=1"),
+    ("shading='lambert' lights from the viewpoint", "--shading lambert lights from the viewpoint"),
+    ("use antialias=True or antialias=2", "use --antialias on or --antialias 2"),
+    ("got vmin=5 > vmax=-5 (as in matplotlib)", "got vmin=5 > vmax=-5 (as in matplotlib)"),
+    ("the variables are x and y (or pass vars=('u', 'v') to use them)",
+     "the variables are x and y (or pass --vars u,v to use them)"),
+    ("the surface's lines: give wireframe= (the picture's)",
+     "the surface's lines: give --wireframe (the picture's)"),
+    ("unknown symbols u, v: the variables are x and y (give a range (symbol, low, high) for "
+     "each variable)",
+     "unknown symbols u, v: the variables are x and y (name the two with --vars X,Y)"),
     # what it quotes is the user's: kept as it is
-    quoted = "could not parse expression 'give opacity=1 fill=False light_radius' at 3"
-    assert cli_words(quoted) == quoted
-    assert cli_words("cannot write \x000\x00 fill=False") == "cannot write \x000\x00 fill=False"
+    ("could not parse expression 'give opacity=1 fill=False light_radius' at 3",
+     "could not parse expression 'give opacity=1 fill=False light_radius' at 3"),
+    ("cannot write \x000\x00 fill=False", "cannot write \x000\x00 fill=False"),
+])
+def test_cli_words_leave_plain_words_and_reported_values(message, expected):
+    from floatcol.cli import cli_words
+    assert cli_words(message) == expected
 
 
 def test_output_that_is_a_folder(capsys, monkeypatch, tmp_path):

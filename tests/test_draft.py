@@ -208,22 +208,9 @@ def test_fresh_install_draws_a_draft_and_starts_the_warmup(tmp_path):
 #: a subprocess: warm_all, then the CPU kernels (the parallel launches, and any other
 #: *_kernel) that have no compiled signature in that process, printed
 WARM_ALL_CHECK = """
-import importlib, pkgutil
-import floatcol.kernels as K
-from floatcol.kernels._jit import _Exclusive
-from floatcol.warmup import warm_all
+from floatcol.warmup import every_kernel, warm_all
 warm_all()
-missing = []
-for m in pkgutil.iter_modules(K.__path__):
-    if m.name == "cuda" or m.name.startswith("_"):
-        continue
-    mod = importlib.import_module("floatcol.kernels." + m.name)
-    for name, obj in vars(mod).items():
-        kernel = isinstance(obj, _Exclusive) or name.endswith("_kernel") and hasattr(obj, "py_func")
-        # (a kernel imported from another module is that module's)
-        if kernel and obj.py_func.__module__ == mod.__name__ and not obj.signatures:
-            missing.append(mod.__name__ + "." + name)
-print(sorted(missing))
+print(sorted(name for name, kernel in every_kernel().items() if not kernel.signatures))
 """
 
 

@@ -189,48 +189,66 @@ def warm_all():
     in both projections. ``python -m floatcol.warmup --all`` runs it: what a machine
     image or a CI job can do once, so that no later picture waits for a compile
     (about 140 s on 2 cores with an empty cache, a second or two with a full one)."""
+    warm()
+    for step in warm_all_steps():
+        step()
+
+
+def warm_all_steps():
+    """warm_all's pictures after the default one, as a list of functions of no
+    arguments, each drawing a few pictures (a test suite's job may take them in
+    another order, tests/kernel_claims.py)."""
     import numpy as np
 
     import floatcol as fc
     from .terrain import GUEDES_VARIANTS, guedes
-    warm()
     expr = "3*sin(u*cos(v))"
 
     def both(**opts):
-        for proj in ("orthographic", "perspective"):
-            fc.render(expr, u=(-5, 5), v=(-5, 5), size=(64, 48), projection=proj,
-                      **opts).intensity
-    # (in about the order in which the test suite first meets them: its tests wait
-    # for this process's kernels rather than compile them beside it, tests/conftest.py)
-    both(antialias=3)
-    both(antialias="area")
-    fc.render_many([fc.Layer(expr, ((-5, 5), (-5, 5))), fc.Layer("u*v/5", ((-5, 5), (-5, 5)))],
-                   size=(64, 48))
-    for opts in (dict(wireframe=(5, 5)), dict(opacity=0.5),
-                 dict(texture=np.linspace(0, 1, 48).reshape(4, 4, 3)), dict(contours=[0.0]),
-                 dict(color="u + v"), dict(color="u + v", contours=[0.0]), dict(method="horizon"),
-                 dict(shadows=True), dict(shadows="on-the-fly"),
-                 dict(shadows=True, light_radius=1.0), dict(opacity=0.5, shadows=True),
-                 dict(sampling="adaptive")):
-        both(**opts)
+        def step():
+            for proj in ("orthographic", "perspective"):
+                fc.render(expr, u=(-5, 5), v=(-5, 5), size=(64, 48), projection=proj,
+                          **opts).intensity
+        return step
+
     z = np.sin(np.linspace(0, 6, 33))[:, None] * np.cos(np.linspace(0, 5, 33))[None, :]
     hf = fc.HeightField(3 * z, u=(0, 32), v=(0, 32))
     objects = [fc.tree(16, 16, 3), fc.box(8, 8, 2, 2, 2), fc.pole(20, 20, 4), fc.marker(24, 8, 1)]
-    for opts in (dict(), dict(antialias="area"), dict(shadows=True), dict(objects=objects),
-                 dict(objects=objects, shadows=True),
-                 dict(objects=objects, shadows=True, light_radius=1.0),
-                 dict(objects=objects, shadows=True, opacity=0.5)):
-        fc.render(hf, size=(64, 48), **opts).intensity
-    # a box with poles on its four sides: one's shadow falls on it (the shadow's edge on
-    # an object), whatever the light
-    ring = [fc.box(16, 16, 6, 6, 3)] + [fc.pole(16 + du, 16 + dv, 10, radius=0.8)
-                                        for du, dv in ((-5, 0), (5, 0), (0, -5), (0, 5))]
-    fc.render(hf, size=(64, 48), objects=ring, shadows=True, lightsource=(0, 30)).intensity
-    cam = fc.fly(hf, (16, 1), heading=0, size=(64, 36), above=4)
-    for area in (False, True):
-        fc.render(hf, **cam, antialias="area" if area else True).intensity
-    for variant in GUEDES_VARIANTS:
-        guedes(hf, (16, 1), size=(32, 18), variant=variant)
+
+    def terrain(**opts):
+        return lambda: fc.render(hf, size=(64, 48), **opts).intensity
+
+    def ring():
+        # a box with poles on its four sides: one's shadow falls on it (the shadow's
+        # edge on an object), whatever the light
+        ring = [fc.box(16, 16, 6, 6, 3)] + [fc.pole(16 + du, 16 + dv, 10, radius=0.8)
+                                            for du, dv in ((-5, 0), (5, 0), (0, -5), (0, 5))]
+        fc.render(hf, size=(64, 48), objects=ring, shadows=True, lightsource=(0, 30)).intensity
+
+    def fly():
+        cam = fc.fly(hf, (16, 1), heading=0, size=(64, 36), above=4)
+        for area in (False, True):
+            fc.render(hf, **cam, antialias="area" if area else True).intensity
+
+    def variants():
+        for variant in GUEDES_VARIANTS:
+            guedes(hf, (16, 1), size=(32, 18), variant=variant)
+
+    # (in about the order in which the test suite first meets them, tests/conftest.py)
+    steps = [both(antialias=3), both(antialias="area"),
+             lambda: fc.render_many([fc.Layer(expr, ((-5, 5), (-5, 5))),
+                                     fc.Layer("u*v/5", ((-5, 5), (-5, 5)))], size=(64, 48))]
+    steps += [both(**opts) for opts in (
+        dict(wireframe=(5, 5)), dict(opacity=0.5),
+        dict(texture=np.linspace(0, 1, 48).reshape(4, 4, 3)), dict(contours=[0.0]),
+        dict(color="u + v"), dict(color="u + v", contours=[0.0]), dict(method="horizon"),
+        dict(shadows=True), dict(shadows="on-the-fly"), dict(shadows=True, light_radius=1.0),
+        dict(opacity=0.5, shadows=True), dict(sampling="adaptive"))]
+    steps += [terrain(**opts) for opts in (
+        dict(), dict(antialias="area"), dict(shadows=True), dict(objects=objects),
+        dict(objects=objects, shadows=True), dict(objects=objects, shadows=True, light_radius=1.0),
+        dict(objects=objects, shadows=True, opacity=0.5))]
+    return steps + [ring, fly, variants]
 
 
 def main(argv=None):

@@ -12,7 +12,31 @@ sys.path.insert(0, os.path.dirname(__file__))
 # draft (floatcol/warmup.py); tests/test_draft.py turns drafts on where it tests them.
 os.environ["FLOATCOL_DRAFT"] = "0"
 
+#: the repository's folder
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+#: The suite's kernels are compiled with Numba's bounds checks: an index out of range
+#: in any test's picture, in this process or in one it starts (the CLI's, the fuzz
+#: workers', a cluster's workers), is an IndexError, not a read or write past a
+#: buffer. The checks change the code but no value (the kernels use no fast-math),
+#: and they go into a kernel cache of the suite's own, so that a render outside the
+#: suite never loads a checked kernel (Numba's cache index does not tell them apart).
+#: LLVM optimises them at level 1: the same values, a tenth less compile. Before, the
+#: suite ran the unchecked kernels and compiled them a second time with the checks for
+#: 19 pictures (test_fuzz's bounds-checked job: about 130 s of CPU in a clean clone).
+#: And OpenMP's threads wait for work asleep, not spinning: two test processes
+#: (second_process.py) and the jobs share the cores, where a spinning thread takes a
+#: core from a process that has work (about 50 s of CPU in a clean clone).
+SUITE_ENV = {"NUMBA_BOUNDSCHECK": "1", "NUMBA_OPT": "1",
+             "NUMBA_CACHE_DIR": os.path.join(ROOT, ".pytest_cache", "numba"),
+             "OMP_WAIT_POLICY": "PASSIVE"}
+os.environ.update(SUITE_ENV)
+if "numba" in sys.modules:                 # (read at its import: read again)
+    from numba.core import config as _numba_config
+    _numba_config.reload_config()
+
 import floatcol as fc  # noqa: E402
+import kernel_claims  # noqa: E402
+import second_process  # noqa: E402
 from reference import numpy_surface, raycast  # noqa: E402
 
 
@@ -92,14 +116,14 @@ def demo():
 
 
 # ---------------------------------------------------------------------------------
-# Background jobs. A clean clone's suite (CI) is CPU-bound on 2 cores, and about 450
-# of its 660 s of CPU go to Numba compiling: the kernels with Numba's bounds checks
-# (test_fuzz, its own cache, about 110 s) and the GPU kernels' PTX (test_cuda, about
-# 80 s) share nothing with the other tests and run in processes of their own; every
-# CPU kernel (about 170 s: the default picture's and those that sub-columns, area
-# sampling, translucency, shadows, textures, ... add) is compiled into the suite's
-# cache by one more process (_compile_every_kernel, below), which the tests wait for
-# rather than compile a kernel a second time beside it (_wait_for_the_kernels_job).
+# Background jobs. A clean clone's suite (CI) is CPU-bound on 2 cores, and most of
+# its CPU goes to Numba compiling: the GPU kernels' PTX (test_cuda, about 80 s) shares
+# nothing with the other tests and runs in a process of its own; every CPU kernel
+# (about 170 s: the default picture's and those that sub-columns, area sampling,
+# translucency, shadows, textures, ... add) is compiled into the suite's cache by one
+# more process (_compile_every_kernel, below) and by the tests, each kernel by
+# whichever meets it first (kernel_claims.py); then a second test process runs the
+# modules the first has not reached (second_process.py).
 # A test module registers such work as a job (background_job); once the tests are
 # collected, the jobs of the selected tests run in threads of this process, one
 # after another within a lane, each thread waiting on its subprocess, while the
@@ -169,10 +193,9 @@ def background_result(name):
 BEHIND = 10
 
 
-#: the repository's folder: a job's process starts there, not in the current folder,
-#: which a test may have changed to a temporary one that is gone by the time the job
-#: runs (test_bounds_checked_kernels failed with a FileNotFoundError from os.getcwd())
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# (A job's process starts in ROOT, not in the current folder, which a test may have
+# changed to a temporary one that is gone by the time the job runs:
+# test_bounds_checked_kernels failed with a FileNotFoundError from os.getcwd().)
 
 
 def _behind():
@@ -187,9 +210,11 @@ def _behind():
 behind_the_tests = _behind if hasattr(os, "nice") else None
 
 
-def _run_jobs(jobs):
+def _run_jobs(jobs, then=None):
     for job in jobs:
         job.run()
+    if then is not None:
+        then()
 
 
 def _test_name(item):
@@ -201,6 +226,32 @@ def pytest_collection_modifyitems(session, config, items):
     last = [item for item in items if _test_name(item) in consumers]
     if last:
         items[:] = [item for item in items if _test_name(item) not in consumers] + last
+    if _MAIN:
+        _MAIN[0].stay = {item.nodeid for item in last}
+
+
+#: the main process's side of the second test process (second_process.Main), where
+#: there is one
+_MAIN = []
+
+
+def pytest_configure(config):
+    if os.environ.get(second_process.HELPER_ENV):
+        config.pluginmanager.register(second_process.Helper(
+            os.environ[second_process.HELPER_ENV], config), "floatcol-helper")
+    elif second_process.wanted(config):
+        _MAIN.append(second_process.Main(config, set()))
+        config.pluginmanager.register(_MAIN[0], "floatcol-main")
+
+
+def _start_the_helper(session):
+    """The second test process, once the kernel cache holds the default picture's
+    kernels (where lane 1's jobs did not wait for them: a run of a few modules)."""
+    from floatcol import warmup
+    deadline = time.monotonic() + 600.0
+    while not warmup.kernels_ready() and time.monotonic() < deadline:
+        time.sleep(0.5)
+    _MAIN[0].start(session)
 
 
 #: whether Numba's cache held the default picture's kernels when the tests began (a
@@ -209,15 +260,19 @@ _WARM_AT_START = []
 
 
 def pytest_collection_finish(session):
-    if session.config.option.collectonly:
+    if session.config.option.collectonly or os.environ.get(second_process.HELPER_ENV):
         return
     from floatcol import warmup
     _WARM_AT_START.append(warmup.kernels_ready())
     wanted = {_test_name(item) for item in session.items}
     jobs = sorted((job for job in _JOBS.values() if job.consumer in wanted),
                   key=lambda job: job.order)
-    for lane in sorted({job.lane for job in jobs}):
-        threading.Thread(target=_run_jobs, args=([j for j in jobs if j.lane == lane],),
+    # lane 1 (the kernels job, the bounds-checked cases) ends by starting the second
+    # test process, on the kernels it has compiled (second_process.py)
+    helper = (lambda: _start_the_helper(session)) if _MAIN else None
+    for lane in sorted({job.lane for job in jobs} | ({1} if helper else set())):
+        threading.Thread(target=_run_jobs, args=([j for j in jobs if j.lane == lane],
+                                                 helper if lane == 1 else None),
                          name=f"floatcol-test-jobs-{lane}", daemon=True).start()
 
 
@@ -227,28 +282,30 @@ def pytest_sessionfinish(session):
             if proc.poll() is None:
                 proc.kill()
                 proc.wait()
+    if _CLAIMS:
+        import shutil
+        shutil.rmtree(_CLAIMS[0], ignore_errors=True)
 
 
 @background_job("kernels", consumer="test_warm_all_compiles_every_kernel", order=0, lane=1)
 def _compile_every_kernel(job):
     """Compile the CPU kernels that the default picture does not use
-    (floatcol.warmup.warm_all: sub-columns, area sampling, translucency, shadows,
-    textures, colour fields, the fly engine, ...) into the suite's Numba cache in a
-    process of its own, once the first tests have compiled the default picture's
-    (which the others call too: waited for, not compiled twice). A test that meets
-    one of them meanwhile waits for it there (_wait_for_the_kernels_job): before, each
-    such kernel that a test met before the job had compiled it was compiled twice, by
-    both (about 60 s of CPU in a clean clone: sub-columns, translucent layers,
-    textures, area sampling, ...). Where the cache held the default kernels when the
-    tests began it does nothing (not where the first tests have compiled them since);
-    where its consumer asks for it first (it alone selected, say), it waits no longer."""
+    (floatcol.warmup.warm_all's pictures: sub-columns, area sampling, translucency,
+    shadows, textures, colour fields, the fly engine, ...) into the suite's Numba
+    cache in a process of its own (kernel_claims.main), once the first tests have
+    compiled the default picture's (which the others call too: loaded, not compiled
+    twice). The tests and the job share them out: whichever meets a kernel first
+    claims and compiles it, the other loads it (kernel_claims.py). Where the cache held
+    the default kernels when the tests began it does nothing (not where the first
+    tests have compiled them since); where its consumer asks for it first (it alone
+    selected, say), it waits no longer."""
     from floatcol import warmup
     if (_WARM_AT_START[0] if _WARM_AT_START else warmup.kernels_ready()):
         return None
     deadline = time.monotonic() + 600.0
     while not (warmup.kernels_ready() or job.wanted.is_set()) and time.monotonic() < deadline:
         time.sleep(0.5)
-    proc = subprocess.Popen([sys.executable, "-m", "floatcol.warmup", "--all"],
+    proc = subprocess.Popen([sys.executable, os.path.join(ROOT, "tests", "kernel_claims.py")],
                             env=dict(os.environ, FLOATCOL_DRAFT="0"), cwd=ROOT,
                             stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, text=True)
@@ -257,37 +314,29 @@ def _compile_every_kernel(job):
     return proc.returncode, err
 
 
-#: seconds a test waits at most for the kernels job's compile of a kernel (a job that
-#: hangs: the test compiles it itself after that)
-WAIT_FOR_THE_JOB = 600.0
+#: the folder of the kernels' claims (kernel_claims.py) that this process and the
+#: kernels job share
+_CLAIMS = []
 
 
-def _wait_for_the_kernels_job(compile_):
-    """Dispatcher.compile, but a kernel that no process has compiled yet (no index in
-    Numba's cache) waits while the kernels job's process runs, until that process has
-    compiled it: then it is loaded from the cache (or, for a signature the job did not
-    compile, compiled here). Numba's compiles are not shared between processes: the
-    test and the job compiled such a kernel each, side by side. (Before the job's
-    process starts, the tests compile the default picture's kernels themselves.)"""
-    kernels = {}
-
-    def compile(self, sig):
-        job = _JOBS.get("kernels")
-        if job is not None and job.procs and not job.done.is_set():
-            if not kernels:
-                from floatcol.warmup import every_kernel
-                kernels.update((id(k), k) for k in every_kernel().values())
-            cache_file = (getattr(getattr(self, "_cache", None), "_cache_file", None)
-                          if id(self) in kernels and not self.overloads else None)
-            if cache_file is not None:
-                deadline = time.monotonic() + WAIT_FOR_THE_JOB
-                while not os.path.exists(cache_file._index_path) and not job.done.is_set() \
-                        and time.monotonic() < deadline:
-                    time.sleep(0.2)
-        return compile_(self, sig)
-    return compile
+def _another_compiles():
+    """Whether a process that may hold claims runs: the kernels job, the helper."""
+    job = _JOBS.get("kernels")
+    procs = (job.procs[-1:] if job is not None else []) + \
+        ([_MAIN[0].proc] if _MAIN and _MAIN[0].proc is not None else [])
+    return any(proc.poll() is None for proc in procs)
 
 
 def pytest_sessionstart(session):
-    from numba.core.dispatcher import Dispatcher
-    Dispatcher.compile = _wait_for_the_kernels_job(Dispatcher.compile)
+    if os.environ.get(second_process.HELPER_ENV):
+        # the helper (its parent this session's main process), in the main process's
+        # folder of claims: where it starts before every kernel is compiled (a run of
+        # some modules only), it neither compiles a kernel twice
+        parent = os.getppid()
+        kernel_claims.install(os.environ[kernel_claims.CLAIMS_ENV],
+                              lambda: os.getppid() == parent)
+        return
+    import tempfile
+    _CLAIMS.append(tempfile.mkdtemp(prefix="floatcol-claims-"))
+    os.environ[kernel_claims.CLAIMS_ENV] = _CLAIMS[0]      # (the job's and the helper's)
+    kernel_claims.install(_CLAIMS[0], _another_compiles)

@@ -224,7 +224,8 @@ def _compile_ptx(job):
     proc = subprocess.Popen([sys.executable, "-c", PTX_SCRIPT, PTX_EXPR],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             env={k: x for k, x in os.environ.items()
-                                 if k != "NUMBA_ENABLE_CUDASIM"},
+                                 if k not in ("NUMBA_ENABLE_CUDASIM", "NUMBA_BOUNDSCHECK",
+                                              "NUMBA_OPT")},
                             preexec_fn=behind_the_tests, cwd=os.path.dirname(HERE))
     job.procs.append(proc)
     out, err = proc.communicate(timeout=1200)

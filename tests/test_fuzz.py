@@ -7,13 +7,12 @@ failed test here, not a dead test runner, and a case that takes more than the
 time-out is a hang. Every case must draw a picture or raise a ValueError whose
 message names no internals. benchmarks/fuzz.py runs 10,000 of them.
 """
-import os
 import random
 
 import pytest
 
 import fuzzing
-from conftest import background_job, background_result, behind_the_tests
+from conftest import background_job, background_result
 
 hypothesis = pytest.importorskip("hypothesis")
 from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E402
@@ -102,19 +101,15 @@ def test_the_reproducers_render(worker):
         _check(worker, {"expr": expr, "kwargs": kw})
 
 
-@background_job("bounds-checked kernels", order=2, consumer="test_bounds_checked_kernels")
+@background_job("bounds-checked kernels", order=1, lane=1,
+                consumer="test_bounds_checked_kernels")
 def _bounds_checked_cases(job):
-    """The cases of test_bounds_checked_kernels and their outcomes, run in a worker with
-    Numba's bounds checks on (its own kernel cache: the checks change the compiled
-    code). Compiles the kernels once: a background job (conftest.py), which the suite
-    runs beside the other tests. LLVM optimises them at level 1 (NUMBA_OPT), not 3:
-    the checks are the same, as is every value (no fast-math), and the compile takes
-    100 s instead of 112 on 2 cores; the cases are small pictures."""
-    cache = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".pytest_cache",
-                         "numba-boundscheck")
-    w = fuzzing.Worker(timeout=600.0, env={"NUMBA_BOUNDSCHECK": "1", "NUMBA_OPT": "1",
-                                           "NUMBA_CACHE_DIR": os.path.abspath(cache)},
-                       preexec_fn=behind_the_tests)
+    """The cases of test_bounds_checked_kernels and their outcomes, run in a worker.
+    Every kernel of the suite has Numba's bounds checks (conftest.SUITE_ENV), so
+    these cases are a few more pictures that would be an IndexError, not a write past a
+    buffer, where an index went out of range; a background job (conftest.py) after
+    the kernels job (lane 1), whose cache it loads its kernels from."""
+    w = fuzzing.Worker(timeout=600.0)
     w.on_start = job.procs.append
     try:
         rnd = random.Random(7)
@@ -128,8 +123,9 @@ def _bounds_checked_cases(job):
 
 
 def test_bounds_checked_kernels():
-    """A few renders with Numba's bounds checks on: an index out of range is an
-    IndexError there, not a write past a buffer (_bounds_checked_cases)."""
+    """The issue's reproducers, random cases and a default picture, with Numba's bounds
+    checks on (as everywhere in the suite): an index out of range is an IndexError
+    there, not a write past a buffer (_bounds_checked_cases)."""
     outcomes = background_result("bounds-checked kernels")
     assert len(outcomes) == len(REPRODUCERS) + 13
     for case, res in outcomes:

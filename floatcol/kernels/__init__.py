@@ -29,23 +29,30 @@ def _drop_stale_cache(here=None):
         digest.update(p.read_bytes())
     stamp_text = digest.hexdigest()
     stems = {q.stem for q in here.glob("*.py")}
-    folders = [here / "__pycache__"]
-    if _os.environ.get("NUMBA_CACHE_DIR"):
-        folders.append(_Path(_os.environ["NUMBA_CACHE_DIR"]))
     # Numba's folder for this directory's functions under NUMBA_CACHE_DIR:
     # <dir name>_<sha1 of its path> (numba.core.caching's get_suitable_cache_subpath)
     ours = {f"{here.name}_{_hashlib.sha1(str(p).encode()).hexdigest()}"
             for p in {here, _Path(_os.path.abspath(here))}}
-    for folder in folders:
-        stamp = folder / "floatcol-kernels.stamp"
+    pycache = here / "__pycache__"
+    folders = [(pycache, "floatcol-kernels.stamp", [pycache])]
+    if _os.environ.get("NUMBA_CACHE_DIR"):
+        # one stamp per kernels folder there, and only that folder's kernels dropped:
+        # two installs that share it (two versions, two checkouts) keep each other's
+        # kernels (and their stamps taking turns no longer dropped their own at every
+        # import)
+        shared = _Path(_os.environ["NUMBA_CACHE_DIR"])
+        folders.append((shared, f"floatcol-kernels-{min(ours)}.stamp",
+                        [shared / name for name in ours]))
+    for folder, stamp_name, kernel_folders in folders:
+        stamp = folder / stamp_name
         try:
             if stamp.is_file() and stamp.read_text() == stamp_text:
                 continue
-            if folder.is_dir():
-                for f in folder.rglob("*"):
-                    if f.suffix in (".nbi", ".nbc") and f.name.split(".")[0] in stems \
-                            and ("floatcol" in str(f) or f.parent.name in ours):
-                        f.unlink()
+            for kf in kernel_folders:
+                if kf.is_dir():
+                    for f in kf.iterdir():
+                        if f.suffix in (".nbi", ".nbc") and f.name.split(".")[0] in stems:
+                            f.unlink()
             folder.mkdir(parents=True, exist_ok=True)
             stamp.write_text(stamp_text)
         except OSError:          # a read-only install: numba caches elsewhere

@@ -16,7 +16,8 @@ is run by the main process after all. The tests that take the background jobs'
 outcomes (conftest.background_job's consumers) run in the main process, last.
 
 No helper where one core is all there is, under ``--pdb``, ``-s`` (the tests'
-output is the terminal's), ``--collect-only``, or with FLOATCOL_TEST_PROCESSES=1.
+output is the terminal's), ``--collect-only``, pytest-xdist (which shares the tests
+its own way), or with FLOATCOL_TEST_PROCESSES=1.
 """
 import json
 import os
@@ -256,6 +257,8 @@ class Helper:
 def wanted(config):
     """Whether this session shares its tests with a helper."""
     opt = config.option
+    xdist = getattr(opt, "numprocesses", None) or getattr(opt, "dist", "no") != "no" \
+        or os.environ.get("PYTEST_XDIST_WORKER")
     return (os.environ.get(PROCESSES_ENV, "") != "1" and (os.cpu_count() or 1) >= 2
             and not getattr(opt, "usepdb", False) and getattr(opt, "capture", "fd") != "no"
-            and not opt.collectonly)
+            and not opt.collectonly and not xdist)

@@ -39,8 +39,11 @@ def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, mp, lut, background,
         ev = 0
         for k in range(offsets.shape[0]):
             col = c + offsets[k]
+            # (no horizon lines: an int64 0, as column_kernel's hstride, not the literal
+            # 0, which Numba compiled render_column for again: 17 s of a first
+            # picture with sub-columns)
             ev += render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol[0, :, 0],
-                                ecol[0, :, :, 0], hrec, 0, sg, k)[0]
+                                ecol[0, :, :, 0], hrec, np.int64(0), sg, k)[0]
             x0 = column_x0(vp, col)
             for j in range(H):
                 i = H - 1 - j

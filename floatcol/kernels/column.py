@@ -1887,8 +1887,10 @@ def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals
                 c = b * T + lane
                 if c >= W:
                     break
+                # (the column as a float, as subcolumn_kernel's sub-columns: one compile
+                # of render_column for both)
                 evals[c], wrange[c, 0], wrange[c, 1], j_lo, j_hi = render_column(
-                    kind, f, fg, fb, hf, hfp, vp, c, gbuf[b, :, lane], ebuf[b, :, :, lane],
-                    hrec[c], hstride, sg, (b - g * GROUP_TILES) * T + lane)
+                    kind, f, fg, fb, hf, hfp, vp, float(c), gbuf[b, :, lane],
+                    ebuf[b, :, :, lane], hrec[c], hstride, sg, (b - g * GROUP_TILES) * T + lane)
                 rows[b, 0] = min(rows[b, 0], j_lo)
                 rows[b, 1] = max(rows[b, 1], j_hi)

@@ -203,9 +203,8 @@ def _behind():
 
 
 #: preexec_fn of a background job's process whose outcome only the last tests take
-#: (the PTX, the bounds-checked kernels): a lower CPU priority, so that the tests
-#: (which cannot use both cores) go on at full speed while it runs, and it takes the
-#: core they leave idle, and the whole of it once the tests are done (None where
+#: (the PTX): a lower CPU priority, so that the tests and the kernels job go on at
+#: full speed while it runs, and it takes the core they leave idle (None where
 #: processes have no nice value: Windows, which takes no preexec_fn either)
 behind_the_tests = _behind if hasattr(os, "nice") else None
 
@@ -331,7 +330,7 @@ def pytest_sessionstart(session):
     if os.environ.get(second_process.HELPER_ENV):
         # the helper (its parent this session's main process), in the main process's
         # folder of claims: where it starts before every kernel is compiled (a run of
-        # some modules only), it neither compiles a kernel twice
+        # some modules only), it compiles no kernel twice
         parent = os.getppid()
         kernel_claims.install(os.environ[kernel_claims.CLAIMS_ENV],
                               lambda: os.getppid() == parent)

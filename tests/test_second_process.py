@@ -139,8 +139,8 @@ def test_two_processes_report_every_test_once(tmp_path):
     log = tmp_path / "ran.log"
     env = dict(os.environ, RAN_LOG=str(log), TMPDIR=str(tmp_path),
                CLAIMS_GLOB=str(tmp_path / "floatcol-tests-*"))
-    env.pop("FLOATCOL_TEST_HELPER", None)
-    env.pop("FLOATCOL_TEST_PROCESSES", None)
+    for name in ("FLOATCOL_TEST_HELPER", "FLOATCOL_TEST_PROCESSES", "PYTEST_ADDOPTS"):
+        env.pop(name, None)             # (this suite's, not the small one's)
     out = subprocess.run([sys.executable, "-m", "pytest", "-rA", "-p", "no:cacheprovider",
                           str(suite)], cwd=str(suite), env=env,
                          capture_output=True, text=True, timeout=300)

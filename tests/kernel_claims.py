@@ -49,15 +49,23 @@ def install(folder, alive):
     Dispatcher.compile = compile
 
 
-def _claim(folder, name):
+def claim(path, who=""):
+    """True where this process now holds ``path`` (a file created with O_EXCL, ``who``
+    its content), False where another process created it first."""
     try:
-        fd = os.open(os.path.join(folder, name), os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+        fd = os.open(path, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
     except FileExistsError:
         return False
-    except OSError:                 # (the folder is gone: the session has ended)
-        return True
+    os.write(fd, who.encode())
     os.close(fd)
     return True
+
+
+def _claim(folder, name):
+    try:
+        return claim(os.path.join(folder, name))
+    except OSError:                 # (the folder is gone: the session has ended)
+        return True
 
 
 def main():

@@ -29,6 +29,8 @@ import threading
 
 import pytest
 
+from kernel_claims import claim
+
 #: the environment variable that tells the helper the shared folder
 HELPER_ENV = "FLOATCOL_TEST_HELPER"
 #: FLOATCOL_TEST_PROCESSES=1: no helper (the tests one after another, in one process)
@@ -56,13 +58,7 @@ class _Shared:
         """True where ``who`` now holds ``module`` (it was free), False where the other
         process holds it."""
         name = module.replace(os.sep, "__").replace("/", "__")
-        try:
-            fd = os.open(os.path.join(self.claims, name), os.O_CREAT | os.O_EXCL | os.O_WRONLY)
-        except FileExistsError:
-            return False
-        os.write(fd, who.encode())
-        os.close(fd)
-        return True
+        return claim(os.path.join(self.claims, name), who)
 
 
 def _chain(*iterables):
@@ -125,24 +121,23 @@ class Main:
         os.mkdir(self.shared.claims)
         self.proc = None
         self.log = None
-        self.items = []
         self.lock = threading.Lock()
         self.closed = False             # the session has ended: no helper now
 
     def start(self, session):
         """Start the helper on the session's modules (once the kernel cache is full)."""
-        self.items = list(session.items)
+        items = list(session.items)
         with self.lock:
-            if self.closed or len(_modules(self.items, self.stay)) < 2:
+            if self.closed or len(_modules(items, self.stay)) < 2:
                 return
-            self._start()
+            self._start(items)
 
-    def _start(self):
+    def _start(self, items):
         with open(os.path.join(self.shared.folder, "items.json"), "w") as fh:
-            json.dump({"items": [item.nodeid for item in self.items],
+            json.dump({"items": [item.nodeid for item in items],
                        "stay": sorted(self.stay)}, fh)
         files = []
-        for item in self.items:
+        for item in items:
             path = str(item.path)
             if path not in files:
                 files.append(path)
@@ -161,12 +156,12 @@ class Main:
             raise session.Interrupted(f"{session.testsfailed} error(s) during collection")
         if session.config.option.collectonly:
             return True
-        self.items = list(session.items)
+        items = list(session.items)
         theirs = []
-        consumers = [item for item in self.items if item.nodeid in self.stay]
+        consumers = [item for item in items if item.nodeid in self.stay]
         # (a module is claimed as the run reaches it: the helper, which starts later and
         # goes from the last one back, takes those it has not reached)
-        own = _claimed(self.shared, _modules(self.items, self.stay), "main", theirs)
+        own = _claimed(self.shared, _modules(items, self.stay), "main", theirs)
         _run(session, _chain(own, consumers))
         self._report_theirs(session, theirs)
         return True

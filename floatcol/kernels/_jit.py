@@ -79,6 +79,14 @@ _parallel = numba.njit(cache=True, nogil=True, parallel=True, error_model="numpy
 _parallel_nrt_free = numba.njit(cache=True, nogil=True, parallel=True, error_model="numpy",
                                 **_NRT_OFF, **_LLVM_CALL)
 
+# prange_index: Numba types a parallel kernel twice, the whole function first (a
+# prange's index an int64) and then the loop's body on its own (the index a uint64),
+# and it compiles every helper the body calls with the index for both. A kernel's
+# loop therefore starts ``for c_ in prange(n): c = np.int64(c_)``, one signature in
+# both typings (the layers kernel's column code had compiled twice, 8 s of a fresh
+# install's warm-up). Likewise a literal argument (``0``, ``-1``) where another call
+# passes a variable: ``np.int64(0)`` is an int64.
+
 #: held by a parallel kernel's launch while Numba's threading layer may be workqueue
 _LAUNCH = threading.RLock()
 #: the threading layer, once Numba has chosen it (at the first parallel launch)

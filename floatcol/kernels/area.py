@@ -583,7 +583,7 @@ def area_column(kind, f, fg, flat, lv, hfp, vp, x0, slices, lod, gcol, ecol, acc
     share = 1.0 / slices
     for k in range(slices):
         xk = x0 + ((k + 0.5) * share - 0.5) / vp[VP_SCALE]
-        n = 0
+        n = np.int64(0)                 # (not a literal 0: _pass compiles once)
         if vp[VP_ORTHO] != 0.0:
             lo, hi = _ortho_chord(vp, xk)
             if lo <= hi:

@@ -1562,7 +1562,8 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                 prev_kb = -1
             st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True, bat, kb_i)
         else:
-            st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True, bat, -1)
+            st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, t, cur, run, True, bat,
+                                np.int64(-1))        # (an int64: _sample_at compiles once)
         evals += ev
         if persp and kb_i >= 0 and bat[BAT_PT * BATCH + kb_i] != 0.0:
             cur[A_U] = bat[BAT_U * BATCH + kb_i]       # where the batch's root lies (for

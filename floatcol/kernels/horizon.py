@@ -11,6 +11,7 @@ test. Pixels painted by an earlier run of the column (before a hole) hide the li
 too. Each column writes only its own pixels, so columns run in parallel.
 """
 import math
+import numpy as np
 
 from numba import prange
 
@@ -51,7 +52,8 @@ def horizon_kernel(hrec, gbuf, ebuf, vp, hstride, lines, line_t):
     t_view = -math.inf if vp[VP_ORTHO] != 0.0 else -vp[VP_D3] * vp[VP_CA]
     T = gbuf.shape[2]
     H = gbuf.shape[1]
-    for c in prange(W):
+    for c_ in prange(W):
+        c = np.int64(c_)  # (_jit.py: prange_index)
         gcol = gbuf[c // T, :, c % T]
         ecol = ebuf[c // T, :, :, c % T]
         for k in range(nh):

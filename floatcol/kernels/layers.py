@@ -618,7 +618,8 @@ def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf, 
     B = lists.shape[0]
     H = lists.shape[1]
     W = int(vp[VP_W])
-    for b in prange(B):
+    for b_ in prange(B):
+        b = np.int64(b_)  # (_jit.py: prange_index)
         c = c0 + b
         if c >= W:
             continue
@@ -690,7 +691,8 @@ def composite_kernel(lists, counts, offs, gfirst, c0, weight, first, acc, side, 
     W = acc.shape[1]
     T = gbuf.shape[2]
     objects = stop.shape[0] > 0
-    for b in prange(B):
+    for b_ in prange(B):
+        b = np.int64(b_)  # (_jit.py: prange_index)
         c = c0 + b
         if c >= W:
             continue

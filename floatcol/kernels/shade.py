@@ -304,7 +304,8 @@ def finish_kernel(gbuf, ebuf, rows, vp, mp, lut, background, lit, base, side, rg
     shadows = lit.shape[0] > 0
     textured = base.shape[0] > 0
     mt = held(mp)
-    for blk in prange(n_blocks):
+    for blk_ in prange(n_blocks):
+        blk = np.int64(blk_)  # (_jit.py: prange_index)
         j_lo, j_hi = _block_rows(blk, H)
         bg = _rgba32(background[0], background[1], background[2], background[3])
         for j in range(j_lo, j_hi):
@@ -365,7 +366,8 @@ def centre_kernel(gbuf, vp, mp, lit, side, intensity, depth):
     order: blocks of FINISH_ROWS rows filled in runs, then tile by tile."""
     n_tiles, H, T, W, n_blocks = _picture_blocks(gbuf, side)
     shadows = lit.shape[0] > 0
-    for blk in prange(n_blocks):
+    for blk_ in prange(n_blocks):
+        blk = np.int64(blk_)  # (_jit.py: prange_index)
         j_lo, j_hi = _block_rows(blk, H)
         for j in range(j_lo, j_hi):
             i = H - 1 - j

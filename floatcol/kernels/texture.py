@@ -29,7 +29,8 @@ def planes_kernel(gbuf, ebuf, W, a, b, c, u, v, w, side, eu, ev):
     H = gbuf.shape[1]
     T = gbuf.shape[2]
     edges = eu.shape[0] > 0
-    for t in prange(n_tiles):
+    for t_ in prange(n_tiles):
+        t = np.int64(t_)  # (_jit.py: prange_index)
         for j in range(H):
             i = H - 1 - j
             for lane in range(min(T, W - t * T)):
@@ -281,7 +282,8 @@ def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt,
     H = gbuf.shape[1]
     T = gbuf.shape[2]
     span = w_hi - w_lo if w_hi > w_lo else 1.0
-    for t in prange(n_tiles):                 # every pixel's texel coordinates, tile by
+    for t_ in prange(n_tiles):                 # every pixel's texel coordinates, tile by
+        t = np.int64(t_)  # (_jit.py: prange_index)
         for j in range(H):                    # tile (planes_kernel)
             i = H - 1 - j
             for lane in range(min(T, W - t * T)):
@@ -294,7 +296,8 @@ def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt,
                     tx[i, col] = (gbuf[t, j, lane, G_U] - ou) * su
                     ty[i, col] = (gbuf[t, j, lane, G_V] - ov) * sv
                     wp[i, col] = gbuf[t, j, lane, G_W]
-    for i in prange(H):
+    for i_ in prange(H):
+        i = np.int64(i_)  # (_jit.py: prange_index)
         acc = np.empty(4)
         for col in range(W):
             if not side[i, col]:
@@ -303,7 +306,8 @@ def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt,
             _lookup(levels, offsets, shapes, filt, tx[i, col], ty[i, col], rho2, acc)
             r, g, b = _side_rgb(float(sides[i, col]), wp[i, col], lut, w_lo, span, lower_rgb)
             _put(base, i, col, 0, acc, r, g, b)
-    for t in prange(n_tiles):                 # the edge surfaces' colours
+    for t_ in prange(n_tiles):                 # the edge surfaces' colours
+        t = np.int64(t_)  # (_jit.py: prange_index)
         acc = np.empty(4)
         for j in range(H):
             i = H - 1 - j
@@ -406,7 +410,8 @@ def lines_kernel(q, seen, levels, origin, spacing, width, rgb, rgba):
     (|q - level| / |grad q|)."""
     H, W = seen.shape
     n = levels.shape[0]
-    for i in prange(H):
+    for i_ in prange(H):
+        i = np.int64(i_)  # (_jit.py: prange_index)
         for col in range(W):
             x = q[i, col]
             if not seen[i, col] or x != x:
@@ -444,7 +449,8 @@ def field_kernel(gbuf, ebuf, W, a, b, kind, f, fg, fb, hf, hfp, vals, e_vals):
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]
-    for t in prange(n_tiles):
+    for t_ in prange(n_tiles):
+        t = np.int64(t_)  # (_jit.py: prange_index)
         for j in range(H):
             i = H - 1 - j
             for lane in range(min(T, W - t * T)):
@@ -467,7 +473,8 @@ def colour_kernel(vals, e_vals, lut, lo, hi, lower_rgb, base):
     [lo, hi] (shade._side_rgb; NaN: lower_rgb)."""
     H, W = vals.shape
     span = hi - lo if hi > lo else 1.0
-    for i in prange(H):
+    for i_ in prange(H):
+        i = np.int64(i_)  # (_jit.py: prange_index)
         for col in range(W):
             for k in range(2):
                 x = vals[i, col] if k == 0 else e_vals[i, col]

@@ -230,6 +230,13 @@ class Surface3DImage(Artist):
         self._preview = _Preview()
         self.placed = None        # T (2, 3) of the last picture: pixel (col, row) at the
                                   # canvas point T @ (col, row, 1) (axes_camera)
+        self._drawn_M = None      # the Axes' projection (ax.M) of the last picture
+
+    def drawn_for(self, ax):
+        """Whether the last picture was drawn with ``ax``'s present projection."""
+        return (self.get_visible() and self.plot.render is not None
+                and self._drawn_M is not None and getattr(ax, "M", None) is not None
+                and np.array_equal(self._drawn_M, ax.M))
 
     @classmethod
     def attach(cls, plot, ax):
@@ -245,6 +252,12 @@ class Surface3DImage(Artist):
             ua, ub, va, vb = min(ua, a), max(ub, b), min(va, c), max(vb, d)
         lo, hi = plot.norm.vmin, plot.norm.vmax
         ax.auto_scale_xyz([ua, ub], [va, vb], [lo, hi], had_data=ax.has_data())
+        # mplot3d's own calls after this one (ax.plot, ax.scatter) keep the data limits
+        # only where ax.has_data(), which counts lines, collections, patches and images,
+        # not this artist: an empty line, never drawn, stands for the surface there
+        # (else a line at y = 0 took the y limits down to 0 -+ 0.04)
+        from mpl_toolkits.mplot3d.art3d import Line3D
+        ax.add_line(Line3D([], [], [], visible=False, label="_floatcol surface"))
         return art
 
     def get_window_extent(self, renderer=None):
@@ -279,6 +292,8 @@ class Surface3DImage(Artist):
         if preview:
             self._preview.took(r.stats["seconds"], size[0] * size[1])
         self.placed = T
+        self._drawn_M = np.array(ax.M, copy=True)
+        depth_test_mplot3d_artists(ax)
         m = mag / f
         gc = renderer.new_gc()
         gc.set_clip_rectangle(bb)
@@ -436,16 +451,9 @@ class OccludedObjects(Artist):
 
     def _samples(self, view, box):
         """The points, or the line's points about a pixel apart."""
-        p = self.xyz
-        if self.kind != "line" or len(p) < 2:
-            return p
-        col, row = view.project(p[:, 0] * box[0], p[:, 1] * box[1], p[:, 2] * box[2])
-        steps = np.nan_to_num(np.hypot(np.diff(col), np.diff(row)), nan=1.0)
-        out = [p[:1]]
-        for k, n in enumerate(np.clip(np.ceil(steps), 1, 4096).astype(int)):
-            t = (np.arange(1, n + 1) / n)[:, None]
-            out.append(p[k] + (p[k + 1] - p[k]) * t)
-        return np.concatenate(out)
+        if self.kind != "line":
+            return self.xyz
+        return pixel_samples(view, box, self.xyz)[0]
 
     def draw(self, renderer):
         from matplotlib.collections import PathCollection
@@ -495,6 +503,129 @@ class OccludedObjects(Artist):
                 line.set_clip_box(self.axes.bbox)
                 line.draw(renderer)
         self.stale = False
+
+
+def pixel_samples(view, box, p):
+    """(samples, at): the polyline p (n, 3) in the surface's units sampled about a
+    pixel apart in ``view``'s picture (every vertex a sample: p[k] at samples[at[k]], to
+    rounding)."""
+    if len(p) < 2:
+        return p, np.arange(len(p))
+    with np.errstate(invalid="ignore", over="ignore"):
+        col, row = view.project(p[:, 0] * box[0], p[:, 1] * box[1], p[:, 2] * box[2])
+        steps = np.nan_to_num(np.hypot(np.diff(col), np.diff(row)), nan=1.0)
+    n = np.clip(np.ceil(steps), 1, 4096).astype(int)
+    ends = np.cumsum(n)
+    k = np.repeat(np.arange(len(n)), n)                 # each sample's segment
+    t = ((np.arange(ends[-1]) - (ends - n)[k] + 1) / n[k])[:, None]
+    with np.errstate(invalid="ignore", over="ignore"):
+        out = p[k] + (p[k + 1] - p[k]) * t
+    return np.concatenate([p[:1], out]), np.r_[0, ends]
+
+
+class DepthTested:
+    """The draw of one of mplot3d's own artists (``ax.scatter``, ``ax.plot``,
+    ``ax.text``, ``ax.quiver`` and ``ax.plot_wireframe``: Path3DCollection, Line3D,
+    Text3D, Line3DCollection) in a 3-D Axes that holds floatcol surfaces: mplot3d
+    sorts whole artists, so it would draw a scatter entirely over or under a surface.
+    Surface3DImage puts one in place of each such artist's ``draw`` when it draws;
+    while the surfaces' pictures were drawn with the Axes' present projection (they
+    draw first: their zorder, 1, is below mplot3d's artists'), what lies behind a
+    surface at its pixel (visible_points, as SurfacePlot.scatter's) is left out of a
+    copy of the artist that mplot3d then draws as its own: points masked (mplot3d's
+    own way of leaving a point out), a line sampled a pixel apart and broken where
+    hidden (its markers only at its visible vertices), a text not drawn where its
+    anchor is hidden. ``visible`` says, after a draw, which points (a line's samples,
+    a collection's segments' samples end to end) were shown; None where the artist
+    was drawn as it is (no surface drawn with the Axes' projection)."""
+
+    def __init__(self, art):
+        self.art = art
+        self.visible = None
+
+    def __call__(self, renderer):
+        art = self.art
+        renders = [a.plot.render for a in art.axes.artists
+                   if isinstance(a, Surface3DImage) and a.drawn_for(art.axes)]
+        self.visible = None
+        if not renders:
+            return type(art).draw(art, renderer)
+        from mpl_toolkits.mplot3d import art3d
+
+        def shown(pts):
+            vis = np.ones(len(pts), dtype=bool)
+            with np.errstate(invalid="ignore", over="ignore"):
+                for r in renders:
+                    vis &= visible_points(r, pts, r.box)
+            return vis
+
+        def xyz(cols):
+            cols = np.broadcast_arrays(*(np.ma.filled(np.ma.asarray(c, dtype=float), np.nan)
+                                         for c in cols))
+            return np.column_stack([np.ravel(c) for c in cols])
+
+        def line(p):
+            samples, at = pixel_samples(renders[0].view, renders[0].box, p)
+            vis = shown(samples)
+            return samples, at, vis
+
+        import copy
+        if isinstance(art, art3d.Path3DCollection):
+            p = xyz(art._offsets3d)
+            vis = shown(p)
+            self.visible = vis
+            if vis.all():
+                return type(art).draw(art, renderer)
+            c = copy.copy(art)
+            c._offsets3d = tuple(np.ma.array(p[:, k], mask=~vis) for k in range(3))
+            c.do_3d_projection()
+            return type(c).draw(c, renderer)
+        if isinstance(art, art3d.Line3D):
+            p = xyz(art.get_data_3d())
+            samples, at, vis = line(p)
+            self.visible = vis
+            if vis.all():
+                return type(art).draw(art, renderer)
+            cut = np.where(vis[:, None], samples, np.nan)
+            ln = copy.copy(art)
+            ln.set_marker("None")
+            ln._verts3d = tuple(cut[:, k] for k in range(3))
+            type(ln).draw(ln, renderer)
+            if art.get_marker() not in (None, "None", "none", "", " "):
+                mk = copy.copy(art)
+                mk.set_linestyle("None")
+                q = np.where(vis[at][:, None], p, np.nan)
+                mk._verts3d = tuple(q[:, k] for k in range(3))
+                type(mk).draw(mk, renderer)
+            return None
+        if isinstance(art, art3d.Line3DCollection):
+            segs, seen = [], []
+            for seg in art._segments3d:
+                samples, _, vis = line(xyz(np.asarray(seg, dtype=float).T))
+                segs.append(np.where(vis[:, None], samples, np.nan))
+                seen.append(vis)
+            self.visible = np.concatenate(seen) if seen else np.zeros(0, dtype=bool)
+            if self.visible.all():
+                return type(art).draw(art, renderer)
+            c = copy.copy(art)
+            c._segments3d = segs
+            c.do_3d_projection()
+            return type(c).draw(c, renderer)
+        # a text (Text3D): drawn where its anchor is seen
+        self.visible = shown(xyz([[art._x], [art._y], [art._z]]))
+        if self.visible[0]:
+            return type(art).draw(art, renderer)
+        return None
+
+
+def depth_test_mplot3d_artists(ax):
+    """Every artist of mplot3d's own kinds in ``ax`` drawn depth-tested from now on
+    (DepthTested): an instance's ``draw`` is replaced once."""
+    from mpl_toolkits.mplot3d import art3d
+    kinds = (art3d.Path3DCollection, art3d.Line3D, art3d.Text3D, art3d.Line3DCollection)
+    for a in ax.get_children():
+        if isinstance(a, kinds) and not isinstance(a.__dict__.get("draw"), DepthTested):
+            a.draw = DepthTested(a)
 
 
 def _check_style(kind, style, n):

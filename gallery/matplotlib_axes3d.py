@@ -6,8 +6,9 @@ plot_wireframe with the hidden lines removed, beside mplot3d's own.
 ``fc.plot_surface(X, Y, Z, ax=ax, ...)`` takes matplotlib's call form and keywords;
 inside ``fig.add_subplot(projection="3d")`` the Axes keep their panes, ticks, labels
 and limits, and the surface lies exactly where mplot3d would draw the mesh.
-``plot.scatter`` and ``plot.plot`` draw objects depth-tested against the surface,
-which mplot3d cannot do.
+mplot3d's own ``ax.scatter``, ``ax.plot``, ``ax.text`` and ``ax.quiver`` in that Axes
+are drawn depth-tested against the surface (as ``plot.scatter`` and ``plot.plot``),
+which mplot3d alone cannot do: it sorts whole artists.
 """
 import matplotlib.pyplot as plt
 import numpy as np
@@ -35,14 +36,14 @@ fig.savefig("surface3d.png")
 # markers and a path around a hill: hidden where the hill is in front of them
 fig = plt.figure(figsize=(7, 5))
 ax = fig.add_subplot(projection="3d")
-hill = fc.plot_surface("2*exp(-(x**2 + y**2)/2)", ("x", -3, 3), ("y", -3, 3), ax=ax,
-                       cmap="summer")
+fc.plot_surface("2*exp(-(x**2 + y**2)/2)", ("x", -3, 3), ("y", -3, 3), ax=ax,
+                cmap="summer")
 rng = np.random.default_rng(3)
 pts = rng.uniform([-3, -3, 0.2], [3, 3, 2.4], (250, 3))
-hill.scatter(pts[:, 0], pts[:, 1], pts[:, 2], color="crimson", s=14)
+ax.scatter(pts[:, 0], pts[:, 1], pts[:, 2], color="crimson", s=14)
 t = np.linspace(0, 2 * np.pi, 400)
-hill.plot(2.2 * np.cos(t), 2.2 * np.sin(t), 0.6 + 0.5 * np.sin(3 * t), color="k", linewidth=2)
-ax.set_title("scatter and plot, depth-tested against the surface")
+ax.plot(2.2 * np.cos(t), 2.2 * np.sin(t), 0.6 + 0.5 * np.sin(3 * t), color="k", linewidth=2)
+ax.set_title("mplot3d's scatter and plot, depth-tested against the surface")
 fig.savefig("occluded_objects.png")
 
 # matplotlib's custom hillshading example, in floatcol

@@ -371,6 +371,137 @@ def test_points_behind_a_hill_are_hidden(proj):
     assert (sc.visible == ~hidden).mean() >= 0.98
 
 
+def _hill_with_points(proj, own):
+    """A hill and 400 random points away from it (|z - f| > 0.05), as a scatter of
+    mplot3d's own (``own``) or the SurfacePlot's; (fig, ax, plot, points, scatter,
+    hidden by rays cast from each point toward the eye)."""
+    def f(x, y):
+        return 2 * np.exp(-(x ** 2 + y ** 2) / 2)
+    fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
+    ax = fig.add_subplot(projection="3d", proj_type=proj)
+    p = fc.plot_surface("2*exp(-(x**2+y**2)/2)", ("x", -3, 3), ("y", -3, 3), ax=ax,
+                        cmap="Blues")
+    rng = np.random.default_rng(7)
+    pts = rng.uniform([-3, -3, 0], [3, 3, 2.2], (600, 3))
+    pts = pts[np.abs(pts[:, 2] - f(pts[:, 0], pts[:, 1])) > 0.05][:400]
+    add = ax.scatter if own else p.scatter
+    sc = add(pts[:, 0], pts[:, 1], pts[:, 2], color="red", s=10)
+    fig.canvas.draw()
+    # the eye in data coordinates: mplot3d's, undone by the box's stretch
+    box = np.asarray(p.render.box)
+    e, a = np.radians(ax.elev), np.radians(ax.azim)
+    ps = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+    lims = np.array([ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()])
+    centre = lims.mean(axis=1)
+    if proj == "ortho":
+        hidden = _hidden_by_rays(f, pts, eye_dir=ps / box)
+    else:
+        hidden = _hidden_by_rays(f, pts, eye=centre + ax._dist * ax._focal_length * ps / box)
+    return fig, ax, p, pts, sc, hidden
+
+
+def _canvas_pixels(ax, pts):
+    """(rows, columns) of the canvas pixels where mplot3d puts the points (n, 3)."""
+    from mpl_toolkits.mplot3d import proj3d
+    xs, ys, _ = proj3d.proj_transform(pts[:, 0], pts[:, 1], pts[:, 2], ax.M)
+    d = ax.transData.transform(np.column_stack([xs, ys]))
+    H = ax.figure.canvas.get_width_height()[1]
+    return np.round(H - d[:, 1] - 0.5).astype(int), np.round(d[:, 0] - 0.5).astype(int)
+
+
+@pytest.mark.parametrize("proj", ["ortho", "persp"])
+def test_mplot3ds_own_scatter_is_depth_tested_too(proj):
+    """``ax.scatter`` of mplot3d's own, in an Axes with a floatcol surface, is drawn
+    where each point lies in front of the surface: against rays cast from each point
+    toward the eye, and in the picture (red where a lone point is drawn, none where it
+    is hidden; the surface is blue). Measured 2026-12-06: 99.75 % (ortho) and 100 %
+    (persp) of the points agree with the rays, as SurfacePlot.scatter's; in the
+    picture every lone point's pixel agrees."""
+    fig, ax, p, pts, sc, hidden = _hill_with_points(proj, own=True)
+    a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
+    rows, cols = _canvas_pixels(ax, pts)
+    plt.close(fig)
+    assert 0.1 < hidden.mean() < 0.9
+    assert (sc.draw.visible == ~hidden).mean() >= 0.98
+    # points with no other point within 8 pixels on the canvas: the picture itself
+    gap = np.hypot(rows[:, None] - rows[None], cols[:, None] - cols[None])
+    np.fill_diagonal(gap, np.inf)
+    lone = gap.min(axis=1) > 8
+    red = (a[rows, cols, 0] > 150) & (a[rows, cols, 0] - np.maximum(a[rows, cols, 1],
+                                                                     a[rows, cols, 2]) > 60)
+    assert lone.sum() > 40 and (hidden[lone]).sum() > 5
+    assert (red[lone] == ~hidden[lone]).mean() >= 0.97
+
+
+def test_mplot3ds_own_line_text_and_quiver_are_depth_tested_too():
+    """mplot3d's own ``ax.plot`` (a line through the hill: its middle hidden, its
+    markers only where seen), ``ax.text`` and ``ax.quiver`` (an arrow up through the
+    hill's top: its lower part hidden), as the SurfacePlot's."""
+    fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    fc.plot_surface("2*exp(-(x**2+y**2)/2)", ("x", -3, 3), ("y", -3, 3), ax=ax, cmap="Blues")
+    t = np.linspace(0, 1, 50)
+    ln, = ax.plot(-3 + 6 * t, 0 * t, 0.8 + 0 * t, "r-o", markevery=7)
+    front = ax.text(0, -2.5, 0.5, "in front")
+    behind = ax.text(0, 2.5, 0.3, "behind")          # the hill lies between it and the eye
+    q = ax.quiver([0.0], [0.0], [1.0], [0.0], [0.0], [1.0], length=2.0, color="red",
+                  arrow_length_ratio=0.1)
+    ax.set_zlim(0, 3.5)
+    ax.view_init(20, -90)                            # looking along +y, low
+    fig.canvas.draw()
+    a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
+    pts = np.column_stack([-3 + 6 * t, 0 * t, 0.8 + 0 * t])
+    rows, cols = _canvas_pixels(ax, pts)
+    shaft = np.column_stack([0 * t, 0 * t, 1 + 2 * t])
+    s_rows, s_cols = _canvas_pixels(ax, shaft)
+    plt.close(fig)
+    v = ln.draw.visible
+    assert v[:5].all() and v[-5:].all() and not v.all()
+    # in the picture: red at the line's ends, none where the hill (|x| < 1.52) hides it
+    red = (a[..., 0] > 150) & (a[..., 0] - np.maximum(a[..., 1], a[..., 2]) > 60)
+    x = pts[:, 0]
+    assert red[rows[x < -2], cols[x < -2]].all() and red[rows[x > 2], cols[x > 2]].all()
+    inside = np.abs(x) < 1.2
+    assert not red[rows[inside], cols[inside]].any()
+    assert front.draw.visible[0] and not behind.draw.visible[0]
+    # the arrow's shaft (z from 1 to 3): hidden below the hill's top (z = 2), drawn above
+    z = shaft[:, 2]
+    assert not red[s_rows[z < 1.8], s_cols[z < 1.8]].any()
+    assert red[s_rows[(z > 2.2) & (z < 2.7)], s_cols[(z > 2.2) & (z < 2.7)]].all()
+    assert 0 < q.draw.visible.mean() < 1
+
+
+def test_mplot3ds_own_calls_after_the_surface_keep_its_limits():
+    """ax.plot after fc.plot_surface widens the Axes' limits to hold both, as after
+    mplot3d's own plot_surface (its autoscale had forgotten the surface: a line at
+    y = 0 took the y limits down to 0 -+ 0.04)."""
+    fig = plt.figure(figsize=(4, 3), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    fc.plot_surface("2*exp(-(x**2+y**2)/2)", ("x", -3, 3), ("y", -3, 3), ax=ax)
+    ax.plot([-4, 4], [0, 0], [0.8, 0.8])
+    lo, hi = ax.get_ylim3d()
+    assert lo <= -3 and hi >= 3
+    lo, hi = ax.get_xlim3d()
+    assert lo <= -4 and hi >= 4
+    assert ax.get_legend_handles_labels() == ([], [])
+    plt.close(fig)
+
+
+def test_mplot3ds_own_artists_as_they_were_without_a_surface_drawn():
+    """Where no floatcol surface was drawn with the Axes' projection (hidden, or none
+    in the Axes), mplot3d's artists are drawn as mplot3d draws them."""
+    fig = plt.figure(figsize=(4, 3), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    p = fc.plot_surface("2*exp(-(x**2+y**2)/2)", ("x", -3, 3), ("y", -3, 3), ax=ax)
+    sc = ax.scatter([-1.0], [1.73], [0.2], color="red")  # behind the hill
+    fig.canvas.draw()
+    assert not sc.draw.visible[0]
+    p.artist.set_visible(False)
+    fig.canvas.draw()
+    assert sc.draw.visible is None
+    plt.close(fig)
+
+
 def test_a_line_through_a_hill():
     fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
     ax = fig.add_subplot(projection="3d", proj_type="ortho")

@@ -293,7 +293,14 @@ class Surface3DImage(Artist):
             self._preview.took(r.stats["seconds"], size[0] * size[1])
         self.placed = T
         self._drawn_M = np.array(ax.M, copy=True)
+        # mplot3d's own artists: what this surface hides drawn under its picture
+        # (where it is the Axes' only one), the rest over it when they draw
         depth_test_mplot3d_artists(ax)
+        if sum(isinstance(a, Surface3DImage) for a in ax.artists) == 1:
+            for a in sorted(ax.get_children(), key=lambda a: a.get_zorder()):
+                if isinstance(a.__dict__.get("draw"), DepthTested) and \
+                        a.get_zorder() >= self.get_zorder():
+                    a.draw.draw_hidden(renderer, [r])
         m = mag / f
         gc = renderer.new_gc()
         gc.set_clip_rectangle(bb)
@@ -535,9 +542,12 @@ class DepthTested:
     copy of the artist that mplot3d then draws as its own: points masked (mplot3d's
     own way of leaving a point out), a line sampled a pixel apart and broken where
     hidden (its markers only at its visible vertices), a text not drawn where its
-    anchor is hidden. ``visible`` says, after a draw, which points (a line's samples,
-    a collection's segments' samples end to end) were shown; None where the artist
-    was drawn as it is (no surface drawn with the Axes' projection)."""
+    anchor is hidden. The hidden part is drawn the same way under the surface's
+    picture (``draw_hidden``, where the Axes holds one floatcol surface), so that it
+    shows through a translucent surface and at the partly covered pixels of its
+    edges. ``visible`` says, after a draw, which points (a line's samples, a
+    collection's segments' samples end to end) were shown; None where the artist was
+    drawn as it is (no surface drawn with the Axes' projection)."""
 
     def __init__(self, art):
         self.art = art
@@ -550,72 +560,81 @@ class DepthTested:
         self.visible = None
         if not renders:
             return type(art).draw(art, renderer)
+        self._draw(renderer, renders, True)
+
+    def draw_hidden(self, renderer, renders):
+        """Draw the part of the artist that the surfaces of ``renders`` hide."""
+        if self.art.get_visible():
+            self._draw(renderer, renders, False)
+
+    def _draw(self, renderer, renders, front):
+        """Draw the part in front of the surfaces (``front``) or the part behind."""
+        import copy
+
         from mpl_toolkits.mplot3d import art3d
+        art = self.art
 
         def shown(pts):
             vis = np.ones(len(pts), dtype=bool)
             with np.errstate(invalid="ignore", over="ignore"):
                 for r in renders:
                     vis &= visible_points(r, pts, r.box)
-            return vis
+            if front:
+                self.visible = vis
+            return vis if front else ~vis & np.isfinite(pts).all(axis=1)
 
         def xyz(cols):
             cols = np.broadcast_arrays(*(np.ma.filled(np.ma.asarray(c, dtype=float), np.nan)
                                          for c in cols))
             return np.column_stack([np.ravel(c) for c in cols])
 
-        def line(p):
-            samples, at = pixel_samples(renders[0].view, renders[0].box, p)
-            vis = shown(samples)
-            return samples, at, vis
+        def whole(keep):
+            """Draw the artist itself (all kept), nothing (none), or else False."""
+            if keep.all():
+                type(art).draw(art, renderer)
+            return keep.all() or not keep.any()
 
-        import copy
         if isinstance(art, art3d.Path3DCollection):
             p = xyz(art._offsets3d)
-            vis = shown(p)
-            self.visible = vis
-            if vis.all():
-                return type(art).draw(art, renderer)
-            c = copy.copy(art)
-            c._offsets3d = tuple(np.ma.array(p[:, k], mask=~vis) for k in range(3))
-            c.do_3d_projection()
-            return type(c).draw(c, renderer)
-        if isinstance(art, art3d.Line3D):
+            keep = shown(p)
+            if not whole(keep):
+                c = copy.copy(art)
+                c._offsets3d = tuple(np.ma.array(p[:, k], mask=~keep) for k in range(3))
+                c.do_3d_projection()
+                type(c).draw(c, renderer)
+        elif isinstance(art, art3d.Line3D):
             p = xyz(art.get_data_3d())
-            samples, at, vis = line(p)
-            self.visible = vis
-            if vis.all():
-                return type(art).draw(art, renderer)
-            cut = np.where(vis[:, None], samples, np.nan)
-            ln = copy.copy(art)
-            ln.set_marker("None")
-            ln._verts3d = tuple(cut[:, k] for k in range(3))
-            type(ln).draw(ln, renderer)
-            if art.get_marker() not in (None, "None", "none", "", " "):
-                mk = copy.copy(art)
-                mk.set_linestyle("None")
-                q = np.where(vis[at][:, None], p, np.nan)
-                mk._verts3d = tuple(q[:, k] for k in range(3))
-                type(mk).draw(mk, renderer)
-            return None
-        if isinstance(art, art3d.Line3DCollection):
-            segs, seen = [], []
+            samples, at = pixel_samples(renders[0].view, renders[0].box, p)
+            keep = shown(samples)
+            if not whole(keep):
+                cut = np.where(keep[:, None], samples, np.nan)
+                ln = copy.copy(art)
+                ln.set_marker("None")
+                ln._verts3d = tuple(cut[:, k] for k in range(3))
+                type(ln).draw(ln, renderer)
+                if art.get_marker() not in (None, "None", "none", "", " "):
+                    mk = copy.copy(art)
+                    mk.set_linestyle("None")
+                    q = np.where(keep[at][:, None], p, np.nan)
+                    mk._verts3d = tuple(q[:, k] for k in range(3))
+                    type(mk).draw(mk, renderer)
+        elif isinstance(art, art3d.Line3DCollection):
+            segs, parts = [], []
             for seg in art._segments3d:
-                samples, _, vis = line(xyz(np.asarray(seg, dtype=float).T))
-                segs.append(np.where(vis[:, None], samples, np.nan))
-                seen.append(vis)
-            self.visible = np.concatenate(seen) if seen else np.zeros(0, dtype=bool)
-            if self.visible.all():
-                return type(art).draw(art, renderer)
-            c = copy.copy(art)
-            c._segments3d = segs
-            c.do_3d_projection()
-            return type(c).draw(c, renderer)
-        # a text (Text3D): drawn where its anchor is seen
-        self.visible = shown(xyz([[art._x], [art._y], [art._z]]))
-        if self.visible[0]:
-            return type(art).draw(art, renderer)
-        return None
+                samples, _ = pixel_samples(renders[0].view, renders[0].box,
+                                           xyz(np.asarray(seg, dtype=float).T))
+                segs.append(samples)
+                parts.append(len(samples))
+            pts = np.concatenate(segs) if segs else np.zeros((0, 3))
+            keep = shown(pts)
+            if not whole(keep):
+                cuts = np.split(np.where(keep[:, None], pts, np.nan), np.cumsum(parts)[:-1])
+                c = copy.copy(art)
+                c._segments3d = cuts
+                c.do_3d_projection()
+                type(c).draw(c, renderer)
+        else:                                   # a text (Text3D): by its anchor
+            whole(shown(xyz([[art._x], [art._y], [art._z]])))
 
 
 def depth_test_mplot3d_artists(ax):

@@ -558,6 +558,7 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     if facecolors is not None:
         facecolors = _face_colours(facecolors)
     mesh_shape = None
+    resampled = False
     if _is_mesh(expr, ranges):                # matplotlib's plot_surface(X, Y, Z, ...)
         mesh_shape = np.shape(ranges[1])
         if facecolors is None:
@@ -565,11 +566,12 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
         else:
             expr, facecolors = mesh_surface(expr, *ranges, extra=facecolors)
         ranges = ()
+        resampled = expr.resampled
     if facecolors is not None:                # the colours of the faces: a texture
         if "texture" in options or "color_field" in options:
             raise ValueError("give one of facecolors, texture and color_field")
         options["texture"] = facecolors
-    _mesh_lines(options, mesh_shape)          # edgecolor: matplotlib's mesh lines
+    _mesh_lines(options, mesh_shape, resampled)   # edgecolor: matplotlib's mesh lines
     zorder = options.pop("zorder", None)
     unknown = sorted(set(options) - _RENDER_OPTIONS - _OWN_OPTIONS - {"color_field"})
     if unknown:
@@ -668,10 +670,13 @@ def _face_colours(facecolors):
                      f"got shape {arr.shape}")
 
 
-def _mesh_lines(options, shape):
+def _mesh_lines(options, shape, resampled=False):
     """matplotlib's mesh keywords: with an edge colour, the mesh's lines (rcount x
     ccount of them, or every rstride-th / cstride-th row and column of a mesh of
-    ``shape``) as a wireframe of linewidth points; without one they draw nothing."""
+    ``shape``) as a wireframe of linewidth points; without one they draw nothing.
+    A ``resampled`` mesh's (mesh.py: not an evenly spaced grid) are not drawn: the
+    wireframe's lines are evenly spaced, and the mesh's are not (a RuntimeWarning
+    says so)."""
     mesh = {k: options.pop(k) for k in list(options) if k in _MPL_MESH_OPTIONS}
     ec = next((mesh[k] for k in ("edgecolor", "edgecolors", "ec") if k in mesh), None)
     if ec is None or (isinstance(ec, str) and ec in ("none", "face")):
@@ -680,6 +685,11 @@ def _mesh_lines(options, shape):
     if np.ndim(lw) > 0:
         lw = np.ravel(lw)[0]
     if not (isinstance(lw, (int, float, np.number)) and not isinstance(lw, bool)) or lw <= 0:
+        return
+    if resampled:
+        import warnings
+        warnings.warn("plot_surface(X, Y, Z): the edges of a mesh that is not an evenly "
+                      "spaced grid are not drawn (edgecolor)", RuntimeWarning, stacklevel=3)
         return
     rows, cols = shape if shape is not None else (MPL_MESH_COUNT, MPL_MESH_COUNT)
 
@@ -710,9 +720,11 @@ def _numeric(a):
 
 def mesh_surface(X, Y, Z, extra=None):
     """The HeightField of matplotlib's plot_surface(X, Y, Z): X and Y a meshgrid (either
-    indexing) or 1-D x (along Z's columns) and y (along its rows), evenly spaced,
-    ascending or descending (a north-up raster). With ``extra`` (an array of Z's
-    shape and more axes: facecolors), (HeightField, extra in the same order)."""
+    indexing) or 1-D x (along Z's columns) and y (along its rows), ascending or
+    descending (a north-up raster); unevenly spaced, or a curvilinear grid of Z's
+    shape, resampled onto an evenly spaced one (mesh.py: ``resampled`` says so). With
+    ``extra`` (an array of Z's shape and more axes: facecolors), (HeightField, extra
+    in the same order)."""
     try:
         X, Y, Z = (np.asarray(a, dtype=float) for a in (X, Y, Z))
     except (TypeError, ValueError):
@@ -727,35 +739,50 @@ def mesh_surface(X, Y, Z, extra=None):
         X, Y, Z = X.T, Y.T, Z.T                    # meshgrid(..., indexing="ij")
         if extra is not None:
             extra = np.swapaxes(extra, 0, 1)
+    if min(Z.shape) < 2:
+        raise ValueError(f"plot_surface(X, Y, Z): Z must have at least 2 x 2 values (a "
+                         f"surface between them), got shape {Z.shape}")
+    if X.ndim == 2 and X.shape == Z.shape and Y.shape == Z.shape and \
+            not (np.allclose(X, X[:1]) and np.allclose(Y, Y[:, :1])):
+        # a curvilinear grid (X = R cos P, Y = R sin P): resampled (mesh.py)
+        from .mesh import curvilinear
+        x, y, Z, extra = curvilinear(X, Y, Z, extra)
+        return _mesh_field(x, y, Z, extra, resampled=True)
     if X.ndim == 2:
         if X.shape != Z.shape or not np.allclose(X, X[:1]):
             raise ValueError("plot_surface(X, Y, Z): X must repeat one row of x values "
-                             "(a meshgrid)")
+                             "(a meshgrid), or X and Y be a curvilinear grid of Z's shape")
         X = X[0]
     if Y.ndim == 2:
         if Y.shape != Z.shape or not np.allclose(Y, Y[:, :1]):
             raise ValueError("plot_surface(X, Y, Z): Y must repeat one column of y values "
-                             "(a meshgrid)")
+                             "(a meshgrid), or X and Y be a curvilinear grid of Z's shape")
         Y = Y[:, 0]
     if X.shape != (Z.shape[1],) or Y.shape != (Z.shape[0],):
         raise ValueError(f"plot_surface(X, Y, Z): x has {X.size} and y {Y.size} values for Z "
                          f"of shape {Z.shape}")
-    if min(Z.shape) < 2:
-        raise ValueError(f"plot_surface(X, Y, Z): Z must have at least 2 x 2 values (a "
-                         f"surface between them), got shape {Z.shape}")
+    even = True
     for name, a in (("X", X), ("Y", Y)):
         d = np.diff(a)
-        if len(a) < 2 or not np.all(np.isfinite(a)) or d[0] == 0 or \
-                not np.allclose(d, d[0], rtol=1e-6, atol=0):
-            raise ValueError(f"plot_surface(X, Y, Z): {name} must be evenly spaced and finite "
-                             "(floatcol reads Z as a regular grid)")
+        if not np.all(np.isfinite(a)) or not (np.all(d > 0) or np.all(d < 0)):
+            raise ValueError(f"plot_surface(X, Y, Z): {name} must be finite and ascending "
+                             "or descending")
+        even = even and np.allclose(d, d[0], rtol=1e-6, atol=0)
     if X[1] < X[0]:
         X, Z = X[::-1], Z[:, ::-1]
         extra = None if extra is None else extra[:, ::-1]
     if Y[1] < Y[0]:
         Y, Z = Y[::-1], Z[::-1]
         extra = None if extra is None else extra[::-1]
-    hf = HeightField(Z, u=(X[0], X[-1]), v=(Y[0], Y[-1]))
+    if not even:                              # (np.geomspace's): resampled (mesh.py)
+        from .mesh import uneven
+        X, Y, Z, extra = uneven(X, Y, Z, extra)
+    return _mesh_field(X, Y, Z, extra, resampled=not even)
+
+
+def _mesh_field(x, y, Z, extra, resampled):
+    hf = HeightField(Z, u=(x[0], x[-1]), v=(y[0], y[-1]))
+    hf.resampled = resampled                  # (mesh.py: not the mesh's own grid)
     return hf if extra is None else (hf, np.ascontiguousarray(extra))
 
 

@@ -122,6 +122,8 @@ class HeightField(Surface):
     """
 
     kind = SURF_HEIGHTFIELD
+    #: True where matplotlib's mesh was resampled onto this grid (mesh.py)
+    resampled = False
 
     def __init__(self, z, u=None, v=None):
         try:

@@ -234,6 +234,12 @@ def warm_all_steps():
         for variant in GUEDES_VARIANTS:
             guedes(hf, (16, 1), size=(32, 18), variant=variant)
 
+    def curvilinear_mesh():
+        # matplotlib's plot_surface(X, Y, Z) of a polar grid (mesh.py's kernel)
+        from .mesh import curvilinear
+        r, p = np.meshgrid(np.linspace(0, 1, 5), np.linspace(0, 2 * np.pi, 9))
+        curvilinear(r * np.cos(p), r * np.sin(p), r * r)
+
     # (in about the order in which the test suite first meets them, tests/conftest.py)
     steps = [both(antialias=3), both(antialias="area"),
              lambda: fc.render_many([fc.Layer(expr, ((-5, 5), (-5, 5))),
@@ -248,7 +254,7 @@ def warm_all_steps():
         dict(), dict(antialias="area"), dict(shadows=True), dict(objects=objects),
         dict(objects=objects, shadows=True), dict(objects=objects, shadows=True, light_radius=1.0),
         dict(objects=objects, shadows=True, opacity=0.5))]
-    return steps + [ring, fly, variants]
+    return steps + [ring, fly, variants, curvilinear_mesh]
 
 
 def main(argv=None):

@@ -1,7 +1,8 @@
 """floatcol in matplotlib's own 3-D Axes: the surface3d example with only its
 plot_surface call changed, markers hidden behind a hill, a terrain with
-matplotlib's LightSource, a surface clipped at the Axes' limits (axlim_clip), and
-plot_wireframe with the hidden lines removed, beside mplot3d's own.
+matplotlib's LightSource, a surface clipped at the Axes' limits (axlim_clip),
+plot_wireframe with the hidden lines removed, beside mplot3d's own, and the
+surface3d_radial example's polar grid (resampled onto an even one).
 
 ``fc.plot_surface(X, Y, Z, ax=ax, ...)`` takes matplotlib's call form and keywords;
 inside ``fig.add_subplot(projection="3d")`` the Axes keep their panes, ticks, labels
@@ -87,3 +88,19 @@ ax.set_title("mplot3d's plot_wireframe")
 for a in fig.axes:
     a.view_init(15, -60)
 fig.savefig("wireframe_hidden_lines.png")
+
+# matplotlib's surface3d_radial example: a polar grid, not an evenly spaced one, is
+# resampled (each quad two flat triangles, as mplot3d draws it; docs/matplotlib.md)
+r = np.linspace(0, 1.25, 50)
+p = np.linspace(0, 2 * np.pi, 50)
+R, P = np.meshgrid(r, p)
+Z = ((R**2 - 1)**2)
+X, Y = R * np.cos(P), R * np.sin(P)
+fig = plt.figure()
+ax = fig.add_subplot(projection="3d")
+fc.plot_surface(X, Y, Z, ax=ax, cmap=plt.cm.YlGnBu_r)
+ax.set_zlim(0, 1)
+ax.set_xlabel(r"$\phi_\mathrm{real}$")
+ax.set_ylabel(r"$\phi_\mathrm{im}$")
+ax.set_zlabel(r"$V(\phi)$")
+fig.savefig("surface3d_radial.png")

@@ -130,8 +130,10 @@ def test_mesh_call_forms():
         other = fc.plot.mesh_surface(*args)
         assert other.default_domain == hf.default_domain
         np.testing.assert_array_equal(other.hf, hf.hf)
-    with pytest.raises(ValueError, match="evenly spaced"):
-        fc.plot.mesh_surface(x ** 3, y, Z)
+    # uneven x is resampled (tests/test_mesh.py); x that turns back is refused
+    assert fc.plot.mesh_surface(x ** 3, y, Z).resampled
+    with pytest.raises(ValueError, match="ascending or descending"):
+        fc.plot.mesh_surface(x ** 2, y, Z)
     with pytest.raises(ValueError, match="Z must be 2-D"):
         fc.plot.mesh_surface(x, y, Z[0])
     # one row of values: no surface between them (it said "Y must be evenly spaced")

@@ -1,0 +1,162 @@
+"""matplotlib's plot_surface(X, Y, Z) on meshes that are not an evenly spaced grid.
+
+floatcol draws a mesh as a HeightField: bilinear over an evenly spaced grid. A mesh
+whose x or y values are spaced unevenly (a meshgrid of np.geomspace), or whose
+(X, Y) is a curvilinear grid (matplotlib's surface3d_radial example: X = R cos P,
+Y = R sin P) is resampled onto one here, as the surface mplot3d draws of it:
+
+- uneven spacing: the mesh's own bilinear surface (each cell's), evaluated at the
+  nodes of an evenly spaced grid fine enough for the smallest cell (at most
+  MAX_NODES a side);
+- a curvilinear grid: each quad split into two triangles (mplot3d draws a quad as a
+  flat polygon; a triangle is the flat piece a height field can hold), the surface
+  linear on each, at the nodes of an evenly spaced grid over its extent with
+  CURVED_NODES_PER_LINE nodes a mesh line (at most MAX_NODES a side;
+  kernels/mesh.py rasterises the triangles); outside the mesh, a hole.
+
+A curvilinear (X, Y) that is not a function's grid (a parametric surface such as a
+sphere: its quads fold over one another in the x-y plane, or one (x, y) carries two
+heights) raises ValueError: floatcol draws w = f(x, y).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+#: the resampled grid's nodes a side at most
+MAX_NODES = 2049
+#: a curvilinear mesh's resampled grid: nodes per mesh line along its longer side
+CURVED_NODES_PER_LINE = 16
+#: ... and at least this many a side
+MIN_NODES = 65
+
+
+def _linear(a, values, new, axis):
+    """``values`` linear along ``axis`` between the ascending coordinates ``a``, at
+    ``new`` (within a's range): the bilinear cell's value where applied on both axes."""
+    i = np.clip(np.searchsorted(a, new, side="right") - 1, 0, len(a) - 2)
+    t = (new - a[i]) / (a[i + 1] - a[i])
+    shape = [1] * values.ndim
+    shape[axis] = len(new)
+    t = t.reshape(shape)
+    lo = np.take(values, i, axis=axis)
+    hi = np.take(values, i + 1, axis=axis)
+    with np.errstate(invalid="ignore"):
+        return lo + (hi - lo) * t
+
+
+def _as_colours(resampled, like):
+    """Resampled colours back in the type of ``like`` (uint8 stays uint8), the texels
+    outside the mesh (NaN) taking their neighbours' (two texels deep: the texture's
+    bilinear filter reads no farther at the surface's edge), else 0."""
+    out = np.array(resampled, dtype=float)
+    for _ in range(2):
+        bad = ~np.isfinite(out).all(axis=-1)
+        if not bad.any():
+            break
+        acc = np.zeros_like(out)
+        cnt = np.zeros(out.shape[:2] + (1,))
+        for axis in (0, 1):
+            for shift in (1, -1):
+                nb = np.roll(out, shift, axis=axis)
+                good = np.isfinite(nb).all(axis=-1, keepdims=True)
+                acc += np.where(good, nb, 0.0)
+                cnt += good
+        fill = bad & (cnt[..., 0] > 0)
+        out[fill] = acc[fill] / cnt[fill]
+    out[~np.isfinite(out)] = 0.0
+    like = np.asarray(like)
+    if like.dtype.kind in "iu":
+        info = np.iinfo(like.dtype)
+        return np.clip(np.round(out), info.min, info.max).astype(like.dtype)
+    return out
+
+
+def _even(a):
+    """An evenly spaced grid over the ascending coordinates ``a``, fine enough for
+    their smallest step."""
+    span = a[-1] - a[0]
+    n = int(np.ceil(span / np.diff(a).min())) + 1 if span > 0 else len(a)
+    return np.linspace(a[0], a[-1], int(np.clip(n, len(a), MAX_NODES)))
+
+
+def uneven(x, y, Z, extra=None):
+    """(x, y, Z, extra) of the rectilinear mesh with ascending, unevenly spaced x
+    (Z's columns) and y (its rows), resampled bilinearly onto evenly spaced ones."""
+    xe, ye = _even(x), _even(y)
+    Z = _linear(y, _linear(x, Z, xe, 1), ye, 0)
+    if extra is not None:
+        extra = _as_colours(_linear(y, _linear(x, np.asarray(extra, dtype=float), xe, 1),
+                                    ye, 0), extra)
+    return xe, ye, Z, extra
+
+
+def _parametric(why):
+    return ValueError(f"plot_surface(X, Y, Z): X and Y are not the grid of a function "
+                      f"z = f(x, y) ({why}); floatcol draws such surfaces, not parametric "
+                      f"ones")
+
+
+def curvilinear(X, Y, Z, extra=None):
+    """(x, y, Z, extra) of the curvilinear mesh X, Y, Z (2-D, one shape), linear on
+    the two triangles of each quad, at the nodes of an evenly spaced grid (NaN
+    outside the mesh); ValueError where it is not a function's grid."""
+    from .kernels.mesh import mesh_kernel
+    m, n = Z.shape
+    x, y, z = X.ravel(), Y.ravel(), Z.ravel()
+    ok = np.isfinite(x) & np.isfinite(y)
+    if ok.sum() < 3:
+        raise ValueError("plot_surface(X, Y, Z): X and Y need at least 3 finite points")
+    lo_x, hi_x = x[ok].min(), x[ok].max()
+    lo_y, hi_y = y[ok].min(), y[ok].max()
+    size = max(hi_x - lo_x, hi_y - lo_y)
+    if not size > 0:
+        raise ValueError("plot_surface(X, Y, Z): X and Y span no area")
+    # points that coincide (a polar grid's centre, the seam where its angle comes
+    # round) become one; a second height there is a parametric surface's
+    key = np.round(np.column_stack([x, y]) / (size * 1e-9))
+    key[~ok] = np.nan
+    _, first, inverse = np.unique(key[ok], axis=0, return_index=True, return_inverse=True)
+    where = np.flatnonzero(ok)
+    node = np.full(x.size, -1)
+    node[where] = first[inverse.ravel()]
+    node[where] = where[node[where]]
+    same = np.isfinite(z[where]) & np.isfinite(z[node[where]])
+    finite = z[np.isfinite(z)]
+    tol = 1e-9 * ((np.ptp(finite) if finite.size else 0.0) + 1.0)
+    if np.any(np.abs(z[where][same] - z[node[where]][same]) > tol):
+        raise _parametric("one point (x, y) with two heights")
+    idx = np.arange(m * n).reshape(m, n)
+    a, b, c, d = idx[:-1, :-1], idx[:-1, 1:], idx[1:, 1:], idx[1:, :-1]
+    tris = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3),
+                           np.stack([a, c, d], -1).reshape(-1, 3)])
+    tris = node[tris]
+    tris = tris[(tris >= 0).all(axis=1)]
+    px, py = x[tris], y[tris]
+    area = 0.5 * ((px[:, 1] - px[:, 0]) * (py[:, 2] - py[:, 0])
+                  - (px[:, 2] - px[:, 0]) * (py[:, 1] - py[:, 0]))
+    flat = np.abs(area) <= 1e-12 * size * size
+    tris, area = tris[~flat], area[~flat]
+    if len(tris) == 0:
+        raise ValueError("plot_surface(X, Y, Z): X and Y span no area")
+    # the quads of a function's grid all turn one way in the x-y plane; a parametric
+    # surface's fold over (a sphere's at its equator)
+    big = np.abs(area) > 1e-3 * np.abs(area).max()
+    if (area[big] > 0).any() and (area[big] < 0).any():
+        raise _parametric("its quads fold over one another")
+    nodes = int(np.clip(CURVED_NODES_PER_LINE * max(m, n), MIN_NODES, MAX_NODES))
+    step = size / (nodes - 1)
+    xe = np.linspace(lo_x, hi_x, max(int(round((hi_x - lo_x) / step)) + 1, 2))
+    ye = np.linspace(lo_y, hi_y, max(int(round((hi_y - lo_y) / step)) + 1, 2))
+    values = z[:, None] if extra is None else np.column_stack(
+        [z, np.asarray(extra, dtype=float).reshape(m * n, -1)])
+    out = np.full((len(ye), len(xe), values.shape[1]), np.nan)
+    hits = np.zeros((len(ye), len(xe)), dtype=np.int64)
+    mesh_kernel(np.ascontiguousarray(x[tris]), np.ascontiguousarray(y[tris]),
+                np.ascontiguousarray(values[tris]), xe[0], xe[1] - xe[0], len(xe),
+                ye[0], ye[1] - ye[0], len(ye), out, hits)
+    # quads that lie over one another without folding (a mesh wound round twice)
+    if hits.max() > 1:
+        raise _parametric("its quads overlap")
+    extra = None if extra is None else _as_colours(out[..., 1:], extra)
+    out = out[..., 0]
+    return xe, ye, out, extra

@@ -28,6 +28,8 @@ MAX_NODES = 2049
 CURVED_NODES_PER_LINE = 16
 #: ... and at least this many a side
 MIN_NODES = 65
+#: the nodes the kernel may test, summed over the triangles' boxes (about a second)
+MAX_VISITS = 4e8
 
 
 def _linear(a, values, new, axis):
@@ -143,10 +145,20 @@ def curvilinear(X, Y, Z, extra=None):
     big = np.abs(area) > 1e-3 * np.abs(area).max()
     if (area[big] > 0).any() and (area[big] < 0).any():
         raise _parametric("its quads fold over one another")
+    # triangles that do not overlap cover at most the mesh's box
+    if np.abs(area).sum() > 1.05 * (hi_x - lo_x) * (hi_y - lo_y):
+        raise _parametric("its quads overlap")
     nodes = int(np.clip(CURVED_NODES_PER_LINE * max(m, n), MIN_NODES, MAX_NODES))
     step = size / (nodes - 1)
     xe = np.linspace(lo_x, hi_x, max(int(round((hi_x - lo_x) / step)) + 1, 2))
     ye = np.linspace(lo_y, hi_y, max(int(round((hi_y - lo_y) / step)) + 1, 2))
+    # the kernel visits each triangle's box of nodes: long thin cells across the
+    # whole mesh would take minutes
+    px, py = x[tris], y[tris]
+    boxes = ((np.ptp(px, axis=1) / step + 1) * (np.ptp(py, axis=1) / step + 1)).sum()
+    if boxes > MAX_VISITS:
+        raise ValueError("plot_surface(X, Y, Z): the mesh's cells are too long and thin to "
+                         "resample (a curvilinear grid whose quads cross much of it)")
     values = z[:, None] if extra is None else np.column_stack(
         [z, np.asarray(extra, dtype=float).reshape(m * n, -1)])
     out = np.full((len(ye), len(xe), values.shape[1]), np.nan)

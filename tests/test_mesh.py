@@ -145,5 +145,12 @@ def test_odd_meshes_are_holes_or_a_clear_error_never_a_crash():
     for c in (colours, np.round(colours * 255).astype(np.uint8)):
         p = fc.plot_surface(X, Y, Z, facecolors=c, size=(40, 30))
         assert p.rgba[..., 3].any()
+    # quads that each cross the whole mesh (slivers along its diagonal): refused
+    # rather than minutes of resampling
+    k = np.arange(2000) * 1e-6
+    Xs = np.stack([k, 1.0 + k])
+    Ys = np.stack([0.0 * k, 1.0 + 0.0 * k])
+    with pytest.raises(ValueError, match="too long and thin"):
+        fc.plot_surface(Xs, Ys, Xs + Ys, size=(40, 30))
     with pytest.raises(ValueError, match="finite and ascending or descending"):
         fc.plot_surface(np.array([0.0, 2.0, 1.0]), np.array([0.0, 1.0]), np.ones((2, 3)))

@@ -530,6 +530,12 @@ def pixel_samples(view, box, p):
     return np.concatenate([p[:1], out]), np.r_[0, ends]
 
 
+#: what a Matplotlib whose mplot3d keeps its artists' data otherwise would raise in
+#: DepthTested (which reads their private attributes): the artist is then drawn as
+#: mplot3d draws it
+_INTERNALS = (AttributeError, TypeError, ValueError, IndexError, KeyError)
+
+
 class DepthTested:
     """The draw of one of mplot3d's own artists (``ax.scatter``, ``ax.plot``,
     ``ax.text``, ``ax.quiver`` and ``ax.plot_wireframe``: Path3DCollection, Line3D,
@@ -560,12 +566,19 @@ class DepthTested:
         self.visible = None
         if not renders:
             return type(art).draw(art, renderer)
-        self._draw(renderer, renders, True)
+        try:
+            self._draw(renderer, renders, True)
+        except _INTERNALS:              # (another Matplotlib's mplot3d: drawn as it is)
+            self.visible = None
+            type(art).draw(art, renderer)
 
     def draw_hidden(self, renderer, renders):
         """Draw the part of the artist that the surfaces of ``renders`` hide."""
         if self.art.get_visible():
-            self._draw(renderer, renders, False)
+            try:
+                self._draw(renderer, renders, False)
+            except _INTERNALS:
+                pass
 
     def _draw(self, renderer, renders, front):
         """Draw the part in front of the surfaces (``front``) or the part behind."""
@@ -633,15 +646,133 @@ class DepthTested:
                 c._segments3d = cuts
                 c.do_3d_projection()
                 type(c).draw(c, renderer)
+        elif isinstance(art, getattr(art3d, "Collection3D", ())) and \
+                hasattr(art, "_3dverts_codes"):
+            # contour and contourf sets (Matplotlib 3.8 on): a path a level
+            vc = art._3dverts_codes
+            if getattr(art, "filled", True):
+                keep = _paths_kept(vc, renders, front)
+                if front:
+                    self.visible = keep
+                if not whole(keep):
+                    c = copy.copy(art)
+                    c._3dverts_codes = [(vs, cs) if k else (np.zeros((0, 3)), None)
+                                        for (vs, cs), k in zip(vc, keep)]
+                    c.do_3d_projection()
+                    type(c).draw(c, renderer)
+            else:
+                cut, seen = [], []
+                for vs, cs in vc:
+                    parts = []
+                    for sub in _subpaths(np.asarray(vs, dtype=float), cs):
+                        samples, _ = pixel_samples(renders[0].view, renders[0].box, sub)
+                        parts.append(samples)
+                    pts = np.concatenate(parts) if parts else np.zeros((0, 3))
+                    keep = shown(pts)
+                    seen.append(keep)
+                    # the visible runs, each starting with a MOVETO (not NaN points:
+                    # mplot3d masks those, and its mask fails on a path's vertices)
+                    start = np.zeros(len(pts), dtype=bool)
+                    start[np.cumsum([len(q) for q in parts], dtype=int)[:-1]] = True
+                    start[0:1] = True
+                    run_start = keep & (start | ~np.r_[False, keep[:-1]])
+                    codes = np.where(run_start, 1, 2).astype(np.uint8)  # MOVETO, LINETO
+                    cut.append((pts[keep], codes[keep]))
+                keep = np.concatenate(seen) if seen else np.zeros(0, dtype=bool)
+                if front:
+                    self.visible = keep
+                if not whole(keep):
+                    c = copy.copy(art)
+                    c._3dverts_codes = cut
+                    c.do_3d_projection()
+                    type(c).draw(c, renderer)
+        elif isinstance(art, art3d.Poly3DCollection):
+            faces = getattr(art, "_faces", None)
+            if faces is None:                   # (another Matplotlib's layout)
+                if front:
+                    type(art).draw(art, renderer)
+                return
+            keep = _faces_kept(art, faces, renders, front)
+            if front:
+                self.visible = keep
+            if not whole(keep):
+                c = copy.copy(art)
+                c._faces = np.where(keep[:, None, None], faces, np.nan)
+                c.do_3d_projection()
+                type(c).draw(c, renderer)
         else:                                   # a text (Text3D): by its anchor
             whole(shown(xyz([[art._x], [art._y], [art._z]])))
+
+
+#: a polygon's points tested against the surfaces: a lattice of this many steps
+#: along the edges of each triangle of its fan
+FACE_LATTICE = 6
+
+
+def _faces_kept(art, faces, renders, front):
+    """Which polygons (faces (n, m, 3), padded) of a Poly3DCollection to draw over the
+    surfaces' pictures (``front``) or under them: under where none of the polygon's
+    points (its corners and a lattice over the triangles of its fan) lies in front of
+    a surface that is there (a contour's filled projection on a far wall, a floor
+    below), over where any does; whole polygons, so one that crosses a surface goes
+    over it."""
+    n, m, _ = faces.shape
+    bad = np.broadcast_to(np.asarray(getattr(art, "_invalid_vertices", False)), (n, m))
+    f = np.where(bad[..., None], np.nan, faces)
+    # (a polygon's padding repeats no corner: its fan's triangles there are NaN)
+    L = FACE_LATTICE
+    a, b = np.meshgrid(np.arange(L + 1), np.arange(L + 1))
+    keep_ab = a + b <= L
+    wa, wb = a[keep_ab] / L, b[keep_ab] / L             # barycentric lattice
+    p0 = f[:, :1, None, :]
+    p1 = f[:, 1:-1, None, :]
+    p2 = f[:, 2:, None, :]
+    pts = p0 + wa[None, None, :, None] * (p1 - p0) + wb[None, None, :, None] * (p2 - p0)
+    pts = pts.reshape(n, -1, 3)
+    flat = pts.reshape(-1, 3)
+    good = np.isfinite(flat).all(axis=1)
+    over = np.zeros(len(flat), dtype=bool)
+    with np.errstate(invalid="ignore", over="ignore"):
+        for r in renders:
+            _, in_front, _ = depth_sides(r, np.where(good[:, None], flat, 0.0), r.box)
+            over |= in_front & good
+    seen_front = over.reshape(n, -1).any(axis=1)
+    return seen_front if front else ~seen_front
+
+
+def _subpaths(vs, codes):
+    """The polylines of a path's vertices (k, 3) and codes (a MOVETO starts one)."""
+    if codes is None or len(vs) == 0:
+        return [vs] if len(vs) else []
+    starts = np.flatnonzero(np.asarray(codes) == 1)        # (Path.MOVETO)
+    if len(starts) == 0 or starts[0] != 0:
+        starts = np.r_[0, starts]
+    return [p for p in np.split(vs, starts[1:]) if len(p)]
+
+
+def _paths_kept(vc, renders, front):
+    """Which paths (filled: a contourf level's polygons) of a Collection3D to draw over
+    the surfaces' pictures (``front``: any of its corners in front of a surface that is
+    there) or under them (none: a contour's filled projection on a far wall, a
+    floor below)."""
+    keep = np.zeros(len(vc), dtype=bool)
+    with np.errstate(invalid="ignore", over="ignore"):
+        for i, (vs, _) in enumerate(vc):
+            vs = np.asarray(vs, dtype=float).reshape(-1, 3)
+            good = np.isfinite(vs).all(axis=1)
+            for r in renders:
+                _, in_front, _ = depth_sides(r, np.where(good[:, None], vs, 0.0), r.box)
+                keep[i] |= (in_front & good).any()
+    return keep if front else ~keep
 
 
 def depth_test_mplot3d_artists(ax):
     """Every artist of mplot3d's own kinds in ``ax`` drawn depth-tested from now on
     (DepthTested): an instance's ``draw`` is replaced once."""
     from mpl_toolkits.mplot3d import art3d
-    kinds = (art3d.Path3DCollection, art3d.Line3D, art3d.Text3D, art3d.Line3DCollection)
+    kinds = (art3d.Path3DCollection, art3d.Line3D, art3d.Text3D, art3d.Line3DCollection,
+             art3d.Poly3DCollection) + ((art3d.Collection3D,)
+                                        if hasattr(art3d, "Collection3D") else ())
     for a in ax.get_children():
         if isinstance(a, kinds) and not isinstance(a.__dict__.get("draw"), DepthTested):
             a.draw = DepthTested(a)
@@ -689,6 +820,14 @@ def visible_points(r, pts, box, pixels=2.0):
     """Which points (n, 3) in the surface's units lie in front of the surface a Render
     ``r`` saw at their pixel, or where it saw none (the depth test, with a tolerance of
     ``pixels`` pixels of depth so that a point on the surface stays visible)."""
+    ok, front, behind = depth_sides(r, pts, box, pixels)
+    return ok & ~behind
+
+
+def depth_sides(r, pts, box, pixels=2.0):
+    """(ok, front, behind): which points (n, 3) are numbers that project, and which of
+    them lie in front of (or on) the surface the Render ``r`` saw at their pixel, and
+    which behind it (neither where it saw none there)."""
     view = r.view
     bx, by, bz = (pts[:, 0] * box[0], pts[:, 1] * box[1], pts[:, 2] * box[2])
     col, row = view.project(bx, by, bz)
@@ -705,4 +844,6 @@ def visible_points(r, pts, box, pixels=2.0):
         tol = tol * (z + view.d3) / view.d1
     seen = np.asarray(r.depth)[j, c]
     with np.errstate(invalid="ignore", over="ignore"):     # (points far off: not shown)
-        return ok & (~inside | ~np.isfinite(seen) | (z <= seen + tol))
+        there = inside & np.isfinite(seen)
+        near = z <= seen + tol
+        return ok, ok & there & near, ok & there & ~near

@@ -318,6 +318,7 @@ class Worker:
 
     def run(self, c: dict) -> dict:
         if self.proc is None or self.proc.poll() is not None:
+            self.close()
             self._start()
         try:
             self.proc.stdin.write(json.dumps(c) + "\n")
@@ -339,4 +340,9 @@ class Worker:
             if self.proc.poll() is None:
                 self.proc.kill()
             self.proc.wait()
+            for pipe in (self.proc.stdin, self.proc.stdout):
+                try:
+                    pipe.close()        # (else a ResourceWarning when the suite ends)
+                except (OSError, ValueError):
+                    pass
             self.proc = None

@@ -15,8 +15,9 @@ Y = R sin P) is resampled onto one here, as the surface mplot3d draws of it:
   kernels/mesh.py rasterises the triangles); outside the mesh, a hole.
 
 A curvilinear (X, Y) that is not a function's grid (a parametric surface such as a
-sphere: its quads fold over one another in the x-y plane, or one (x, y) carries two
-heights) raises ValueError: floatcol draws w = f(x, y).
+sphere: its quads fold over one another in the x-y plane, or lie over one another)
+raises ValueError: floatcol draws w = f(x, y). Points that coincide (a polar grid's
+centre, the seam where its angle comes round) are one, at their heights' mean.
 """
 from __future__ import annotations
 
@@ -114,7 +115,8 @@ def curvilinear(X, Y, Z, extra=None):
     if not size > 0:
         raise ValueError("plot_surface(X, Y, Z): X and Y span no area")
     # points that coincide (a polar grid's centre, the seam where its angle comes
-    # round) become one; a second height there is a parametric surface's
+    # round) become one, at their heights' mean (data with noise there; a parametric
+    # surface's two heights at one point are caught as its fold below)
     key = np.round(np.column_stack([x, y]) / (size * 1e-9))
     key[~ok] = np.nan
     _, first, inverse = np.unique(key[ok], axis=0, return_index=True, return_inverse=True)
@@ -122,11 +124,13 @@ def curvilinear(X, Y, Z, extra=None):
     node = np.full(x.size, -1)
     node[where] = first[inverse.ravel()]
     node[where] = where[node[where]]
-    same = np.isfinite(z[where]) & np.isfinite(z[node[where]])
-    finite = z[np.isfinite(z)]
-    tol = 1e-9 * ((np.ptp(finite) if finite.size else 0.0) + 1.0)
-    if np.any(np.abs(z[where][same] - z[node[where]][same]) > tol):
-        raise _parametric("one point (x, y) with two heights")
+    fin = np.isfinite(z[where])
+    total = np.bincount(node[where][fin], weights=z[where][fin], minlength=x.size)
+    count = np.bincount(node[where][fin], minlength=x.size)
+    z = z.copy()
+    merged = np.flatnonzero(count > 1)
+    with np.errstate(over="ignore", invalid="ignore"):
+        z[merged] = total[merged] / count[merged]
     idx = np.arange(m * n).reshape(m, n)
     a, b, c, d = idx[:-1, :-1], idx[:-1, 1:], idx[1:, 1:], idx[1:, :-1]
     tris = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3),

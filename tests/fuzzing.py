@@ -241,6 +241,85 @@ def _terrain_call(c):
     return fc.render(hf, **kw)
 
 
+#: the meshes of mesh_case: matplotlib's plot_surface(X, Y, Z) on grids of every kind
+MESH_GRIDS = ["meshgrid", "uneven", "polar", "wound", "sphere", "scatter", "line", "collapsed"]
+
+
+def mesh_case(rng: random.Random) -> dict:
+    """A random plot_surface(X, Y, Z) (JSON-able; the worker makes the arrays from
+    ``seed``): evenly and unevenly spaced grids, curvilinear ones (a polar grid, one
+    wound round twice, a sphere's), scattered points, points on a line, all at one
+    point; heights and coordinates now and then NaN, infinite or at the doubles'
+    edges; facecolors, edge lines, a 3-D Axes."""
+    sides = [1, 2, 3, 5, 17, 40]
+    c = {"seed": rng.randrange(2 ** 31), "shape": [rng.choice(sides), rng.choice(sides)],
+         "grid": rng.choice(MESH_GRIDS), "scale": rng.choice([1.0, 1.0, 1e-300, 1e300, 1e6]),
+         "odd": rng.random() < 0.3, "size": [rng.choice([1, 7, 60]), rng.choice([1, 9, 40])]}
+    c["facecolors"] = rng.random() < 0.2
+    c["edges"] = rng.random() < 0.2
+    c["axes3d"] = rng.random() < 0.3
+    return {"mesh": c}
+
+
+def _mesh_arrays(c):
+    import numpy as np
+    rng = np.random.default_rng(c["seed"])
+    m, n = c["shape"]
+    a, b = np.linspace(0, 1, n), np.linspace(0, 1, m)
+    grid = c["grid"]
+    if grid == "meshgrid":
+        X, Y = np.meshgrid(a * 4 - 2, b * 3)
+    elif grid == "uneven":
+        X, Y = np.meshgrid(np.cumsum(rng.uniform(0.01, 1, n)), np.cumsum(rng.uniform(0.01, 1, m)))
+    elif grid in ("polar", "wound"):
+        R, P = np.meshgrid(a * 1.25, b * 2 * np.pi * (2 if grid == "wound" else 1))
+        X, Y = R * np.cos(P), R * np.sin(P)
+    elif grid == "sphere":
+        U, V = np.meshgrid(a * 2 * np.pi, b * np.pi)
+        X, Y = np.cos(U) * np.sin(V), np.sin(U) * np.sin(V)
+    elif grid == "scatter":
+        X, Y = rng.uniform(-1, 1, (m, n)), rng.uniform(-1, 1, (m, n))
+    elif grid == "line":
+        X = np.add.outer(b, a)
+        Y = 2 * X
+    else:
+        X, Y = np.zeros((m, n)), np.zeros((m, n))
+    X, Y = X * c["scale"], Y * c["scale"]
+    Z = np.sin(3 * X) * np.cos(2 * Y) + rng.normal(0, 0.1, X.shape)
+    if c["odd"]:
+        for arr in (X, Y, Z):
+            k = rng.random(arr.shape) < 0.1
+            arr[k] = rng.choice([np.nan, np.inf, -np.inf, 1e300, -1e300], size=k.sum())
+    return X, Y, Z
+
+
+def _mesh_call(c):
+    import numpy as np
+
+    import floatcol as fc
+    X, Y, Z = _mesh_arrays(c)
+    kw = {"size": tuple(c["size"])}
+    if c["facecolors"]:
+        kw["facecolors"] = np.random.default_rng(1).uniform(0, 1, Z.shape + (3,))
+    if c["edges"]:
+        kw.update(edgecolor="k", linewidth=0.5, rstride=2, cstride=2)
+    if c["axes3d"]:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig = plt.figure(figsize=(2, 1.5), dpi=50)
+        ax = fig.add_subplot(projection="3d")
+        try:
+            p = fc.plot_surface(X, Y, Z, ax=ax, **kw)
+            ax.scatter([0.0], [0.0], [0.0])
+            ax.plot([0.0, 1.0], [0.0, 1.0], [0.0, 1.0])
+            fig.canvas.draw()
+            return p.render
+        finally:
+            plt.close(fig)
+    return fc.plot_surface(X, Y, Z, **kw).draw()
+
+
 def run_case(c: dict) -> dict:
     """Run one case here (the worker's side): its outcome and message."""
     import warnings
@@ -255,7 +334,12 @@ def run_case(c: dict) -> dict:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            r = _terrain_call(c["terrain"]) if "terrain" in c else fc.render(c["expr"], **kw)
+            if "terrain" in c:
+                r = _terrain_call(c["terrain"])
+            elif "mesh" in c:
+                r = _mesh_call(c["mesh"])
+            else:
+                r = fc.render(c["expr"], **kw)
             rgba = r.rgba
             assert rgba.dtype == np.uint8 and rgba.shape[2] == 4
             out = {"outcome": "ok", "message": ""}

@@ -74,6 +74,21 @@ def test_random_terrains_draw_or_raise_value_error(worker):
         _check(worker, fuzzing.terrain_case(rnd))
 
 
+#: matplotlib's plot_surface(X, Y, Z) on meshes of every kind (a fixed seed): even,
+#: uneven, polar, wound twice, a sphere's, scattered, on a line, at one point
+N_MESH = 120
+
+
+def test_random_meshes_draw_or_raise_value_error(worker):
+    rnd = random.Random(33)
+    grids = set()
+    for _ in range(N_MESH):
+        c = fuzzing.mesh_case(rnd)
+        grids.add(c["mesh"]["grid"])
+        _check(worker, c)
+    assert grids == set(fuzzing.MESH_GRIDS)
+
+
 # The reproducers: segfaults in the column kernel (a float -> row conversion of
 # screen rows near 1e300, undefined in LLVM), and hangs (an adaptive perspective step
 # read from scratch never written: t became NaN)

@@ -1,10 +1,13 @@
 """Fuzz floatcol's render with random expressions, ranges and options (issue 26).
 
-    python benchmarks/fuzz.py [N] [SEED] [--terrain]   (default 10000 cases, seed 26)
+    python benchmarks/fuzz.py [N] [SEED] [--terrain | --mesh]   (default 10000 cases, seed 26)
 
 --terrain: height-field cases instead (tests/fuzzing.py terrain_case: DEMs with
 holes, 16-bit, flat, huge or tiny heights, fly cameras anywhere, area sampling, lod,
 shadows, objects on the terrain).
+--mesh: matplotlib's plot_surface(X, Y, Z) on meshes of every kind instead
+(tests/fuzzing.py mesh_case: even, uneven, polar, wound, a sphere's, scattered,
+collinear, collapsed grids with NaN, infinite and huge values, in 2-D and 3-D Axes).
 
 Each case runs in a worker process (tests/fuzzing.py): a segfault or a hang is
 counted, the worker restarted. Prints the counts of each outcome and the first few
@@ -22,8 +25,9 @@ import fuzzing  # noqa: E402
 
 
 def main():
-    args = [a for a in sys.argv[1:] if a != "--terrain"]
-    make = fuzzing.terrain_case if "--terrain" in sys.argv[1:] else fuzzing.case
+    args = [a for a in sys.argv[1:] if a not in ("--terrain", "--mesh")]
+    make = fuzzing.terrain_case if "--terrain" in sys.argv[1:] else \
+        fuzzing.mesh_case if "--mesh" in sys.argv[1:] else fuzzing.case
     n = int(args[0]) if len(args) > 0 else 10000
     seed = int(args[1]) if len(args) > 1 else 26
     rng = random.Random(seed)

@@ -726,7 +726,8 @@ def mesh_surface(X, Y, Z, extra=None):
     ``extra`` (an array of Z's shape and more axes: facecolors), (HeightField, extra
     in the same order)."""
     try:
-        X, Y, Z = (np.asarray(a, dtype=float) for a in (X, Y, Z))
+        # (a masked array's masked values are holes, as mplot3d leaves them out)
+        X, Y, Z = (np.ma.filled(np.ma.asarray(a, dtype=float), np.nan) for a in (X, Y, Z))
     except (TypeError, ValueError):
         raise ValueError("plot_surface(X, Y, Z): X, Y and Z must be arrays of numbers") from None
     if Z.ndim != 2:

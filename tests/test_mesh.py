@@ -115,6 +115,23 @@ def test_a_parametric_surface_is_refused_saying_why(make, why):
         fc.plot_surface(X, Y, Z, size=(40, 30))
 
 
+def test_masked_values_are_holes():
+    """matplotlib's missing data, a masked array: its masked values are holes (as
+    mplot3d leaves them out), not the numbers under the mask."""
+    x = np.linspace(-2, 2, 21)
+    X, Y = np.meshgrid(x, x)
+    Z = np.exp(-X ** 2 - Y ** 2)
+    hole = X ** 2 + Y ** 2 < 0.5
+    hf = mesh_surface(X, Y, np.ma.masked_where(hole, Z))
+    assert np.isnan(hf.hf[hole]).all() and np.isfinite(hf.hf[~hole]).all()
+    Xr, Yr = _polar(8, 16)
+    Zr = np.ma.masked_where(Xr > 0.9, Xr + Yr)
+    hf = mesh_surface(Xr, Yr, Zr)
+    (ua, ub), (va, vb) = hf.default_domain
+    U, V = np.meshgrid(np.linspace(ua, ub, hf.hf.shape[1]), np.linspace(va, vb, hf.hf.shape[0]))
+    assert not np.isfinite(hf.hf[U > 1.0]).any()
+
+
 def test_coinciding_points_are_one_at_their_mean_height():
     """A polar grid's centre (every angle's r = 0) and its seam (angle 0 and 2 pi)
     with heights that differ (data with noise): one point each, at the mean."""

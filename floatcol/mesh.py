@@ -37,13 +37,12 @@ def _linear(a, values, new, axis):
     """``values`` linear along ``axis`` between the ascending coordinates ``a``, at
     ``new`` (within a's range): the bilinear cell's value where applied on both axes."""
     i = np.clip(np.searchsorted(a, new, side="right") - 1, 0, len(a) - 2)
-    t = (new - a[i]) / (a[i + 1] - a[i])
     shape = [1] * values.ndim
     shape[axis] = len(new)
-    t = t.reshape(shape)
     lo = np.take(values, i, axis=axis)
     hi = np.take(values, i + 1, axis=axis)
-    with np.errstate(invalid="ignore"):
+    with np.errstate(over="ignore", invalid="ignore"):
+        t = ((new - a[i]) / (a[i + 1] - a[i])).reshape(shape)
         return lo + (hi - lo) * t
 
 
@@ -77,9 +76,10 @@ def _as_colours(resampled, like):
 def _even(a):
     """An evenly spaced grid over the ascending coordinates ``a``, fine enough for
     their smallest step."""
-    span = a[-1] - a[0]
-    n = int(np.ceil(span / np.diff(a).min())) + 1 if span > 0 else len(a)
-    return np.linspace(a[0], a[-1], int(np.clip(n, len(a), MAX_NODES)))
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        steps = (a[-1] - a[0]) / np.diff(a).min()      # (inf beyond the doubles)
+    n = np.clip(np.ceil(steps) + 1, len(a), MAX_NODES) if steps == steps else MAX_NODES
+    return np.linspace(a[0], a[-1], int(n))
 
 
 def uneven(x, y, Z, extra=None):

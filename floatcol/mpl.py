@@ -538,9 +538,11 @@ _INTERNALS = (AttributeError, TypeError, ValueError, IndexError, KeyError)
 
 class DepthTested:
     """The draw of one of mplot3d's own artists (``ax.scatter``, ``ax.plot``,
-    ``ax.text``, ``ax.quiver`` and ``ax.plot_wireframe``: Path3DCollection, Line3D,
-    Text3D, Line3DCollection) in a 3-D Axes that holds floatcol surfaces: mplot3d
-    sorts whole artists, so it would draw a scatter entirely over or under a surface.
+    ``ax.text``, ``ax.quiver``, ``ax.plot_wireframe``, ``ax.contour(f)``,
+    ``ax.add_collection3d``: Path3DCollection, Line3D, Text3D, Line3DCollection, a
+    contour set's Collection3D, Poly3DCollection) in a 3-D Axes that holds floatcol
+    surfaces: mplot3d sorts whole artists, so it would draw a scatter entirely over or
+    under a surface.
     Surface3DImage puts one in place of each such artist's ``draw`` when it draws;
     while the surfaces' pictures were drawn with the Axes' present projection (they
     draw first: their zorder, 1, is below mplot3d's artists'), what lies behind a
@@ -548,7 +550,9 @@ class DepthTested:
     copy of the artist that mplot3d then draws as its own: points masked (mplot3d's
     own way of leaving a point out), a line sampled a pixel apart and broken where
     hidden (its markers only at its visible vertices), a text not drawn where its
-    anchor is hidden. The hidden part is drawn the same way under the surface's
+    anchor is hidden, polygons (a contourf level's, a Poly3DCollection's) whole, over
+    the picture where any of their points lies in front of a surface (_faces_kept,
+    _paths_kept). The hidden part is drawn the same way under the surface's
     picture (``draw_hidden``, where the Axes holds one floatcol surface), so that it
     shows through a translucent surface and at the partly covered pixels of its
     edges. ``visible`` says, after a draw, which points (a line's samples, a
@@ -719,7 +723,8 @@ def _faces_kept(art, faces, renders, front):
     n, m, _ = faces.shape
     bad = np.broadcast_to(np.asarray(getattr(art, "_invalid_vertices", False)), (n, m))
     f = np.where(bad[..., None], np.nan, faces)
-    # (a polygon's padding repeats no corner: its fan's triangles there are NaN)
+    # (the padding of a polygon with fewer corners is NaN: its fan's triangles that
+    # reach it give NaN points, which count for nothing)
     L = FACE_LATTICE
     a, b = np.meshgrid(np.arange(L + 1), np.arange(L + 1))
     keep_ab = a + b <= L

@@ -764,10 +764,15 @@ def mesh_surface(X, Y, Z, extra=None):
                          f"of shape {Z.shape}")
     even = True
     for name, a in (("X", X), ("Y", Y)):
-        d = np.diff(a)
+        with np.errstate(over="ignore", invalid="ignore"):
+            d = np.diff(a)
         if not np.all(np.isfinite(a)) or not (np.all(d > 0) or np.all(d < 0)):
             raise ValueError(f"plot_surface(X, Y, Z): {name} must be finite and ascending "
                              "or descending")
+        with np.errstate(over="ignore"):
+            if not np.isfinite(a[-1] - a[0]):
+                raise ValueError(f"plot_surface(X, Y, Z): {name} spans more than the "
+                                 "largest double")
         even = even and np.allclose(d, d[0], rtol=1e-6, atol=0)
     if X[1] < X[0]:
         X, Z = X[::-1], Z[:, ::-1]

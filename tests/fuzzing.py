@@ -253,7 +253,7 @@ def mesh_case(rng: random.Random) -> dict:
     edges; facecolors, edge lines, a 3-D Axes."""
     sides = [1, 2, 3, 5, 17, 40]
     c = {"seed": rng.randrange(2 ** 31), "shape": [rng.choice(sides), rng.choice(sides)],
-         "grid": rng.choice(MESH_GRIDS), "scale": rng.choice([1.0, 1.0, 1e-300, 1e300, 1e6]),
+         "grid": rng.choice(MESH_GRIDS), "scale": rng.choice([1.0, 1.0, 1e-300, 1e300, 1e308, 1e6]),
          "odd": rng.random() < 0.3, "size": [rng.choice([1, 7, 60]), rng.choice([1, 9, 40])]}
     c["facecolors"] = rng.random() < 0.2
     c["edges"] = rng.random() < 0.2

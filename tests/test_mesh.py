@@ -184,5 +184,7 @@ def test_odd_meshes_are_holes_or_a_clear_error_never_a_crash():
     Ys = np.stack([0.0 * k, 1.0 + 0.0 * k])
     with pytest.raises(ValueError, match="too long and thin"):
         fc.plot_surface(Xs, Ys, Xs + Ys, size=(40, 30))
+    with pytest.raises(ValueError, match="spans more than the largest double"):
+        fc.plot_surface(np.array([-1e308, 0.0, 1e308]), np.array([0.0, 1.0]), np.ones((2, 3)))
     with pytest.raises(ValueError, match="finite and ascending or descending"):
         fc.plot_surface(np.array([0.0, 2.0, 1.0]), np.array([0.0, 1.0]), np.ones((2, 3)))

@@ -199,7 +199,8 @@ def _surface_options(p, default_size="800x600", many=False, terrain=False):
     p.add_argument("--lines", type=int, default=None, help="horizon: number of lines (default 160)")
     p.add_argument("--cmap", default=None, help="matplotlib colormap of the upper side (default viridis)")
     p.add_argument("--color", default=None, help="one colour for the upper side instead of a colormap")
-    p.add_argument("--lower-color", default=None, help="colour of the lower side")
+    p.add_argument("--lower-color", default=None,
+                   help="colour of the lower side (\"same\": the upper side's at its height)")
     p.add_argument("--vmin", type=_value("vmin"), default=None,
                    help="height at the colormap's start (a number or a constant such as pi/2)")
     p.add_argument("--vmax", type=_value("vmax"), default=None,

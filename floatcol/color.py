@@ -62,17 +62,34 @@ def _named_lut(cmap):
     return cm(np.linspace(0.0, 1.0, 256))[:, :3].astype(np.float32)
 
 
+#: lower_color's word for "as the upper side" (mplot3d colours both sides alike)
+SAME = "same"
+
+
 def side_colors(shading, cmap="viridis", upper_color=None, lower_color=DEFAULT_LOWER):
     """(lut, lower_rgb): the upper side's colour table indexed by height (one row for
-    a flat colour) and the lower side's colour. The reference model ("lambert") is
-    grey above and warm-tinted below, so the two sides stay distinguishable."""
+    a flat colour) and the lower side's colour; NaN where ``lower_color`` is "same"
+    (SAME: the lower side takes the upper side's colour at its height, as mplot3d
+    colours both sides; the kernels' shade._side_rgb). The reference model ("lambert")
+    is grey above and warm-tinted below, so the two sides stay distinguishable."""
+    same = isinstance(lower_color, str) and lower_color.strip().lower() == SAME
     if shading == "lambert":
-        return np.ones((1, 3), dtype=np.float64), np.array(LAMBERT_LOWER)
+        lower = np.full(3, np.nan) if same else np.array(LAMBERT_LOWER)
+        return np.ones((1, 3), dtype=np.float64), lower
     if upper_color is not None:
         lut = np.array([to_rgb(upper_color, "upper_color")], dtype=np.float64)
     else:
         lut = colormap_lut(cmap).astype(np.float64)
+    if same:
+        return lut, np.full(3, np.nan)
     return lut, np.array(to_rgb(lower_color, "lower_color"), dtype=np.float64)
+
+
+def lower_or_upper(lower_rgb, upper_rgb):
+    """The lower side's colour: ``lower_rgb``, or where it is "same" (NaN) the upper
+    side's ``upper_rgb`` (an array of colours, or one)."""
+    lower = np.asarray(lower_rgb, dtype=np.float64)[:3]
+    return upper_rgb if np.isnan(lower).any() else lower
 
 
 def line_rgba(side, background=(255, 255, 255, 255)):

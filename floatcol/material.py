@@ -44,7 +44,8 @@ class Material:
     cmap, norm, vmin, vmax : the upper side's colormap and its height limits (default:
         the range of w where the upper side is seen).
     upper_color : one colour for the upper side instead of the colormap.
-    lower_color : the lower side's colour.
+    lower_color : the lower side's colour; "same": the upper side's colour at its
+        height (cmap or color), both sides alike as mplot3d colours them.
     ambient, specular, shininess : the light's terms (None: the shading's defaults).
     interpolation : "normal" (nis, per-pixel lighting) or "intensity" (iis, Gouraud).
     opacity : in [0, 1]; below 1 every layer of the surface along a ray shows,

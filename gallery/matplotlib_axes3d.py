@@ -90,7 +90,8 @@ for a in fig.axes:
 fig.savefig("wireframe_hidden_lines.png")
 
 # matplotlib's surface3d_radial example: a polar grid, not an evenly spaced one, is
-# resampled (each quad two flat triangles, as mplot3d draws it; docs/matplotlib.md)
+# resampled (each quad two flat triangles, as mplot3d draws it; docs/matplotlib.md);
+# the lip's outside, its lower side, coloured from the colour map as mplot3d does
 r = np.linspace(0, 1.25, 50)
 p = np.linspace(0, 2 * np.pi, 50)
 R, P = np.meshgrid(r, p)
@@ -98,7 +99,7 @@ Z = ((R**2 - 1)**2)
 X, Y = R * np.cos(P), R * np.sin(P)
 fig = plt.figure()
 ax = fig.add_subplot(projection="3d")
-fc.plot_surface(X, Y, Z, ax=ax, cmap=plt.cm.YlGnBu_r)
+fc.plot_surface(X, Y, Z, ax=ax, cmap=plt.cm.YlGnBu_r, lower_color="same")   # as mplot3d
 ax.set_zlim(0, 1)
 ax.set_xlabel(r"$\phi_\mathrm{real}$")
 ax.set_ylabel(r"$\phi_\mathrm{im}$")

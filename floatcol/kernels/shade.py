@@ -114,8 +114,9 @@ def _side_rgb(side, w, lut, w_lo, span, lower_rgb):
     """The colour of a side: the lower side's, or the upper side's from ``lut`` (n, 3)
     indexed linearly by w over [w_lo, w_lo + span]; a lut (n, 4) carries in its last
     column the ascending heights where its rows begin (a non-linear norm: row k from
-    norm.inverse(k / (n - 1))), found by np.searchsorted."""
-    if side > 0.0:
+    norm.inverse(k / (n - 1))), found by np.searchsorted. A lower side's colour NaN
+    (lower_color="same", color.side_colors) takes the upper side's."""
+    if side > 0.0 or lower_rgb[0] != lower_rgb[0]:
         n_lut = lut.shape[0]
         if lut.shape[1] > 3:                     # the last row starting at or below w
             idx = max(np.searchsorted(lut[:, 3], w, side="right") - 1, 0) if w == w else 0

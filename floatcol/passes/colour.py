@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _pool
+from ..color import lower_or_upper
 from ..kernels.texture import (
     FILTER_LINEAR, FILTER_MIPMAP, FILTER_POINT, colour_kernel, field_kernel, planes_kernel,
     texture_kernel, values_kernel,
@@ -251,24 +252,25 @@ def base_colours(material, source, geom, W, H, box, colours):
         rng = np.array([[finite.min(), finite.max()]]) if finite.size else np.array([[0.0, 1.0]])
         lut_c, lo, hi, limits = material.color_table(rng)
         own = colour_table_rgb(vals, lut_c, lo, hi)
-        own[~np.isfinite(vals)] = lower_rgb[:3]
+        own[~np.isfinite(vals)] = lower_or_upper(lower_rgb, lut_c[0, :3])
         if edge.any():                                 # the edge surfaces' own values
             e_vals = field_values(source.field, eu, ev, edge, source.extent)
             e_own = colour_table_rgb(e_vals, lut_c, lo, hi)
-            e_own[~np.isfinite(e_vals)] = lower_rgb[:3]
+            e_own[~np.isfinite(e_vals)] = lower_or_upper(lower_rgb, lut_c[0, :3])
             base[edge, 3:] = np.clip(e_own, 0.0, 1.0)
     else:
         # the surface's own colour under a texture's transparent parts: its side's
         # (w and the table's ends both in the box's units)
         own = colour_table_rgb(w[seen], lut, w_lo, w_hi)
-        own[side[seen] < 0] = lower_rgb[:3]
+        lower = side[seen] < 0
+        own[lower] = lower_or_upper(lower_rgb, own[lower])
     if source.texture is not None:                     # a texture function
         tex = _called(source.texture, u[seen], v[seen])
         own = tex[:, :3] + (1.0 - tex[:, 3:4]) * own    # premultiplied over its own colour
         if edge.any():                                 # (over the lower side's colour)
             e_tex = _called(source.texture, eu[edge], ev[edge])
             base[edge, 3:] = np.clip(e_tex[:, :3] + (1.0 - e_tex[:, 3:4]) *
-                                     np.asarray(lower_rgb)[:3], 0.0, 1.0)
+                                     lower_or_upper(lower_rgb, lut[0, :3]), 0.0, 1.0)
     base[seen, :3] = np.clip(own, 0.0, 1.0)
     return base, limits
 

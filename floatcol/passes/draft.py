@@ -29,6 +29,7 @@ import math
 
 import numpy as np
 
+from ..color import lower_or_upper
 from ..kernels import layout as L
 from ..kernels.sample import DOMAIN_EPS, NEWTON_ITERS, NEWTON_TOL_PX
 from ..kernels.shade import INTERP_INTENSITY
@@ -337,7 +338,8 @@ def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8
         span = w_hi - w_lo if w_hi > w_lo else 1.0
         x = (w - w_lo) / span * (lut.shape[0] - 1)
         idx = np.clip(np.nan_to_num(x), 0, lut.shape[0] - 1).astype(np.int64)
-    rgb = np.where((side > 0)[..., None], lut[idx, :3], np.asarray(lower_rgb)[:3])
+    rgb = np.where((side > 0)[..., None], lut[idx, :3],
+                   lower_or_upper(lower_rgb, lut[idx, :3]))
     rgb = np.minimum(rgb * inten[..., None] + sp[..., None], 1.0)
     rgba = np.empty((H, W, 4), dtype=np.uint8)
     rgba[...] = bg8

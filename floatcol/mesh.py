@@ -111,15 +111,17 @@ def curvilinear(X, Y, Z, extra=None):
         raise ValueError("plot_surface(X, Y, Z): X and Y need at least 3 finite points")
     lo_x, hi_x = x[ok].min(), x[ok].max()
     lo_y, hi_y = y[ok].min(), y[ok].max()
-    size = max(hi_x - lo_x, hi_y - lo_y)
+    with np.errstate(over="ignore"):
+        size = max(hi_x - lo_x, hi_y - lo_y)
+    if not np.isfinite(size):
+        raise ValueError("plot_surface(X, Y, Z): X or Y spans more than the largest double")
     if not size > 0:
         raise ValueError("plot_surface(X, Y, Z): X and Y span no area")
     # points that coincide (a polar grid's centre, the seam where its angle comes
     # round) become one, at their heights' mean (data with noise there; a parametric
     # surface's two heights at one point are caught as its fold below)
-    key = np.round(np.column_stack([x, y]) / (size * 1e-9))
-    key[~ok] = np.nan
-    _, first, inverse = np.unique(key[ok], axis=0, return_index=True, return_inverse=True)
+    key = np.round(np.column_stack([x[ok], y[ok]]) / (size * 1e-9))
+    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
     where = np.flatnonzero(ok)
     node = np.full(x.size, -1)
     node[where] = first[inverse.ravel()]

@@ -718,6 +718,17 @@ def _numeric(a):
         return False
 
 
+def _close(a, b):
+    """np.allclose without the warnings of values near the doubles' edge."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        return np.allclose(a, b)
+
+
+def _constant(a):
+    """Whether every value of ``a`` is its first (np.ptp == 0, without its overflow)."""
+    return bool(np.all(a == a[:1]))
+
+
 def mesh_surface(X, Y, Z, extra=None):
     """The HeightField of matplotlib's plot_surface(X, Y, Z): X and Y a meshgrid (either
     indexing) or 1-D x (along Z's columns) and y (along its rows), ascending or
@@ -736,7 +747,7 @@ def mesh_surface(X, Y, Z, extra=None):
         raise ValueError(f"plot_surface(X, Y, Z): facecolors must have Z's shape {Z.shape} "
                          f"(and colours), got {np.shape(extra)}")
     if X.ndim == 2 and X.shape == Z.shape and Y.shape == Z.shape and \
-            np.ptp(X[0]) == 0 and np.ptp(Y[:, 0]) == 0 and Z.shape != (1, 1):
+            _constant(X[0]) and _constant(Y[:, 0]) and Z.shape != (1, 1):
         X, Y, Z = X.T, Y.T, Z.T                    # meshgrid(..., indexing="ij")
         if extra is not None:
             extra = np.swapaxes(extra, 0, 1)
@@ -744,18 +755,18 @@ def mesh_surface(X, Y, Z, extra=None):
         raise ValueError(f"plot_surface(X, Y, Z): Z must have at least 2 x 2 values (a "
                          f"surface between them), got shape {Z.shape}")
     if X.ndim == 2 and X.shape == Z.shape and Y.shape == Z.shape and \
-            not (np.allclose(X, X[:1]) and np.allclose(Y, Y[:, :1])):
+            not (_close(X, X[:1]) and _close(Y, Y[:, :1])):
         # a curvilinear grid (X = R cos P, Y = R sin P): resampled (mesh.py)
         from .mesh import curvilinear
         x, y, Z, extra = curvilinear(X, Y, Z, extra)
         return _mesh_field(x, y, Z, extra, resampled=True)
     if X.ndim == 2:
-        if X.shape != Z.shape or not np.allclose(X, X[:1]):
+        if X.shape != Z.shape or not _close(X, X[:1]):
             raise ValueError("plot_surface(X, Y, Z): X must repeat one row of x values "
                              "(a meshgrid), or X and Y be a curvilinear grid of Z's shape")
         X = X[0]
     if Y.ndim == 2:
-        if Y.shape != Z.shape or not np.allclose(Y, Y[:, :1]):
+        if Y.shape != Z.shape or not _close(Y, Y[:, :1]):
             raise ValueError("plot_surface(X, Y, Z): Y must repeat one column of y values "
                              "(a meshgrid), or X and Y be a curvilinear grid of Z's shape")
         Y = Y[:, 0]

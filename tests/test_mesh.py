@@ -186,5 +186,7 @@ def test_odd_meshes_are_holes_or_a_clear_error_never_a_crash():
         fc.plot_surface(Xs, Ys, Xs + Ys, size=(40, 30))
     with pytest.raises(ValueError, match="spans more than the largest double"):
         fc.plot_surface(np.array([-1e308, 0.0, 1e308]), np.array([0.0, 1.0]), np.ones((2, 3)))
+    with pytest.raises(ValueError, match="spans more than the largest double"):
+        fc.plot_surface(X * 1e308, Y * 1e308, Z, size=(40, 30))
     with pytest.raises(ValueError, match="finite and ascending or descending"):
         fc.plot_surface(np.array([0.0, 2.0, 1.0]), np.array([0.0, 1.0]), np.ones((2, 3)))

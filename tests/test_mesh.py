@@ -160,6 +160,15 @@ def test_a_resampled_meshs_edges_are_not_drawn_and_it_says_so():
     assert p.rgba[..., 3].any()
 
 
+def test_plot_wireframe_of_a_resampled_mesh_says_what_to_do():
+    """fc.plot_wireframe draws the mesh's lines on the exact surface: a mesh that is
+    resampled has none there, and it says so (it said fill=False needs a wireframe)."""
+    X, Y = _polar(12, 24)
+    with pytest.raises(ValueError, match="plot_wireframe.*not an evenly spaced grid.*"
+                                         "ax.plot_wireframe"):
+        fc.plot_wireframe(X, Y, X * Y, rstride=2, cstride=2)
+
+
 def test_odd_meshes_are_holes_or_a_clear_error_never_a_crash():
     """Not-a-number coordinates and heights, a mesh with no area, a single line of
     points, facecolors: holes, or a ValueError that says what to fix."""

@@ -567,6 +567,11 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
             expr, facecolors = mesh_surface(expr, *ranges, extra=facecolors)
         ranges = ()
         resampled = expr.resampled
+        if resampled and options.get("fill", True) is False:     # (plot_wireframe's)
+            raise ValueError("plot_wireframe(X, Y, Z): the lines of a mesh that is not an "
+                             "evenly spaced grid (unevenly spaced, or curvilinear) are not "
+                             "drawn; use plot_surface, with mplot3d's ax.plot_wireframe over "
+                             "it")
     if facecolors is not None:                # the colours of the faces: a texture
         if "texture" in options or "color_field" in options:
             raise ValueError("give one of facecolors, texture and color_field")
@@ -641,16 +646,6 @@ def plot_wireframe(expr, *ranges, ax=None, interactive=False, label="",
             colour[0], (int, float, np.number)):
         colour = colour[0]                        # (a Line3DCollection's list: the first)
     options.setdefault("linewidth", 1.5)
-    if _is_mesh(expr, ranges):
-        import warnings
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
-            resampled = mesh_surface(expr, *ranges).resampled
-        if resampled:
-            raise ValueError("plot_wireframe(X, Y, Z): the lines of a mesh that is not an "
-                             "evenly spaced grid (unevenly spaced, or curvilinear) are not "
-                             "drawn; use plot_surface, with mplot3d's ax.plot_wireframe over "
-                             "it")
     return plot_surface(expr, *ranges, ax=ax, interactive=interactive, label=label,
                         edgecolor=colour, fill=False, **options)
 

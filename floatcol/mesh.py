@@ -143,7 +143,7 @@ def curvilinear(X, Y, Z, extra=None):
     area = 0.5 * ((px[:, 1] - px[:, 0]) * (py[:, 2] - py[:, 0])
                   - (px[:, 2] - px[:, 0]) * (py[:, 1] - py[:, 0]))
     flat = np.abs(area) <= 1e-12 * size * size
-    tris, area = tris[~flat], area[~flat]
+    tris, area, px, py = tris[~flat], area[~flat], px[~flat], py[~flat]
     if len(tris) == 0:
         raise ValueError("plot_surface(X, Y, Z): X and Y span no area")
     # the quads of a function's grid all turn one way in the x-y plane; a parametric
@@ -160,7 +160,6 @@ def curvilinear(X, Y, Z, extra=None):
     ye = np.linspace(lo_y, hi_y, max(int(round((hi_y - lo_y) / step)) + 1, 2))
     # the kernel visits each triangle's box of nodes: long thin cells across the
     # whole mesh would take minutes
-    px, py = x[tris], y[tris]
     boxes = ((np.ptp(px, axis=1) / step + 1) * (np.ptp(py, axis=1) / step + 1)).sum()
     if boxes > MAX_VISITS:
         raise ValueError("plot_surface(X, Y, Z): the mesh's cells are too long and thin to "

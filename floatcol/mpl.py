@@ -636,13 +636,8 @@ class DepthTested:
                     mk._verts3d = tuple(q[:, k] for k in range(3))
                     type(mk).draw(mk, renderer)
         elif isinstance(art, art3d.Line3DCollection):
-            segs, parts = [], []
-            for seg in art._segments3d:
-                samples, _ = pixel_samples(renders[0].view, renders[0].box,
-                                           xyz(np.asarray(seg, dtype=float).T))
-                segs.append(samples)
-                parts.append(len(samples))
-            pts = np.concatenate(segs) if segs else np.zeros((0, 3))
+            pts, parts = _sampled(renders[0], [xyz(np.asarray(seg, dtype=float).T)
+                                               for seg in art._segments3d])
             keep = shown(pts)
             if not whole(keep):
                 cuts = np.split(np.where(keep[:, None], pts, np.nan), np.cumsum(parts)[:-1])
@@ -667,17 +662,13 @@ class DepthTested:
             else:
                 cut, seen = [], []
                 for vs, cs in vc:
-                    parts = []
-                    for sub in _subpaths(np.asarray(vs, dtype=float), cs):
-                        samples, _ = pixel_samples(renders[0].view, renders[0].box, sub)
-                        parts.append(samples)
-                    pts = np.concatenate(parts) if parts else np.zeros((0, 3))
+                    pts, parts = _sampled(renders[0], _subpaths(np.asarray(vs, dtype=float), cs))
                     keep = shown(pts)
                     seen.append(keep)
                     # the visible runs, each starting with a MOVETO (not NaN points:
                     # mplot3d masks those, and its mask fails on a path's vertices)
                     start = np.zeros(len(pts), dtype=bool)
-                    start[np.cumsum([len(q) for q in parts], dtype=int)[:-1]] = True
+                    start[np.cumsum(parts, dtype=int)[:-1]] = True
                     start[0:1] = True
                     run_start = keep & (start | ~np.r_[False, keep[:-1]])
                     codes = np.where(run_start, 1, 2).astype(np.uint8)  # MOVETO, LINETO
@@ -733,15 +724,7 @@ def _faces_kept(art, faces, renders, front):
     p1 = f[:, 1:-1, None, :]
     p2 = f[:, 2:, None, :]
     pts = p0 + wa[None, None, :, None] * (p1 - p0) + wb[None, None, :, None] * (p2 - p0)
-    pts = pts.reshape(n, -1, 3)
-    flat = pts.reshape(-1, 3)
-    good = np.isfinite(flat).all(axis=1)
-    over = np.zeros(len(flat), dtype=bool)
-    with np.errstate(invalid="ignore", over="ignore"):
-        for r in renders:
-            _, in_front, _ = depth_sides(r, np.where(good[:, None], flat, 0.0), r.box)
-            over |= in_front & good
-    seen_front = over.reshape(n, -1).any(axis=1)
+    seen_front = _any_in_front(list(pts.reshape(n, -1, 3)), renders)
     return seen_front if front else ~seen_front
 
 
@@ -760,15 +743,33 @@ def _paths_kept(vc, renders, front):
     the surfaces' pictures (``front``: any of its corners in front of a surface that is
     there) or under them (none: a contour's filled projection on a far wall, a
     floor below)."""
-    keep = np.zeros(len(vc), dtype=bool)
-    with np.errstate(invalid="ignore", over="ignore"):
-        for i, (vs, _) in enumerate(vc):
-            vs = np.asarray(vs, dtype=float).reshape(-1, 3)
-            good = np.isfinite(vs).all(axis=1)
-            for r in renders:
-                _, in_front, _ = depth_sides(r, np.where(good[:, None], vs, 0.0), r.box)
-                keep[i] |= (in_front & good).any()
+    keep = _any_in_front([np.asarray(vs, dtype=float).reshape(-1, 3) for vs, _ in vc],
+                         renders)
     return keep if front else ~keep
+
+
+def _any_in_front(groups, renders):
+    """For each group of points (a list of (k, 3) arrays), whether any of its finite
+    points lies in front of a surface of ``renders`` that is there (one depth test for
+    all of them)."""
+    if not groups:
+        return np.zeros(0, dtype=bool)
+    pts = np.concatenate(groups)
+    owner = np.repeat(np.arange(len(groups)), [len(g) for g in groups])
+    good = np.isfinite(pts).all(axis=1)
+    over = np.zeros(len(pts), dtype=bool)
+    with np.errstate(invalid="ignore", over="ignore"):
+        for r in renders:
+            _, in_front, _ = depth_sides(r, np.where(good[:, None], pts, 0.0), r.box)
+            over |= in_front & good
+    return np.bincount(owner[over], minlength=len(groups)) > 0
+
+
+def _sampled(render, polylines):
+    """(points, lengths): the polylines (a list of (k, 3)) sampled a pixel apart in
+    ``render``'s picture (pixel_samples), end to end."""
+    parts = [pixel_samples(render.view, render.box, p)[0] for p in polylines]
+    return (np.concatenate(parts) if parts else np.zeros((0, 3)), [len(q) for q in parts])
 
 
 def depth_test_mplot3d_artists(ax):

@@ -154,11 +154,22 @@ class HeightField(Surface):
 
     def scaled(self, a, b, c):
         """The height field stretched by a along u, b along v and c along w (a new
-        grid: heights times c over the extent times (a, b))."""
-        (ua, ub), (va, vb) = self.default_domain
-        out = HeightField(self.hf * c, u=(ua * a, ub * a), v=(va * b, vb * b))
-        source, c0 = getattr(self, "stretched_from", (self, 1.0))
-        out.stretched_from = (source, c0 * c)     # (its level-of-detail pyramid: passes/area.py)
+        grid: heights times c over the extent times (a, b)). The last SCALED_KEPT
+        are kept: the same stretch gives the same HeightField, whose fit grids
+        (fit_grid) and hole map (view.hole_map) are then computed once, not at every
+        draw of a 3-D Axes (its box is a stretch: a drag at 1920x1080 in perspective
+        fitted its camera in 7 ms a frame, most of it these)."""
+        key = (float(a), float(b), float(c))
+        kept = self.__dict__.setdefault("_scaled", {})
+        out = kept.get(key)
+        if out is None:
+            (ua, ub), (va, vb) = self.default_domain
+            out = HeightField(self.hf * c, u=(ua * a, ub * a), v=(va * b, vb * b))
+            source, c0 = getattr(self, "stretched_from", (self, 1.0))
+            out.stretched_from = (source, c0 * c)  # (its level-of-detail pyramid: passes/area.py)
+            while len(kept) >= SCALED_KEPT:
+                kept.pop(next(iter(kept)))
+            kept[key] = out
         return out
 
     def __repr__(self):
@@ -201,6 +212,8 @@ def check_range(name, rng):
 
 #: fit_grid keeps this many grids per Surface (domains, sizes, times)
 FITS_KEPT = 8
+#: HeightField.scaled keeps this many stretched copies
+SCALED_KEPT = 2
 
 
 def fit_grid(surface, domain, n):

@@ -716,3 +716,33 @@ def test_mplot3d_preview_shrinks_and_stays_in_place():
     assert (a & b).sum() / (a | b).sum() > 0.9          # measured 0.941
     ax.button_pressed = None
     plt.close(fig)
+
+
+def test_a_rotation_fits_its_camera_on_grids_computed_once(monkeypatch):
+    """A 3-D Axes draws its mesh stretched by the Axes' box: the same stretch is the
+    same HeightField (HeightField.scaled keeps it), so a rotation's draw fits its
+    camera and takes its hole map without evaluating the mesh on a grid again."""
+    from floatcol.surface import SCALED_KEPT, HeightField
+    X, Y, Z = _data()
+    hf = HeightField(Z, u=(-5, 4.75), v=(-5, 4.75))
+    s = hf.scaled(2.0, 3.0, 0.5)
+    assert hf.scaled(2.0, 3.0, 0.5) is s and s.default_domain == ((-10, 9.5), (-15, 14.25))
+    assert np.array_equal(s.hf, Z * 0.5)
+    others = [hf.scaled(1.0 + k, 1.0, 1.0) for k in range(SCALED_KEPT)]
+    assert hf.scaled(2.0, 3.0, 0.5) is not s and others[-1] is hf.scaled(SCALED_KEPT, 1.0, 1.0)
+    fig = plt.figure(figsize=(4, 3), dpi=100)
+    ax = fig.add_subplot(projection="3d", proj_type="persp")
+    fc.plot_surface(X, Y, Z, ax=ax)
+    fig.canvas.draw()
+    grids = []
+    real = HeightField.evaluate
+
+    def evaluate(self, u, v, derivatives=False):
+        grids.append(np.size(u))
+        return real(self, u, v, derivatives)
+
+    monkeypatch.setattr(HeightField, "evaluate", evaluate)
+    ax.view_init(40, -20)
+    fig.canvas.draw()
+    assert max(grids, default=0) < 100         # (a fit grid has 65^2 points, a hole map 257^2)
+    plt.close(fig)

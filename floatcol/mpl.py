@@ -565,9 +565,11 @@ class DepthTested:
 
     def __call__(self, renderer):
         art = self.art
+        self.visible = None
+        if not art.get_visible():       # (as the artist's own draw: nothing)
+            return
         renders = [a.plot.render for a in art.axes.artists
                    if isinstance(a, Surface3DImage) and a.drawn_for(art.axes)]
-        self.visible = None
         if not renders:
             return type(art).draw(art, renderer)
         try:

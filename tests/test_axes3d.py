@@ -746,3 +746,18 @@ def test_a_rotation_fits_its_camera_on_grids_computed_once(monkeypatch):
     fig.canvas.draw()
     assert max(grids, default=0) < 100         # (a fit grid has 65^2 points, a hole map 257^2)
     plt.close(fig)
+
+
+def test_an_invisible_mplot3d_artist_stays_undrawn():
+    """A hidden artist (set_visible(False)) beside a surface draws nothing, as mplot3d
+    draws it: its depth test is not even run (visible stays None)."""
+    fig = plt.figure(figsize=(4, 3), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    fc.plot_surface("exp(-(x**2+y**2))", ("x", -2, 2), ("y", -2, 2), ax=ax)
+    line, = ax.plot([-2, 2], [-2, 2], [2, 2], color="red", lw=4)
+    fig.canvas.draw()
+    assert line.draw.visible is not None and _red(fig).any()
+    line.set_visible(False)
+    fig.canvas.draw()
+    assert line.draw.visible is None and not _red(fig).any()
+    plt.close(fig)

@@ -392,24 +392,23 @@ def axes_camera(plot, ax, W, H, mag=1.0):
     disp = ax.transData.transform(np.column_stack([xs, ys])) * mag
     # (a roll turns the picture: it must cover the Axes' diagonal)
     base = (W, H) if not getattr(ax, "roll", 0.0) else (int(np.ceil(np.hypot(W, H))),) * 2
-    size = base
-    bb = ax.bbox
-    for _ in range(2):
-        A, _ = _fit(plot, kw, size, (cx, cy, cz), box, disp)
-        cW, cH = (size[0] - 1) / 2.0, (size[1] - 1) / 2.0
-        # the picture must cover the Axes: as much larger as its centre is off theirs
-        mx = abs(A[0, 0] * cW + A[0, 1] * cH + A[0, 2] - (bb.x0 + bb.width / 2.0) * mag)
-        my = abs(A[1, 0] * cW + A[1, 1] * cH + A[1, 2] - (bb.y0 + bb.height / 2.0) * mag)
-        size = (base[0] + 2 * int(np.ceil(mx)) + 2, base[1] + 2 * int(np.ceil(my)) + 2)
-    A, trial_scale = _fit(plot, kw, size, (cx, cy, cz), box, disp)
+    # One fit, at the base size: the picture drawn at any other size with the scale
+    # s times the fit's is the same projection about the same centre pixel, the
+    # view's centre (the camera's d1, d2 and centre are given): pixel (col, row) of a
+    # picture of size (W1, H1) is the fit's (cW + (col - cW1) / s, cH + (row - cH1) /
+    # s), whose canvas point (times mag) is A (col0, row0, 1)
+    A, trial_scale = _fit(plot, kw, base, (cx, cy, cz), box, disp)
     s = float(np.hypot(A[0, 0], A[0, 1]))
     kw["scale"] = s * trial_scale
-    # pixel (col, row) at s times the fit's scale is the fit's (c + (col - c) / s, ...),
-    # whose canvas point (times mag) is A (col1, row1, 1)
-    cW, cH = (size[0] - 1) / 2.0, (size[1] - 1) / 2.0
-    k = 1.0 - 1.0 / s
+    cW, cH = (base[0] - 1) / 2.0, (base[1] - 1) / 2.0
+    bb = ax.bbox
+    # the picture must cover the Axes: as much larger as its centre is off theirs
+    mx = abs(A[0, 0] * cW + A[0, 1] * cH + A[0, 2] - (bb.x0 + bb.width / 2.0) * mag)
+    my = abs(A[1, 0] * cW + A[1, 1] * cH + A[1, 2] - (bb.y0 + bb.height / 2.0) * mag)
+    size = (base[0] + 2 * int(np.ceil(mx)) + 2, base[1] + 2 * int(np.ceil(my)) + 2)
+    cW1, cH1 = (size[0] - 1) / 2.0, (size[1] - 1) / 2.0
     T = np.column_stack([A[:, 0] / s, A[:, 1] / s,
-                         A[:, 0] * cW * k + A[:, 1] * cH * k + A[:, 2]]) / mag
+                         A[:, 0] * (cW - cW1 / s) + A[:, 1] * (cH - cH1 / s) + A[:, 2]]) / mag
     return kw, T, size
 
 

@@ -152,6 +152,9 @@ def main():
                     help="bench_terrain.py's fly-through instead: a 4097^2 fractal DEM at "
                          "1280x720, fc.fly's level-of-detail engine, point sampled")
     ap.add_argument("--area", action="store_true", help="with --fly: antialias='area'")
+    ap.add_argument("--mesh", type=int, default=0, metavar="N",
+                    help="the expression on an N x N grid over [-5, 5]^2 instead, drawn as "
+                         "a height field (matplotlib's call form, X, Y, Z)")
     ap.add_argument("--lines", action="store_true",
                     help="also by source line: set NUMBA_DEBUGINFO=1 and NUMBA_CACHE_DIR to "
                          "a folder of its own (the kernels compile again with line tables). "
@@ -178,6 +181,13 @@ def main():
         surface = args.expr
         w, h = (int(x) for x in args.size.split("x"))
         kw = dict(size=(w, h), projection=args.projection, u=(-5, 5), v=(-5, 5))
+        if args.mesh:
+            import numpy as np
+            g = np.linspace(-5, 5, args.mesh)
+            surface = fc.HeightField(fc.as_surface(args.expr).evaluate(*np.meshgrid(g, g)),
+                                     u=(-5, 5), v=(-5, 5))
+            del kw["u"], kw["v"]
+            args.expr = f"{args.expr} on a {args.mesh}^2 grid (a height field)"
     for _ in range(5):
         fc.render(surface, **kw)
     folder = tempfile.mkdtemp()

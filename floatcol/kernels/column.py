@@ -918,6 +918,27 @@ def _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp
 
 
 @ngjit_inline
+def _cuts_cells(kind, hf, hfp, vp, prev, cur):
+    """Would _span cut the span prev -> cur at a cell edge of a height field (its
+    first crossing's test, exactly)? A span inside one cell is drawn as a function's
+    is, inline in the column's main loop (_span's call, and _segment's and
+    _fill_span's under it, took most of a height field's time)."""
+    if kind != SURF_HEIGHTFIELD or vp[VP_DETECT] == 0.0:
+        return False
+    nv, nu = hf.shape
+    au = (prev[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)
+    bu = (cur[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)
+    av = (prev[A_V] - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
+    bv = (cur[A_V] - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
+    iu = math.floor(au) + 1.0 if bu > au else math.ceil(au) - 1.0
+    iv = math.floor(av) + 1.0 if bv > av else math.ceil(av) - 1.0
+    lu = (iu - au) / (bu - au) if bu != au else 2.0
+    lv = (iv - av) / (bv - av) if bv != av else 2.0
+    lam = min(lu, lv)
+    return lam > 1e-9 and lam < 1.0 - 1e-9
+
+
+@ngjit_inline
 def _problem(vp, x0, prev, cur, run):
     """Does the span prev -> cur need a correction (App. A.2's Problem())?"""
     detect = int(vp[VP_DETECT])
@@ -1647,7 +1668,8 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                         ratio = min(ratio, ADAPT_ROWS / dy)
                     coarse = min(max(coarse * min(max(ratio, 0.5), 2.0), ADAPT_MIN_STEP),
                                  ADAPT_MAX_STEP)
-                if kind != SURF_HEIGHTFIELD and not _problem(vp, x0, prev, cur, run):
+                if not _cuts_cells(kind, hf, hfp, vp, prev, cur) and \
+                        not _problem(vp, x0, prev, cur, run):
                     _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)  # the common case
                 else:
                     evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,

@@ -909,11 +909,17 @@ def _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp
         st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, ta + lam * (tb - ta), xs, run)
         evals += ev
         if st == S_OK:
-            evals += _segment(kind, f, fg, hf, hfp, vp, x0, prev, xs, gcol, ecol, run, sigma,
-                              persp, d3, H, aa, stk, sdepth, left, mid)
+            if _problem(vp, x0, prev, xs, run):
+                evals += _segment(kind, f, fg, hf, hfp, vp, x0, prev, xs, gcol, ecol, run,
+                                  sigma, persp, d3, H, aa, stk, sdepth, left, mid)
+            else:
+                _fill(gcol, ecol, run, prev, xs, sigma, persp, d3, H, aa)  # (_segment's)
             _copy(prev, xs)
-    evals += _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
-                      persp, d3, H, aa, stk, sdepth, left, mid)
+    if _problem(vp, x0, prev, cur, run):
+        evals += _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
+                          persp, d3, H, aa, stk, sdepth, left, mid)
+    else:
+        _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)
     return evals
 
 

@@ -45,7 +45,8 @@ from .correct import (
 )
 from .sample import (
     DOMAIN_EPS, NEWTON_TOL_PX, _clip_line, _r_interval, bracket_ends, column_x0, in_domain,
-    in_known_hole, into_domain, lambert, ortho_point, sample_point, surface_eval, unit_normal,
+    heightfield_eval, in_known_hole, into_domain, lambert, ortho_point, sample_point,
+    surface_eval, unit_normal,
 )
 
 
@@ -906,7 +907,9 @@ def _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp
         # (in perspective the ground path bends a little between samples, so the
         # sample lands near the edge, not on it: secant steps onto it measured no
         # better against the ray caster, for 12 % more samples)
-        st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, ta + lam * (tb - ta), xs, run)
+        # (_sample_into's sample, inline here: a height field's most frequent one)
+        st, ev = _sample_at(kind, f, fg, hf, hfp, vp, x0, ta + lam * (tb - ta), xs, run, False,
+                            xs, np.int64(-1))
         evals += ev
         if st == S_OK:
             if _problem(vp, x0, prev, xs, run):
@@ -1156,24 +1159,31 @@ def _batch_planes(kind, fg, fb, hf, hfp, vp, x0, bat, i_lo, i_hi, n, ta, tb, t0,
         bat[BAT_U * BATCH + k] = u
         bat[BAT_V * BATCH + k] = v
     o = BAT_W * BATCH
-    iu = hfp[HFP_IU]
-    iv = hfp[HFP_IV]
-    c = hfp[HFP_CW]
-    boxed = iu != 1.0 or iv != 1.0 or c != 1.0       # (surface_eval's scaling)
-    pu = BAT_U * BATCH
-    pv = BAT_V * BATCH
-    if boxed:
+    if kind == SURF_HEIGHTFIELD:
+        # a height field's bilinear cells, read as sample_point reads them (no batch
+        # evaluator: the grid is the kernel's own argument)
         for k in range(m):
-            bat[BAT_US * BATCH + k] = bat[pu + k] * iu
-            bat[BAT_VS * BATCH + k] = bat[pv + k] * iv
-        pu = BAT_US * BATCH
-        pv = BAT_VS * BATCH
-    fb(array_ptr(bat, pu), array_ptr(bat, pv), hfp[0], array_ptr(bat, o), m)
-    if boxed:
-        for k in range(m):
-            bat[o + k] *= c
-            bat[o + m + k] *= c * iu
-            bat[o + 2 * m + k] *= c * iv
+            bat[o + k], bat[o + m + k], bat[o + 2 * m + k] = heightfield_eval(
+                hf, hfp, bat[BAT_U * BATCH + k], bat[BAT_V * BATCH + k])
+    else:
+        iu = hfp[HFP_IU]
+        iv = hfp[HFP_IV]
+        c = hfp[HFP_CW]
+        boxed = iu != 1.0 or iv != 1.0 or c != 1.0       # (surface_eval's scaling)
+        pu = BAT_U * BATCH
+        pv = BAT_V * BATCH
+        if boxed:
+            for k in range(m):
+                bat[BAT_US * BATCH + k] = bat[pu + k] * iu
+                bat[BAT_VS * BATCH + k] = bat[pv + k] * iv
+            pu = BAT_US * BATCH
+            pv = BAT_VS * BATCH
+        fb(array_ptr(bat, pu), array_ptr(bat, pv), hfp[0], array_ptr(bat, o), m)
+        if boxed:
+            for k in range(m):
+                bat[o + k] *= c
+                bat[o + m + k] *= c * iu
+                bat[o + 2 * m + k] *= c * iv
     for k in range(m):
         u = bat[BAT_U * BATCH + k]
         v = bat[BAT_V * BATCH + k]
@@ -1518,7 +1528,7 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
         t, k = _pass_plane(i, n, ta, tb, t0, ka, kb, dt, sigma)
     # the planes evaluated ahead, BATCH at a time: planes b_lo to b_hi - 1
     batched = (vp[VP_BATCH] != 0.0 and not adaptive and (persp or sigma > 0.0)
-               and kind != SURF_HEIGHTFIELD and hi > lo)
+               and (kind != SURF_HEIGHTFIELD or not persp) and hi > lo)
     b_lo = 0
     b_hi = 0
     # perspective: the failed sample before (where its point lies), and a plane put
@@ -1534,7 +1544,7 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
     # nothing but which sample is the previous one: that stays in the batch (number
     # prev_kb) until a plane that does something needs it in ``prev``
     # (_prev_from_batch). Two thirds of the default picture's samples are hidden.
-    hidden_ok = batched and hstride == 0
+    hidden_ok = batched and hstride == 0 and kind != SURF_HEIGHTFIELD
     detect = vp[VP_DETECT] != 0.0
     prev_kb = -1
     while True:

@@ -87,7 +87,10 @@ def column_pass(surface, view, vp, buffers, hstride, fb, device="cpu"):
     code, without batches)."""
     gbuf, ebuf, hrec = buffers
     evals, wrange, rows = pass_outputs(view.width, gbuf.shape[0])
-    vp[L.VP_BATCH] = 0.0 if fb is None else 1.0
+    # (a height field's orthographic planes are batched without an evaluator: the
+    # kernel reads its cells itself)
+    batched = fb is not None or (surface.kind == L.SURF_HEIGHTFIELD and view.orthographic)
+    vp[L.VP_BATCH] = 1.0 if batched else 0.0
     if device == "cuda":
         from ..kernels.cuda import column_kernel_cuda
         column_kernel_cuda(surface, vp, gbuf, ebuf, hrec, hstride, evals, wrange, rows)

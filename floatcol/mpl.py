@@ -74,7 +74,13 @@ class SurfaceImage(AxesImage):
         self.plot = plot
         self._drag = None
         self._cids = []
+        self._canvas = None       # the canvas the mouse handlers are connected to
         self._preview = _Preview()
+
+    def __getstate__(self):
+        # (a pickled figure gets a new canvas: the handlers are connected to it at
+        # its first draw, _reconnect)
+        return {**super().__getstate__(), "_canvas": None}
 
     @classmethod
     def attach(cls, plot, ax, interactive=False):
@@ -95,6 +101,8 @@ class SurfaceImage(AxesImage):
         return max(1, int(round(bb.width * mag))), max(1, int(round(bb.height * mag)))
 
     def draw(self, renderer):
+        if self._cids and self._canvas is not self.axes.figure.canvas:
+            self.connect_events()     # (a new canvas: an unpickled or copied figure's)
         if not self.get_visible():
             return
         size = self.pixel_size(renderer)
@@ -159,6 +167,7 @@ class SurfaceImage(AxesImage):
     # -- interaction ----------------------------------------------------------------
     def connect_events(self):
         canvas = self.axes.figure.canvas
+        self._canvas = canvas
         self._cids = [canvas.mpl_connect(name, fn) for name, fn in (
             ("button_press_event", self.on_press),
             ("motion_notify_event", self.on_motion),
@@ -231,6 +240,17 @@ class Surface3DImage(Artist):
         self.placed = None        # T (2, 3) of the last picture: pixel (col, row) at the
                                   # canvas point T @ (col, row, 1) (axes_camera)
         self._drawn_M = None      # the Axes' projection (ax.M) of the last picture
+        self._canvas = None       # the canvas on_release is connected to
+
+    def __getstate__(self):
+        return {**super().__getstate__(), "_canvas": None}    # (SurfaceImage's)
+
+    def _connect(self):
+        """on_release on the figure's canvas (again, where it is a new one)."""
+        canvas = self.axes.figure.canvas
+        if self._canvas is not canvas:
+            self._canvas = canvas
+            self._cid = canvas.mpl_connect("button_release_event", self.on_release)
 
     def drawn_for(self, ax):
         """Whether the last picture was drawn with ``ax``'s present projection."""
@@ -244,7 +264,7 @@ class Surface3DImage(Artist):
         plot.artist = art
         ax.add_artist(art)
         # mplot3d draws nothing on release: the last frame would stay the preview
-        art._cid = ax.figure.canvas.mpl_connect("button_release_event", art.on_release)
+        art._connect()
         art.set_clip_path(ax.patch)
         (ua, ub), (va, vb) = plot._items()[0][1]
         for others in plot._items()[1:]:
@@ -270,6 +290,7 @@ class Surface3DImage(Artist):
                 T[1, 0] * col + T[1, 1] * row + T[1, 2])
 
     def draw(self, renderer):
+        self._connect()               # (a new canvas: an unpickled or copied figure's)
         if not self.get_visible():
             return
         ax = self.axes

@@ -52,6 +52,25 @@ class Surface:
         self.hfp = np.array([0.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0])
         self._fits = {}     # fit_grid's, shared by the copies made by at()
 
+    def __copy__(self):
+        # (at() and scaled() copy: the same compiled functions and caches, shared)
+        other = object.__new__(type(self))
+        other.__dict__.update(self.__dict__)
+        return other
+
+    def __reduce__(self):
+        """Pickling (a matplotlib figure that holds a plot, ``copy.deepcopy``): the
+        surface is made again from what it was made of, its expression or its Python
+        function, with its time and box scaling; compiled functions are not pickled."""
+        if self.expr is not None:
+            return _rebuilt, (_compiled_expression, (self.expr, self.variables, self.time),
+                              self.hfp)
+        fn = self.__dict__.get("source")
+        if fn is not None:
+            return _rebuilt, (_callable_surface, (fn, self.variables), self.hfp)
+        raise TypeError("cannot pickle a Surface made of compiled functions: make it from "
+                        "an expression or a Python function (floatcol.as_surface)")
+
     def at(self, t):
         """The same surface at time ``t`` (same compiled functions, no recompile)."""
         if self.kind != SURF_FUNCTION:
@@ -152,6 +171,11 @@ class HeightField(Surface):
         self.hfp = np.array([u[0], u[1], v[0], v[1], 1.0, 1.0, 1.0], dtype=np.float64)
         self.default_domain = (u, v)
 
+    def __reduce__(self):
+        """Pickling: the heights, their extent and whether they were resampled."""
+        u, v = self.default_domain
+        return _heightfield, (self.hf, u, v, bool(self.resampled))
+
     def scaled(self, a, b, c):
         """The height field stretched by a along u, b along v and c along w (a new
         grid: heights times c over the extent times (a, b)). The last SCALED_KEPT
@@ -175,6 +199,24 @@ class HeightField(Surface):
     def __repr__(self):
         (a, b), (c, d) = self.default_domain
         return f"HeightField({self.hf.shape[0]}x{self.hf.shape[1]}, u=({a}, {b}), v=({c}, {d}))"
+
+
+def _rebuilt(make, args, hfp):
+    """A pickled Surface made again (Surface.__reduce__): ``make(*args)``, with the time
+    and box scaling of ``hfp``."""
+    s = make(*args)
+    if not np.array_equal(s.hfp, hfp):
+        s = copy.copy(s)
+        s.hfp = np.array(hfp, dtype=np.float64)
+    return s
+
+
+def _heightfield(z, u, v, resampled):
+    """A pickled HeightField made again (HeightField.__reduce__)."""
+    out = HeightField(z, u=u, v=v)
+    if resampled:
+        out.resampled = True
+    return out
 
 
 def _ascending(name, rng):
@@ -673,7 +715,9 @@ def _callable_surface(fn, names):
         raise ValueError(
             f"cannot compile the callable {getattr(py, '__name__', py)!r} with Numba ({first}); "
             "write it with scalar math (the math module) or pass a sympy expression") from None
-    return Surface(f, _central_difference(py3), variables=names, derivatives="central differences")
+    out = Surface(f, _central_difference(py3), variables=names, derivatives="central differences")
+    out.source = fn                     # (what a pickled copy is made from again)
+    return out
 
 
 @functools.lru_cache(maxsize=1)

@@ -761,3 +761,36 @@ def test_an_invisible_mplot3d_artist_stays_undrawn():
     fig.canvas.draw()
     assert line.draw.visible is None and not _red(fig).any()
     plt.close(fig)
+
+
+def test_a_pickled_3d_figure_draws_the_same_and_redraws_on_release():
+    """A 3-D Axes with a floatcol mesh and mplot3d's own scatter pickles; the copy draws
+    the same pixels, and its release handler (the full-quality frame after a drag's
+    previews) is connected to the copy's canvas at its first draw."""
+    import pickle
+
+    from matplotlib.backend_bases import MouseEvent
+    X, Y, Z = _data()
+    fig = plt.figure(figsize=(4, 3), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    fc.plot_surface(X, Y, Z, ax=ax, cmap="viridis")
+    ax.scatter([0], [0], [1.2], color="red")
+    fig.canvas.draw()
+    before = np.asarray(fig.canvas.buffer_rgba()).copy()
+    other = pickle.loads(pickle.dumps(fig))
+    other.canvas.draw()
+    assert np.array_equal(np.asarray(other.canvas.buffer_rgba()), before)
+    oax = other.axes[0]
+    art = [a for a in oax.artists if hasattr(a, "on_release")][0]
+    oax.view_init(50, 10)
+    oax.button_pressed = oax._rotate_btn[0]
+    other.canvas.draw()
+    assert art.preview
+    oax.button_pressed = None
+    asked = []
+    other.canvas.draw_idle = lambda: asked.append(1)
+    other.canvas.callbacks.process("button_release_event", MouseEvent(
+        "button_release_event", other.canvas, 10, 10, button=1))
+    assert asked and not art.preview
+    plt.close(other)
+    plt.close(fig)

@@ -1,5 +1,6 @@
 """The matplotlib artist: re-rendered at the Axes' true pixel size on every draw."""
 import io
+import math
 
 import matplotlib
 import numpy as np
@@ -194,3 +195,58 @@ def test_a_shrunk_preview_shows_the_same_view(scale):
     assert a.sum() > 0.1 * a.size
     assert (a & b).sum() / (a | b).sum() > 0.9          # measured 0.933, 0.919 (its 4x4 blocks)
     plt.close(fig)
+
+
+def test_a_pickled_figure_draws_the_same_and_stays_interactive(fig_ax):
+    """A figure with a floatcol plot pickles (and deep-copies): the surface is made
+    again from its expression, and the copy draws the same pixels; its mouse handlers
+    are connected to the copy's canvas at its first draw, so a drag still turns it."""
+    import copy
+    import pickle
+    fig, ax = fig_ax
+    plot = fc.plot_surface(EXPR, *RNG, ax=ax, interactive=True)
+    fig.canvas.draw()
+    before = np.asarray(fig.canvas.buffer_rgba()).copy()
+    for other in (pickle.loads(pickle.dumps(fig)), copy.deepcopy(fig)):
+        other.canvas.draw()
+        assert np.array_equal(np.asarray(other.canvas.buffer_rgba()), before)
+        oax = other.axes[0]
+        oplot = oax.images[0].plot
+        assert oplot is not plot and oplot.surface.expr == plot.surface.expr
+        bb = oax.bbox
+        cx, cy = bb.x0 + bb.width / 2, bb.y0 + bb.height / 2
+        _mouse(other, "button_press_event", cx, cy)
+        _mouse(other, "motion_notify_event", cx + bb.width / 4, cy)
+        assert oplot.azim == pytest.approx(-60 - 45) and plot.azim == pytest.approx(-60)
+        _mouse(other, "button_release_event", cx + bb.width / 4, cy)
+        plt.close(other)
+
+
+def _bump(x, y):
+    return math.exp(-x * x - y * y)
+
+
+def test_surfaces_pickle_as_what_they_were_made_of():
+    """An expression's surface (at a time, stretched by a box), a Python function's
+    and a height field pickle and come back evaluating the same values; one made of
+    compiled functions alone says what to give instead."""
+    import pickle
+
+    import floatcol.surface as S
+    wave = fc.as_surface("sin(u*v - t)", time="t").at(0.7).scaled(2.0, 1.0, 3.0)
+    func = fc.as_surface(_bump)
+    z = np.arange(12.0).reshape(3, 4)
+    z[1, 2] = np.nan
+    hf = fc.HeightField(z, u=(4, 0), v=(0, 2))  # (u descending: flipped, kept ascending)
+    hf.resampled = True
+    u = np.linspace(0.1, 3.9, 7)
+    v = np.linspace(0.1, 1.9, 7)
+    for s in (wave, func, hf):
+        back = pickle.loads(pickle.dumps(s))
+        assert np.array_equal(back.evaluate(u, v), s.evaluate(u, v), equal_nan=True)
+        assert back.default_domain == s.default_domain
+    assert np.allclose(wave.evaluate(u, v), 3 * np.sin(u / 2 * v - 0.7))
+    assert pickle.loads(pickle.dumps(hf)).resampled
+    bare = S.Surface(wave.f, wave.fg)
+    with pytest.raises(TypeError, match="expression or a Python function"):
+        pickle.dumps(bare)

@@ -78,8 +78,7 @@ class SurfaceImage(AxesImage):
         self._preview = _Preview()
 
     def __getstate__(self):
-        # (a pickled figure gets a new canvas: the handlers are connected to it at
-        # its first draw, _reconnect)
+        # (a pickled figure gets a new canvas: draw connects the handlers to it)
         return {**super().__getstate__(), "_canvas": None}
 
     @classmethod

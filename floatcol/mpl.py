@@ -293,30 +293,44 @@ class Surface3DImage(Artist):
         if not self.get_visible():
             return
         ax = self.axes
+        # The Axes' floatcol surfaces (several fc.plot_surface calls) hide one another
+        # a pixel at a time: the first of them renders each with the one camera and
+        # draws their composite by depth (fc.composite); the others draw nothing
+        group = [a for a in sorted(ax.artists, key=lambda a: a.get_zorder())
+                 if isinstance(a, Surface3DImage) and a.get_visible()]
+        if group[0] is not self:
+            return
         mag = renderer.get_image_magnification()
         bb = ax.bbox
         W = max(1, int(round(bb.width * mag)))
         H = max(1, int(round(bb.height * mag)))
         preview = getattr(ax, "button_pressed", None) in getattr(ax, "_rotate_btn", ())
-        self.preview = preview
         # a preview: rendered f times smaller each way (its pixels f times larger)
         f = self._preview.shrink(W, H) if preview and mag == 1.0 else 1
         kw, T, size = axes_camera(self.plot, ax, *_shrunk((W, H), f), mag / f)
-        self.plot.pixel_step = DRAG_PIXEL_STEP if preview else None
-        try:
-            limits = (ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()) \
-                if self.plot.axlim_clip else None
-            r = self.plot.draw_with(size, kw, limits)
-        finally:
-            self.plot.pixel_step = None
+        renders = []
+        for a in group:
+            a.plot.pixel_step = DRAG_PIXEL_STEP if preview else None
+            try:
+                limits = (ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()) \
+                    if a.plot.axlim_clip else None
+                renders.append(a.plot.draw_with(size, kw, limits))
+            finally:
+                a.plot.pixel_step = None
+            a.preview = preview
+            a.placed = T
+            a._drawn_M = np.array(ax.M, copy=True)
+        if len(renders) == 1:
+            r = renders[0]
+        else:
+            from .passes.composite import composite
+            r = composite(renders, background=(0, 0, 0, 0))
         if preview:
-            self._preview.took(r.stats["seconds"], size[0] * size[1])
-        self.placed = T
-        self._drawn_M = np.array(ax.M, copy=True)
+            self._preview.took(sum(x.stats["seconds"] for x in renders), size[0] * size[1])
         # mplot3d's own artists: what this surface hides drawn under its picture
         # (where it is the Axes' only one), the rest over it when they draw
         depth_test_mplot3d_artists(ax)
-        if sum(isinstance(a, Surface3DImage) for a in ax.artists) == 1:
+        if len(group) == 1:
             for a in sorted(ax.get_children(), key=lambda a: a.get_zorder()):
                 if isinstance(a.__dict__.get("draw"), DepthTested) and \
                         a.get_zorder() >= self.get_zorder():

@@ -1,8 +1,8 @@
 """floatcol in matplotlib's own 3-D Axes: the surface3d example with only its
-plot_surface call changed, markers hidden behind a hill, a terrain with
-matplotlib's LightSource, a surface clipped at the Axes' limits (axlim_clip),
-plot_wireframe with the hidden lines removed, beside mplot3d's own, and the
-surface3d_radial example's polar grid (resampled onto an even one).
+plot_surface call changed, markers hidden behind a hill, two crossing surfaces in one
+Axes, a terrain with matplotlib's LightSource, a surface clipped at the Axes' limits
+(axlim_clip), plot_wireframe with the hidden lines removed, beside mplot3d's own, and
+the surface3d_radial example's polar grid (resampled onto an even one).
 
 ``fc.plot_surface(X, Y, Z, ax=ax, ...)`` takes matplotlib's call form and keywords;
 inside ``fig.add_subplot(projection="3d")`` the Axes keep their panes, ticks, labels
@@ -46,6 +46,15 @@ t = np.linspace(0, 2 * np.pi, 400)
 ax.plot(2.2 * np.cos(t), 2.2 * np.sin(t), 0.6 + 0.5 * np.sin(3 * t), color="k", linewidth=2)
 ax.set_title("mplot3d's scatter and plot, depth-tested against the surface")
 fig.savefig("occluded_objects.png")
+
+# two plot_surface calls in one Axes: they hide each other a pixel at a time (mplot3d
+# draws each of its own surfaces whole, one over the other)
+fig = plt.figure(figsize=(7, 5))
+ax = fig.add_subplot(projection="3d")
+fc.plot_surface("sin(x) * cos(y)", ("x", -3, 3), ("y", -3, 3), ax=ax, cmap="coolwarm")
+fc.plot_surface("x / 4", ("x", -3, 3), ("y", -3, 3), ax=ax, color="gold", alpha=0.8)
+ax.set_title("two surfaces in one Axes, crossing")
+fig.savefig("two_surfaces.png")
 
 # matplotlib's custom hillshading example, in floatcol
 dem = get_sample_data("jacksboro_fault_dem.npz")

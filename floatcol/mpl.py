@@ -299,6 +299,7 @@ class Surface3DImage(Artist):
         group = [a for a in sorted(ax.artists, key=lambda a: a.get_zorder())
                  if isinstance(a, Surface3DImage) and a.get_visible()]
         if group[0] is not self:
+            self.stale = False
             return
         mag = renderer.get_image_magnification()
         bb = ax.bbox

@@ -328,14 +328,13 @@ class Surface3DImage(Artist):
             r = composite(renders, background=(0, 0, 0, 0))
         if preview:
             self._preview.took(sum(x.stats["seconds"] for x in renders), size[0] * size[1])
-        # mplot3d's own artists: what this surface hides drawn under its picture
-        # (where it is the Axes' only one), the rest over it when they draw
+        # mplot3d's own artists: what the surfaces hide drawn under their picture (the
+        # composite's depth is the nearest surface's), the rest over it when they draw
         depth_test_mplot3d_artists(ax)
-        if len(group) == 1:
-            for a in sorted(ax.get_children(), key=lambda a: a.get_zorder()):
-                if isinstance(a.__dict__.get("draw"), DepthTested) and \
-                        a.get_zorder() >= self.get_zorder():
-                    a.draw.draw_hidden(renderer, [r])
+        for a in sorted(ax.get_children(), key=lambda a: a.get_zorder()):
+            if isinstance(a.__dict__.get("draw"), DepthTested) and \
+                    a.get_zorder() >= self.get_zorder():
+                a.draw.draw_hidden(renderer, [r])
         m = mag / f
         gc = renderer.new_gc()
         gc.set_clip_rectangle(bb)
@@ -586,8 +585,8 @@ class DepthTested:
     hidden (its markers only at its visible vertices), a text not drawn where its
     anchor is hidden, polygons (a contourf level's, a Poly3DCollection's) whole, over
     the picture where any of their points lies in front of a surface (_faces_kept,
-    _paths_kept). The hidden part is drawn the same way under the surface's
-    picture (``draw_hidden``, where the Axes holds one floatcol surface), so that it
+    _paths_kept). The hidden part is drawn the same way under the surfaces' picture
+    (``draw_hidden``; with several floatcol surfaces, under their composite), so that it
     shows through a translucent surface and at the partly covered pixels of its
     edges. ``visible`` says, after a draw, which points (a line's samples, a
     collection's segments' samples end to end) were shown; None where the artist was

@@ -454,13 +454,16 @@ def test_mplot3ds_own_line_text_and_quiver_are_depth_tested_too():
     assert 0 < q.draw.visible.mean() < 1
 
 
-def test_what_a_surface_hides_is_drawn_under_its_picture():
+@pytest.mark.parametrize("second", [False, True])
+def test_what_a_surface_hides_is_drawn_under_its_picture(second):
     """The hidden part of mplot3d's own artists is drawn under the surface's picture:
     nothing of it shows through an opaque surface (the pixel is the picture without
     it), and a translucent surface (alpha 0.4: one layer over the point's pixel)
     shows it as matplotlib composites an image over a marker, 0.4 of the surface's
     colour over 0.6 of the marker's. Measured 2026-12-06: the same pixel opaque;
-    (183, 53, 67) translucent against 0.4 (75, 133, 169) + 0.6 (255, 0, 0)."""
+    (183, 53, 67) translucent against 0.4 (75, 133, 169) + 0.6 (255, 0, 0). The same
+    with a second floatcol surface in the Axes (a small plate in a corner, away from
+    the point: the two drawn as one composite)."""
     pixel = {}
     for alpha in (1.0, 0.4):
         for marker in (False, True):
@@ -468,6 +471,9 @@ def test_what_a_surface_hides_is_drawn_under_its_picture():
             ax = fig.add_subplot(projection="3d")
             fc.plot_surface("2*exp(-(x**2+y**2)/2)", ("x", -3, 3), ("y", -3, 3), ax=ax,
                             cmap="Blues", alpha=alpha)
+            if second:
+                fc.plot_surface("0.1 + 0*x", ("x", 2.4, 3), ("y", -3, -2.4), ax=ax,
+                                color="green")
             pts = np.array([[-1.0, 1.73, 0.2]])     # behind the hill
             if marker:
                 sc = ax.scatter(pts[:, 0], pts[:, 1], pts[:, 2], color="red", s=150,

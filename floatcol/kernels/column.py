@@ -883,22 +883,13 @@ def _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, persp
     if kind != SURF_HEIGHTFIELD or vp[VP_DETECT] == 0.0:
         return _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma,
                         persp, d3, H, aa, stk, sdepth, left, mid)
-    nv, nu = hf.shape
-    au = (prev[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)   # grid coordinates
-    bu = (cur[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)
-    av = (prev[A_V] - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
-    bv = (cur[A_V] - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
+    au, bu, av, bv, iu, iv = _cell_path(hf, hfp, prev, cur)
     ta = prev[A_T]
     tb = cur[A_T]
     evals = 0
-    # the next grid line (index) in each direction, and its fraction along the span
-    iu = math.floor(au) + 1.0 if bu > au else math.ceil(au) - 1.0
-    iv = math.floor(av) + 1.0 if bv > av else math.ceil(av) - 1.0
     for _ in range(HF_MAX_CROSSINGS):
-        lu = (iu - au) / (bu - au) if bu != au else 2.0
-        lv = (iv - av) / (bv - av) if bv != av else 2.0
-        lam = min(lu, lv)
-        if not (lam > 1e-9 and lam < 1.0 - 1e-9):
+        lu, lv, lam = _crossing(au, bu, av, bv, iu, iv)
+        if not _inside_span(lam):
             break
         if lu <= lv:
             iu += 1.0 if bu > au else -1.0
@@ -934,6 +925,13 @@ def _cuts_cells(kind, hf, hfp, vp, prev, cur):
     _fill_span's under it, took most of a height field's time)."""
     if kind != SURF_HEIGHTFIELD or vp[VP_DETECT] == 0.0:
         return False
+    return _inside_span(_crossing(*_cell_path(hf, hfp, prev, cur))[2])
+
+
+@ngjit_inline
+def _cell_path(hf, hfp, prev, cur):
+    """The span prev -> cur in a height field's grid coordinates (au, bu along u, av,
+    bv along v) and the first grid line it meets each way (iu, iv)."""
     nv, nu = hf.shape
     au = (prev[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)
     bu = (cur[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)
@@ -941,9 +939,21 @@ def _cuts_cells(kind, hf, hfp, vp, prev, cur):
     bv = (cur[A_V] - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
     iu = math.floor(au) + 1.0 if bu > au else math.ceil(au) - 1.0
     iv = math.floor(av) + 1.0 if bv > av else math.ceil(av) - 1.0
+    return au, bu, av, bv, iu, iv
+
+
+@ngjit_inline
+def _crossing(au, bu, av, bv, iu, iv):
+    """(lu, lv, lam): the fractions of the span (_cell_path's) where it meets grid lines
+    iu and iv (2: never), and the nearer of them."""
     lu = (iu - au) / (bu - au) if bu != au else 2.0
     lv = (iv - av) / (bv - av) if bv != av else 2.0
-    lam = min(lu, lv)
+    return lu, lv, min(lu, lv)
+
+
+@ngjit_inline
+def _inside_span(lam):
+    """Is a crossing at fraction lam a cut (strictly inside the span)?"""
     return lam > 1e-9 and lam < 1.0 - 1e-9
 
 

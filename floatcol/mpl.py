@@ -249,7 +249,7 @@ class Surface3DImage(Artist):
         canvas = self.axes.figure.canvas
         if self._canvas is not canvas:
             self._canvas = canvas
-            self._cid = canvas.mpl_connect("button_release_event", self.on_release)
+            canvas.mpl_connect("button_release_event", self.on_release)
 
     def drawn_for(self, ax):
         """Whether the last picture was drawn with ``ax``'s present projection."""

@@ -146,6 +146,29 @@ def test_heightfield_perspective_edges_match_ray_caster():
     assert psnr(r.intensity, ref.intensity) > 37.5
 
 
+def test_heightfield_perspective_planes_beside_the_grid_search_only_inside_it():
+    # A perspective sample whose Newton step leaves a height field's grid (where it
+    # is not defined) is looked for only on the part of its plane's line inside the
+    # grid: none where the line misses it, the root where g changes sign between the
+    # part's ends, else that part scanned. It had scanned the whole line, which a
+    # tenth of the samples did, for planes passing beside the grid. Measured
+    # (2026-12-06, 240x180, elev 60, azim 200): 111 973 evaluations, 49.61 dB,
+    # sides 100.000 %; scanning the whole line, 298 679 evaluations, 46.67 dB,
+    # 99.995 %.
+    u = np.linspace(-2, 2, 61)
+    uu, vv = np.meshgrid(u, u)
+    z = np.cos(2 * uu) * np.sin(1.5 * vv) + 0.3 * uu
+    hf = fc.HeightField(z, u=(-2, 2), v=(-2, 2))
+    r = fc.render(hf, size=(240, 180), elev=60, azim=200, projection="perspective",
+                  shading="lambert")
+    vw = r.view
+    ref = raycast(bilinear_surface(z, (-2, 2), (-2, 2)), (-2, 2), (-2, 2), (240, 180), 60, 200,
+                  "perspective", vw.d1, vw.d2, vw.scale, center=vw.center)
+    assert r.stats["samples"] < 150_000
+    assert psnr(r.intensity, ref.intensity) > 49.0
+    assert (r.side == ref.side).mean() > 0.99998
+
+
 def test_heightfield_holes():
     z = np.ones((10, 10))
     z[3:6, 3:6] = np.nan

@@ -99,6 +99,7 @@ class View:
         vp[L.VP_QNEAR] = self.q_near
         vp[L.VP_CLIP] = 1.0
         vp[L.VP_KEEP_TOP] = 1.0
+        vp[L.VP_PASS_HIDDEN] = 1.0
         vp[L.VP_FOLD] = 0.0 if self.placement == "paper" else 1.0
         vp[L.VP_XOFF] = self.x_offset
         if self.holes is not None:

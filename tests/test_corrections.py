@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import floatcol as fc
-from conftest import reference_for
+from conftest import reference_for, render_with_switch_off
 from floatcol.kernels import layout as L
 from floatcol.kernels.column import RUN_SIZE, _sample_into, _spline_top
 from floatcol.kernels.correct import ridge_between, shading_problem
@@ -276,3 +276,24 @@ def test_height_field_spans_are_cut_at_cell_edges():
     assert out["spline+adaptive"][0] >= 37.0
     assert out["spline+adaptive"][0] >= out["none"][0] + 10.0
     assert out["spline+adaptive"][1] >= 0.9995
+
+
+@pytest.mark.parametrize("opts", [{}, dict(shading="lambert", corrections="spline+supersample"),
+                                  dict(antialias=False), dict(antialias=3)])
+def test_a_height_fields_hidden_spans_are_not_cut_and_nothing_changes(opts, monkeypatch):
+    """An orthographic height field's span whose cells' heights all project strictly
+    inside the floating interval is not cut at its cell edges (column.py's
+    _hidden_in_cells): nothing on it can show. The pictures and buffers are the same
+    bit for bit as with every span cut; the evaluations fall (measured 2026-12-06:
+    0.873-0.885 of those with every span cut on this mesh, 0.76 on a 400² mesh at
+    1920x1080: 1.21 -> 0.92 million)."""
+    u = np.linspace(-3, 3, 90)
+    uu, vv = np.meshgrid(u, u)
+    z = 1.5 * np.sin(uu * np.cos(vv)) + np.where(uu > 1.0, 0.4, 0.0)   # a step: walls too
+    hf = fc.HeightField(z, u=(-3, 3), v=(-3, 3))
+    kw = dict(size=(200, 150), elev=25, azim=35, **opts)
+    r = fc.render(hf, **kw)
+    r0 = render_with_switch_off(monkeypatch, L.VP_PASS_HIDDEN, hf, **kw)
+    for k in ("rgba", "side", "intensity", "depth", "u", "v"):
+        assert np.array_equal(getattr(r, k), getattr(r0, k), equal_nan=True), k
+    assert r.stats["samples"] < 0.92 * r0.stats["samples"]

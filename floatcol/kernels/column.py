@@ -35,7 +35,7 @@ from .layout import (
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DETECT, VP_DT, VP_FIX_RIDGE,
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1,
     VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR, VP_BATCH, VP_SIZE, VP_INV_D1, VP_UA, VP_UB,
-    VP_VA, VP_VB, VP_H, VP_CLIP, VP_KEEP_TOP, VP_FOLD, VP_SCALE, VP_HOLE_N,
+    VP_VA, VP_VB, VP_H, VP_CLIP, VP_KEEP_TOP, VP_FOLD, VP_PASS_HIDDEN, VP_SCALE, VP_HOLE_N,
 )
 from .coverage import coverages, flagged, keep_coverages, seen_side
 from .fold import FOLD_NEAR, fold_test, trace_column
@@ -57,6 +57,10 @@ SPLINE_MAX_ITERS = 8
 ADAPT_MAX_GROWTH = 16.0
 #: A height field's span is cut at no more than this many cell edges
 HF_MAX_CROSSINGS = 64
+# _hidden_in_cells: the most cells a span's box may have each way, and the margin (in
+# pixels, far above a rounding) by which the box's rows must lie inside the interval
+HIDDEN_CELLS = 4
+HIDDEN_MARGIN = 1e-6
 #: ... and the normal should turn about ADAPT_TURN (radians) from one plane to the
 #: next: the step shrinks to ADAPT_MIN_STEP or grows to ADAPT_MAX_STEP times its size
 ADAPT_TURN = 0.1
@@ -929,6 +933,47 @@ def _cuts_cells(kind, hf, hfp, vp, prev, cur):
 
 
 @ngjit_inline
+def _hidden_in_cells(hf, hfp, vp, prev, cur, run):
+    """Orthographic: does a height field over the cells around the span prev -> cur
+    lie strictly inside the floating interval (up to HIDDEN_CELLS cells each way, the
+    nodes' heights bounding each bilinear cell)? Then no point of the span shows: the
+    samples at its cell edges and the corrections between them (all on the span's
+    stretch of the column, _span) would paint nothing, and _span is passed over.
+    Two thirds of a mesh's spans are hidden; their cuts were a third of its
+    orthographic time."""
+    nv, nu = hf.shape
+    au, bu, av, bv, _, _ = _cell_path(hf, hfp, prev, cur)
+    i0 = max(floor_index(min(au, bu)), 0)
+    i1 = min(floor_index(max(au, bu)), nu - 2)
+    j0 = max(floor_index(min(av, bv)), 0)
+    j1 = min(floor_index(max(av, bv)), nv - 2)
+    if not (i1 - i0 < HIDDEN_CELLS and j1 - j0 < HIDDEN_CELLS):
+        return False
+    w_lo = np.inf
+    w_hi = -np.inf
+    for j in range(j0, j1 + 2):
+        for i in range(i0, i1 + 2):
+            z = hf[j, i]
+            w_lo = min(w_lo, z)
+            w_hi = max(w_hi, z)
+    if not (w_lo == w_lo and w_hi == w_hi and w_lo > -np.inf and w_hi < np.inf):
+        return False                    # a hole (NaN) among them
+    # screen rows of the corners of [w_lo, w_hi] x [ta, tb] (ortho_point's, eq. 4): the
+    # rows of every point of the span lie between them
+    sa = vp[VP_SA]
+    ca = vp[VP_CA]
+    cw = vp[VP_CW]
+    sc = vp[VP_SCALE]
+    ya = (w_lo - cw) * ca * sc
+    yb = (w_hi - cw) * ca * sc
+    ta = -prev[A_T] * sa * sc
+    tb = -cur[A_T] * sa * sc
+    y_lo = min(ya, yb) + min(ta, tb) + (vp[VP_H] - 1.0) * 0.5
+    y_hi = max(ya, yb) + max(ta, tb) + (vp[VP_H] - 1.0) * 0.5
+    return y_lo > run[RUN_YMIN] + HIDDEN_MARGIN and y_hi < run[RUN_YMAX] - HIDDEN_MARGIN
+
+
+@ngjit_inline
 def _cell_path(hf, hfp, prev, cur):
     """The span prev -> cur in a height field's grid coordinates (au, bu along u, av,
     bv along v) and the first grid line it meets each way (iu, iv)."""
@@ -1697,6 +1742,9 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                 if not _cuts_cells(kind, hf, hfp, vp, prev, cur) and \
                         not _problem(vp, x0, prev, cur, run):
                     _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)  # the common case
+                elif not persp and kind == SURF_HEIGHTFIELD and vp[VP_PASS_HIDDEN] != 0.0 \
+                        and _hidden_in_cells(hf, hfp, vp, prev, cur, run):
+                    pass        # nothing of the span can show: its cuts would change nothing
                 else:
                     evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,
                                    sigma, persp, d3, H, aa, stk, sdepth, left, mid, tmp)

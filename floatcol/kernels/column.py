@@ -933,21 +933,28 @@ def _cuts_cells(kind, hf, hfp, vp, prev, cur):
 
 
 @ngjit_inline
-def _hidden_in_cells(hf, hfp, vp, prev, cur, run):
-    """Orthographic: does a height field over the cells around the span prev -> cur
-    lie strictly inside the floating interval (up to HIDDEN_CELLS cells each way, the
-    nodes' heights bounding each bilinear cell)? Then no point of the span shows: the
-    samples at its cell edges and the corrections between them (all on the span's
-    stretch of the column, _span) would paint nothing, and _span is passed over.
-    Two thirds of a mesh's spans are hidden; their cuts were a third of its
-    orthographic time."""
+def _hidden_in_cells(hf, hfp, vp, x0, prev, cur, run):
+    """Does a height field over the cells around the span prev -> cur lie strictly
+    inside the floating interval (up to HIDDEN_CELLS cells each way, the nodes'
+    heights bounding each bilinear cell)? Then no point of the span shows: the samples
+    at its cell edges and the corrections between them (all on the span's stretch of
+    the column, _span) would paint nothing, and _span is passed over. Two thirds of a
+    mesh's spans are hidden; their cuts were a third of its orthographic time.
+
+    In perspective the points of Pi between the span's planes lie off the straight
+    ground path between its ends (r grows with the height s, eq. 2): the box takes a
+    cell more each way, and the points of Pi over the box's heights and the span's
+    planes (a parallelogram of the ground, r and u, v linear in t and s) must lie in
+    it; a row (eq. 10) is then largest and smallest at that rectangle's corners."""
     nv, nu = hf.shape
+    persp = vp[VP_ORTHO] == 0.0
     au, bu, av, bv, _, _ = _cell_path(hf, hfp, prev, cur)
-    i0 = max(floor_index(min(au, bu)), 0)
-    i1 = min(floor_index(max(au, bu)), nu - 2)
-    j0 = max(floor_index(min(av, bv)), 0)
-    j1 = min(floor_index(max(av, bv)), nv - 2)
-    if not (i1 - i0 < HIDDEN_CELLS and j1 - j0 < HIDDEN_CELLS):
+    m = 1 if persp else 0
+    i0 = max(floor_index(min(au, bu)) - m, 0)
+    i1 = min(floor_index(max(au, bu)) + m, nu - 2)
+    j0 = max(floor_index(min(av, bv)) - m, 0)
+    j1 = min(floor_index(max(av, bv)) + m, nv - 2)
+    if not (i1 - i0 < HIDDEN_CELLS + 2 * m and j1 - j0 < HIDDEN_CELLS + 2 * m):
         return False
     w_lo = np.inf
     w_hi = -np.inf
@@ -958,18 +965,43 @@ def _hidden_in_cells(hf, hfp, vp, prev, cur, run):
             w_hi = max(w_hi, z)
     if not (w_lo == w_lo and w_hi == w_hi and w_lo > -np.inf and w_hi < np.inf):
         return False                    # a hole (NaN) among them
-    # screen rows of the corners of [w_lo, w_hi] x [ta, tb] (ortho_point's, eq. 4): the
-    # rows of every point of the span lie between them
     sa = vp[VP_SA]
     ca = vp[VP_CA]
     cw = vp[VP_CW]
     sc = vp[VP_SCALE]
-    ya = (w_lo - cw) * ca * sc
-    yb = (w_hi - cw) * ca * sc
-    ta = -prev[A_T] * sa * sc
-    tb = -cur[A_T] * sa * sc
-    y_lo = min(ya, yb) + min(ta, tb) + (vp[VP_H] - 1.0) * 0.5
-    y_hi = max(ya, yb) + max(ta, tb) + (vp[VP_H] - 1.0) * 0.5
+    half = (vp[VP_H] - 1.0) * 0.5
+    if not persp:
+        # screen rows of the corners of [w_lo, w_hi] x [ta, tb] (ortho_point's, eq. 4):
+        # the rows of every point of the span lie between them
+        ya = (w_lo - cw) * ca * sc
+        yb = (w_hi - cw) * ca * sc
+        ta = -prev[A_T] * sa * sc
+        tb = -cur[A_T] * sa * sc
+        y_lo = min(ya, yb) + min(ta, tb) + half
+        y_hi = max(ya, yb) + max(ta, tb) + half
+    else:
+        d1 = vp[VP_D1]
+        d3 = vp[VP_D3]
+        cb = vp[VP_CB]
+        sb = vp[VP_SB]
+        gu = (nu - 1) / (hfp[1] - hfp[0])
+        gv = (nv - 1) / (hfp[3] - hfp[2])
+        y_lo = np.inf
+        y_hi = -np.inf
+        for c in range(4):
+            t = prev[A_T] if c < 2 else cur[A_T]
+            s = (w_lo if c % 2 == 0 else w_hi) - cw
+            r = x0 * (t * ca + d3) / d1 + x0 * sa / d1 * s    # eqs. (2), (9)
+            gx = (vp[VP_CU] + r * cb + t * sb - hfp[0]) * gu
+            gy = (vp[VP_CV] - r * sb + t * cb - hfp[2]) * gv
+            if not (gx >= i0 and gx <= i1 + 1 and gy >= j0 and gy <= j1 + 1):
+                return False
+            e = s * sa + t * ca + d3
+            if not e > d1:
+                return False            # in front of the screen
+            y = (s * ca - t * sa) * d1 / e * sc + half       # eq. (10)
+            y_lo = min(y_lo, y)
+            y_hi = max(y_hi, y)
     return y_lo > run[RUN_YMIN] + HIDDEN_MARGIN and y_hi < run[RUN_YMAX] - HIDDEN_MARGIN
 
 
@@ -1742,8 +1774,8 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                 if not _cuts_cells(kind, hf, hfp, vp, prev, cur) and \
                         not _problem(vp, x0, prev, cur, run):
                     _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)  # the common case
-                elif not persp and kind == SURF_HEIGHTFIELD and vp[VP_PASS_HIDDEN] != 0.0 \
-                        and _hidden_in_cells(hf, hfp, vp, prev, cur, run):
+                elif kind == SURF_HEIGHTFIELD and vp[VP_PASS_HIDDEN] != 0.0 \
+                        and _hidden_in_cells(hf, hfp, vp, x0, prev, cur, run):
                     pass        # nothing of the span can show: its cuts would change nothing
                 else:
                     evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,

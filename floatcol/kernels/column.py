@@ -934,6 +934,13 @@ def _cuts_cells(kind, hf, hfp, vp, prev, cur):
 
 @ngjit_inline
 def _hidden_in_cells(hf, hfp, vp, x0, prev, cur, run):
+    """_hidden_cells of the span prev -> cur."""
+    return _hidden_cells(hf, hfp, vp, x0, prev[A_U], prev[A_V], prev[A_T], cur[A_U], cur[A_V],
+                         cur[A_T], run)
+
+
+@ngjit_inline
+def _hidden_cells(hf, hfp, vp, x0, pu, pv, pt, cu, cv, ct, run):
     """Does a height field over the cells around the span prev -> cur lie strictly
     inside the floating interval (up to HIDDEN_CELLS cells each way, the nodes'
     heights bounding each bilinear cell)? Then no point of the span shows: the samples
@@ -945,10 +952,11 @@ def _hidden_in_cells(hf, hfp, vp, x0, prev, cur, run):
     ground path between its ends (r grows with the height s, eq. 2): the box takes a
     cell more each way, and the points of Pi over the box's heights and the span's
     planes (a parallelogram of the ground, r and u, v linear in t and s) must lie in
-    it; a row (eq. 10) is then largest and smallest at that rectangle's corners."""
+    it; a row (eq. 10) is then largest and smallest at that rectangle's corners. The
+    span runs from (pu, pv) on plane pt to (cu, cv) on plane ct."""
     nv, nu = hf.shape
     persp = vp[VP_ORTHO] == 0.0
-    au, bu, av, bv, _, _ = _cell_path(hf, hfp, prev, cur)
+    au, bu, av, bv, _, _ = _cell_path_uv(hf, hfp, pu, pv, cu, cv)
     m = 1 if persp else 0
     i0 = max(floor_index(min(au, bu)) - m, 0)
     i1 = min(floor_index(max(au, bu)) + m, nu - 2)
@@ -975,8 +983,8 @@ def _hidden_in_cells(hf, hfp, vp, x0, prev, cur, run):
         # the rows of every point of the span lie between them
         ya = (w_lo - cw) * ca * sc
         yb = (w_hi - cw) * ca * sc
-        ta = -prev[A_T] * sa * sc
-        tb = -cur[A_T] * sa * sc
+        ta = -pt * sa * sc
+        tb = -ct * sa * sc
         y_lo = min(ya, yb) + min(ta, tb) + half
         y_hi = max(ya, yb) + max(ta, tb) + half
     else:
@@ -989,7 +997,7 @@ def _hidden_in_cells(hf, hfp, vp, x0, prev, cur, run):
         y_lo = np.inf
         y_hi = -np.inf
         for c in range(4):
-            t = prev[A_T] if c < 2 else cur[A_T]
+            t = pt if c < 2 else ct
             s = (w_lo if c % 2 == 0 else w_hi) - cw
             r = x0 * (t * ca + d3) / d1 + x0 * sa / d1 * s    # eqs. (2), (9)
             gx = (vp[VP_CU] + r * cb + t * sb - hfp[0]) * gu
@@ -1009,11 +1017,17 @@ def _hidden_in_cells(hf, hfp, vp, x0, prev, cur, run):
 def _cell_path(hf, hfp, prev, cur):
     """The span prev -> cur in a height field's grid coordinates (au, bu along u, av,
     bv along v) and the first grid line it meets each way (iu, iv)."""
+    return _cell_path_uv(hf, hfp, prev[A_U], prev[A_V], cur[A_U], cur[A_V])
+
+
+@ngjit_inline
+def _cell_path_uv(hf, hfp, pu, pv, cu, cv):
+    """_cell_path of the span from (pu, pv) to (cu, cv)."""
     nv, nu = hf.shape
-    au = (prev[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)
-    bu = (cur[A_U] - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)
-    av = (prev[A_V] - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
-    bv = (cur[A_V] - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
+    au = (pu - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)
+    bu = (cu - hfp[0]) / (hfp[1] - hfp[0]) * (nu - 1)
+    av = (pv - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
+    bv = (cv - hfp[2]) / (hfp[3] - hfp[2]) * (nv - 1)
     iu = math.floor(au) + 1.0 if bu > au else math.ceil(au) - 1.0
     iv = math.floor(av) + 1.0 if bv > av else math.ceil(av) - 1.0
     return au, bu, av, bv, iu, iv
@@ -1631,7 +1645,10 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
     # nothing but which sample is the previous one: that stays in the batch (number
     # prev_kb) until a plane that does something needs it in ``prev``
     # (_prev_from_batch). Two thirds of the default picture's samples are hidden.
-    hidden_ok = batched and hstride == 0 and kind != SURF_HEIGHTFIELD
+    # (a height field's, orthographic, where its span is not cut at a cell edge or
+    # surely lies inside the interval, _hidden_cells)
+    hidden_ok = batched and hstride == 0 and (kind != SURF_HEIGHTFIELD or (
+        not persp and vp[VP_PASS_HIDDEN] != 0.0))
     detect = vp[VP_DETECT] != 0.0
     prev_kb = -1
     while True:
@@ -1662,6 +1679,20 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                 if hidden and detect:
                     vn_prev = bat[BAT_VN * BATCH + prev_kb] if prev_kb >= 0 else prev[A_VN]
                     hidden = not vn_prev * bat[BAT_VN * BATCH + kb_i] < 0.0
+                if hidden and kind == SURF_HEIGHTFIELD and detect:
+                    # the span from the previous sample, cut at a cell edge (_span)
+                    # unless it surely lies inside the interval
+                    if prev_kb >= 0:
+                        pu = bat[BAT_U * BATCH + prev_kb]
+                        pv = bat[BAT_V * BATCH + prev_kb]
+                    else:
+                        pu = prev[A_U]
+                        pv = prev[A_V]
+                    cu = bat[BAT_U * BATCH + kb_i]
+                    cv = bat[BAT_V * BATCH + kb_i]
+                    hidden = not _inside_span(_crossing(*_cell_path_uv(hf, hfp, pu, pv, cu,
+                                                                       cv))[2]) or \
+                        _hidden_cells(hf, hfp, vp, x0, pu, pv, prev_t, cu, cv, t, run)
                 if hidden:
                     if persp:
                         # what _sample_at does with a perspective sample

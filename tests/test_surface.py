@@ -125,6 +125,17 @@ def test_heightfield_render_matches_ray_caster():
     assert psnr(r.intensity, ref.intensity) > 25
 
 
+def _perspective_and_ray_caster(z, dom, size, elev, azim):
+    """A height field z over dom x dom in perspective (shading="lambert") and the ray
+    caster's picture of its bilinear surface from the same camera."""
+    r = fc.render(fc.HeightField(z, u=dom, v=dom), size=size, elev=elev, azim=azim,
+                  projection="perspective", shading="lambert")
+    vw = r.view
+    ref = raycast(bilinear_surface(z, dom, dom), dom, dom, size, elev, azim, "perspective",
+                  vw.d1, vw.d2, vw.scale, center=vw.center)
+    return r, ref
+
+
 def test_heightfield_perspective_edges_match_ray_caster():
     # The fidelity table's height field in perspective. Where a sample's Newton step
     # leaves the grid, the root bracket scans s; a root just inside the grid's edge
@@ -136,12 +147,7 @@ def test_heightfield_perspective_edges_match_ray_caster():
     for _ in range(3):
         z = (z + np.roll(z, 1, 0) + np.roll(z, -1, 0) + np.roll(z, 1, 1) + np.roll(z, -1, 1)) / 5
     z *= 2.0
-    hf = fc.HeightField(z, u=(-1, 1), v=(-1, 1))
-    r = fc.render(hf, size=(160, 120), elev=40, azim=30, projection="perspective",
-                  shading="lambert")
-    vw = r.view
-    ref = raycast(bilinear_surface(z, (-1, 1), (-1, 1)), (-1, 1), (-1, 1), (160, 120), 40, 30,
-                  "perspective", vw.d1, vw.d2, vw.scale, center=vw.center)
+    r, ref = _perspective_and_ray_caster(z, (-1, 1), (160, 120), 40, 30)
     assert (r.side == ref.side).mean() > 0.9997
     assert psnr(r.intensity, ref.intensity) > 37.5
 
@@ -158,12 +164,7 @@ def test_heightfield_perspective_planes_beside_the_grid_search_only_inside_it():
     u = np.linspace(-2, 2, 61)
     uu, vv = np.meshgrid(u, u)
     z = np.cos(2 * uu) * np.sin(1.5 * vv) + 0.3 * uu
-    hf = fc.HeightField(z, u=(-2, 2), v=(-2, 2))
-    r = fc.render(hf, size=(240, 180), elev=60, azim=200, projection="perspective",
-                  shading="lambert")
-    vw = r.view
-    ref = raycast(bilinear_surface(z, (-2, 2), (-2, 2)), (-2, 2), (-2, 2), (240, 180), 60, 200,
-                  "perspective", vw.d1, vw.d2, vw.scale, center=vw.center)
+    r, ref = _perspective_and_ray_caster(z, (-2, 2), (240, 180), 60, 200)
     assert r.stats["samples"] < 150_000
     assert psnr(r.intensity, ref.intensity) > 49.0
     assert (r.side == ref.side).mean() > 0.99998

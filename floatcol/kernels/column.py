@@ -57,7 +57,7 @@ SPLINE_MAX_ITERS = 8
 ADAPT_MAX_GROWTH = 16.0
 #: A height field's span is cut at no more than this many cell edges
 HF_MAX_CROSSINGS = 64
-# _hidden_in_cells: the most cells a span's box may have each way, and the margin (in
+# _hidden_cells: the most cells a span's box may have each way, and the margin (in
 # pixels, far above a rounding) by which the box's rows must lie inside the interval
 HIDDEN_CELLS = 4
 HIDDEN_MARGIN = 1e-6

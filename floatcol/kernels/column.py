@@ -41,7 +41,7 @@ from .coverage import coverages, flagged, keep_coverages, seen_side
 from .fold import FOLD_NEAR, fold_test, trace_column
 from .correct import (
     WALL_DEPTH, hermite_extremum, lambert_at, probe, probe_ortho, probe_persp, ridge_between,
-    shading_problem, wall_between, wall_normal,
+    jumps, shading_problem, wall_between, wall_normal,
 )
 from .sample import (
     DOMAIN_EPS, NEWTON_TOL_PX, _clip_line, _r_interval, bracket_ends, column_x0, in_domain,
@@ -1102,6 +1102,11 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
                 if st == S_OK:
                     n = _push(stk, sdepth, n, mid, WALL_MODE + halvings + 1)
                     continue
+            elif not jumps(kind, f, hf, hfp, left, right):
+                _fill_span(gcol, ecol, run, left, right, sigma, persp, d3, H, aa)
+                _copy(left, right)
+                n -= 1
+                continue
             else:
                 nx, ny, nz = wall_normal(kind, f, hf, hfp, vp, left, right)
                 lam = lambert_at(vp, x0, left, nx, ny, nz)

@@ -35,6 +35,7 @@ WALL_DEPTH = 12
 WALL_SEARCH = 16.0     # the wall's direction: its jump is sought up to this many times
 WALL_ASIDE = 2.0       # the offset along a parallel line WALL_ASIDE pixels aside
 WALL_BISECT = 30
+WALL_REAL = 0.5        # jumps(): the part of the bracket's height difference f must jump
 
 #: A ridge is corrected only when its spline top may reach a new pixel row; the
 #: spline's error is allowed this many pixels.
@@ -228,6 +229,19 @@ def _locate_jump(kind, f, hf, hfp, u0, v0, u1, v1):
             lo = m
             f_lo = fm
     return 0.5 * (lo + hi), abs(f_hi - f_lo)
+
+
+@ngjit_nrt_free
+def jumps(kind, f, hf, hfp, a, b):
+    """Does f jump between the ground points of samples a and b, the tight bracket a
+    wall's halving leaves (more than WALL_REAL of their heights' difference left
+    across _locate_jump's final bracket; a hole there counts)? A continuous f leaves
+    nothing: the bracket's rows differ because the column's curve is steep on the
+    screen there (a fold of the surface seen edge-on, near a silhouette), not because
+    f jumps, and its samples' own normals light it (a wall's normal, horizontal, had
+    drawn streaks of a wrong light down such columns)."""
+    m, left_over = _locate_jump(kind, f, hf, hfp, a[A_U], a[A_V], b[A_U], b[A_V])
+    return not math.isfinite(m) or left_over > WALL_REAL * abs(b[A_W] - a[A_W])
 
 
 @ngjit_nrt_free

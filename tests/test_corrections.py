@@ -282,7 +282,7 @@ def test_height_field_spans_are_cut_at_cell_edges():
                                   dict(antialias=False), dict(antialias=3)])
 def test_a_height_fields_hidden_spans_are_not_cut_and_nothing_changes(opts, monkeypatch):
     """A height field's span whose cells' heights all project strictly inside the
-    floating interval is not cut at its cell edges (column.py's _hidden_in_cells):
+    floating interval is not cut at its cell edges (column.py's _hidden_cells):
     nothing on it can show. Orthographic: the pictures and buffers are the same bit
     for bit as with every span cut, and the evaluations fall (measured 2026-12-06:
     0.873-0.885 of those with every span cut on this mesh, 0.76 on a 400² mesh at

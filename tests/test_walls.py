@@ -91,7 +91,7 @@ def test_a_fold_seen_edge_on_is_not_a_wall():
     pixels between samples a hair apart in t, though f is continuous. The halving of a
     wall stopped there and lit the bracket as a vertical wall: streaks of a wrong light
     down the columns that graze the fold. A wall now needs f to jump across its
-    bracket (correct.py's jumps). Measured (2026-12-06, perspective, elev 30, azim
+    bracket (correct.py's wall_jump). Measured (2026-12-06, perspective, elev 30, azim
     -60, 200x150): 58.37 dB against the ray caster, no pixel off by more than 0.1 in
     intensity; with every such bracket a wall, 32.66 dB and 52 pixels (30.73 dB at
     256x192, 30.80 at 512x384)."""

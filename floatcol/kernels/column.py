@@ -41,7 +41,7 @@ from .coverage import coverages, flagged, keep_coverages, seen_side
 from .fold import FOLD_NEAR, fold_test, trace_column
 from .correct import (
     WALL_DEPTH, hermite_extremum, lambert_at, probe, probe_ortho, probe_persp, ridge_between,
-    jumps, shading_problem, wall_between, wall_normal,
+    shading_problem, wall_between, wall_jump, wall_normal,
 )
 from .sample import (
     DOMAIN_EPS, NEWTON_TOL_PX, _clip_line, _r_interval, bracket_ends, column_x0, in_domain,
@@ -929,14 +929,13 @@ def _cuts_cells(kind, hf, hfp, vp, prev, cur):
     _fill_span's under it, took most of a height field's time)."""
     if kind != SURF_HEIGHTFIELD or vp[VP_DETECT] == 0.0:
         return False
-    return _inside_span(_crossing(*_cell_path(hf, hfp, prev, cur))[2])
+    return _crosses_cells(hf, hfp, prev[A_U], prev[A_V], cur[A_U], cur[A_V])
 
 
 @ngjit_inline
-def _hidden_in_cells(hf, hfp, vp, x0, prev, cur, run):
-    """_hidden_cells of the span prev -> cur."""
-    return _hidden_cells(hf, hfp, vp, x0, prev[A_U], prev[A_V], prev[A_T], cur[A_U], cur[A_V],
-                         cur[A_T], run)
+def _crosses_cells(hf, hfp, pu, pv, cu, cv):
+    """Does the span from (pu, pv) to (cu, cv) cross a cell edge strictly inside?"""
+    return _inside_span(_crossing(*_cell_path_uv(hf, hfp, pu, pv, cu, cv))[2])
 
 
 @ngjit_inline
@@ -1102,13 +1101,14 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
                 if st == S_OK:
                     n = _push(stk, sdepth, n, mid, WALL_MODE + halvings + 1)
                     continue
-            elif not jumps(kind, f, hf, hfp, left, right):
-                _fill_span(gcol, ecol, run, left, right, sigma, persp, d3, H, aa)
-                _copy(left, right)
-                n -= 1
-                continue
             else:
-                nx, ny, nz = wall_normal(kind, f, hf, hfp, vp, left, right)
+                m_jump, real = wall_jump(kind, f, hf, hfp, left, right)
+                if not real:            # a fold seen edge-on: its own normals
+                    _fill_span(gcol, ecol, run, left, right, sigma, persp, d3, H, aa)
+                    _copy(left, right)
+                    n -= 1
+                    continue
+                nx, ny, nz = wall_normal(kind, f, hf, hfp, vp, left, right, m_jump)
                 lam = lambert_at(vp, x0, left, nx, ny, nz)
                 _copy(w0, left)
                 _copy(w1, right)
@@ -1695,8 +1695,7 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                         pv = prev[A_V]
                     cu = bat[BAT_U * BATCH + kb_i]
                     cv = bat[BAT_V * BATCH + kb_i]
-                    hidden = not _inside_span(_crossing(*_cell_path_uv(hf, hfp, pu, pv, cu,
-                                                                       cv))[2]) or \
+                    hidden = not _crosses_cells(hf, hfp, pu, pv, cu, cv) or \
                         _hidden_cells(hf, hfp, vp, x0, pu, pv, prev_t, cu, cv, t, run)
                 if hidden:
                     if persp:
@@ -1811,7 +1810,8 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                         not _problem(vp, x0, prev, cur, run):
                     _fill(gcol, ecol, run, prev, cur, sigma, persp, d3, H, aa)  # the common case
                 elif kind == SURF_HEIGHTFIELD and vp[VP_PASS_HIDDEN] != 0.0 \
-                        and _hidden_in_cells(hf, hfp, vp, x0, prev, cur, run):
+                        and _hidden_cells(hf, hfp, vp, x0, prev[A_U], prev[A_V], prev[A_T],
+                                          cur[A_U], cur[A_V], cur[A_T], run):
                     pass        # nothing of the span can show: its cuts would change nothing
                 else:
                     evals += _span(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run,

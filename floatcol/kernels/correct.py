@@ -35,7 +35,7 @@ WALL_DEPTH = 12
 WALL_SEARCH = 16.0     # the wall's direction: its jump is sought up to this many times
 WALL_ASIDE = 2.0       # the offset along a parallel line WALL_ASIDE pixels aside
 WALL_BISECT = 30
-WALL_REAL = 0.5        # jumps(): the part of the bracket's height difference f must jump
+WALL_REAL = 0.5        # wall_jump(): the part of the bracket's height difference f must jump
 
 #: A ridge is corrected only when its spline top may reach a new pixel row; the
 #: spline's error is allowed this many pixels.
@@ -232,21 +232,25 @@ def _locate_jump(kind, f, hf, hfp, u0, v0, u1, v1):
 
 
 @ngjit_nrt_free
-def jumps(kind, f, hf, hfp, a, b):
-    """Does f jump between the ground points of samples a and b, the tight bracket a
-    wall's halving leaves (more than WALL_REAL of their heights' difference left
-    across _locate_jump's final bracket; a hole there counts)? A continuous f leaves
-    nothing: the bracket's rows differ because the column's curve is steep on the
-    screen there (a fold of the surface seen edge-on, near a silhouette), not because
-    f jumps, and its samples' own normals light it (a wall's normal, horizontal, had
-    drawn streaks of a wrong light down such columns)."""
+def wall_jump(kind, f, hf, hfp, a, b):
+    """Where f jumps between the ground points of samples a and b, the tight bracket a
+    wall's halving leaves (_locate_jump's fraction of the way from a to b, 0 where a
+    hole stops the search), and whether it does: more than WALL_REAL of their
+    heights' difference left across its final bracket (a hole there counts). A
+    continuous f leaves nothing: the bracket's rows differ because the column's curve
+    is steep on the screen there (a fold of the surface seen edge-on, near a
+    silhouette), not because f jumps, and its samples' own normals light it (a wall's
+    normal, horizontal, had drawn streaks of a wrong light down such columns)."""
     m, left_over = _locate_jump(kind, f, hf, hfp, a[A_U], a[A_V], b[A_U], b[A_V])
-    return not math.isfinite(m) or left_over > WALL_REAL * abs(b[A_W] - a[A_W])
+    if not math.isfinite(m):
+        return 0.0, True
+    return m, left_over > WALL_REAL * abs(b[A_W] - a[A_W])
 
 
 @ngjit_nrt_free
-def wall_normal(kind, f, hf, hfp, vp, a, b):
-    """Screen-coordinate unit normal of the wall between the tight bracket a, b.
+def wall_normal(kind, f, hf, hfp, vp, a, b, m):
+    """Screen-coordinate unit normal of the wall between the tight bracket a, b, whose
+    jump lies a fraction m of the way from a to b (wall_jump).
 
     The wall is vertical; its direction on the ground comes from the same jump found
     on a parallel line WALL_ASIDE pixels aside. Its normal faces the viewer's side.
@@ -260,9 +264,6 @@ def wall_normal(kind, f, hf, hfp, vp, a, b):
     # A point of the wall line: a and b lie on either side of it (in perspective far
     # apart: inside Pi the ground point moves along r with the height, by dr/ds
     # times the jump).
-    m, _ = _locate_jump(kind, f, hf, hfp, a[A_U], a[A_V], b[A_U], b[A_V])
-    if not math.isfinite(m):
-        m = 0.0
     pu = a[A_U] + m * (b[A_U] - a[A_U])
     pv = a[A_V] + m * (b[A_V] - a[A_V])
     if vp[VP_ORTHO] != 0.0:

@@ -63,7 +63,7 @@ VP_FOLD = 47      # 1.0: a perspective column whose curve folds back in t is tra
                   # are central differences (render), which tilt a normal at a jump of
                   # f as a fold would
 VP_PASS_HIDDEN = 48  # 1.0: a height field's span that surely lies inside the floating
-                  # interval is not cut at its cell edges (column.py's _hidden_in_cells;
+                  # interval is not cut at its cell edges (column.py's _hidden_cells;
                   # 0.0 only to test that it changes nothing)
 VP_SIZE = 49
 

@@ -51,6 +51,10 @@ from .sample import (
 
 
 EDGE_BISECTIONS = 16
+#: a perspective run's edge (bisected next to a plane whose sample lies outside the
+#: domain) counts as on the domain's boundary within this fraction of its size; the
+#: bisection places a real entry 2**-EDGE_BISECTIONS of a plane from it
+EDGE_TOL = 1e-3
 #: Spline iterations when VP_SPLINE_TOL > 0 (section 5.2's optional iteration)
 SPLINE_MAX_ITERS = 8
 #: Locally adaptive sampling (section 6.3): the step may grow this much with distance
@@ -280,6 +284,15 @@ def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, main, bat, kb):
     if vp[VP_DETECT] != 0.0 and kb < 0:
         out[A_VN], out[A_BUMP], out[A_SLOPE] = probe(vp, x0, out)
     return st, ev
+
+
+@ngjit_inline
+def _on_domain_edge(vp, u, v):
+    """Does (u, v) lie within EDGE_TOL of the domain's size of its boundary?"""
+    du = EDGE_TOL * (vp[VP_UB] - vp[VP_UA])
+    dv = EDGE_TOL * (vp[VP_VB] - vp[VP_VA])
+    return (u - vp[VP_UA] <= du or vp[VP_UB] - u <= du or v - vp[VP_VA] <= dv
+            or vp[VP_VB] - v <= dv)
 
 
 @ngjit_inline
@@ -1761,9 +1774,11 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
             if st == S_OK:
                 t_ok = t
                 t_bad = prev_t
+                st_bad = prev_st
             else:
                 t_ok = prev_t
                 t_bad = t
+                st_bad = st
             found = False
             for _ in range(EDGE_BISECTIONS):
                 tm = 0.5 * (t_ok + t_bad)
@@ -1775,6 +1790,17 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                     found = True
                 else:
                     t_bad = tm
+                    st_bad = st_m
+            if found and persp and st_bad == S_OUTSIDE and vp[VP_FOLD] != 0.0 and \
+                    not _on_domain_edge(vp, edge[A_U], edge[A_V]):
+                # The run starts or ends inside the domain, next to a plane whose
+                # sample was dropped as outside: where the curve in Pi enters or
+                # leaves the domain, the edge lies on the domain's boundary. Here
+                # its line held an even number of roots inside the domain (g has the
+                # same sign at the ends of its part inside, sample._root_inside): a
+                # piece of the curve born or ended at a fold in t. The fold tracer
+                # draws the column (fold.py)
+                run[RUN_FOLD] = 1.0
             if found:
                 if run[RUN_OPEN] == 0.0:
                     run_start = edge[A_T]

@@ -45,6 +45,8 @@ FOLD_NEAR = 0.1
 #: seeds: the column pass's seen points every SEED_ROWS rows, and the scan of every
 #: SEED_STRIDE-th plane, SEED_SCAN points over the range of f
 SEED_ROWS = 8
+#: ... and where the seen point's t jumps by more than SEED_DT planes from the row below
+SEED_DT = 2.0
 SEED_STRIDE = 16
 SEED_SCAN = 32
 SEED_BISECT = 50
@@ -358,8 +360,16 @@ def trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n
     s_min = s_lo - (s_hi - s_lo)                          # beyond: toward a pole
     s_max = s_hi + (s_hi - s_lo)
     evals = 0
-    for j in range(0, H, SEED_ROWS):                      # the column pass's points
-        if seen_side(ecol[E_SEEN, j]) != 0.0:
+    side_before = 0.0
+    for j in range(H):                                    # the column pass's points
+        side = seen_side(ecol[E_SEEN, j])
+        # every SEED_ROWS-th row, and the first row of each piece it saw (a piece a few
+        # rows high, between two folds or a fold and the domain's edge, may hold none
+        # of the former)
+        first = side != 0.0 and (side != side_before or abs(gcol[j, G_T] - gcol[j - 1, G_T])
+                                 > SEED_DT * dt)
+        side_before = side
+        if side != 0.0 and (j % SEED_ROWS == 0 or first):
             i = round((gcol[j, G_T] - t0) / dt)
             evals += _seed(kind, fg, hf, hfp, vp, x0, t0 + i * dt, gcol[j, G_W] - vp[VP_CW],
                            s_min, s_max, tg, te, cross, n_cross, a, b)

@@ -169,10 +169,13 @@ def test_the_perspective_kernel_reads_the_batch(monkeypatch):
     ref = fc.as_surface("u*v/2")
     a = fc.render(s, u=(-2, 2), v=(-2, 2), size=(80, 60), projection="perspective")
     b = fc.render(ref, u=(-2, 2), v=(-2, 2), size=(80, 60), projection="perspective")
-    # measured: 10.6 % of the pixels change side, the shade where both see the
-    # surface by 0.18 on average
-    assert np.mean(a.side != b.side) > 0.05
-    assert np.nanmean(np.abs(a.intensity - b.intensity)) > 0.1
+    # measured (2026-12-06): 6.0 % of the pixels change side, 14.1 % change, the shade
+    # where both see the surface by 0.037 on average (11.0 %, 26.3 % and 0.11 before
+    # a run was broken where its samples go over to another piece of the curve,
+    # column._joined and _break_run: the wrong batch's samples jump between pieces)
+    assert np.mean(a.side != b.side) > 0.03
+    assert np.mean(np.any(a.rgba != b.rgba, axis=-1)) > 0.07
+    assert np.nanmean(np.abs(a.intensity - b.intensity)) > 0.02
 
 
 def test_adaptive_sampling_does_not_batch(monkeypatch):

@@ -44,7 +44,8 @@ from .correct import (
     shading_problem, wall_between, wall_jump, wall_normal,
 )
 from .sample import (
-    DOMAIN_EPS, NEWTON_TOL_PX, _clip_line, _r_interval, bracket_ends, column_x0, in_domain,
+    DOMAIN_EPS, NEWTON_TOL_PX, _clip_line, _g_at, _line_uv, _r_interval, bracket_ends,
+    column_x0, in_domain,
     heightfield_eval, in_known_hole, into_domain, lambert, ortho_point, sample_point,
     surface_eval, unit_normal,
 )
@@ -1108,16 +1109,36 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
             # end of section 5: halve while the jump persists; then shade it as a wall
             halvings = d if searching else 0
             if halvings < WALL_DEPTH and n < STACK_SIZE - 2:
-                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0,
-                                      0.5 * (left[A_T] + right[A_T]), mid, run)
+                tm = 0.5 * (left[A_T] + right[A_T])
+                st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, tm, mid, run)
                 evals += ev
                 if st == S_OK:
                     n = _push(stk, sdepth, n, mid, WALL_MODE + halvings + 1)
                     continue
+                if persp:
+                    # In perspective the jump's ends can lie on two pieces of the curve
+                    # in Pi with none of it between them: here the plane in between
+                    # meets no surface (the curve left the domain, or ended at a fold)
+                    evals += _break_run(kind, f, fg, hf, hfp, vp, x0, left, right, tm, st,
+                                        gcol, ecol, run, sigma, d3, H, aa, w0, w1)
+                    _copy(left, right)
+                    n -= 1
+                    continue
             else:
                 m_jump, real = wall_jump(kind, f, hf, hfp, left, right)
-                if not real:            # a fold seen edge-on: its own normals
-                    _fill_span(gcol, ecol, run, left, right, sigma, persp, d3, H, aa)
+                if not real:
+                    # (only where the fold tracer can draw what lies between: without
+                    # it a new run's first span takes a side from its direction alone,
+                    # and the lerp below had the side of a fold's hidden branch right)
+                    joined, ev = _joined(kind, f, hf, hfp, vp, x0, left, right) \
+                        if persp and vp[VP_FOLD] != 0.0 else (True, 0)
+                    evals += ev
+                    if not joined:
+                        # two pieces of the curve on both sides of the tight bracket: a
+                        # new run from the second, and the column to the fold tracer
+                        _new_run(gcol, ecol, run, left, right, sigma, d3, H, aa)
+                    else:               # a fold seen edge-on: its own normals
+                        _fill_span(gcol, ecol, run, left, right, sigma, persp, d3, H, aa)
                     _copy(left, right)
                     n -= 1
                     continue
@@ -1170,6 +1191,88 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
         _fill_span(gcol, ecol, run, left, right, sigma, persp, d3, H, aa)
         _copy(left, right)
         n -= 1
+    return evals
+
+
+@ngjit_nrt_free
+def _joined(kind, f, hf, hfp, vp, x0, a, b):
+    """Does the curve in Pi run from perspective sample a to b (a wall's tight bracket,
+    its rows far apart, f continuous) inside their planes' narrow strip? Then it
+    crosses the strip at every height between them, and G = f - cw - s has opposite
+    signs at the middle height on the strip's two sides; on two pieces of the curve
+    (the sample's Newton iteration went over to another one: the first ended at a fold
+    between the planes, or both run on) the same sign. Returns (joined, evaluations);
+    joined where a point lies outside the domain or at a hole (no sign to tell)."""
+    s_m = 0.5 * (a[A_W] + b[A_W]) - vp[VP_CW]
+    k = x0 * vp[VP_SA] / vp[VP_D1]
+    evals = 0
+    sg = 0.0
+    for q in range(2):
+        t = a[A_T] if q == 0 else b[A_T]
+        r0 = x0 * (t * vp[VP_CA] + vp[VP_D3]) / vp[VP_D1]          # eq. (9)
+        u, v = _line_uv(vp, r0, k, t, s_m)
+        if not in_domain(vp, u, v):
+            return True, evals
+        g, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, s_m)
+        evals += ev
+        if not math.isfinite(g):
+            return True, evals
+        if q == 0:
+            sg = g
+        elif (g >= 0.0) == (sg >= 0.0):
+            return False, evals
+    return True, evals
+
+
+@ngjit_inline
+def _new_run(gcol, ecol, run, a, b, sigma, d3, H, aa):
+    """End the run at perspective sample a and start a new one at b (where the curve
+    from a does not reach b), and mark the column for the fold tracer."""
+    run[RUN_OPEN] = 0.0
+    _fill_span(gcol, ecol, run, a, b, sigma, True, d3, H, aa)      # (opens it at b)
+    run[RUN_FOLD] = 1.0
+
+
+@ngjit_nrt_free
+def _break_run(kind, f, fg, hf, hfp, vp, x0, a, b, tm, st_m, gcol, ecol, run, sigma, d3, H,
+               aa, tmp, edge):
+    """Perspective samples a and b of one run, and plane tm between them whose sample
+    failed (status st_m): the run ends at its edge after a and a new one starts at its
+    edge before b, both bisected as the column pass bisects a run's edges, and
+    painted from a and to b. An edge inside the domain next to a plane dropped as
+    outside marks the column for the fold tracer (as _column_pass does). Returns the
+    evaluations of f."""
+    evals = 0
+    fold = vp[VP_FOLD] != 0.0
+    for side in range(2):
+        ok = a if side == 0 else b
+        t_ok = ok[A_T]
+        t_bad = tm
+        st_bad = st_m
+        found = False
+        for _ in range(EDGE_BISECTIONS):
+            t = 0.5 * (t_ok + t_bad)
+            st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, t, tmp, run)
+            evals += ev
+            if st == S_OK:
+                t_ok = t
+                _copy(edge, tmp)
+                found = True
+            else:
+                t_bad = t
+                st_bad = st
+        if found and fold and st_bad == S_OUTSIDE and not _on_domain_edge(vp, edge[A_U],
+                                                                          edge[A_V]):
+            run[RUN_FOLD] = 1.0
+        if side == 0:
+            if found:
+                _fill_span(gcol, ecol, run, a, edge, sigma, True, d3, H, aa)
+            run[RUN_OPEN] = 0.0
+        elif found:
+            _fill_span(gcol, ecol, run, edge, edge, sigma, True, d3, H, aa)   # (opens it)
+            _fill_span(gcol, ecol, run, edge, b, sigma, True, d3, H, aa)
+        else:
+            _fill_span(gcol, ecol, run, b, b, sigma, True, d3, H, aa)
     return evals
 
 

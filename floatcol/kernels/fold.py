@@ -11,16 +11,18 @@ with a streak, and misses what it does not take).
 
 The column pass notes such a fold (a sample whose upper normal N has N.d < 0, d =
 (k, cos(alpha), sin(alpha)) the line's direction on screen: then dG/ds = k f_r - 1
-> 0; column._sample_at, where vp's VP_FOLD allows) and render_column then traces the
-column's curve here: every piece of C by predictor-corrector continuation in (t, s)
-(steps of at most a pixel on screen), from seeds (the column pass's seen points
-every SEED_ROWS rows; the roots of g on every SEED_STRIDE-th plane, a scan like
-sample._bracketed_s's that keeps them all), each step rasterised into a buffer of
-its own with a depth test, side by N.V. The traced pixel then replaces the column
-pass's where that saw nothing, another side or a farther surface; where both agree
-the traced point replaces the column pass's G-buffer entry (lerped across the fold)
-and the column pass's coverages stay, unless the traced curve runs on through the
-pixel (_inside_piece).
+> 0; column._sample_at, where vp's VP_FOLD allows; or a run that begins or ends
+inside the domain next to a plane dropped as outside, or whose samples go over to
+another piece of the curve: column._column_pass, _segment) and render_column then
+traces the column's curve here: every piece of C by predictor-corrector continuation
+in (t, s) (steps of at most a pixel on screen), from seeds (the column pass's seen
+points every SEED_ROWS rows and at the first row of each piece it saw; the roots of
+g on every SEED_STRIDE-th plane, a scan like sample._bracketed_s's that keeps them
+all), each step rasterised into a buffer of its own with a depth test, side by N.V.
+The traced pixel then replaces the column pass's where that saw nothing, another side
+or a farther surface; where both agree the traced point replaces the column pass's
+G-buffer entry (lerped across the fold) and the column pass's coverages stay, unless
+the traced curve runs on through the pixel (_inside_piece).
 """
 import math
 
@@ -360,16 +362,8 @@ def trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n
     s_min = s_lo - (s_hi - s_lo)                          # beyond: toward a pole
     s_max = s_hi + (s_hi - s_lo)
     evals = 0
-    side_before = 0.0
-    for j in range(H):                                    # the column pass's points
-        side = seen_side(ecol[E_SEEN, j])
-        # every SEED_ROWS-th row, and the first row of each piece it saw (a piece a few
-        # rows high, between two folds or a fold and the domain's edge, may hold none
-        # of the former)
-        first = side != 0.0 and (side != side_before or abs(gcol[j, G_T] - gcol[j - 1, G_T])
-                                 > SEED_DT * dt)
-        side_before = side
-        if side != 0.0 and (j % SEED_ROWS == 0 or first):
+    for j in range(0, H, SEED_ROWS):                      # the column pass's points
+        if seen_side(ecol[E_SEEN, j]) != 0.0:
             i = round((gcol[j, G_T] - t0) / dt)
             evals += _seed(kind, fg, hf, hfp, vp, x0, t0 + i * dt, gcol[j, G_W] - vp[VP_CW],
                            s_min, s_max, tg, te, cross, n_cross, a, b)
@@ -402,6 +396,25 @@ def trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n
                     evals += _seed(kind, fg, hf, hfp, vp, x0, t, 0.5 * (lo + hi), s_min,
                                    s_max, tg, te, cross, n_cross, a, b)
             g_prev = g
+    side_before = 0.0
+    for j in range(H):
+        # the first row of each piece the column pass saw, where no trace runs through
+        # it yet: a piece a few rows high (born at a fold beside the domain's edge) may
+        # hold none of the rows and planes above. From the nearest plane at the
+        # point's height, as above, else from the point itself (near the domain's
+        # edge that plane's point may lie outside it, where the corrector stops)
+        side = seen_side(ecol[E_SEEN, j])
+        first = side != 0.0 and (side != side_before or abs(gcol[j, G_T] - gcol[j - 1, G_T])
+                                 > SEED_DT * dt)
+        side_before = side
+        if first and not _traced_at(tg, te, gcol, j, vp):
+            i = round((gcol[j, G_T] - t0) / dt)
+            s = gcol[j, G_W] - vp[VP_CW]
+            evals += _seed(kind, fg, hf, hfp, vp, x0, t0 + i * dt, s, s_min, s_max, tg, te,
+                           cross, n_cross, a, b)
+            if not _traced_at(tg, te, gcol, j, vp):
+                evals += _seed(kind, fg, hf, hfp, vp, x0, gcol[j, G_T], s, s_min, s_max, tg,
+                               te, cross, n_cross, a, b)
     eps = DEPTH_EPS * vp[VP_D3]
     for j in range(H):
         side = te[E_SEEN, j]
@@ -423,6 +436,14 @@ def trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n
             # goes on through both neighbours
             ecol[E_SEEN, j] = side
     return evals
+
+
+@ngjit_inline
+def _traced_at(tg, te, gcol, j, vp):
+    """Does a traced piece run through row j at the column pass's depth there (the
+    same surface, as _seed tells a known one)?"""
+    return te[E_SEEN, j] != 0.0 and \
+        abs(tg[j, G_DEPTH] - gcol[j, G_DEPTH]) < 4.0 * DEPTH_EPS * vp[VP_D3]
 
 
 @ngjit_inline

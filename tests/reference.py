@@ -64,7 +64,29 @@ def numpy_surface(expr, names=("u", "v")):
                     out = np.where(np.abs(out.imag) <= 1e-12 * (1 + np.abs(out.real)), out.real, np.nan)
                 return np.broadcast_to(out, np.broadcast(u, v).shape).astype(float)
         return g
-    return Funcs((wrap(fn) for fn in fs), lambda u_rng, v_rng: expr_bounds(e, su, sv, u_rng, v_rng))
+    f, fu, fv = (wrap(fn) for fn in fs)
+
+    def partial(formula, axis):
+        # where the formula's partial is not finite though f is (its own 0/0, as
+        # sqrt(Max(0, 4 - u^2 - v^2))' on the floor), the surface's slope there:
+        # central differences (a 5-point stencil, independent of floatcol's 2-point)
+        def g(u, v):
+            d = formula(u, v)
+            w = f(u, v)
+            bad = ~np.isfinite(d) & np.isfinite(w)
+            if bad.any():
+                u_b, v_b = (np.broadcast_to(x, d.shape)[bad] for x in (u, v))
+                x = u_b if axis == 0 else v_b
+                h = 1e-4 * np.maximum(1.0, np.abs(x))
+
+                def at(k):
+                    return f(u_b + k * h, v_b) if axis == 0 else f(u_b, v_b + k * h)
+                d = d.copy()
+                d[bad] = (at(-2) - 8 * at(-1) + 8 * at(1) - at(2)) / (12 * h)
+            return d
+        return g
+    return Funcs((f, partial(fu, 0), partial(fv, 1)),
+                 lambda u_rng, v_rng: expr_bounds(e, su, sv, u_rng, v_rng))
 
 
 #: expr_bounds splits the domain into BOUND_BOXES x BOUND_BOXES boxes

@@ -147,3 +147,22 @@ def test_a_halving_plane_that_meets_no_surface_ends_the_run():
     r, ref = _paper_function_against_ray_caster((240, 180), 50, 120)
     assert (r.side != ref.side).sum() <= 10                 # measured 5
     assert psnr(r.intensity, ref.intensity) >= 46.0         # measured 48.44
+
+
+def test_a_trace_that_runs_over_a_traced_piece_stops():
+    """At a corner of the curve in Pi (the dome of sqrt(Max(0, 4 - u^2 - v^2)) meets
+    its floor with a vertical tangent) the tangent's sign is a toss-up, and a trace
+    could turn back and walk its own piece again, to its cap of steps: a step that
+    crosses a plane where a crossing was traced already (fold.RETRACE_PX) ends it.
+    Measured (2026-12-06, 320x240): 244 527 evaluations, 1 656 879 without the stop
+    (at 1920x1080 5.5 million against 37 million, 158 against 1 308 ms); the picture
+    as close to the ray caster as the trace without the stop."""
+    e = "sqrt(Max(0, 4 - u**2 - v**2))"
+    kw = dict(u=(-2.5, 2.5), v=(-2.5, 2.5), elev=35, azim=30, projection="perspective")
+    r = fc.render(e, size=(320, 240), **kw)
+    assert r.stats["samples"] < 500_000
+    small = fc.render(e, size=(160, 120), shading="lambert", **kw)
+    vw = small.view
+    ref = raycast(numpy_surface(e), kw["u"], kw["v"], (160, 120), 35, 30, "perspective",
+                  vw.d1, vw.d2, vw.scale, center=vw.center)
+    assert (small.side != ref.side).sum() <= 4              # measured 0

@@ -1115,10 +1115,12 @@ def _segment(kind, f, fg, hf, hfp, vp, x0, prev, cur, gcol, ecol, run, sigma, pe
                 if st == S_OK:
                     n = _push(stk, sdepth, n, mid, WALL_MODE + halvings + 1)
                     continue
-                if persp:
+                if persp and st == S_OUTSIDE:
                     # In perspective the jump's ends can lie on two pieces of the curve
                     # in Pi with none of it between them: here the plane in between
-                    # meets no surface (the curve left the domain, or ended at a fold)
+                    # meets the surface only outside the domain (the curve left it, or
+                    # ended at a fold). (Not at a hole or in front of the screen: at a
+                    # pole of tan(uv) that changed the sides of whole columns)
                     evals += _break_run(kind, f, fg, hf, hfp, vp, x0, left, right, tm, st,
                                         gcol, ecol, run, sigma, d3, H, aa, w0, w1)
                     _copy(left, right)
@@ -1237,9 +1239,9 @@ def _new_run(gcol, ecol, run, a, b, sigma, d3, H, aa):
 def _break_run(kind, f, fg, hf, hfp, vp, x0, a, b, tm, st_m, gcol, ecol, run, sigma, d3, H,
                aa, tmp, edge):
     """Perspective samples a and b of one run, and plane tm between them whose sample
-    failed (status st_m): the run ends at its edge after a and a new one starts at its
-    edge before b, both bisected as the column pass bisects a run's edges, and
-    painted from a and to b. An edge inside the domain next to a plane dropped as
+    lies outside the domain (status st_m): the run ends at its edge after a and a new
+    one starts at its edge before b, both bisected as the column pass bisects a run's
+    edges, and painted from a and to b. An edge inside the domain next to a plane dropped as
     outside marks the column for the fold tracer (as _column_pass does). Returns the
     evaluations of f."""
     evals = 0

@@ -63,6 +63,9 @@ MAX_DY_PX = 1.0
 MIN_TURN = 0.98
 #: a piece ends this many pixels off the picture
 OFF_PX = 2.0
+#: a step that crosses a plane within RETRACE_PX (on screen at the screen plane's
+#: distance) of a crossing traced before ends the piece: it runs over a traced one
+RETRACE_PX = 0.05
 #: largest step, in planes' distances (where the curve runs toward the viewpoint, its
 #: steps barely move on screen)
 MAX_STEP = 64.0
@@ -234,6 +237,7 @@ def _trace(kind, fg, hf, hfp, vp, x0, t, s, direction, s_min, s_max, gcol, ecol,
     t_start = t
     s_start = s
     travelled = 0.0
+    retrace = RETRACE_PX / vp[VP_SCALE]
     for _ in range(16 * n + 64):
         ok, qt, qs, g_t, g_s, ev = _correct(kind, fg, hf, hfp, vp, x0, t + h * tt, s + h * ts,
                                             b)
@@ -270,8 +274,15 @@ def _trace(kind, fg, hf, hfp, vp, x0, t, s, direction, s_min, s_max, gcol, ecol,
         if ib != ia:
             for i in range(max(ceil_index(min(ia, ib)), 0),
                            min(floor_index(max(ia, ib)), n - 1) + 1):
+                s_i = s + (i - ia) / (ib - ia) * (qs - s)
+                for c in range(n_cross[i]):
+                    if abs(cross[i, c] - s_i) < retrace:
+                        # on a piece traced already (by this trace turned back at a
+                        # corner of the curve, where the tangent's sign is a toss-up,
+                        # or by another seed's): the rest is drawn
+                        return False, evals
                 if n_cross[i] < CROSS_MAX:
-                    cross[i, n_cross[i]] = s + (i - ia) / (ib - ia) * (qs - s)
+                    cross[i, n_cross[i]] = s_i
                     n_cross[i] += 1
         dy = abs(yb - ya)
         travelled += step

@@ -27,6 +27,9 @@ SCAN_MAX = 24         # about one point per SCAN_PIXELS of the searched segment
 SCAN_PIXELS = 4.0
 BISECT_ITERS = 40
 EDGE_BISECT = 6      # where the scan crosses the edge of the finite part of f
+#: central differences' step (relative, as surface.py's for callables) where f's
+#: formula gives partials that are not finite though f is
+DIFF_STEP = 6e-6
 
 
 @ngjit_nrt_free
@@ -65,7 +68,27 @@ def surface_eval(kind, fg, hf, hfp, u, v):
     w = fg(u * iu, v * iv, hfp[0], p) * c
     if not math.isfinite(w):
         return np.nan, np.nan, np.nan
-    return w, p[0] * (c * iu), p[1] * (c * iv)
+    wu = p[0]
+    wv = p[1]
+    if not (math.isfinite(wu) and math.isfinite(wv)):
+        wu, wv = _differences(fg, u * iu, v * iv, hfp[0], wu, wv)
+    return w, wu * (c * iu), wv * (c * iv)
+
+
+@ngjit_nrt_free
+def _differences(fg, u, v, t, wu, wv):
+    """f's partials by central differences where its formula's are not finite though f
+    is: the formula's own 0/0 (the floor of sqrt(Max(0, 4 - u^2 - v^2)): sympy's
+    partial there is u Heaviside(...) / sqrt(0)). A partial that is finite stays; one
+    whose difference is not (f NaN beside a rim) stays NaN: a hole, as before."""
+    p = stack_pair()
+    if not math.isfinite(wu):
+        h = DIFF_STEP * max(1.0, abs(u))
+        wu = (fg(u + h, v, t, p) - fg(u - h, v, t, p)) / (2.0 * h)
+    if not math.isfinite(wv):
+        h = DIFF_STEP * max(1.0, abs(v))
+        wv = (fg(u, v + h, t, p) - fg(u, v - h, t, p)) / (2.0 * h)
+    return wu, wv
 
 
 @ngjit_inline

@@ -287,6 +287,37 @@ def _sample_at(kind, f, fg, hf, hfp, vp, x0, t, out, run, main, bat, kb):
     return st, ev
 
 
+@ngjit_nrt_free
+def _run_edge(kind, f, fg, hf, hfp, vp, x0, t_ok, t_bad, st_bad, tmp, edge, run):
+    """The edge of a run between plane t_ok (its sample taken) and t_bad (its sample's
+    status st_bad), bisected EDGE_BISECTIONS times: ``edge`` gets the last sample taken
+    (tmp is scratch). Returns (found, evaluations).
+
+    In perspective a run starts or ends inside the domain next to a plane whose sample
+    was dropped as outside only where its line held an even number of roots inside
+    the domain (g of one sign at the ends of its part inside, sample._root_inside): a
+    piece of the curve born or ended at a fold in t (where the curve enters or leaves
+    the domain, the edge lies on its boundary). That marks the column for the fold
+    tracer (fold.py), where vp's VP_FOLD allows."""
+    found = False
+    evals = 0
+    for _ in range(EDGE_BISECTIONS):
+        tm = 0.5 * (t_ok + t_bad)
+        st_m, ev_m = _sample_into(kind, f, fg, hf, hfp, vp, x0, tm, tmp, run)
+        evals += ev_m
+        if st_m == S_OK:
+            t_ok = tm
+            _copy(edge, tmp)
+            found = True
+        else:
+            t_bad = tm
+            st_bad = st_m
+    if found and vp[VP_ORTHO] == 0.0 and st_bad == S_OUTSIDE and vp[VP_FOLD] != 0.0 and \
+            not _on_domain_edge(vp, edge[A_U], edge[A_V]):
+        run[RUN_FOLD] = 1.0
+    return found, evals
+
+
 @ngjit_inline
 def _on_domain_edge(vp, u, v):
     """Does (u, v) lie within EDGE_TOL of the domain's size of its boundary?"""
@@ -1241,31 +1272,12 @@ def _break_run(kind, f, fg, hf, hfp, vp, x0, a, b, tm, st_m, gcol, ecol, run, si
     """Perspective samples a and b of one run, and plane tm between them whose sample
     lies outside the domain (status st_m): the run ends at its edge after a and a new
     one starts at its edge before b, both bisected as the column pass bisects a run's
-    edges, and painted from a and to b. An edge inside the domain next to a plane dropped as
-    outside marks the column for the fold tracer (as _column_pass does). Returns the
-    evaluations of f."""
+    edges (_run_edge), and painted from a and to b. Returns the evaluations of f."""
     evals = 0
-    fold = vp[VP_FOLD] != 0.0
     for side in range(2):
-        ok = a if side == 0 else b
-        t_ok = ok[A_T]
-        t_bad = tm
-        st_bad = st_m
-        found = False
-        for _ in range(EDGE_BISECTIONS):
-            t = 0.5 * (t_ok + t_bad)
-            st, ev = _sample_into(kind, f, fg, hf, hfp, vp, x0, t, tmp, run)
-            evals += ev
-            if st == S_OK:
-                t_ok = t
-                _copy(edge, tmp)
-                found = True
-            else:
-                t_bad = t
-                st_bad = st
-        if found and fold and st_bad == S_OUTSIDE and not _on_domain_edge(vp, edge[A_U],
-                                                                          edge[A_V]):
-            run[RUN_FOLD] = 1.0
+        found, ev = _run_edge(kind, f, fg, hf, hfp, vp, x0, a[A_T] if side == 0 else b[A_T],
+                              tm, st_m, tmp, edge, run)
+        evals += ev
         if side == 0:
             if found:
                 _fill_span(gcol, ecol, run, a, edge, sigma, True, d3, H, aa)
@@ -1884,28 +1896,9 @@ def _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, ta, tb, sigma, gcol, ecol, hr
                 t_ok = prev_t
                 t_bad = t
                 st_bad = st
-            found = False
-            for _ in range(EDGE_BISECTIONS):
-                tm = 0.5 * (t_ok + t_bad)
-                st_m, ev_m = _sample_into(kind, f, fg, hf, hfp, vp, x0, tm, tmp, run)
-                evals += ev_m
-                if st_m == S_OK:
-                    t_ok = tm
-                    _copy(edge, tmp)
-                    found = True
-                else:
-                    t_bad = tm
-                    st_bad = st_m
-            if found and persp and st_bad == S_OUTSIDE and vp[VP_FOLD] != 0.0 and \
-                    not _on_domain_edge(vp, edge[A_U], edge[A_V]):
-                # The run starts or ends inside the domain, next to a plane whose
-                # sample was dropped as outside: where the curve in Pi enters or
-                # leaves the domain, the edge lies on the domain's boundary. Here
-                # its line held an even number of roots inside the domain (g has the
-                # same sign at the ends of its part inside, sample._root_inside): a
-                # piece of the curve born or ended at a fold in t. The fold tracer
-                # draws the column (fold.py)
-                run[RUN_FOLD] = 1.0
+            found, ev_e = _run_edge(kind, f, fg, hf, hfp, vp, x0, t_ok, t_bad, st_bad, tmp,
+                                    edge, run)
+            evals += ev_e
             if found:
                 if run[RUN_OPEN] == 0.0:
                     run_start = edge[A_T]

@@ -57,7 +57,8 @@ def heightfield_eval(hf, hfp, u, v):
 @ngjit_inline
 def surface_eval(kind, fg, hf, hfp, u, v):
     """w = f(u, v) and its partials, from one call of the fused function fg; NaN w
-    means a hole. A function surface's parameter t (the time of an animation) is
+    means a hole (partials that are not finite where w is: central differences,
+    _differences). A function surface's parameter t (the time of an animation) is
     hfp[0], its box scaling hfp's HFP_IU, HFP_IV and HFP_CW (layout.py)."""
     if kind == SURF_HEIGHTFIELD:
         return heightfield_eval(hf, hfp, u, v)

@@ -1273,20 +1273,16 @@ def _break_run(kind, f, fg, hf, hfp, vp, x0, a, b, tm, st_m, gcol, ecol, run, si
     lies outside the domain (status st_m): the run ends at its edge after a and a new
     one starts at its edge before b, both bisected as the column pass bisects a run's
     edges (_run_edge), and painted from a and to b. Returns the evaluations of f."""
-    evals = 0
-    for side in range(2):
-        found, ev = _run_edge(kind, f, fg, hf, hfp, vp, x0, a[A_T] if side == 0 else b[A_T],
-                              tm, st_m, tmp, edge, run)
-        evals += ev
-        if side == 0:
-            if found:
-                _fill_span(gcol, ecol, run, a, edge, sigma, True, d3, H, aa)
-            run[RUN_OPEN] = 0.0
-        elif found:
-            _fill_span(gcol, ecol, run, edge, edge, sigma, True, d3, H, aa)   # (opens it)
-            _fill_span(gcol, ecol, run, edge, b, sigma, True, d3, H, aa)
-        else:
-            _fill_span(gcol, ecol, run, b, b, sigma, True, d3, H, aa)
+    found, evals = _run_edge(kind, f, fg, hf, hfp, vp, x0, a[A_T], tm, st_m, tmp, edge, run)
+    if found:
+        _fill_span(gcol, ecol, run, a, edge, sigma, True, d3, H, aa)
+    run[RUN_OPEN] = 0.0
+    found, ev = _run_edge(kind, f, fg, hf, hfp, vp, x0, b[A_T], tm, st_m, tmp, edge, run)
+    evals += ev
+    start = edge if found else b
+    _fill_span(gcol, ecol, run, start, start, sigma, True, d3, H, aa)     # (opens the run)
+    if found:
+        _fill_span(gcol, ecol, run, edge, b, sigma, True, d3, H, aa)
     return evals
 
 

@@ -315,8 +315,7 @@ def _seed(kind, fg, hf, hfp, vp, x0, t, s, s_min, s_max, tg, te, cross, n_cross,
     row, z, _ = _screen(vp, t, s)
     if math.isfinite(row):                  # a traced surface there, as far: known
         j = round_index(row)
-        if 0 <= j < tg.shape[0] and te[E_SEEN, j] != 0.0 and \
-                abs(tg[j, G_DEPTH] - z) < 4.0 * DEPTH_EPS * vp[VP_D3]:
+        if 0 <= j < tg.shape[0] and _traced_at(tg, te, j, z, vp):
             return 0
     closed, evals = _trace(kind, fg, hf, hfp, vp, x0, t, s, 1.0, s_min, s_max, tg, te, cross,
                            n_cross, a, b)
@@ -418,12 +417,12 @@ def trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n
         first = side != 0.0 and (side != side_before or abs(gcol[j, G_T] - gcol[j - 1, G_T])
                                  > SEED_DT * dt)
         side_before = side
-        if first and not _traced_at(tg, te, gcol, j, vp):
+        if first and not _traced_at(tg, te, j, gcol[j, G_DEPTH], vp):
             i = round((gcol[j, G_T] - t0) / dt)
             s = gcol[j, G_W] - vp[VP_CW]
             evals += _seed(kind, fg, hf, hfp, vp, x0, t0 + i * dt, s, s_min, s_max, tg, te,
                            cross, n_cross, a, b)
-            if not _traced_at(tg, te, gcol, j, vp):
+            if not _traced_at(tg, te, j, gcol[j, G_DEPTH], vp):
                 evals += _seed(kind, fg, hf, hfp, vp, x0, gcol[j, G_T], s, s_min, s_max, tg,
                                te, cross, n_cross, a, b)
     eps = DEPTH_EPS * vp[VP_D3]
@@ -450,11 +449,10 @@ def trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n
 
 
 @ngjit_inline
-def _traced_at(tg, te, gcol, j, vp):
-    """Does a traced piece run through row j at the column pass's depth there (the
-    same surface, as _seed tells a known one)?"""
-    return te[E_SEEN, j] != 0.0 and \
-        abs(tg[j, G_DEPTH] - gcol[j, G_DEPTH]) < 4.0 * DEPTH_EPS * vp[VP_D3]
+def _traced_at(tg, te, j, z, vp):
+    """Does a traced piece run through row j at depth z (the same surface as a point
+    there at that depth)?"""
+    return te[E_SEEN, j] != 0.0 and abs(tg[j, G_DEPTH] - z) < 4.0 * DEPTH_EPS * vp[VP_D3]
 
 
 @ngjit_inline

@@ -424,13 +424,10 @@ def bracket_ends(kind, f, hf, hfp, vp, r0, k, t, ra, rb):
     the scan range's bottom (top) has g > 0 (< 0) without evaluating f there.
     Returns (a, b, g(a), g(b), evaluations); a >= b (and no evaluation) where the part
     is empty."""
-    s1 = (ra - r0) / k
-    s2 = (rb - r0) / k
-    s_lo, s_hi = scan_range(vp)
-    a = max(min(s1, s2), s_lo)
-    b = min(max(s1, s2), s_hi)
+    a, b = _inside_part(vp, r0, k, ra, rb)
     if not a < b:
         return a, b, 1.0, -1.0, 0
+    s_lo, s_hi = scan_range(vp)
     evals = 0
     ga = 1.0
     if a > s_lo:

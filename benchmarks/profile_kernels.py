@@ -16,6 +16,7 @@ its help for what debug info changes).
     python benchmarks/profile_kernels.py --projection orthographic --seconds 5
     python benchmarks/profile_kernels.py --expr "u*v" --top 40
     python benchmarks/profile_kernels.py --fly            # bench_terrain.py's fly-through
+    python benchmarks/profile_kernels.py --opacity 0.5    # translucent (kernels/layers.py)
 
 Needs perf (Debian's linux-perf) and readelf (binutils); on a machine whose perf
 cannot count cycles it samples the cpu-clock. See docs/algorithm.md ("Where
@@ -155,6 +156,8 @@ def main():
     ap.add_argument("--mesh", type=int, default=0, metavar="N",
                     help="the expression on an N x N grid over [-5, 5]^2 instead, drawn as "
                          "a height field (matplotlib's call form, X, Y, Z)")
+    ap.add_argument("--opacity", type=float, default=1.0,
+                    help="the surface translucent (Gordon 6.5-6.6: kernels/layers.py)")
     ap.add_argument("--lines", action="store_true",
                     help="also by source line: set NUMBA_DEBUGINFO=1 and NUMBA_CACHE_DIR to "
                          "a folder of its own (the kernels compile again with line tables). "
@@ -188,6 +191,9 @@ def main():
                                      u=(-5, 5), v=(-5, 5))
             del kw["u"], kw["v"]
             args.expr = f"{args.expr} on a {args.mesh}^2 grid (a height field)"
+        if args.opacity < 1.0:
+            kw["opacity"] = args.opacity
+            args.projection += f", opacity {args.opacity:g}"
     for _ in range(5):
         fc.render(surface, **kw)
     folder = tempfile.mkdtemp()

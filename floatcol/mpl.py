@@ -35,6 +35,32 @@ MAX_SHRINK = 4
 FIRST_SHRINK_PIXELS = 600_000
 
 
+def legend_entry(plot, ax):
+    """The surface's entry in ``ax.legend()``: an empty rectangle (it draws nothing and
+    takes no room in the limits: matplotlib skips a patch of no size) that carries the
+    plot's label and colour (SurfacePlot.legend_colour), as mplot3d's surface is a
+    Poly3DCollection whose legend entry is a patch of its first face's colour. A label
+    that is empty or begins with an underscore keeps it out of the legend, as
+    matplotlib's. In a 3-D Axes it is a Patch3D (Axes3D.draw projects every patch);
+    there it also counts as data for ``ax.has_data()``, which mplot3d's later calls
+    (ax.plot, ax.scatter) read to keep the surface's limits."""
+    from matplotlib.patches import Rectangle
+    entry = Rectangle((0.0, 0.0), 0.0, 0.0, linewidth=0.0)
+    ax.add_artist(entry)
+    if getattr(ax, "name", "") == "3d":
+        from mpl_toolkits.mplot3d import art3d
+        art3d.patch_2d_to_3d(entry)
+    update_entry(entry, plot)
+    return entry
+
+
+def update_entry(entry, plot):
+    """The legend entry's label, colour and visibility as the plot's now."""
+    entry.set_label(plot.label if plot.label else "_floatcol surface")
+    entry.set_facecolor(plot.legend_colour())
+    entry.set_visible(plot.get_visible())
+
+
 class _Preview:
     """The resolution of a drag's preview frames: each frame's render time per pixel
     (averaged with the frames before) says how far the next must shrink to take
@@ -66,6 +92,13 @@ def _enlarged(rgba, f):
     return rgba if f == 1 else np.repeat(np.repeat(rgba, f, axis=0), f, axis=1)
 
 
+def _remove_entry(art):
+    entry = getattr(art, "entry", None)
+    if entry is not None and entry.axes is not None:
+        entry.remove()
+    art.entry = None
+
+
 class SurfaceImage(AxesImage):
     """The artist of a :class:`floatcol.plot.SurfacePlot` drawn into an Axes."""
 
@@ -76,6 +109,12 @@ class SurfaceImage(AxesImage):
         self._cids = []
         self._canvas = None       # the canvas the mouse handlers are connected to
         self._preview = _Preview()
+        self.entry = None         # the legend's entry (legend_entry)
+
+    def set_visible(self, b):
+        super().set_visible(b)
+        if getattr(self, "entry", None) is not None:
+            self.entry.set_visible(b)
 
     def __getstate__(self):
         # (a pickled figure gets a new canvas: draw connects the handlers to it)
@@ -88,9 +127,17 @@ class SurfaceImage(AxesImage):
         plot.artist = art
         ax.add_image(art)
         ax.set_axis_off()
+        art.entry = legend_entry(plot, ax)
         if interactive:
             art.connect_events()
         return art
+
+    def remove(self):
+        """Out of its Axes (Artist.remove), with its legend entry and mouse handlers."""
+        if self._cids:
+            self.disconnect_events()
+        _remove_entry(self)
+        super().remove()
 
     def pixel_size(self, renderer):
         """The Axes' size in output pixels for this renderer (vector backends
@@ -239,17 +286,27 @@ class Surface3DImage(Artist):
         self.placed = None        # T (2, 3) of the last picture: pixel (col, row) at the
                                   # canvas point T @ (col, row, 1) (axes_camera)
         self._drawn_M = None      # the Axes' projection (ax.M) of the last picture
-        self._canvas = None       # the canvas on_release is connected to
+        self._canvas = None       # the canvas on_release is connected to, and its id
+        self._cid = None
+        self.entry = None         # the legend's entry (legend_entry)
 
     def __getstate__(self):
-        return {**super().__getstate__(), "_canvas": None}    # (SurfaceImage's)
+        return {**super().__getstate__(), "_canvas": None, "_cid": None}  # (SurfaceImage's)
 
     def _connect(self):
         """on_release on the figure's canvas (again, where it is a new one)."""
         canvas = self.axes.figure.canvas
         if self._canvas is not canvas:
             self._canvas = canvas
-            canvas.mpl_connect("button_release_event", self.on_release)
+            self._cid = canvas.mpl_connect("button_release_event", self.on_release)
+
+    def remove(self):
+        """Out of its Axes (Artist.remove), with its legend entry and its handler."""
+        if self._canvas is not None and self._cid is not None:
+            self._canvas.mpl_disconnect(self._cid)
+        self._canvas = self._cid = None
+        _remove_entry(self)
+        super().remove()
 
     def drawn_for(self, ax):
         """Whether the last picture was drawn with ``ax``'s present projection."""
@@ -273,14 +330,18 @@ class Surface3DImage(Artist):
         ax.auto_scale_xyz([ua, ub], [va, vb], [lo, hi], had_data=ax.has_data())
         # mplot3d's own calls after this one (ax.plot, ax.scatter) keep the data limits
         # only where ax.has_data(), which counts lines, collections, patches and images,
-        # not this artist: an empty line, never drawn, stands for the surface there
-        # (else a line at y = 0 took the y limits down to 0 -+ 0.04)
-        from mpl_toolkits.mplot3d.art3d import Line3D
-        ax.add_line(Line3D([], [], [], visible=False, label="_floatcol surface"))
+        # not this artist: the legend's entry, a patch that draws nothing, stands for
+        # the surface there (else a line at y = 0 took the y limits down to 0 -+ 0.04)
+        art.entry = legend_entry(plot, ax)
         return art
 
     def get_window_extent(self, renderer=None):
         return self.axes.bbox
+
+    def set_visible(self, b):
+        super().set_visible(b)
+        if getattr(self, "entry", None) is not None:
+            self.entry.set_visible(b)
 
     def to_canvas(self, col, row):
         """Canvas points of the last picture's pixel coordinates."""
@@ -310,14 +371,22 @@ class Surface3DImage(Artist):
         f = self._preview.shrink(W, H) if preview and mag == 1.0 else 1
         kw, T, size = axes_camera(self.plot, ax, *_shrunk((W, H), f), mag / f)
         renders = []
-        for a in group:
-            a.plot.pixel_step = DRAG_PIXEL_STEP if preview else None
-            try:
-                limits = (ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()) \
-                    if a.plot.axlim_clip else None
-                renders.append(a.plot.draw_with(size, kw, limits))
-            finally:
+        view_limits = (ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d())
+        limits = [view_limits if a.plot.axlim_clip else None for a in group]
+        together = len(group) > 1 and any(a.plot.translucent() for a in group) and not \
+            any(a.plot.options.get("objects") for a in group[1:])
+        try:
+            for a in group:
+                a.plot.pixel_step = DRAG_PIXEL_STEP if preview else None
+            if together:                  # one scene: every layer shows through (plot.py)
+                from .plot import draw_together
+                renders = [draw_together([a.plot for a in group], size, kw, limits)]
+            else:
+                renders = [a.plot.draw_with(size, kw, lim) for a, lim in zip(group, limits)]
+        finally:
+            for a in group:
                 a.plot.pixel_step = None
+        for a in group:
             a.preview = preview
             a.placed = T
             a._drawn_M = np.array(ax.M, copy=True)

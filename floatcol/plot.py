@@ -173,6 +173,7 @@ class SurfacePlot(_ScalarMappable):
         self.shrink = 1                # a drag's preview: the picture f times smaller
         self.render: Render | None = None
         self.artist = None
+        self._placed = []              # the objects put on it (scatter, plot, text, quiver)
 
         if isinstance(cmap, str):
             colormap_lut(cmap)                # a clear error for an unknown name, now
@@ -194,7 +195,104 @@ class SurfacePlot(_ScalarMappable):
     def changed(self):
         # a new cmap / clim / norm: the picture must be drawn again
         super().changed()
+        self._entry()
         self._stale()
+
+    # -- matplotlib's artist methods ---------------------------------------------
+    # (mplot3d's plot_surface returns an artist, a Poly3DCollection: scripts remove it
+    # to animate a surface, hide it, label it for a legend, set its alpha or zorder)
+    @property
+    def figure(self):
+        """The Figure the plot draws into (None when standalone)."""
+        return None if self.artist is None else self.artist.figure
+
+    def _in_axes(self, what):
+        if self.artist is None:
+            raise ValueError(f"{what} needs the plot in an Axes: plot_surface(..., ax=ax)")
+        return self.artist
+
+    def remove(self):
+        """Take the plot out of its Axes, as matplotlib's Artist.remove (the way to
+        animate a surface: remove the last frame's, plot the next): its picture, its
+        legend entry and the objects put on it (``scatter``, ``plot``, ``text``,
+        ``quiver``) go; the Axes' limits stay, as matplotlib's do."""
+        art = self._in_axes("remove()")
+        fig = art.figure
+        for obj in getattr(self, "_placed", []):
+            if obj.axes is not None:
+                obj.remove()
+        self._placed = []
+        art.remove()
+        self.artist = None
+        if fig is not None:
+            fig.stale = True
+
+    def get_visible(self):
+        return True if self.artist is None else self.artist.get_visible()
+
+    def set_visible(self, b):
+        """Show or hide the surface in its Axes (the others there are drawn without
+        it), as Artist.set_visible."""
+        if not isinstance(b, (bool, np.bool_)):
+            raise ValueError(f"set_visible takes True or False, got {b!r}")
+        self._in_axes("set_visible()").set_visible(bool(b))
+
+    def get_zorder(self):
+        return 0 if self.artist is None else self.artist.get_zorder()
+
+    def set_zorder(self, z):
+        """The surface's place among the Axes' artists, as Artist.set_zorder (mplot3d's
+        artists with a zorder below it are drawn under the surface's picture)."""
+        self._in_axes("set_zorder()").set_zorder(_number("zorder", z))
+
+    def get_label(self):
+        return self.label
+
+    def set_label(self, s):
+        """The surface's name in ``ax.legend()`` (one that begins with an underscore is
+        left out, as matplotlib's)."""
+        self.label = "" if s is None else str(s)
+        self._entry()
+
+    def get_alpha(self):
+        """matplotlib's alpha: the surface's opacity (None: opaque)."""
+        return self.options.get("opacity")
+
+    def set_alpha(self, alpha):
+        """The surface's opacity as matplotlib's alpha (below 1 every layer of it shows,
+        docs/translucency.md; None: opaque)."""
+        if alpha is None:
+            self.options.pop("opacity", None)
+        else:
+            a = _number("alpha", alpha)
+            if not 0.0 <= a <= 1.0:
+                raise ValueError(f"alpha must be between 0 and 1, got {alpha!r}")
+            self.options["opacity"] = a
+        self.render = None
+        self._entry()
+        self._stale()
+
+    def legend_colour(self):
+        """The colour of the surface's legend entry, as mplot3d's (its first face's):
+        the colour map at f's value at the domain's first corner (``color``: that
+        colour), at the plot's alpha."""
+        if self.upper_color is not None:
+            rgb = tuple(self.upper_color[:3])
+        else:
+            (ua, _), (va, _) = self.domain
+            with np.errstate(all="ignore"):
+                w = np.asarray(self.surface.evaluate(np.array([ua]), np.array([va])),
+                               dtype=float).ravel()
+            x = float(self.norm(w[0])) if w.size and np.isfinite(w[0]) else 0.5
+            rgb = tuple(float(c) for c in self.cmap(x if np.isfinite(x) else 0.5)[:3])
+        alpha = self.get_alpha()
+        return (*rgb, 1.0 if alpha is None else float(alpha))
+
+    def _entry(self):
+        entry = getattr(self.artist, "entry", None)
+        if entry is not None:
+            from .mpl import update_entry
+            update_entry(entry, self)
 
     def _height_range(self):
         """The colormap's default range: f over the whole domain, as matplotlib takes
@@ -289,6 +387,7 @@ class SurfacePlot(_ScalarMappable):
         obj = OccludedObjects(self, xyz, kind, style)
         ax = self.artist.axes
         ax.add_artist(obj)
+        self._placed.append(obj)
         finite = np.isfinite(xyz).all(axis=1) & (np.abs(xyz) < 1e100).all(axis=1)
         if getattr(ax, "name", "") == "3d" and finite.any():   # the limits take them in
             ax.auto_scale_xyz(xyz[finite, 0], xyz[finite, 1], xyz[finite, 2], had_data=True)
@@ -430,6 +529,20 @@ class SurfacePlot(_ScalarMappable):
         background, and keep it as ``.render``; with ``limits`` (the Axes' view limits
         ((x0, x1), (y0, y1), (z0, z1)): axlim_clip) what lies outside them hidden."""
         from .renderer import render_scene
+        scene, many = self.scene_with(size, camera, limits)
+        r = render_scene(scene, composite=many)
+        self.render = r
+        return r
+
+    def translucent(self):
+        """Whether the plot's surface is translucent (alpha below 1)."""
+        a = self.options.get("opacity")
+        if isinstance(a, (list, tuple, np.ndarray)):
+            return any(float(x) < 1.0 for x in a)
+        return a is not None and float(a) < 1.0
+
+    def scene_with(self, size, camera, limits=None):
+        """(Scene, composite) that draw_with renders."""
         from .scene import scene_from_options
         kw = self.render_kwargs(size)
         for k in ("aspect", "focal_length", "d1", "d2", "scale", "center", "box"):
@@ -439,12 +552,8 @@ class SurfacePlot(_ScalarMappable):
         u, v = kw.pop("u"), kw.pop("v")
         items = self._items() if limits is None else self._clipped(limits)
         if self.others:
-            scene, many = scene_from_options([(s, *d) for s, d in items], **kw), True
-        else:
-            scene, many = scene_from_options([(items[0][0], u, v)], **kw), False
-        r = render_scene(scene, composite=many)
-        self.render = r
-        return r
+            return scene_from_options([(s, *d) for s, d in items], **kw), True
+        return scene_from_options([(items[0][0], u, v)], **kw), False
 
     def __getstate__(self):
         # (pickled without its last render, which the next draw makes again: a 3-D
@@ -495,6 +604,27 @@ class SurfacePlot(_ScalarMappable):
     def __repr__(self):
         return (f"SurfacePlot({self.label or self.surface!r}, size={self.size}, "
                 f"elev={self.elev:g}, azim={self.azim:g}, proj_type={self.projection!r})")
+
+
+def draw_together(plots, size, camera, limits):
+    """One picture of several plots in one 3-D Axes (mpl.py Surface3DImage), where one
+    of them is translucent: their layers in one scene, each with its own material
+    (colours, colour map, alpha), so that every layer of each shows through the
+    translucent ones (section 6.6's merge by depth; a composite of their separate
+    pictures would let the nearest surface hide the rest). The scene's light,
+    quality and objects are the first plot's. ``limits``: each plot's axlim_clip
+    limits, or None. Each plot keeps the picture as its ``.render``."""
+    from .renderer import render_scene
+    from .scene import Scene
+    scenes = [p.scene_with(size, camera, lim)[0] for p, lim in zip(plots, limits)]
+    first = scenes[0]
+    joint = Scene([layer for s in scenes for layer in s.layers], camera=first.camera,
+                  light=first.light, quality=first.quality, background=first.background,
+                  vars=first.vars, objects=first.objects)
+    r = render_scene(joint, composite=True)
+    for p in plots:
+        p.render = r
+    return r
 
 
 def render_view(surface, kw):

@@ -2,7 +2,9 @@
 plot_surface call changed, markers hidden behind a hill, two crossing surfaces in one
 Axes, a terrain with matplotlib's LightSource, a surface clipped at the Axes' limits
 (axlim_clip), plot_wireframe with the hidden lines removed, beside mplot3d's own, and
-the surface3d_radial example's polar grid (resampled onto an even one).
+the surface3d_radial example's polar grid (resampled onto an even one), and an
+animation made as matplotlib's are (remove the last frame's plot, plot the next) under
+a translucent lid, with a legend.
 
 ``fc.plot_surface(X, Y, Z, ax=ax, ...)`` takes matplotlib's call form and keywords;
 inside ``fig.add_subplot(projection="3d")`` the Axes keep their panes, ticks, labels
@@ -114,3 +116,29 @@ ax.set_xlabel(r"$\phi_\mathrm{real}$")
 ax.set_ylabel(r"$\phi_\mathrm{im}$")
 ax.set_zlabel(r"$V(\phi)$")
 fig.savefig("surface3d_radial.png")
+
+# matplotlib's way to animate a surface: each frame removes the last frame's plot and
+# plots the next (plot.remove(), as an mplot3d artist's); a label puts it in the legend
+# beside a translucent plot, which shows the moving one through it
+from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
+
+fig = plt.figure(figsize=(4.8, 3.6), dpi=80)
+ax = fig.add_subplot(projection="3d")
+x = np.linspace(-4, 4, 61)
+X, Y = np.meshgrid(x, x)
+fc.plot_surface(X, Y, 0 * X + 0.9, ax=ax, color="lightsteelblue", alpha=0.45,
+                label="a translucent lid")
+ax.set(xlim=(-4, 4), ylim=(-4, 4), zlim=(-1.2, 1.2))
+wave = [fc.plot_surface(X, Y, np.cos(np.hypot(X, Y)), ax=ax, cmap="viridis",
+                        vmin=-1, vmax=1, label="cos(r - t)")]
+ax.legend(loc="upper left")
+
+
+def frame(k):
+    wave[0].remove()
+    t = 2 * np.pi * k / 12
+    wave[0] = fc.plot_surface(X, Y, np.cos(np.hypot(X, Y) - t), ax=ax, cmap="viridis",
+                              vmin=-1, vmax=1, label="cos(r - t)")
+
+
+FuncAnimation(fig, frame, frames=12).save("mplot3d_animation.gif", writer=PillowWriter(fps=8))

@@ -75,3 +75,25 @@ def test_a_line_drawing_hides_the_lines_behind_its_surface():
     lines = r.side != 0
     assert lines.sum() > 500
     assert (r.stats["surface"][lines] == nearest[lines]).mean() >= 0.995
+
+
+def test_a_translucent_render_lets_what_lies_behind_it_show_through():
+    """fc.composite of a translucent render (opacity 0.4, flat red: ambient 1, no
+    specular) over an opaque one (flat blue) of the same camera: where the red plate
+    lies in front, the pixel is 0.4 red over 0.6 blue, (102, 0, 153) exactly (the
+    over operator on the renders' straight alphas); where it does not, the blue
+    alone. Before, the translucent render hid what lay behind it as an opaque one
+    does (0.4 red over the background). Measured 2026-12-06: every pixel of the
+    plates' inner part (the overlap's edges antialiased) within 1 level."""
+    kw = dict(size=(120, 90), elev=30, azim=-60, d1=12.0, d2=30.0, scale=20.0,
+              center=(0.0, 0.0, 0.0), background=(0, 0, 0, 0), ambient=1.0, specular=0.0,
+              lower_color="same")
+    red = fc.render("0.1 + 0*u", u=(-3, 3), v=(-3, 3), upper_color="red", opacity=0.4, **kw)
+    blue = fc.render("-0.1 + 0*u", u=(-3, 3), v=(-3, 3), upper_color="blue", **kw)
+    r = fc.composite([red, blue], background=(255, 255, 255, 255))
+    both = (red.rgba[..., 3] == 102) & (blue.rgba[..., 3] == 255)
+    blue_only = (red.rgba[..., 3] == 0) & (blue.rgba[..., 3] == 255)
+    assert both.sum() > 1000 and blue_only.sum() > 200
+    got = r.rgba[..., :3].astype(int)
+    assert np.abs(got[both] - (102, 0, 153)).max() <= 1
+    assert np.abs(got[blue_only] - (0, 0, 255)).max() <= 1

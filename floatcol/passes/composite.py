@@ -19,7 +19,10 @@ def composite(renders, background=(255, 255, 255, 255)) -> Render:
     front to back by the depth of the surface at each pixel's centre (partial,
     centre-less coverage behind), over ``background`` (an RGBA uint8 quadruple or
     colour). A surface hides what lies behind it even where it is transparent in its
-    own picture (between the lines of a line drawing). Returns a Render as
+    own picture (between the lines of a line drawing); a translucent one (opacity
+    below 1) lets what lies behind its nearest layer show through as its picture's
+    alpha says (exact where all its layers lie in front of the others'; render_many
+    merges the layers themselves, section 6.6). Returns a Render as
     :func:`render_many` describes."""
     if not renders:
         raise ValueError("nothing to composite")
@@ -37,7 +40,11 @@ def composite(renders, background=(255, 255, 255, 255)) -> Render:
                       for r, m in zip(renders, seen_k)])
     out = np.empty(shape, dtype=np.uint8)
     which = np.empty(shape[:2], dtype=np.int8)
-    composite_kernel(depth, np.stack([r.rgba for r in renders]), seen_k,
+    # a translucent render (its layers composited: translucency.py) hides no more
+    # than its picture's alpha: what lies behind its nearest layer shows through
+    hides = np.stack([np.zeros_like(m) if r.stats.get("translucent") else m
+                      for r, m in zip(renders, seen_k)])
+    composite_kernel(depth, np.stack([r.rgba for r in renders]), hides,
                      bg8.astype(np.float64) / 255.0, out, which)
     seen = which >= 0
 

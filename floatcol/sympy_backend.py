@@ -25,7 +25,7 @@ class SympyBackend(Plot):
         super().__init__(*series, **kwargs)
         if any(getattr(s, "is_parametric", False) for s in self._series):
             raise ValueError("floatcol's sympy backend draws surfaces z = f(x, y) (plot3d); "
-                             "use sympy's default backend for parametric surfaces")
+                             "use sympy's default backend for parametric plots")
         self._fig = None
         self._want_window = False      # show() builds the figure through pyplot
         self.plots = []

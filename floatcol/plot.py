@@ -318,6 +318,10 @@ class SurfacePlot(_ScalarMappable):
             w = surface.evaluate(gu, gv)
             if np.isfinite(w).any():
                 lo, hi = _robust_range(np.where(np.isfinite(w), w, np.nan))
+                if hasattr(surface, "extremes"):   # data (a mesh): its every height
+                    both = np.concatenate([w[np.isfinite(w)], surface.extremes(
+                        ((ua, ub), (va, vb)))[2]])
+                    lo, hi = float(both.min()), float(both.max())
                 los.append(lo)
                 his.append(hi)
         if not los:

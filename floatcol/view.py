@@ -224,7 +224,8 @@ def build_view(surface, domain, size, elev=30.0, azim=30.0, projection="orthogra
 
     pu = fit["pu"]
     pv = fit["pv"]
-    pw = np.concatenate([np.clip(gw[ok], w_lo, w_hi), np.full(gu.size, center[2])])
+    pw = np.concatenate([np.clip(gw[ok], w_lo, w_hi), np.full(gu.size, center[2]),
+                         fit["pw_extra"]])
     if not ok.any():
         pw[:] = center[2]
     # (hypot: no overflow where f is finite but huge, 1e300 u)
@@ -364,7 +365,9 @@ def _fit(surface, domain):
     """The fit grid (surface.fit_grid, which a Surface keeps) with what build_view
     derives from it alone, computed once per grid: where f is finite ("ok"), its
     robust range and its extremes, and the fit points' u and v (the surface's, then
-    the whole grid's, which build_view puts at the centre's height)."""
+    the whole grid's, which build_view puts at the centre's height). A height field's
+    range is its data's, whole, and its highest and lowest nodes are fit points too
+    (their heights "pw_extra"; HeightField.extremes)."""
     fit = fit_grid(surface, domain, FIT_GRID)
     if "ok" not in fit:
         gu, gv, gw = fit["u"], fit["v"], fit["w"]
@@ -372,9 +375,17 @@ def _fit(surface, domain):
         seen = ok.any()
         fit["range"] = _robust_range(gw) if seen else (0.0, 0.0)
         fit["all"] = (float(gw[ok].min()), float(gw[ok].max())) if seen else (0.0, 0.0)
-        fit["pu"] = np.concatenate([gu[ok], gu.ravel()])
-        fit["pv"] = np.concatenate([gv[ok], gv.ravel()])
-        for a in (ok, fit["pu"], fit["pv"]):
+        xu = xv = xw = np.zeros(0)
+        if seen and hasattr(surface, "extremes"):
+            # a height field's heights are data: every one in the picture, a spike at
+            # a node too, which the grid may miss and _robust_range would trim
+            xu, xv, xw = surface.extremes(domain)
+            both = np.concatenate([gw[ok], xw])
+            fit["range"] = fit["all"] = (float(both.min()), float(both.max()))
+        fit["pu"] = np.concatenate([gu[ok], gu.ravel(), xu])
+        fit["pv"] = np.concatenate([gv[ok], gv.ravel(), xv])
+        fit["pw_extra"] = xw
+        for a in (ok, fit["pu"], fit["pv"], xw):
             a.flags.writeable = False
         fit["ok"] = ok                  # last: the mark that the rest is there
     return fit

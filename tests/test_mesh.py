@@ -199,3 +199,28 @@ def test_odd_meshes_are_holes_or_a_clear_error_never_a_crash():
         fc.plot_surface(X * 1e308, Y * 1e308, Z, size=(40, 30))
     with pytest.raises(ValueError, match="finite and ascending or descending"):
         fc.plot_surface(np.array([0.0, 2.0, 1.0]), np.array([0.0, 1.0]), np.ones((2, 3)))
+
+
+@pytest.mark.parametrize("projection", ["orthographic", "perspective"])
+def test_a_spike_in_a_mesh_is_shown_whole(projection):
+    """A mesh's heights are data: a spike at one node (5 over a hill of 1) is a value
+    to show, as mplot3d's limits show it, not a pole to trim. The picture's fit takes
+    the mesh's highest and lowest nodes in (its box, aspect "auto", spans 5, and the
+    spike's top projects inside the picture: the fit grid of 65 x 65 points misses
+    the node, and its robust range took the spike for a pole), and the colour map
+    spans the data's range exactly. Before: the box spanned -0.90 .. 2.32, the top
+    lay 189 (orthographic) and 233 (perspective) rows above the picture, vmax 4.49."""
+    x = np.linspace(-3, 3, 50)
+    X, Y = np.meshgrid(x, x)
+    Z = np.exp(-(X ** 2 + Y ** 2)) + 0.3 * X
+    Z[10, 10] = 5.0
+    hf = fc.HeightField(Z, u=(-3, 3), v=(-3, 3))
+    r = fc.render(hf, size=(400, 300), elev=30, azim=-60, aspect="auto",
+                  projection=projection)
+    box = r.box
+    col, row = r.view.project(np.array([X[10, 10] * box[0]]), np.array([Y[10, 10] * box[1]]),
+                              np.array([5.0 * box[2]]))
+    assert 0.0 <= row[0] <= 299.0 and 0.0 <= col[0] <= 399.0
+    assert box[2] == pytest.approx(0.75 * 6.0 / (5.0 - Z.min()))   # (4 : 4 : 3 of the data)
+    plot = fc.plot_surface(X, Y, Z, size=(80, 60))
+    assert (plot.norm.vmin, plot.norm.vmax) == (pytest.approx(Z.min()), 5.0)

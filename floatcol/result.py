@@ -91,21 +91,35 @@ class Render:
     @property
     def gbuffer(self):
         """(W, H, G_SIZE) float32 G-buffer, rows from the bottom (floatcol.kernels.layout's
-        G_* channels), NaN where no surface is seen: a copy."""
+        G_* channels; u and v the box's, as the others), NaN where no surface is seen:
+        a copy."""
         g = np.where(self._mask()[..., None], self._picture(slice(None)), np.float32(np.nan))
+        if self.view.center[0] != 0.0 or self.view.center[1] != 0.0:
+            g[..., G_U] += np.float32(self.view.center[0])   # (kept from the centre)
+            g[..., G_V] += np.float32(self.view.center[1])
         return g[::-1].transpose(1, 0, 2)
 
     def _unboxed(self, g, k):
         x = self._channel(g)
         return x if self.box[k] == 1.0 else (x / self.box[k]).astype(np.float32)
 
+    def _from_centre(self, g, k):
+        """u (k 0) or v (k 1), float64: the G-buffer keeps them from the view's centre
+        in float32 (layout.py G_U), which keeps a millimetre's precision over a
+        kilometre's picture however far its coordinates lie from 0 (a DEM in UTM
+        metres); the centre is added back in double precision."""
+        x = self._channel(g).astype(np.float64) + self.view.center[k]
+        return x if self.box[k] == 1.0 else x / self.box[k]
+
     @property
     def u(self):
-        return self._unboxed(G_U, 0)
+        """(H, W) float64 u of the seen point at each pixel, NaN where none."""
+        return self._from_centre(G_U, 0)
 
     @property
     def v(self):
-        return self._unboxed(G_V, 1)
+        """(H, W) float64 v of the seen point at each pixel, NaN where none."""
+        return self._from_centre(G_V, 1)
 
     @property
     def w(self):

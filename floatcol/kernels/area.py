@@ -38,8 +38,8 @@ from .column import _column_t_range, _domain_test, _may_meet_domain, _ortho_chor
 from .layout import (
     E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_U, E_V, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W, S_OK,
-    SURF_HEIGHTFIELD, VP_CA, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_WHI, VP_WLO, VP_SA, VP_SCALE, VP_T0,
-    VP_T1,
+    SURF_HEIGHTFIELD, VP_CA, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_WHI,
+    VP_WLO, VP_SA, VP_SCALE, VP_T0, VP_T1,
 )
 from .coverage import flagged
 from .sample import column_x0, lambert, sample_point, unit_normal
@@ -610,7 +610,7 @@ def area_column(kind, f, fg, flat, lv, hfp, vp, x0, slices, lod, gcol, ecol, acc
     j_lo = H
     j_hi = -1
     for j in range(H):
-        side = resolve_pixel(acc[j], gcol[j], ecol, j)
+        side = resolve_pixel(acc[j], gcol[j], ecol, j, vp[VP_CU], vp[VP_CV])
         if side == 0.0:
             ecol[E_SEEN, j] = 0.0
             continue
@@ -633,7 +633,7 @@ def _group_normal(c, grp):
 
 
 @ngjit_inline
-def resolve_pixel(c, g, ecol, j):
+def resolve_pixel(c, g, ecol, j, cu, cv):
     """Pixel j's G-buffer entry g and edge-buffer entry from its accumulator c (AC_*):
     the first group's weighted means (the normal made unit) the pixel's surface, its
     total weight that surface's coverage; the second group's, where it has pieces, the
@@ -644,8 +644,8 @@ def resolve_pixel(c, g, ecol, j):
         return 0.0
     inv = 1.0 / wgt
     g[G_DEPTH] = c[AC_Z]
-    g[G_U] = c[AC_U] * inv
-    g[G_V] = c[AC_V] * inv
+    g[G_U] = c[AC_U] * inv - cu          # (from the view's centre: layout.py G_U)
+    g[G_V] = c[AC_V] * inv - cv
     g[G_W] = c[AC_WW] * inv
     g[G_NX], g[G_NY], g[G_NZ] = _group_normal(c, AC_G1)
     g[G_I] = c[AC_I] * inv
@@ -662,8 +662,8 @@ def resolve_pixel(c, g, ecol, j):
         ecol[E_I, j] = c[AC_G2 + AC_I] * inv
         ecol[E_SIDE, j] = 1.0 if c[AC_G2 + AC_SIDE] >= 0.0 else -1.0
         ecol[E_DEPTH, j] = c[AC_G2 + AC_Z]
-        ecol[E_U, j] = c[AC_G2 + AC_U] * inv
-        ecol[E_V, j] = c[AC_G2 + AC_V] * inv
+        ecol[E_U, j] = c[AC_G2 + AC_U] * inv - cu
+        ecol[E_V, j] = c[AC_G2 + AC_V] * inv - cv
     elif wgt >= WHOLE:
         ecol[E_SEEN, j] = side
     else:

@@ -105,7 +105,9 @@ RUN_TOP_KIND = 28  # is kept here, not yet in ecol (-1: none; _fill, _settle_top
 RUN_TOP_COV = 29   # kind (TOP_EDGE, TOP_CENTRE) and coverage; RUN_TOP_ON: whether it
 RUN_TOP_ON = 30    # may (vp's VP_KEEP_TOP)
 RUN_FOLD = 31      # 1.0: a sample's curve folds back in t (fold.py): trace the column
-RUN_SIZE = 32
+RUN_CU = 32        # the view's centre (vp's VP_CU, VP_CV): the G-buffer's and the edge
+RUN_CV = 33        # buffer's u, v are stored from it (layout.py G_U)
+RUN_SIZE = 34
 #: RUN_TOP_KIND: the pixel's centre lies outside the interval (an edge surface covers
 #: RUN_TOP_COV of the pixel: its bottom, or where the run began above the centre, a
 #: part above it) or inside it (the surface at the centre covers RUN_TOP_COV of it)
@@ -716,13 +718,13 @@ def _paint(gcol, ecol, run, prev, cur, side, persp, H, yp, inv_dy, qp, qc, lo_f,
             # silhouette's pixel, the run ended by a hole), this span shows through
             # the rest, as its edge surface
             if aa and flagged(x):
-                _cover_rest(ecol, j, max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0), side,
-                            _chord_weight(j, yp, inv_dy, persp, qp, qc), prev, cur)
+                _cover_rest(ecol, run, j, max(min(hi_f, j + 0.5) - max(lo_f, j - 0.5), 0.0),
+                            side, _chord_weight(j, yp, inv_dy, persp, qp, qc), prev, cur)
             continue
         lw = _chord_weight(j, yp, inv_dy, persp, qp, qc)
         gcol[j, G_DEPTH] = z0 + lw * dz
-        gcol[j, G_U] = u0 + lw * du
-        gcol[j, G_V] = v0 + lw * dv
+        gcol[j, G_U] = (u0 - run[RUN_CU]) + lw * du     # (from the centre: layout.py G_U)
+        gcol[j, G_V] = (v0 - run[RUN_CV]) + lw * dv
         w32 = np.float32(w0 + lw * dw)  # (the value stored, in the G-buffer's type)
         gcol[j, G_W] = w32
         if upper:
@@ -771,7 +773,7 @@ def _paint(gcol, ecol, run, prev, cur, side, persp, H, yp, inv_dy, qp, qc, lo_f,
 
 
 @ngjit_inline
-def _cover_rest(ecol, j, cov, side, lw, prev, cur):
+def _cover_rest(ecol, run, j, cov, side, lw, prev, cur):
     """A span covers ``cov`` of pixel j, which an earlier run covers in part (flagged,
     coverage.py): it shows through the rest (1 - E_COV0), as the pixel's edge surface
     (the one there, with more coverage; or this span's, at weight lw of its chord).
@@ -786,7 +788,7 @@ def _cover_rest(ecol, j, cov, side, lw, prev, cur):
         return
     if ecov <= 0.0:
         nx, ny, nz, w, lam, z, u, v = _chord_at(prev, cur, lw)
-        _store_edge(ecol, j, nx, ny, nz, w, lam, z, side, u, v)
+        _store_edge(ecol, j, nx, ny, nz, w, lam, z, side, u - run[RUN_CU], v - run[RUN_CV])
     ecol[E_COV, j] = min(ecov + cov, room)
 
 
@@ -893,14 +895,14 @@ def _write_edge(ecol, run):
     if j >= 0 and coverages(ecol, j)[1] > 0.0:
         _store_edge(ecol, j, run[RUN_EDGE], run[RUN_EDGE + 1], run[RUN_EDGE + 2],
                     run[RUN_EDGE + 3], run[RUN_EDGE + 4], run[RUN_EDGE + 5], run[RUN_EDGE + 6],
-                    run[RUN_EDGE + 7], run[RUN_EDGE + 8])
+                    run[RUN_EDGE + 7] - run[RUN_CU], run[RUN_EDGE + 8] - run[RUN_CV])
     run[RUN_EDGE_J] = -1.0
 
 
 @ngjit_inline
 def _store_edge(ecol, j, nx, ny, nz, w, lam, z, side, u, v):
-    """Write row j's edge surface (normal, w, intensity, depth, side, u, v) to ecol's
-    planes."""
+    """Write row j's edge surface (normal, w, intensity, depth, side, u, v: from the
+    view's centre, layout.py G_U) to ecol's planes."""
     ecol[E_NX, j] = nx
     ecol[E_NY, j] = ny
     ecol[E_NZ, j] = nz
@@ -2035,6 +2037,8 @@ def render_column_into(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstr
     scr[SCR_RUN, RUN_EDGE_J] = -1.0
     scr[SCR_RUN, RUN_TOP_J] = -1.0
     scr[SCR_RUN, RUN_TOP_ON] = vp[VP_KEEP_TOP]
+    scr[SCR_RUN, RUN_CU] = vp[VP_CU]
+    scr[SCR_RUN, RUN_CV] = vp[VP_CV]
     sdepth[:] = 0
     evals = _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
                            sdepth, bat, sg, rot)

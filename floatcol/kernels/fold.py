@@ -186,9 +186,10 @@ def _point(vp, x0, t, s, u, v, w, wu, wv, p):
 
 
 @ngjit_nrt_free
-def _raster(gcol, ecol, ya, za, a, yb, zb, b):
+def _raster(gcol, ecol, ya, za, a, yb, zb, b, cu, cv):
     """Rows between the points a (row ya, depth za) and b of the curve: lerped
-    G-buffer entries where nothing nearer is there yet."""
+    G-buffer entries where nothing nearer is there yet (u, v from the view's centre
+    (cu, cv): layout.py G_U)."""
     H = gcol.shape[0]
     if yb == ya:
         return
@@ -201,8 +202,8 @@ def _raster(gcol, ecol, ya, za, a, yb, zb, b):
             continue
         g = gcol[j]
         g[G_DEPTH] = z
-        g[G_U] = a[P_U] + lam * (b[P_U] - a[P_U])
-        g[G_V] = a[P_V] + lam * (b[P_V] - a[P_V])
+        g[G_U] = (a[P_U] - cu) + lam * (b[P_U] - a[P_U])
+        g[G_V] = (a[P_V] - cv) + lam * (b[P_V] - a[P_V])
         w = a[P_W] + lam * (b[P_W] - a[P_W])
         g[G_W] = w
         g[G_NX] = a[P_NX] + lam * (b[P_NX] - a[P_NX])
@@ -268,7 +269,7 @@ def _trace(kind, fg, hf, hfp, vp, x0, t, s, direction, s_min, s_max, gcol, ecol,
                 continue
             if abs(yb - ya) > JUMP_PX:
                 return False, evals             # a jump of f or a pole: the piece ends
-        _raster(gcol, ecol, ya, za, a, yb, zb, b)
+        _raster(gcol, ecol, ya, za, a, yb, zb, b, vp[VP_CU], vp[VP_CV])
         ia = (t - t0) / dt                      # the planes this step crosses
         ib = (qt - t0) / dt
         if ib != ia:

@@ -109,8 +109,10 @@ GROUP = TILE * GROUP_TILES
 # is seen (ebuf's E_SEEN plane says where): it is never cleared, so a render moves
 # only the memory of the pixels it paints.
 G_DEPTH = 0       # screen z of the seen point (larger = farther)
-G_U = 1
-G_V = 2
+G_U = 1           # u and v of the seen point from the view's centre (vp's VP_CU, VP_CV),
+G_V = 2           # as G_T: float32 keeps its 24 bits for the picture's own extent however
+                  # far from 0 its coordinates lie (a DEM in UTM metres: 0.5 m steps at
+                  # 4e6 absolute); its readers add the centre back in float64
 G_W = 3
 G_NX = 4          # unit upper-side normal in screen coordinates, eq. (11)
 G_NY = 5
@@ -156,7 +158,8 @@ E_W = 6
 E_I = 7
 E_SIDE = 8
 E_DEPTH = 9
-E_U = 10          # ... and its u, v (a texture's colour, passes/colour.py)
+E_U = 10          # ... and its u, v (a texture's colour, passes/colour.py; from the
+                  # view's centre, as G_U)
 E_V = 11
 E_SIZE = 12
 E_FLAG = 8.0      # added to E_SEEN where E_COV0 and E_COV are kept

@@ -298,11 +298,12 @@ def _weight(yq, p, c, d3):
 
 
 @ngjit_inline
-def _store(g, lw, p, c):
-    """Pixel g of the G-buffer at weight lw of the chord p -> c."""
+def _store(g, lw, p, c, cu, cv):
+    """Pixel g of the G-buffer at weight lw of the chord p -> c (u, v from the view's
+    centre (cu, cv): layout.py G_U)."""
     g[G_DEPTH] = p[Q_Z] + lw * (c[Q_Z] - p[Q_Z])
-    g[G_U] = p[Q_U] + lw * (c[Q_U] - p[Q_U])
-    g[G_V] = p[Q_V] + lw * (c[Q_V] - p[Q_V])
+    g[G_U] = (p[Q_U] - cu) + lw * (c[Q_U] - p[Q_U])
+    g[G_V] = (p[Q_V] - cv) + lw * (c[Q_V] - p[Q_V])
     g[G_W] = p[Q_W] + lw * (c[Q_W] - p[Q_W])
     g[G_NX] = p[Q_NX] + lw * (c[Q_NX] - p[Q_NX])
     g[G_NY] = p[Q_NY] + lw * (c[Q_NY] - p[Q_NY])
@@ -433,7 +434,9 @@ ST_JUMP = 14
 ST_WAIT = 15
 ST_SKIP = 16
 ST_BACK = 17
-ST_SIZE = 18
+ST_CU = 18         # the view's centre (vp's VP_CU, VP_CV): the G-buffer's u, v are
+ST_CV = 19         # stored from it (layout.py G_U)
+ST_SIZE = 20
 
 
 @ngjit_inline
@@ -469,6 +472,8 @@ def _start(vp, x0, s_lo, s_hi, planes, st):
     st[ST_DONE] = 1.0 if ta > tb else 0.0
     st[ST_EVALS] = 0.0
     st[ST_DY] = 0.0
+    st[ST_CU] = vp[VP_CU]
+    st[ST_CV] = vp[VP_CV]
 
 
 @ngjit_inline
@@ -527,7 +532,7 @@ def _paint(area, st, prev, cur, gcol, ecol, acc, d3):
         j0 = max(int(math.floor(lo_f)) + 1, 0)
         j1 = min(int(math.floor(y)), H - 1)
         for j in range(j0, j1 + 1):
-            _store(gcol[j], _weight(j, prev, cur, d3), prev, cur)
+            _store(gcol[j], _weight(j, prev, cur, d3), prev, cur, st[ST_CU], st[ST_CV])
             ecol[E_SEEN, j] = 1.0
         if j1 >= j0:
             st[ST_JLO] = min(st[ST_JLO], j0)
@@ -638,7 +643,7 @@ def _resolve(area, gcol, ecol, acc, st):
                 w_hi = max(w_hi, w)
             continue
         # (the pieces show the upper side: add_piece's side 1)
-        side = resolve_pixel(acc[j], gcol[j], ecol, j)
+        side = resolve_pixel(acc[j], gcol[j], ecol, j, st[ST_CU], st[ST_CV])
         if side != 0.0:
             w_lo, w_hi = seen_heights(gcol, ecol, j, side, w_lo, w_hi)
     return w_lo, w_hi

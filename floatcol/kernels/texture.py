@@ -18,9 +18,10 @@ FILTER_MIPMAP = 2
 
 
 @ngjit_parallel
-def planes_kernel(gbuf, ebuf, W, a, b, c, u, v, w, side, eu, ev):
+def planes_kernel(gbuf, ebuf, W, a, b, c, cu, cv, u, v, w, side, eu, ev):
     """u, v, w (H, W) float64, top row first, of the seen point at each pixel (NaN
-    where none; divided by the box's stretch a, b, c) and the side seen there (+1, -1,
+    where none; the G-buffer's u, v from the view's centre (cu, cv), layout.py G_U;
+    divided by the box's stretch a, b, c) and the side seen there (+1, -1,
     0), from the tiled G-buffer and edge buffer (layout.py); eu, ev those of the
     pixel's edge surface (section 6.4; NaN where none), unless they are empty. Tile
     by tile (each tile's memory in order: row by row across the tiles was 3x slower,
@@ -40,15 +41,15 @@ def planes_kernel(gbuf, ebuf, W, a, b, c, u, v, w, side, eu, ev):
                 side[i, col] = s
                 if edges:
                     has = _has_edge(ebuf, t, j, lane)
-                    eu[i, col] = ebuf[t, E_U, j, lane] / a if has else np.nan
-                    ev[i, col] = ebuf[t, E_V, j, lane] / b if has else np.nan
+                    eu[i, col] = (ebuf[t, E_U, j, lane] + cu) / a if has else np.nan
+                    ev[i, col] = (ebuf[t, E_V, j, lane] + cv) / b if has else np.nan
                 if s == 0.0:
                     u[i, col] = np.nan
                     v[i, col] = np.nan
                     w[i, col] = np.nan
                 else:
-                    u[i, col] = gbuf[t, j, lane, G_U] / a
-                    v[i, col] = gbuf[t, j, lane, G_V] / b
+                    u[i, col] = (gbuf[t, j, lane, G_U] + cu) / a
+                    v[i, col] = (gbuf[t, j, lane, G_V] + cv) / b
                     w[i, col] = gbuf[t, j, lane, G_W] / c
 
 
@@ -268,7 +269,8 @@ def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt,
     over the surface's own (its side's: lut by w, or lower_rgb; the texture's alpha
     lays it over), from the tiled G-buffer and edge buffer. The texel coordinates of
     a point are tx = (u - ou) su, ty = (v - ov) sv (texel k's centre at k; u, v the
-    G-buffer's); the mip-map ``levels`` flattened (level k at offsets[k], shapes[k] =
+    G-buffer's, from the view's centre: layout.py G_U, and ou, ov from there too); the
+    mip-map ``levels`` flattened (level k at offsets[k], shapes[k] =
     (h, w), 4 premultiplied channels each). FILTER_POINT: the nearest texel;
     FILTER_LINEAR: bilinear; FILTER_MIPMAP: trilinear, the level from the pixel's
     footprint (the longer of the changes of (tx, ty) to the next pixel across and
@@ -442,9 +444,10 @@ def values_kernel(kind, f, fg, fb, hf, hfp, u, v, out):
 
 
 @ngjit_parallel
-def field_kernel(gbuf, ebuf, W, a, b, kind, f, fg, fb, hf, hfp, vals, e_vals):
+def field_kernel(gbuf, ebuf, W, a, b, cu, cv, kind, f, fg, fb, hf, hfp, vals, e_vals):
     """vals (H, W), top row first: the colour field f at the seen point of each pixel
-    (u, v divided by the box's stretch a, b), e_vals at its edge surface's (section
+    (the G-buffer's u, v from the view's centre (cu, cv), layout.py G_U, divided by the
+    box's stretch a, b), e_vals at its edge surface's (section
     6.4); NaN where none. Tile by tile (planes_kernel)."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
@@ -460,11 +463,13 @@ def field_kernel(gbuf, ebuf, W, a, b, kind, f, fg, fb, hf, hfp, vals, e_vals):
                 vals[i, col] = np.nan
                 e_vals[i, col] = np.nan
                 if s != 0.0:
-                    vals[i, col] = surface_value(kind, f, hf, hfp, gbuf[t, j, lane, G_U] / a,
-                                                 gbuf[t, j, lane, G_V] / b)
+                    vals[i, col] = surface_value(kind, f, hf, hfp,
+                                                 (gbuf[t, j, lane, G_U] + cu) / a,
+                                                 (gbuf[t, j, lane, G_V] + cv) / b)
                 if _has_edge(ebuf, t, j, lane):
-                    e_vals[i, col] = surface_value(kind, f, hf, hfp, ebuf[t, E_U, j, lane] / a,
-                                                   ebuf[t, E_V, j, lane] / b)
+                    e_vals[i, col] = surface_value(kind, f, hf, hfp,
+                                                   (ebuf[t, E_U, j, lane] + cu) / a,
+                                                   (ebuf[t, E_V, j, lane] + cv) / b)
 
 
 @ngjit_parallel

@@ -27,6 +27,7 @@ import numpy as np
 
 from .. import _pool
 from ..color import lower_or_upper
+from ..kernels.layout import VP_CU, VP_CV
 from ..kernels.texture import (
     FILTER_LINEAR, FILTER_MIPMAP, FILTER_POINT, colour_kernel, field_kernel, planes_kernel,
     texture_kernel, values_kernel,
@@ -38,6 +39,12 @@ FILTERS = {"mipmap": FILTER_MIPMAP, "linear": FILTER_LINEAR, "point": FILTER_POI
 MAX_TEXELS = 1 << 26
 
 
+def _centre(geom):
+    """(cu, cv): the view's centre, from which the G-buffer holds u and v (layout.py
+    G_U)."""
+    return float(geom.vp[VP_CU]), float(geom.vp[VP_CV])
+
+
 def picture_planes(geom, W, box=(1.0, 1.0, 1.0), edges=False):
     """(u, v, w, side) of each pixel, top row first, from a layer's tiled G-buffer
     and edge buffer (the column pass's), in the surface's units (the box's stretch
@@ -47,7 +54,8 @@ def picture_planes(geom, W, box=(1.0, 1.0, 1.0), edges=False):
     # pooled (fresh memory's page faults were most of the pass; each is written in full)
     u, v, w, side = (_pool.empty((H, W), np.float64) for _ in range(4))
     eu, ev = (_pool.empty((H, W), np.float64) if edges else np.empty((0, 0)) for _ in range(2))
-    planes_kernel(geom.gbuf, geom.ebuf, W, *(float(x) for x in box), u, v, w, side, eu, ev)
+    planes_kernel(geom.gbuf, geom.ebuf, W, *(float(x) for x in box), *_centre(geom), u, v, w,
+                  side, eu, ev)
     return (u, v, w, side, eu, ev) if edges else (u, v, w, side)
 
 
@@ -156,7 +164,9 @@ def texture_base(tex, geom, W, H, box, extent, filt, lut, w_lo, w_hi, lower_rgb)
     wp = _pool.empty((H, W), np.float64)
     sides = _pool.empty((H, W), np.int8)
     seen = _pool.empty((H, W), np.bool_)
-    texture_kernel(geom.gbuf, geom.ebuf, W, u0 * a, su, v0 * b, sv, tex.flat, tex.offsets,
+    cu, cv = _centre(geom)             # (the G-buffer's u, v from there: layout.py G_U)
+    texture_kernel(geom.gbuf, geom.ebuf, W, u0 * a - cu, su, v0 * b - cv, sv, tex.flat,
+                   tex.offsets,
                    tex.shapes, FILTERS[filt], lut, float(w_lo), float(w_hi),
                    np.asarray(lower_rgb, dtype=np.float64), tx, ty, wp, sides, seen, base)
     return base
@@ -216,8 +226,8 @@ def field_base(material, field, geom, W, H, box, lower_rgb):
     (kernels/texture.py's field_kernel and colour_kernel)."""
     vals = _pool.empty((H, W), np.float64)
     e_vals = _pool.empty((H, W), np.float64)
-    field_kernel(geom.gbuf, geom.ebuf, W, float(box[0]), float(box[1]), *field.kernel_args(),
-                 vals, e_vals)
+    field_kernel(geom.gbuf, geom.ebuf, W, float(box[0]), float(box[1]), *_centre(geom),
+                 *field.kernel_args(), vals, e_vals)
     with np.errstate(all="ignore"):
         lo, hi = np.nanmin(vals) if np.isfinite(vals).any() else 0.0, \
             np.nanmax(vals) if np.isfinite(vals).any() else 1.0

@@ -277,6 +277,8 @@ def draft_geometry(surface, view):
     block = max(1, BLOCK_SAMPLES // max(t.size, 1))
     names = ((L.G_DEPTH, "z"), (L.G_U, "u"), (L.G_V, "v"), (L.G_W, "w"), (L.G_NX, "nx"),
              (L.G_NY, "ny"), (L.G_NZ, "nz"), (L.G_I, "lam"), (L.G_T, "t"))
+    # u and v from the view's centre, as the kernels store them (layout.py G_U)
+    origin = {L.G_U: view.center[0], L.G_V: view.center[1]}
     for c0 in range(0, W, block):
         cols = np.arange(c0, min(W, c0 + block), dtype=np.float64)
         smp, pair, ev = _samples(surface, view, cols, t)
@@ -285,7 +287,7 @@ def draft_geometry(surface, view):
         gb = g[:, c0:c0 + cols.size]
         for ch, name in names:
             a = smp[name]
-            gb[hit, ch] = a[k - 1, c] + lam * (a[k, c] - a[k - 1, c])
+            gb[hit, ch] = (a[k - 1, c] - origin.get(ch, 0.0)) + lam * (a[k, c] - a[k - 1, c])
         seen[:, c0:c0 + cols.size] = hit
     n = g[..., L.G_NX:L.G_NZ + 1]
     norm = np.sqrt((n.astype(np.float64) ** 2).sum(-1, keepdims=True))

@@ -72,6 +72,8 @@ class SympyBackend(Plot):
                 setter(*(float(x) for x in lim))
         if self.title:
             ax.set_title(str(self.title))
+        if getattr(self, "legend", False):
+            ax.legend()                  # (the plot's entry: its expressions, mpl.py)
         self._fig = fig
 
     def show(self):

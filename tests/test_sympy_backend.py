@@ -95,3 +95,20 @@ def test_several_surfaces_share_one_picture(tmp_path):
     share, n = _figure_matches_render(im, surface_plot)
     assert n > 5000 and share > 0.99
     p.close()
+
+
+def test_legend_true_shows_the_surfaces_entry():
+    """plot3d(..., legend=True) shows a legend, as sympy's own backend: the surface's
+    entry is its expressions with a patch of its colour (the colour map's at its first
+    corner, as mplot3d's first face); without legend=True there is none."""
+    p = plot3d(x * y, (x, -1, 1), (y, -1, 1), show=False, legend=True,
+               backend=fc.SympyBackend)
+    leg = p.fig.axes[0].get_legend()
+    assert [t.get_text() for t in leg.get_texts()] == ["x*y"]
+    plot = p.plots[0]
+    want = plot.cmap(plot.norm(1.0))             # f(-1, -1) = 1
+    assert np.allclose(leg.legend_handles[0].get_facecolor(), want)
+    q = plot3d(x * y, (x, -1, 1), (y, -1, 1), show=False, backend=fc.SympyBackend)
+    assert q.fig.axes[0].get_legend() is None
+    p.close()
+    q.close()

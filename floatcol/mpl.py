@@ -46,6 +46,7 @@ def legend_entry(plot, ax):
     (ax.plot, ax.scatter) read to keep the surface's limits."""
     from matplotlib.patches import Rectangle
     entry = Rectangle((0.0, 0.0), 0.0, 0.0, linewidth=0.0)
+    entry.set_in_layout(False)         # (tight_layout and bbox_inches="tight" skip it)
     ax.add_artist(entry)
     if getattr(ax, "name", "") == "3d":
         from mpl_toolkits.mplot3d import art3d

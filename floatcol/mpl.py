@@ -35,31 +35,36 @@ MAX_SHRINK = 4
 FIRST_SHRINK_PIXELS = 600_000
 
 
-def legend_entry(plot, ax):
-    """The surface's entry in ``ax.legend()``: an empty rectangle (it draws nothing and
-    takes no room in the limits: matplotlib skips a patch of no size) that carries the
-    plot's label and colour (SurfacePlot.legend_colour), as mplot3d's surface is a
-    Poly3DCollection whose legend entry is a patch of its first face's colour. A label
-    that is empty or begins with an underscore keeps it out of the legend, as
-    matplotlib's. In a 3-D Axes it is a Patch3D (Axes3D.draw projects every patch);
-    there it also counts as data for ``ax.has_data()``, which mplot3d's later calls
-    (ax.plot, ax.scatter) read to keep the surface's limits."""
+def legend_entries(plot, ax):
+    """The plot's entries in ``ax.legend()``: one, or one a surface where its label is
+    a list (plot_surface([f, g], label=["f", "g"])). Each is an empty rectangle (it
+    draws nothing and takes no room in the limits: matplotlib skips a patch of no
+    size) that carries a label and a colour (SurfacePlot.legend_colour), as mplot3d's
+    surface is a Poly3DCollection whose legend entry is a patch of its first face's
+    colour. A label that is empty or begins with an underscore keeps it out of the
+    legend, as matplotlib's. In a 3-D Axes they are Patch3Ds (Axes3D.draw projects
+    every patch); there they also count as data for ``ax.has_data()``, which mplot3d's
+    later calls (ax.plot, ax.scatter) read to keep the surface's limits."""
     from matplotlib.patches import Rectangle
-    entry = Rectangle((0.0, 0.0), 0.0, 0.0, linewidth=0.0)
-    entry.set_in_layout(False)         # (tight_layout and bbox_inches="tight" skip it)
-    ax.add_artist(entry)
-    if getattr(ax, "name", "") == "3d":
-        from mpl_toolkits.mplot3d import art3d
-        art3d.patch_2d_to_3d(entry)
-    update_entry(entry, plot)
-    return entry
+    entries = []
+    for _ in plot.labels():
+        entry = Rectangle((0.0, 0.0), 0.0, 0.0, linewidth=0.0)
+        entry.set_in_layout(False)     # (tight_layout and bbox_inches="tight" skip it)
+        ax.add_artist(entry)
+        if getattr(ax, "name", "") == "3d":
+            from mpl_toolkits.mplot3d import art3d
+            art3d.patch_2d_to_3d(entry)
+        entries.append(entry)
+    update_entries(entries, plot)
+    return entries
 
 
-def update_entry(entry, plot):
-    """The legend entry's label, colour and visibility as the plot's now."""
-    entry.set_label(plot.label if plot.label else "_floatcol surface")
-    entry.set_facecolor(plot.legend_colour())
-    entry.set_visible(plot.get_visible())
+def update_entries(entries, plot):
+    """The legend entries' labels, colours and visibility as the plot's now."""
+    for k, (entry, label) in enumerate(zip(entries, plot.labels())):
+        entry.set_label(label if label else "_floatcol surface")
+        entry.set_facecolor(plot.legend_colour(k))
+        entry.set_visible(plot.get_visible())
 
 
 class _Preview:
@@ -93,11 +98,16 @@ def _enlarged(rgba, f):
     return rgba if f == 1 else np.repeat(np.repeat(rgba, f, axis=0), f, axis=1)
 
 
-def _remove_entry(art):
-    entry = getattr(art, "entry", None)
-    if entry is not None and entry.axes is not None:
-        entry.remove()
-    art.entry = None
+def _remove_entries(art):
+    for entry in art.entries:
+        if entry.axes is not None:
+            entry.remove()
+    art.entries = []
+
+
+def _show_entries(art, b):
+    for entry in getattr(art, "entries", ()):
+        entry.set_visible(b)
 
 
 class SurfaceImage(AxesImage):
@@ -110,12 +120,11 @@ class SurfaceImage(AxesImage):
         self._cids = []
         self._canvas = None       # the canvas the mouse handlers are connected to
         self._preview = _Preview()
-        self.entry = None         # the legend's entry (legend_entry)
+        self.entries = []         # the legend's entries (legend_entries)
 
     def set_visible(self, b):
         super().set_visible(b)
-        if getattr(self, "entry", None) is not None:
-            self.entry.set_visible(b)
+        _show_entries(self, b)
 
     def __getstate__(self):
         # (a pickled figure gets a new canvas: draw connects the handlers to it)
@@ -128,7 +137,7 @@ class SurfaceImage(AxesImage):
         plot.artist = art
         ax.add_image(art)
         ax.set_axis_off()
-        art.entry = legend_entry(plot, ax)
+        art.entries = legend_entries(plot, ax)
         if interactive:
             art.connect_events()
         return art
@@ -137,7 +146,7 @@ class SurfaceImage(AxesImage):
         """Out of its Axes (Artist.remove), with its legend entry and mouse handlers."""
         if self._cids:
             self.disconnect_events()
-        _remove_entry(self)
+        _remove_entries(self)
         super().remove()
 
     def pixel_size(self, renderer):
@@ -289,7 +298,7 @@ class Surface3DImage(Artist):
         self._drawn_M = None      # the Axes' projection (ax.M) of the last picture
         self._canvas = None       # the canvas on_release is connected to, and its id
         self._cid = None
-        self.entry = None         # the legend's entry (legend_entry)
+        self.entries = []         # the legend's entries (legend_entries)
 
     def __getstate__(self):
         return {**super().__getstate__(), "_canvas": None, "_cid": None}  # (SurfaceImage's)
@@ -306,7 +315,7 @@ class Surface3DImage(Artist):
         if self._canvas is not None and self._cid is not None:
             self._canvas.mpl_disconnect(self._cid)
         self._canvas = self._cid = None
-        _remove_entry(self)
+        _remove_entries(self)
         super().remove()
 
     def drawn_for(self, ax):
@@ -331,9 +340,9 @@ class Surface3DImage(Artist):
         ax.auto_scale_xyz([ua, ub], [va, vb], [lo, hi], had_data=ax.has_data())
         # mplot3d's own calls after this one (ax.plot, ax.scatter) keep the data limits
         # only where ax.has_data(), which counts lines, collections, patches and images,
-        # not this artist: the legend's entry, a patch that draws nothing, stands for
+        # not this artist: the legend's entries, patches that draw nothing, stand for
         # the surface there (else a line at y = 0 took the y limits down to 0 -+ 0.04)
-        art.entry = legend_entry(plot, ax)
+        art.entries = legend_entries(plot, ax)
         return art
 
     def get_window_extent(self, renderer=None):
@@ -341,8 +350,7 @@ class Surface3DImage(Artist):
 
     def set_visible(self, b):
         super().set_visible(b)
-        if getattr(self, "entry", None) is not None:
-            self.entry.set_visible(b)
+        _show_entries(self, b)
 
     def to_canvas(self, col, row):
         """Canvas points of the last picture's pixel coordinates."""

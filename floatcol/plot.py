@@ -134,7 +134,7 @@ class SurfacePlot(_ScalarMappable):
         self.domain = domain
         #: more (surface, domain) pairs drawn into the same picture (render_many)
         self.others = list(others)
-        self.label = label
+        self.label = _label(label, 1 + len(self.others))
         self.size = check_size(size)
         self.dpi = _number("dpi", dpi, positive=True)
         self.elev, self.azim = _number("elev", elev), _number("azim", azim)
@@ -250,9 +250,14 @@ class SurfacePlot(_ScalarMappable):
 
     def set_label(self, s):
         """The surface's name in ``ax.legend()`` (one that begins with an underscore is
-        left out, as matplotlib's)."""
-        self.label = "" if s is None else str(s)
+        left out, as matplotlib's); for a plot of several surfaces also a list, one
+        name a surface (an entry each)."""
+        self.label = _label(s, 1 + len(self.others))
         self._entry()
+
+    def labels(self):
+        """The names of the plot's legend entries: its label, or one a surface."""
+        return list(self.label) if isinstance(self.label, list) else [self.label]
 
     def get_alpha(self):
         """matplotlib's alpha: the surface's opacity (None: opaque)."""
@@ -272,27 +277,29 @@ class SurfacePlot(_ScalarMappable):
         self._entry()
         self._stale()
 
-    def legend_colour(self):
-        """The colour of the surface's legend entry, as mplot3d's (its first face's):
-        the colour map at f's value at the domain's first corner (``color``: that
-        colour), at the plot's alpha."""
+    def legend_colour(self, k=0):
+        """The colour of surface k's legend entry, as mplot3d's (its first face's): the
+        colour map at f's value at its domain's first corner (``color``: that colour),
+        at its alpha."""
+        surface, ((ua, _), (va, _)) = self._items()[k]
         if self.upper_color is not None:
             rgb = tuple(self.upper_color[:3])
         else:
-            (ua, _), (va, _) = self.domain
             with np.errstate(all="ignore"):
-                w = np.asarray(self.surface.evaluate(np.array([ua]), np.array([va])),
+                w = np.asarray(surface.evaluate(np.array([ua]), np.array([va])),
                                dtype=float).ravel()
             x = float(self.norm(w[0])) if w.size and np.isfinite(w[0]) else 0.5
             rgb = tuple(float(c) for c in self.cmap(x if np.isfinite(x) else 0.5)[:3])
         alpha = self.get_alpha()
+        if isinstance(alpha, (list, tuple, np.ndarray)):
+            alpha = alpha[k]
         return (*rgb, 1.0 if alpha is None else float(alpha))
 
     def _entry(self):
-        entry = getattr(self.artist, "entry", None)
-        if entry is not None:
-            from .mpl import update_entry
-            update_entry(entry, self)
+        entries = getattr(self.artist, "entries", None)
+        if entries:
+            from .mpl import update_entries
+            update_entries(entries, self)
 
     def _height_range(self):
         """The colormap's default range: f over the whole domain, as matplotlib takes
@@ -645,6 +652,16 @@ def render_view(surface, kw):
     views, _, box = fit([(surface, layer_domain(surface, kw.get("u"), kw.get("v")))], cam,
                         Quality())
     return views[0], box
+
+
+def _label(label, n):
+    """A plot's label: a string, or a list of one a surface (of n)."""
+    if isinstance(label, (list, tuple)):
+        if len(label) != n:
+            raise ValueError(f"label: give one string, or a list of one a surface ({n}), got "
+                             f"{len(label)}")
+        return [str(x) for x in label]
+    return "" if label is None else str(label)
 
 
 def _rgb(c):

@@ -58,7 +58,7 @@ class SympyBackend(Plot):
         # several surfaces: one picture where they hide each other (render_many)
         items = [(s.expr, (s.var_x, s.start_x, s.end_x), (s.var_y, s.start_y, s.end_y))
                  for s in surfaces]
-        self.plots = [plot_surface(items, ax=ax, label=", ".join(str(s.expr) for s in surfaces),
+        self.plots = [plot_surface(items, ax=ax, label=[str(s.expr) for s in surfaces],
                                    **self._fc_options)]
         first = surfaces[0]
         labels = [getattr(self, k, None) for k in ("xlabel", "ylabel", "zlabel")]
@@ -73,7 +73,7 @@ class SympyBackend(Plot):
         if self.title:
             ax.set_title(str(self.title))
         if getattr(self, "legend", False):
-            ax.legend()                  # (the plot's entry: its expressions, mpl.py)
+            ax.legend()                  # (an entry a surface: its expression, mpl.py)
         self._fig = fig
 
     def show(self):

@@ -97,18 +97,21 @@ def test_several_surfaces_share_one_picture(tmp_path):
     p.close()
 
 
-def test_legend_true_shows_the_surfaces_entry():
-    """plot3d(..., legend=True) shows a legend, as sympy's own backend: the surface's
-    entry is its expressions with a patch of its colour (the colour map's at its first
-    corner, as mplot3d's first face); without legend=True there is none."""
-    p = plot3d(x * y, (x, -1, 1), (y, -1, 1), show=False, legend=True,
+def test_legend_true_shows_an_entry_a_surface():
+    """plot3d(f, g, ..., legend=True) shows a legend, as sympy's own backend: an entry a
+    surface, its expression with a patch of its colour (the colour map's at its first
+    corner, as mplot3d's first face: x*y = 1 and x**2 - y**2 = 0 at (-1, -1)); without
+    legend=True there is none. A label list of the wrong length is a ValueError."""
+    p = plot3d(x * y, x ** 2 - y ** 2, (x, -1, 1), (y, -1, 1), show=False, legend=True,
                backend=fc.SympyBackend)
     leg = p.fig.axes[0].get_legend()
-    assert [t.get_text() for t in leg.get_texts()] == ["x*y"]
+    assert [t.get_text() for t in leg.get_texts()] == ["x*y", "x**2 - y**2"]
     plot = p.plots[0]
-    want = plot.cmap(plot.norm(1.0))             # f(-1, -1) = 1
-    assert np.allclose(leg.legend_handles[0].get_facecolor(), want)
+    for handle, w in zip(leg.legend_handles, (1.0, 0.0)):
+        assert np.allclose(handle.get_facecolor(), plot.cmap(plot.norm(w)))
     q = plot3d(x * y, (x, -1, 1), (y, -1, 1), show=False, backend=fc.SympyBackend)
     assert q.fig.axes[0].get_legend() is None
     p.close()
     q.close()
+    with pytest.raises(ValueError, match="one a surface"):
+        fc.plot_surface([x * y, x - y], (x, -1, 1), (y, -1, 1), label=["only one"])

@@ -9,6 +9,7 @@ render_many, plot_surface (zoom), animate and the CLI all fit through it.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -203,6 +204,10 @@ def fit(layers, camera, quality, light_dir=None, joint=False):
                                 quality.step, light_dir, None, quality.pixel_step,
                                 quality.placement))
         drawn.append((s, dom))
+    # one origin of the G-buffer's w for all (their G-buffers are merged: layout.py
+    # G_W): the shared centre's where any layer's needs it
+    origin = views[0].center[2] if any(v.w_origin != 0.0 for v in views) else 0.0
+    views = [dataclasses.replace(v, w_org=float(origin)) for v in views]
     return views, drawn, box
 
 

@@ -97,33 +97,33 @@ class Render:
         if self.view.center[0] != 0.0 or self.view.center[1] != 0.0:
             g[..., G_U] += np.float32(self.view.center[0])   # (kept from the centre)
             g[..., G_V] += np.float32(self.view.center[1])
+        if self.view.w_origin != 0.0:
+            g[..., G_W] += np.float32(self.view.w_origin)    # (layout.py G_W)
         return g[::-1].transpose(1, 0, 2)
 
-    def _unboxed(self, g, k):
-        x = self._channel(g)
-        return x if self.box[k] == 1.0 else (x / self.box[k]).astype(np.float32)
-
-    def _from_centre(self, g, k):
-        """u (k 0) or v (k 1), float64: the G-buffer keeps them from the view's centre
-        in float32 (layout.py G_U), which keeps a millimetre's precision over a
-        kilometre's picture however far its coordinates lie from 0 (a DEM in UTM
-        metres); the centre is added back in double precision."""
-        x = self._channel(g).astype(np.float64) + self.view.center[k]
+    def _from_origin(self, g, k, origin):
+        """u (k 0), v (1) or w (2) in float64: the G-buffer keeps u and v from the
+        view's centre and w from its w_origin in float32 (layout.py G_U, G_W), which
+        keeps a millimetre's precision over a kilometre's picture however far its
+        coordinates lie from 0 (a DEM in UTM metres); the origin is added back in
+        double precision."""
+        x = self._channel(g).astype(np.float64) + origin
         return x if self.box[k] == 1.0 else x / self.box[k]
 
     @property
     def u(self):
         """(H, W) float64 u of the seen point at each pixel, NaN where none."""
-        return self._from_centre(G_U, 0)
+        return self._from_origin(G_U, 0, self.view.center[0])
 
     @property
     def v(self):
         """(H, W) float64 v of the seen point at each pixel, NaN where none."""
-        return self._from_centre(G_V, 1)
+        return self._from_origin(G_V, 1, self.view.center[1])
 
     @property
     def w(self):
-        return self._unboxed(G_W, 2)
+        """(H, W) float64 w of the seen point at each pixel, NaN where none."""
+        return self._from_origin(G_W, 2, self.view.w_origin)
 
     @property
     def normal(self):

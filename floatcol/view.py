@@ -19,6 +19,9 @@ from .light import tame_direction
 from .surface import fit_grid
 
 PROJECTIONS = {"orthographic": True, "ortho": True, "perspective": False, "persp": False}
+#: View.w_origin: w is stored from the centre where it lies this many spreads of f
+#: from 0 (float32 then still holds the spread in 2**24 / 256 steps)
+W_ORIGIN_SPREADS = 256.0
 FIT_GRID = 65          # samples per side used to fit the picture and estimate w
 FIT_MARGIN = 0.05      # fraction of the half-size left free around the fitted picture
 MAX_PLANES = 40000     # cap on sampling planes per column (the step grows past it)
@@ -51,6 +54,22 @@ class View:
     #: column_x0: first + (width - the picture's width) / 2)
     first_column: int = 0
     x_offset: float = 0.0
+    #: w_origin as given (camera.fit: one for all the layers of a picture); None: its rule
+    w_org: float = None
+
+    @property
+    def w_origin(self):
+        """What the G-buffer stores w from (vp's VP_WORG, layout.py G_W): 0, unless the
+        centre's w lies more than W_ORIGIN_SPREADS times the spread of f (on the
+        fitting grid, none for a flat f) from 0, where float32 would hold w in too few
+        steps to colour it (1e6 + sin u cos v: 32 steps of its spread); then the
+        centre's."""
+        if self.w_org is not None:
+            return self.w_org
+        lo, hi = self.f_range
+        cw = float(self.center[2])
+        far = hi > lo and abs(cw) > W_ORIGIN_SPREADS * (hi - lo)    # (False for NaNs)
+        return cw if far else 0.0
 
     def column(self, x):
         """The column (a float) of screen x: the whole picture's, less the band's
@@ -95,6 +114,7 @@ class View:
         vp[L.VP_DT] = self.step
         vp[L.VP_LX], vp[L.VP_LY], vp[L.VP_LZ] = self.light
         vp[L.VP_FLO], vp[L.VP_FHI] = self.f_range
+        vp[L.VP_WORG] = self.w_origin
         vp[L.VP_PAPER] = 1.0 if self.placement == "paper" else 0.0
         vp[L.VP_QNEAR] = self.q_near
         vp[L.VP_CLIP] = 1.0

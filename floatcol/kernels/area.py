@@ -39,7 +39,7 @@ from .layout import (
     E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_U, E_V, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W, S_OK,
     SURF_HEIGHTFIELD, VP_CA, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_WHI,
-    VP_WLO, VP_SA, VP_SCALE, VP_T0, VP_T1,
+    VP_WLO, VP_SA, VP_SCALE, VP_T0, VP_T1, VP_WORG,
 )
 from .coverage import flagged
 from .sample import column_x0, lambert, sample_point, unit_normal
@@ -610,14 +610,15 @@ def area_column(kind, f, fg, flat, lv, hfp, vp, x0, slices, lod, gcol, ecol, acc
     j_lo = H
     j_hi = -1
     for j in range(H):
-        side = resolve_pixel(acc[j], gcol[j], ecol, j, vp[VP_CU], vp[VP_CV])
+        side = resolve_pixel(acc[j], gcol[j], ecol, j, vp[VP_CU], vp[VP_CV], vp[VP_WORG])
         if side == 0.0:
             ecol[E_SEEN, j] = 0.0
             continue
         w_lo, w_hi = seen_heights(gcol, ecol, j, side, w_lo, w_hi)
         j_lo = min(j_lo, j)
         j_hi = max(j_hi, j)
-    return evals, w_lo, w_hi, j_lo, j_hi
+    # (the seen heights as the G-buffer holds them, less VP_WORG: layout.py G_W)
+    return evals, w_lo + vp[VP_WORG], w_hi + vp[VP_WORG], j_lo, j_hi
 
 
 @ngjit_inline
@@ -633,7 +634,7 @@ def _group_normal(c, grp):
 
 
 @ngjit_inline
-def resolve_pixel(c, g, ecol, j, cu, cv):
+def resolve_pixel(c, g, ecol, j, cu, cv, wo):
     """Pixel j's G-buffer entry g and edge-buffer entry from its accumulator c (AC_*):
     the first group's weighted means (the normal made unit) the pixel's surface, its
     total weight that surface's coverage; the second group's, where it has pieces, the
@@ -646,7 +647,7 @@ def resolve_pixel(c, g, ecol, j, cu, cv):
     g[G_DEPTH] = c[AC_Z]
     g[G_U] = c[AC_U] * inv - cu          # (from the view's centre: layout.py G_U)
     g[G_V] = c[AC_V] * inv - cv
-    g[G_W] = c[AC_WW] * inv
+    g[G_W] = c[AC_WW] * inv - wo         # (from VP_WORG: layout.py G_W)
     g[G_NX], g[G_NY], g[G_NZ] = _group_normal(c, AC_G1)
     g[G_I] = c[AC_I] * inv
     g[G_T] = c[AC_T] * inv
@@ -658,7 +659,7 @@ def resolve_pixel(c, g, ecol, j, cu, cv):
         ecol[E_COV, j] = w2
         inv = 1.0 / w2
         ecol[E_NX, j], ecol[E_NY, j], ecol[E_NZ, j] = _group_normal(c, AC_G2)
-        ecol[E_W, j] = c[AC_G2 + AC_WW] * inv
+        ecol[E_W, j] = c[AC_G2 + AC_WW] * inv - wo
         ecol[E_I, j] = c[AC_G2 + AC_I] * inv
         ecol[E_SIDE, j] = 1.0 if c[AC_G2 + AC_SIDE] >= 0.0 else -1.0
         ecol[E_DEPTH, j] = c[AC_G2 + AC_Z]

@@ -36,6 +36,7 @@ from .layout import (
     VP_FIX_SHADE, VP_ORTHO, VP_RATE, VP_SA, VP_SB, VP_SPLINE_TOL, VP_T0, VP_T1,
     VP_WHI, VP_WLO, VP_AA, VP_ADAPT, VP_QNEAR, VP_BATCH, VP_SIZE, VP_INV_D1, VP_UA, VP_UB,
     VP_VA, VP_VB, VP_H, VP_CLIP, VP_KEEP_TOP, VP_FOLD, VP_PASS_HIDDEN, VP_SCALE, VP_HOLE_N,
+    VP_WORG,
 )
 from .coverage import coverages, flagged, keep_coverages, seen_side
 from .fold import FOLD_NEAR, fold_test, trace_column
@@ -107,7 +108,8 @@ RUN_TOP_ON = 30    # may (vp's VP_KEEP_TOP)
 RUN_FOLD = 31      # 1.0: a sample's curve folds back in t (fold.py): trace the column
 RUN_CU = 32        # the view's centre (vp's VP_CU, VP_CV): the G-buffer's and the edge
 RUN_CV = 33        # buffer's u, v are stored from it (layout.py G_U)
-RUN_SIZE = 34
+RUN_WO = 34        # ... and w from vp's VP_WORG (layout.py G_W); RUN_WLO, RUN_WHI too
+RUN_SIZE = 35
 #: RUN_TOP_KIND: the pixel's centre lies outside the interval (an edge surface covers
 #: RUN_TOP_COV of the pixel: its bottom, or where the run began above the centre, a
 #: part above it) or inside it (the surface at the centre covers RUN_TOP_COV of it)
@@ -711,6 +713,10 @@ def _paint(gcol, ecol, run, prev, cur, side, persp, H, yp, inv_dy, qp, qc, lo_f,
     dnz = cur[A_NZ] - nz0
     di = cur[A_I] - i0
     dt = cur[A_T] - t0
+    # u, v and w stored from the view's centre and VP_WORG (layout.py G_U, G_W)
+    u0r = u0 - run[RUN_CU]
+    v0r = v0 - run[RUN_CV]
+    w0r = w0 - run[RUN_WO]
     for j in range(j0, j1 + 1):
         x = ecol[E_SEEN, j]
         if seen_side(x) != 0.0:
@@ -723,9 +729,9 @@ def _paint(gcol, ecol, run, prev, cur, side, persp, H, yp, inv_dy, qp, qc, lo_f,
             continue
         lw = _chord_weight(j, yp, inv_dy, persp, qp, qc)
         gcol[j, G_DEPTH] = z0 + lw * dz
-        gcol[j, G_U] = (u0 - run[RUN_CU]) + lw * du     # (from the centre: layout.py G_U)
-        gcol[j, G_V] = (v0 - run[RUN_CV]) + lw * dv
-        w32 = np.float32(w0 + lw * dw)  # (the value stored, in the G-buffer's type)
+        gcol[j, G_U] = u0r + lw * du
+        gcol[j, G_V] = v0r + lw * dv
+        w32 = np.float32(w0r + lw * dw)  # (the value stored, in the G-buffer's type)
         gcol[j, G_W] = w32
         if upper:
             w_lo = min(w_lo, w32)
@@ -788,7 +794,8 @@ def _cover_rest(ecol, run, j, cov, side, lw, prev, cur):
         return
     if ecov <= 0.0:
         nx, ny, nz, w, lam, z, u, v = _chord_at(prev, cur, lw)
-        _store_edge(ecol, j, nx, ny, nz, w, lam, z, side, u - run[RUN_CU], v - run[RUN_CV])
+        _store_edge(ecol, j, nx, ny, nz, w - run[RUN_WO], lam, z, side, u - run[RUN_CU],
+                    v - run[RUN_CV])
     ecol[E_COV, j] = min(ecov + cov, room)
 
 
@@ -894,8 +901,9 @@ def _write_edge(ecol, run):
     j = int(run[RUN_EDGE_J])
     if j >= 0 and coverages(ecol, j)[1] > 0.0:
         _store_edge(ecol, j, run[RUN_EDGE], run[RUN_EDGE + 1], run[RUN_EDGE + 2],
-                    run[RUN_EDGE + 3], run[RUN_EDGE + 4], run[RUN_EDGE + 5], run[RUN_EDGE + 6],
-                    run[RUN_EDGE + 7] - run[RUN_CU], run[RUN_EDGE + 8] - run[RUN_CV])
+                    run[RUN_EDGE + 3] - run[RUN_WO], run[RUN_EDGE + 4], run[RUN_EDGE + 5],
+                    run[RUN_EDGE + 6], run[RUN_EDGE + 7] - run[RUN_CU],
+                    run[RUN_EDGE + 8] - run[RUN_CV])
     run[RUN_EDGE_J] = -1.0
 
 
@@ -2039,6 +2047,7 @@ def render_column_into(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstr
     scr[SCR_RUN, RUN_TOP_ON] = vp[VP_KEEP_TOP]
     scr[SCR_RUN, RUN_CU] = vp[VP_CU]
     scr[SCR_RUN, RUN_CV] = vp[VP_CV]
+    scr[SCR_RUN, RUN_WO] = vp[VP_WORG]
     sdepth[:] = 0
     evals = _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
                            sdepth, bat, sg, rot)
@@ -2057,7 +2066,9 @@ def column_folds(scr, hstride):
 @ngjit_inline
 def column_result(scr, H, evals):
     """render_column's values from the column's scratch."""
-    return (evals, scr[SCR_RUN, RUN_WLO], scr[SCR_RUN, RUN_WHI],
+    # (the seen heights as the G-buffer holds them, less VP_WORG: layout.py G_W)
+    return (evals, scr[SCR_RUN, RUN_WLO] + scr[SCR_RUN, RUN_WO],
+            scr[SCR_RUN, RUN_WHI] + scr[SCR_RUN, RUN_WO],
             min(max(trunc_index(scr[SCR_RUN, RUN_JLO]), 0), H),
             min(max(trunc_index(scr[SCR_RUN, RUN_JHI]), -1), H - 1))
 

@@ -32,7 +32,7 @@ from ._jit import ngjit, ngjit_inline, ngjit_nrt_free
 from .index import ceil_index, floor_index, round_index, trunc_index
 from .layout import (
     E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W,
-    VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_H,
+    VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_WORG,
     VP_SA, VP_SB, VP_SCALE, VP_T0, VP_T1,
 )
 from .coverage import flagged, seen_side
@@ -186,10 +186,10 @@ def _point(vp, x0, t, s, u, v, w, wu, wv, p):
 
 
 @ngjit_nrt_free
-def _raster(gcol, ecol, ya, za, a, yb, zb, b, cu, cv):
+def _raster(gcol, ecol, ya, za, a, yb, zb, b, cu, cv, wo):
     """Rows between the points a (row ya, depth za) and b of the curve: lerped
     G-buffer entries where nothing nearer is there yet (u, v from the view's centre
-    (cu, cv): layout.py G_U)."""
+    (cu, cv), w from wo: layout.py G_U, G_W)."""
     H = gcol.shape[0]
     if yb == ya:
         return
@@ -204,8 +204,7 @@ def _raster(gcol, ecol, ya, za, a, yb, zb, b, cu, cv):
         g[G_DEPTH] = z
         g[G_U] = (a[P_U] - cu) + lam * (b[P_U] - a[P_U])
         g[G_V] = (a[P_V] - cv) + lam * (b[P_V] - a[P_V])
-        w = a[P_W] + lam * (b[P_W] - a[P_W])
-        g[G_W] = w
+        g[G_W] = (a[P_W] - wo) + lam * (b[P_W] - a[P_W])
         g[G_NX] = a[P_NX] + lam * (b[P_NX] - a[P_NX])
         g[G_NY] = a[P_NY] + lam * (b[P_NY] - a[P_NY])
         g[G_NZ] = a[P_NZ] + lam * (b[P_NZ] - a[P_NZ])
@@ -269,7 +268,7 @@ def _trace(kind, fg, hf, hfp, vp, x0, t, s, direction, s_min, s_max, gcol, ecol,
                 continue
             if abs(yb - ya) > JUMP_PX:
                 return False, evals             # a jump of f or a pole: the piece ends
-        _raster(gcol, ecol, ya, za, a, yb, zb, b, vp[VP_CU], vp[VP_CV])
+        _raster(gcol, ecol, ya, za, a, yb, zb, b, vp[VP_CU], vp[VP_CV], vp[VP_WORG])
         ia = (t - t0) / dt                      # the planes this step crosses
         ib = (qt - t0) / dt
         if ib != ia:
@@ -376,8 +375,9 @@ def trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n
     for j in range(0, H, SEED_ROWS):                      # the column pass's points
         if seen_side(ecol[E_SEEN, j]) != 0.0:
             i = round((gcol[j, G_T] - t0) / dt)
-            evals += _seed(kind, fg, hf, hfp, vp, x0, t0 + i * dt, gcol[j, G_W] - vp[VP_CW],
-                           s_min, s_max, tg, te, cross, n_cross, a, b)
+            evals += _seed(kind, fg, hf, hfp, vp, x0, t0 + i * dt,
+                           gcol[j, G_W] + (vp[VP_WORG] - vp[VP_CW]), s_min, s_max, tg, te,
+                           cross, n_cross, a, b)
     ds = (s_hi - s_lo) / (SEED_SCAN - 1)
     for i in range(0, n, SEED_STRIDE):                    # what it never met
         t = t0 + i * dt
@@ -420,7 +420,7 @@ def trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n
         side_before = side
         if first and not _traced_at(tg, te, j, gcol[j, G_DEPTH], vp):
             i = round((gcol[j, G_T] - t0) / dt)
-            s = gcol[j, G_W] - vp[VP_CW]
+            s = gcol[j, G_W] + (vp[VP_WORG] - vp[VP_CW])    # (layout.py G_W)
             evals += _seed(kind, fg, hf, hfp, vp, x0, t0 + i * dt, s, s_min, s_max, tg, te,
                            cross, n_cross, a, b)
             if not _traced_at(tg, te, j, gcol[j, G_DEPTH], vp):

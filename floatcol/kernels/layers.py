@@ -44,7 +44,7 @@ from .layout import (
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIZE, G_T, G_U, G_V, G_W,
     M_ALPHA, M_LOWER, M_SPAN, M_WLO, S_OK,
     VP_AA, VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_SA, VP_SB,
-    VP_SCALE, VP_T0, VP_T1, VP_W,
+    VP_SCALE, VP_T0, VP_T1, VP_W, VP_WORG,
 )
 from .sample import column_x0, sample_point
 from .shade import _light, _side_rgb, toward_viewer
@@ -339,7 +339,7 @@ def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists,
         gfirst[b, j, G_DEPTH] = depth
         gfirst[b, j, G_U] = p[A_U] - vp[VP_CU]     # (from the centre: layout.py G_U)
         gfirst[b, j, G_V] = p[A_V] - vp[VP_CV]
-        gfirst[b, j, G_W] = p[A_W]
+        gfirst[b, j, G_W] = p[A_W] - vp[VP_WORG]   # (layout.py G_W)
         gfirst[b, j, G_NX] = nx
         gfirst[b, j, G_NY] = ny
         gfirst[b, j, G_NZ] = nz

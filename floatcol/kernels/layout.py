@@ -65,7 +65,9 @@ VP_FOLD = 47      # 1.0: a perspective column whose curve folds back in t is tra
 VP_PASS_HIDDEN = 48  # 1.0: a height field's span that surely lies inside the floating
                   # interval is not cut at its cell edges (column.py's _hidden_cells;
                   # 0.0 only to test that it changes nothing)
-VP_SIZE = 49
+VP_WORG = 49      # the G-buffer's w is stored from this (layout's G_W): 0, or the
+                  # view's centre where f lies far from 0 against its spread (View)
+VP_SIZE = 50
 
 FIX_NONE = 0
 FIX_SPLINE = 1
@@ -113,7 +115,9 @@ G_U = 1           # u and v of the seen point from the view's centre (vp's VP_CU
 G_V = 2           # as G_T: float32 keeps its 24 bits for the picture's own extent however
                   # far from 0 its coordinates lie (a DEM in UTM metres: 0.5 m steps at
                   # 4e6 absolute); its readers add the centre back in float64
-G_W = 3
+G_W = 3           # w less vp's VP_WORG (0 unless f lies far from 0 against its spread:
+                  # 1e6 + sin u cos v in float32 came in 32 colours), its readers add
+                  # it back in float64
 G_NX = 4          # unit upper-side normal in screen coordinates, eq. (11)
 G_NY = 5
 G_NZ = 6
@@ -154,7 +158,7 @@ E_COV = 2         # coverage by the edge surface (0: none); the edge surface's
 E_NX = 3          # unit normal, w, intensity, side and depth
 E_NY = 4
 E_NZ = 5
-E_W = 6
+E_W = 6           # (less VP_WORG, as G_W)
 E_I = 7
 E_SIDE = 8
 E_DEPTH = 9

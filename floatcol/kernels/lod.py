@@ -47,7 +47,7 @@ from .area import (AC_SIZE, LV_CELL, LV_NU, LV_NV, LV_OFF, _below_picture, add_p
 from .column import _column_t_range
 from .layout import (E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U,
                      G_V, G_W, SURF_HEIGHTFIELD, VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1,
-                     VP_D3, VP_H, VP_SA, VP_SB, VP_SCALE, VP_T0, VP_T1)
+                     VP_D3, VP_H, VP_SA, VP_SB, VP_SCALE, VP_T0, VP_T1, VP_WORG)
 from .sample import column_x0, in_domain, into_domain, lambert, surface_eval, unit_normal
 
 #: planes a footprint apart (1: a plane per pixel's width at its distance)
@@ -298,13 +298,13 @@ def _weight(yq, p, c, d3):
 
 
 @ngjit_inline
-def _store(g, lw, p, c, cu, cv):
+def _store(g, lw, p, c, cu, cv, wo):
     """Pixel g of the G-buffer at weight lw of the chord p -> c (u, v from the view's
-    centre (cu, cv): layout.py G_U)."""
+    centre (cu, cv), w from wo: layout.py G_U, G_W)."""
     g[G_DEPTH] = p[Q_Z] + lw * (c[Q_Z] - p[Q_Z])
     g[G_U] = (p[Q_U] - cu) + lw * (c[Q_U] - p[Q_U])
     g[G_V] = (p[Q_V] - cv) + lw * (c[Q_V] - p[Q_V])
-    g[G_W] = p[Q_W] + lw * (c[Q_W] - p[Q_W])
+    g[G_W] = (p[Q_W] - wo) + lw * (c[Q_W] - p[Q_W])
     g[G_NX] = p[Q_NX] + lw * (c[Q_NX] - p[Q_NX])
     g[G_NY] = p[Q_NY] + lw * (c[Q_NY] - p[Q_NY])
     g[G_NZ] = p[Q_NZ] + lw * (c[Q_NZ] - p[Q_NZ])
@@ -436,7 +436,8 @@ ST_SKIP = 16
 ST_BACK = 17
 ST_CU = 18         # the view's centre (vp's VP_CU, VP_CV): the G-buffer's u, v are
 ST_CV = 19         # stored from it (layout.py G_U)
-ST_SIZE = 20
+ST_WO = 20         # ... and its w from vp's VP_WORG (layout.py G_W)
+ST_SIZE = 21
 
 
 @ngjit_inline
@@ -474,6 +475,7 @@ def _start(vp, x0, s_lo, s_hi, planes, st):
     st[ST_DY] = 0.0
     st[ST_CU] = vp[VP_CU]
     st[ST_CV] = vp[VP_CV]
+    st[ST_WO] = vp[VP_WORG]
 
 
 @ngjit_inline
@@ -532,7 +534,8 @@ def _paint(area, st, prev, cur, gcol, ecol, acc, d3):
         j0 = max(int(math.floor(lo_f)) + 1, 0)
         j1 = min(int(math.floor(y)), H - 1)
         for j in range(j0, j1 + 1):
-            _store(gcol[j], _weight(j, prev, cur, d3), prev, cur, st[ST_CU], st[ST_CV])
+            _store(gcol[j], _weight(j, prev, cur, d3), prev, cur, st[ST_CU], st[ST_CV],
+                   st[ST_WO])
             ecol[E_SEEN, j] = 1.0
         if j1 >= j0:
             st[ST_JLO] = min(st[ST_JLO], j0)
@@ -631,7 +634,7 @@ def _draw_lane(kind, fg, hf0, flat, lt, hfp, vp, x0, area, st, pts, gcol, ecol, 
 @ngjit_inline
 def _resolve(area, gcol, ecol, acc, st):
     """A lane's G-buffer from its accumulators (area); returns the lowest and
-    highest w seen."""
+    highest w seen (+inf and -inf: none)."""
     H = gcol.shape[0]
     w_lo = np.inf
     w_hi = -np.inf
@@ -643,10 +646,11 @@ def _resolve(area, gcol, ecol, acc, st):
                 w_hi = max(w_hi, w)
             continue
         # (the pieces show the upper side: add_piece's side 1)
-        side = resolve_pixel(acc[j], gcol[j], ecol, j, st[ST_CU], st[ST_CV])
+        side = resolve_pixel(acc[j], gcol[j], ecol, j, st[ST_CU], st[ST_CV], st[ST_WO])
         if side != 0.0:
             w_lo, w_hi = seen_heights(gcol, ecol, j, side, w_lo, w_hi)
-    return w_lo, w_hi
+    # (as the G-buffer holds them, less VP_WORG: layout.py G_W)
+    return w_lo + st[ST_WO], w_hi + st[ST_WO]
 
 
 @ngjit_inline

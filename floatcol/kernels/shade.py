@@ -10,6 +10,7 @@ from .layout import (
     E_COV, E_COV0, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_W,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_W, M_AMBIENT, M_INTERP, M_LOWER, M_SHININESS, M_SPAN,
     M_SPECULAR, M_WLO, VP_AA, VP_D1, VP_D3, VP_H, VP_LX, VP_LY, VP_LZ, VP_ORTHO, VP_SCALE,
+    VP_WORG,
 )
 from .coverage import flagged, implied_coverages, seen_side
 from .sample import column_x0
@@ -228,7 +229,7 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, mp, lut, background, lit,
     sp = 0.0
     w = 0.0
     if s != 0.0:
-        w = g[G_W]
+        w = g[G_W] + vp[VP_WORG]                  # (layout.py G_W)
         lam, sp = _light(vp, x0, j, g[G_NX], g[G_NY], g[G_NZ], g[G_I], mp, lit)
     cov0 = 1.0
     e_cov = 0.0
@@ -244,7 +245,7 @@ def shade_pixel(gbuf, ebuf, tile, lane, j, aa, vp, x0, mp, lut, background, lit,
         e_cov = e[E_COV]
         if e_cov > 0.0:
             e_side = e[E_SIDE]
-            e_w = e[E_W]
+            e_w = e[E_W] + vp[VP_WORG]
             e_lam, e_sp = _light(vp, x0, j, e[E_NX], e[E_NY], e[E_NZ], e[E_I], mp, lit)
     if base.shape[0] > 0:
         r, gr, bl, a = blend(s, base[i, c, 0], base[i, c, 1], base[i, c, 2], cov0, lam, sp,
@@ -305,6 +306,7 @@ def finish_kernel(gbuf, ebuf, rows, vp, mp, lut, background, lit, base, side, rg
     shadows = lit.shape[0] > 0
     textured = base.shape[0] > 0
     mt = held(mp)
+    wo = vp[VP_WORG]                    # the G-buffer's w from there (layout.py G_W)
     for blk_ in prange(n_blocks):
         blk = np.int64(blk_)  # (_jit.py: prange_index)
         j_lo, j_hi = _block_rows(blk, H)
@@ -347,7 +349,7 @@ def finish_kernel(gbuf, ebuf, rows, vp, mp, lut, background, lit, base, side, rg
                             g = base[i, c, 1]
                             bl = base[i, c, 2]
                         else:
-                            r, g, bl = _colour(s, gbuf[b, j, lane, G_W], mt, lut)
+                            r, g, bl = _colour(s, gbuf[b, j, lane, G_W] + wo, mt, lut)
                         rgba[i, c] = _rgba32(min(r * lam + sp, 1.0) * 255.0 + 0.5,
                                              min(g * lam + sp, 1.0) * 255.0 + 0.5,
                                              min(bl * lam + sp, 1.0) * 255.0 + 0.5, 255)

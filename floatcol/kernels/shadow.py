@@ -303,10 +303,11 @@ def soft_shadow(s, u, v, w, nx, ny, nz, light, hmax, hmin, hsurf, slopes, layer,
 
 
 @ngjit_parallel
-def shadow_lookup(gbuf, ebuf, width, cu, cv, light, hmax, hmin, hsurf, slopes, layer, gu, gv,
+def shadow_lookup(gbuf, ebuf, width, cu, cv, wo, light, hmax, hmin, hsurf, slopes, layer, gu, gv,
                   tan_theta, s0, t0, h, grazing, bias, rho, shadow, lit):
     """The shadow pass of one layer over its tiled G-buffer and edge buffer
-    (layout.py; its u, v from the view's centre (cu, cv), layout.py G_U): shadow (H, W) 1 / 0 / between, NaN where nothing is seen, and lit =
+    (layout.py; its u, v from the view's centre (cu, cv) and w from wo, layout.py
+    G_U, G_W): shadow (H, W) 1 / 0 / between, NaN where nothing is seen, and lit =
     1 - shadow (1 where nothing is seen), top row first. Attached where the seen
     side's normal faces away from ``light`` (screen coordinates); cast where the
     point lies under its own layer's horizon (hmax / hmin[layer], the sweeps') or
@@ -331,13 +332,13 @@ def shadow_lookup(gbuf, ebuf, width, cu, cv, light, hmax, hmin, hsurf, slopes, l
                     continue
                 g = gbuf[b, j, lane]
                 if rho > 0.0:
-                    val = soft_shadow(s, g[G_U] + cu, g[G_V] + cv, g[G_W], g[G_NX], g[G_NY],
+                    val = soft_shadow(s, g[G_U] + cu, g[G_V] + cv, g[G_W] + wo, g[G_NX], g[G_NY],
                                       g[G_NZ],
                                       light, hmax, hmin, hsurf, slopes, layer, gu, gv,
                                       tan_theta, s0, t0, h, grazing, bias, rho)
                 else:
-                    val = point_shadow(s, g[G_U] + cu, g[G_V] + cv, g[G_W], g[G_NX], g[G_NY],
-                                       g[G_NZ], light, hmax, hmin, hsurf, layer, gu, gv,
+                    val = point_shadow(s, g[G_U] + cu, g[G_V] + cv, g[G_W] + wo, g[G_NX],
+                                       g[G_NY], g[G_NZ], light, hmax, hmin, hsurf, layer, gu, gv,
                                        tan_theta, s0, t0, h, grazing, bias)
                 shadow[i, c] = val
                 lit[i, c] = 1.0 - val
@@ -512,7 +513,8 @@ def sweep_order(cell, n_cells, start, order):
 
 @ngjit_parallel
 def shadow_sweep(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, t0, h, n_sig, n_tau,
-                 gbuf, ebuf, width, cu, cv, light, start, order, grazing, bias, shadow, lit):
+                 gbuf, ebuf, width, cu, cv, wo, light, start, order, grazing, bias, shadow,
+                 lit):
     """Section 6.2.2: the shadows of the seen pixels of one surface, computed while
     the planes through the light sweep the domain, without a texture. The planes
     advance from the light's side (sample n_sig - 1 down to 0, a sample h of ground
@@ -571,7 +573,7 @@ def shadow_sweep(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, t0, h, n_s
                 x = ebuf[b, E_SEEN, j, lane]
                 s = x - E_FLAG if x > 0.5 * E_FLAG else x
                 g = gbuf[b, j, lane]
-                val = point_shadow(s, g[G_U] + cu, g[G_V] + cv, g[G_W], g[G_NX], g[G_NY],
+                val = point_shadow(s, g[G_U] + cu, g[G_V] + cv, g[G_W] + wo, g[G_NX], g[G_NY],
                                    g[G_NZ], light, hmax, hmin, hsurf, 0, gu, gv, tan_theta, sigma,
                                    t0 + k0 * h, h, grazing, bias)
                 shadow[r, c] = val

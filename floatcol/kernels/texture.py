@@ -18,9 +18,10 @@ FILTER_MIPMAP = 2
 
 
 @ngjit_parallel
-def planes_kernel(gbuf, ebuf, W, a, b, c, cu, cv, u, v, w, side, eu, ev):
+def planes_kernel(gbuf, ebuf, W, a, b, c, cu, cv, wo, u, v, w, side, eu, ev):
     """u, v, w (H, W) float64, top row first, of the seen point at each pixel (NaN
-    where none; the G-buffer's u, v from the view's centre (cu, cv), layout.py G_U;
+    where none; the G-buffer's u, v from the view's centre (cu, cv) and w from wo,
+    layout.py G_U, G_W;
     divided by the box's stretch a, b, c) and the side seen there (+1, -1,
     0), from the tiled G-buffer and edge buffer (layout.py); eu, ev those of the
     pixel's edge surface (section 6.4; NaN where none), unless they are empty. Tile
@@ -50,7 +51,7 @@ def planes_kernel(gbuf, ebuf, W, a, b, c, cu, cv, u, v, w, side, eu, ev):
                 else:
                     u[i, col] = (gbuf[t, j, lane, G_U] + cu) / a
                     v[i, col] = (gbuf[t, j, lane, G_V] + cv) / b
-                    w[i, col] = gbuf[t, j, lane, G_W] / c
+                    w[i, col] = (gbuf[t, j, lane, G_W] + wo) / c
 
 
 @ngjit_inline
@@ -263,14 +264,14 @@ def _one_sided(x, y, seen, i, col, di, dc):
 
 
 @ngjit_parallel
-def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt, lut, w_lo,
-                   w_hi, lower_rgb, tx, ty, wp, sides, side, base):
+def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, wo, levels, offsets, shapes, filt, lut,
+                   w_lo, w_hi, lower_rgb, tx, ty, wp, sides, side, base):
     """base (H, W, 3) float32, top row first: at each seen pixel the texture's colour
     over the surface's own (its side's: lut by w, or lower_rgb; the texture's alpha
     lays it over), from the tiled G-buffer and edge buffer. The texel coordinates of
     a point are tx = (u - ou) su, ty = (v - ov) sv (texel k's centre at k; u, v the
-    G-buffer's, from the view's centre: layout.py G_U, and ou, ov from there too); the
-    mip-map ``levels`` flattened (level k at offsets[k], shapes[k] =
+    G-buffer's, from the view's centre: layout.py G_U, and ou, ov from there too; its
+    w from wo, layout.py G_W); the mip-map ``levels`` flattened (level k at offsets[k], shapes[k] =
     (h, w), 4 premultiplied channels each). FILTER_POINT: the nearest texel;
     FILTER_LINEAR: bilinear; FILTER_MIPMAP: trilinear, the level from the pixel's
     footprint (the longer of the changes of (tx, ty) to the next pixel across and
@@ -297,7 +298,7 @@ def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt,
                 if sd != 0.0:
                     tx[i, col] = (gbuf[t, j, lane, G_U] - ou) * su
                     ty[i, col] = (gbuf[t, j, lane, G_V] - ov) * sv
-                    wp[i, col] = gbuf[t, j, lane, G_W]
+                    wp[i, col] = gbuf[t, j, lane, G_W] + wo
     for i_ in prange(H):
         i = np.int64(i_)  # (_jit.py: prange_index)
         acc = np.empty(4)
@@ -329,8 +330,8 @@ def texture_kernel(gbuf, ebuf, W, ou, su, ov, sv, levels, offsets, shapes, filt,
                             break
                 _lookup(levels, offsets, shapes, filt, (ebuf[t, E_U, j, lane] - ou) * su,
                         (ebuf[t, E_V, j, lane] - ov) * sv, rho2, acc)
-                r, g, b = _side_rgb(ebuf[t, E_SIDE, j, lane], ebuf[t, E_W, j, lane], lut, w_lo,
-                                    span, lower_rgb)
+                r, g, b = _side_rgb(ebuf[t, E_SIDE, j, lane], ebuf[t, E_W, j, lane] + wo, lut,
+                                    w_lo, span, lower_rgb)
                 _put(base, i, col, 3, acc, r, g, b)
 
 

@@ -27,7 +27,7 @@ import numpy as np
 
 from .. import _pool
 from ..color import lower_or_upper
-from ..kernels.layout import VP_CU, VP_CV
+from ..kernels.layout import VP_CU, VP_CV, VP_WORG
 from ..kernels.texture import (
     FILTER_LINEAR, FILTER_MIPMAP, FILTER_POINT, colour_kernel, field_kernel, planes_kernel,
     texture_kernel, values_kernel,
@@ -45,6 +45,11 @@ def _centre(geom):
     return float(geom.vp[VP_CU]), float(geom.vp[VP_CV])
 
 
+def _w_origin(geom):
+    """What the G-buffer holds w from (layout.py G_W)."""
+    return float(geom.vp[VP_WORG])
+
+
 def picture_planes(geom, W, box=(1.0, 1.0, 1.0), edges=False):
     """(u, v, w, side) of each pixel, top row first, from a layer's tiled G-buffer
     and edge buffer (the column pass's), in the surface's units (the box's stretch
@@ -54,8 +59,8 @@ def picture_planes(geom, W, box=(1.0, 1.0, 1.0), edges=False):
     # pooled (fresh memory's page faults were most of the pass; each is written in full)
     u, v, w, side = (_pool.empty((H, W), np.float64) for _ in range(4))
     eu, ev = (_pool.empty((H, W), np.float64) if edges else np.empty((0, 0)) for _ in range(2))
-    planes_kernel(geom.gbuf, geom.ebuf, W, *(float(x) for x in box), *_centre(geom), u, v, w,
-                  side, eu, ev)
+    planes_kernel(geom.gbuf, geom.ebuf, W, *(float(x) for x in box), *_centre(geom),
+                  _w_origin(geom), u, v, w, side, eu, ev)
     return (u, v, w, side, eu, ev) if edges else (u, v, w, side)
 
 
@@ -165,8 +170,8 @@ def texture_base(tex, geom, W, H, box, extent, filt, lut, w_lo, w_hi, lower_rgb)
     sides = _pool.empty((H, W), np.int8)
     seen = _pool.empty((H, W), np.bool_)
     cu, cv = _centre(geom)             # (the G-buffer's u, v from there: layout.py G_U)
-    texture_kernel(geom.gbuf, geom.ebuf, W, u0 * a - cu, su, v0 * b - cv, sv, tex.flat,
-                   tex.offsets,
+    texture_kernel(geom.gbuf, geom.ebuf, W, u0 * a - cu, su, v0 * b - cv, sv, _w_origin(geom),
+                   tex.flat, tex.offsets,
                    tex.shapes, FILTERS[filt], lut, float(w_lo), float(w_hi),
                    np.asarray(lower_rgb, dtype=np.float64), tx, ty, wp, sides, seen, base)
     return base

@@ -9,7 +9,7 @@ import numpy as np
 
 from .. import color
 from ..kernels.composite import composite_kernel
-from ..kernels.layout import G_DEPTH
+from ..kernels.layout import G_DEPTH, G_W
 from ..result import Render
 from .tiles import tile, untile
 
@@ -67,9 +67,12 @@ def composite(renders, background=(255, 255, 255, 255)) -> Render:
             shadow[which == k] = shadows[k][which == k]
         shadow = np.where(seen, shadow, np.float32(np.nan)).astype(np.float32)
     gbuf = renders[0]._gbuf.copy()
+    w0 = renders[0].view.w_origin
     for k, r in enumerate(renders[1:], start=1):
         mask = tile((which == k)[::-1], gbuf.shape[2], gbuf.shape[0])
         gbuf[mask] = r._gbuf[mask]
+        if r.view.w_origin != w0:        # (its w from its own origin: layout.py G_W)
+            gbuf[mask, G_W] += np.float32(r.view.w_origin - w0)
     stats = {"samples": sum(int(r.stats["samples"]) for r in renders),
              "seconds": sum(r.stats["seconds"] for r in renders),
              "surfaces": len(renders), "surface": which,

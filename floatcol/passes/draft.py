@@ -277,8 +277,9 @@ def draft_geometry(surface, view):
     block = max(1, BLOCK_SAMPLES // max(t.size, 1))
     names = ((L.G_DEPTH, "z"), (L.G_U, "u"), (L.G_V, "v"), (L.G_W, "w"), (L.G_NX, "nx"),
              (L.G_NY, "ny"), (L.G_NZ, "nz"), (L.G_I, "lam"), (L.G_T, "t"))
-    # u and v from the view's centre, as the kernels store them (layout.py G_U)
-    origin = {L.G_U: view.center[0], L.G_V: view.center[1]}
+    # u and v from the view's centre, w from its w_origin, as the kernels store them
+    # (layout.py G_U, G_W)
+    origin = {L.G_U: view.center[0], L.G_V: view.center[1], L.G_W: view.w_origin}
     for c0 in range(0, W, block):
         cols = np.arange(c0, min(W, c0 + block), dtype=np.float64)
         smp, pair, ev = _samples(surface, view, cols, t)
@@ -333,7 +334,7 @@ def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8
         rv = 2.0 * nl_s * nv_s - (lx * vx + ly * vy + lz * vz)   # R.V
         ok = (nl_s > 0.0) & (rv > 0.0)
         sp = np.where(ok, specular * np.power(np.where(ok, rv, 0.0), shininess), 0.0)
-    w = g[..., L.G_W].astype(np.float64)
+    w = g[..., L.G_W].astype(np.float64) + view.w_origin       # (layout.py G_W)
     if lut.shape[1] > 3:
         idx = np.maximum(np.searchsorted(lut[:, 3], w, side="right") - 1, 0)
     else:
@@ -359,11 +360,12 @@ def _sides(view, g, seen):
     return np.where(seen, np.where(nv > 0.0, 1, -1), 0).astype(np.int8)
 
 
-def column_ranges(g, side):
+def column_ranges(g, side, w_origin=0.0):
     """(W, 2) the lowest and highest w seen with the upper side in each column (as
-    column_kernel's ``wrange``; +inf, -inf where none)."""
+    column_kernel's ``wrange``; +inf, -inf where none); g's w from ``w_origin``
+    (layout.py G_W)."""
     up = side > 0
-    w = g[..., L.G_W].astype(np.float64)
+    w = g[..., L.G_W].astype(np.float64) + w_origin
     return np.stack([np.where(up, w, np.inf).min(axis=0),
                      np.where(up, w, -np.inf).max(axis=0)], axis=1)
 
@@ -388,7 +390,8 @@ def draft_pass(surface, view, material, terms, box, bg8):
         raise ValueError(too_large(W, H, W * H * DRAFT_BYTES)) from None
     side = _sides(view, g, seen)
     _, lower_rgb = material.colors()
-    lut, w_lo, w_hi, w_limits = material.color_table(column_ranges(g, side), box[2])
+    lut, w_lo, w_hi, w_limits = material.color_table(column_ranges(g, side, view.w_origin),
+                                                     box[2])
     rgba, intensity = draft_finish(view, g, side, material, terms, lut, w_lo, w_hi,
                                    lower_rgb, bg8)
     depth = np.where(seen, g[..., L.G_DEPTH], np.inf).astype(np.float32)

@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from .. import _pool
-from ..kernels.layout import G_U, G_W, SURF_FUNCTION, VP_CU, VP_CV
+from ..kernels.layout import G_U, G_W, SURF_FUNCTION, VP_CU, VP_CV, VP_WORG
 from ..kernels.shadow import (
     BAND, horizon_slopes, horizon_sweeps, shadow_lookup, shadow_sweep, sweep_cells, sweep_order,
 )
@@ -177,6 +177,7 @@ def _objects_cast(occluders, geom, W, H, shadow, lit):
         point = geom.gbuf[:, ::-1, :, G_U:G_W + 1].transpose(1, 0, 2, 3).astype(np.float64)
         point[..., 0] += geom.vp[VP_CU]
         point[..., 1] += geom.vp[VP_CV]
+        point[..., 2] += geom.vp[VP_WORG]
     cast = occluders.cast(point, shadow < 1.0, ~np.isnan(shadow))   # (NaN: nothing seen)
     np.maximum(shadow, cast, out=shadow)                      # (NaN stays NaN)
     changed = cast > 0.0
@@ -185,13 +186,15 @@ def _objects_cast(occluders, geom, W, H, shadow, lit):
 
 def _lookup(texture, geom, W, light, shadow, lit, layer):
     """shadow_pass's texture lookup (kernels/shadow.py shadow_lookup)."""
-    cu, cv = geom.vp[VP_CU], geom.vp[VP_CV]     # (the G-buffer's u, v from there)
+    cu, cv = geom.vp[VP_CU], geom.vp[VP_CV]     # (the G-buffer's u, v from there, and
+    wo = geom.vp[VP_WORG]                       # its w from wo: layout.py G_U, G_W)
     if texture.zenith:
         none = np.zeros((0, 1, 1), dtype=np.float32)
-        shadow_lookup(geom.gbuf, geom.ebuf, W, cu, cv, light, none, none, none, none, layer,
-                      0.0, 0.0, 0.0, 0.0, 0.0, 1.0, GRAZING, BIAS_TEXELS, 0.0, shadow, lit)
+        shadow_lookup(geom.gbuf, geom.ebuf, W, cu, cv, wo, light, none, none, none, none,
+                      layer, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, GRAZING, BIAS_TEXELS, 0.0, shadow,
+                      lit)
     else:
-        shadow_lookup(geom.gbuf, geom.ebuf, W, cu, cv, light, texture.hmax, texture.hmin,
+        shadow_lookup(geom.gbuf, geom.ebuf, W, cu, cv, wo, light, texture.hmax, texture.hmin,
                       texture.hsurf, texture.slopes, layer, texture.gu, texture.gv,
                       texture.tan_theta, texture.s0, texture.t0, texture.h, GRAZING,
                       BIAS_TEXELS, texture.rho, shadow, lit)
@@ -201,7 +204,8 @@ def _on_the_fly(sweep, geom, W, H, light, shadow, lit):
     """shadow_pass by section 6.2.2 (kernels/shadow.py shadow_sweep)."""
     n_sig, n_tau, h = sweep.n_sig, sweep.n_tau, sweep.h
     cell = _pool.empty((H, W), np.int32)
-    cu, cv = geom.vp[VP_CU], geom.vp[VP_CV]     # (the G-buffer's u, v from there)
+    cu, cv = geom.vp[VP_CU], geom.vp[VP_CV]     # (the G-buffer's u, v from there, and
+    wo = geom.vp[VP_WORG]                       # its w from wo: layout.py G_U, G_W)
     sweep_cells(geom.gbuf, geom.ebuf, W, cu, cv, sweep.gu, sweep.gv, sweep.s0, sweep.t0, h,
                 n_sig, n_tau, cell)
     n_cells = ((n_tau - 2) // BAND + 1) * n_sig
@@ -217,5 +221,6 @@ def _on_the_fly(sweep, geom, W, H, light, shadow, lit):
     kind, f, _, fb, hf, hfp = surface.kernel_args(fb)
     shadow_sweep(kind, f, fb, hf, hfp, np.array([ua, ub, va, vb], dtype=np.float64), sweep.gu,
                  sweep.gv, sweep.tan_theta, sweep.s0, sweep.t0, h, n_sig, n_tau, geom.gbuf,
-                 geom.ebuf, W, cu, cv, light, start, order, GRAZING, BIAS_TEXELS, shadow, lit)
+                 geom.ebuf, W, cu, cv, wo, light, start, order, GRAZING, BIAS_TEXELS, shadow,
+                 lit)
     return shadow, lit

@@ -1992,7 +1992,7 @@ SCR_RUN = 4
 SCR_LEFT = 5
 SCR_MID = 6
 SCR_STK = 7
-SCR_WIDTH = max(A_SIZE, RUN_SIZE)
+SCR_WIDTH = -(-max(A_SIZE, RUN_SIZE) // 8) * 8    # (whole cache lines a row)
 
 
 @ngjit

@@ -241,7 +241,8 @@ def test_a_surface_far_from_zero_is_coloured_as_near_it(projection):
     from the view's centre where f lies far from 0 against its spread (layout.py
     G_W), where float32 held 1e6 + w in steps of 1/16, 32 colours over the colour
     map. Measured 2026-12-06: the two pictures bit for bit the same, w within 1e-10
-    (2e-5 at a few pixels in perspective, whose Newton iterations end elsewhere; before: 24 % of the pixels more than 2 levels apart, up to 35, bands of colour).
+    (2e-5 at a few pixels in perspective, whose Newton iterations end elsewhere;
+    before: 24 % of the pixels more than 2 levels apart, up to 35, bands of colour).
     In one picture with a surface near 0 the heights of both are right."""
     kw = dict(u=(-3, 3), v=(-3, 3), size=(160, 120), aspect="auto", projection=projection)
     near = fc.render("sin(u)*cos(v)", **kw)

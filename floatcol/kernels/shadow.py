@@ -467,10 +467,11 @@ BAND = 64
 
 @ngjit_parallel
 def sweep_cells(gbuf, ebuf, width, cu, cv, gu, gv, s0, t0, h, n_sig, n_tau, cell):
-    """(gbuf's u, v from the view's centre (cu, cv): layout.py G_U) cell[i, c] (top row first): the step of the on-the-fly sweep that answers the
-    seen pixel (i, c), band * n_sig + sample (the sample below the point's sigma, whose
-    next sample toward the light is the other end of its interpolation); -1 where
-    nothing is seen."""
+    """cell[i, c] (top row first; gbuf's u, v from the view's centre (cu, cv):
+    layout.py G_U): the step of the on-the-fly sweep that answers the seen pixel (i,
+    c), band * n_sig + sample (the sample below the point's sigma, whose next sample
+    toward the light is the other end of its interpolation); -1 where nothing is
+    seen."""
     H = gbuf.shape[1]
     T = gbuf.shape[2]
     for b in prange(gbuf.shape[0]):              # (in memory order, as shadow_lookup)

@@ -613,6 +613,9 @@ def _surfaces_cast(point, test, texture):
     hide, the penumbra the surface around takes too)."""
     from .kernels.shadow import points_shadow
     cast = np.empty(test.shape)
+    if texture.w_origin != 0.0:         # (the texture's heights are kept from there)
+        point = point.copy()
+        point[..., 2] -= texture.w_origin
     points_shadow(point, test, texture.hmax, texture.hsurf, texture.slopes, texture.gu,
                   texture.gv, texture.tan_theta, texture.s0, texture.t0, texture.h,
                   texture.rho, cast)

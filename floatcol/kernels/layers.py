@@ -279,14 +279,16 @@ def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists,
     shade = 0.0
     if sh[SH_ON] != 0.0:
         if sh[SH_RHO] > 0.0:             # a light of a radius: the part of its disk hidden
-            shade = soft_shadow(side, p[A_U], p[A_V], p[A_W], nx, ny, nz, sh, hmax, hmin,
-                                hsurf, slopes, int(sh[SH_LAYER]), sh[SH_GU], sh[SH_GV],
-                                sh[SH_TAN], sh[SH_S0], sh[SH_T0], sh[SH_H], sh[SH_GRAZING],
-                                sh[SH_BIAS], sh[SH_RHO])
+            # (w from the texture's origin, the view's w_origin: layout.py G_W)
+            shade = soft_shadow(side, p[A_U], p[A_V], p[A_W] - vp[VP_WORG], nx, ny, nz, sh,
+                                hmax, hmin, hsurf, slopes, int(sh[SH_LAYER]), sh[SH_GU],
+                                sh[SH_GV], sh[SH_TAN], sh[SH_S0], sh[SH_T0], sh[SH_H],
+                                sh[SH_GRAZING], sh[SH_BIAS], sh[SH_RHO])
         else:
-            shade = point_shadow(side, p[A_U], p[A_V], p[A_W], nx, ny, nz, sh, hmax, hmin,
-                                 hsurf, int(sh[SH_LAYER]), sh[SH_GU], sh[SH_GV], sh[SH_TAN],
-                                 sh[SH_S0], sh[SH_T0], sh[SH_H], sh[SH_GRAZING], sh[SH_BIAS])
+            shade = point_shadow(side, p[A_U], p[A_V], p[A_W] - vp[VP_WORG], nx, ny, nz, sh,
+                                 hmax, hmin, hsurf, int(sh[SH_LAYER]), sh[SH_GU], sh[SH_GV],
+                                 sh[SH_TAN], sh[SH_S0], sh[SH_T0], sh[SH_H], sh[SH_GRAZING],
+                                 sh[SH_BIAS])
         if sh[SH_OBJ] != 0.0 and shade < 1.0:
             shade = max(shade, _objects_block(p[A_U], p[A_V], p[A_W], occ, int(sh[SH_OBJ])))
     inten, spec = _light(vp, x0, j, nx, ny, nz, p[A_I], mp, 1.0 - shade)

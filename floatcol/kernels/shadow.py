@@ -109,7 +109,8 @@ def point_shadow(s, u, v, w, nx, ny, nz, light, hmax, hmin, hsurf, layer, gu, gv
     """How much of the light a point of layer ``layer`` misses (1 in shadow, 0 lit,
     between at an edge): its side s (+1 upper, -1 lower) is seen, (nx, ny, nz) its
     upper-side normal and ``light`` the light's direction, both in screen coordinates;
-    (u, v, w) the point in the box. Attached where the seen side faces away from the
+    (u, v, w) the point in the box, w from the texture's origin (its heights'; the
+    view's w_origin, layout.py G_W). Attached where the seen side faces away from the
     light; cast where it lies under its own layer's horizon or between another layer's
     extremes (shadow_lookup)."""
     nn = math.sqrt(nx * nx + ny * ny + nz * nz)
@@ -303,11 +304,11 @@ def soft_shadow(s, u, v, w, nx, ny, nz, light, hmax, hmin, hsurf, slopes, layer,
 
 
 @ngjit_parallel
-def shadow_lookup(gbuf, ebuf, width, cu, cv, wo, light, hmax, hmin, hsurf, slopes, layer, gu, gv,
+def shadow_lookup(gbuf, ebuf, width, cu, cv, light, hmax, hmin, hsurf, slopes, layer, gu, gv,
                   tan_theta, s0, t0, h, grazing, bias, rho, shadow, lit):
     """The shadow pass of one layer over its tiled G-buffer and edge buffer
-    (layout.py; its u, v from the view's centre (cu, cv) and w from wo, layout.py
-    G_U, G_W): shadow (H, W) 1 / 0 / between, NaN where nothing is seen, and lit =
+    (layout.py; its u, v from the view's centre (cu, cv), layout.py G_U; its w from
+    the view's w_origin, G_W, as the texture's heights): shadow (H, W) 1 / 0 / between, NaN where nothing is seen, and lit =
     1 - shadow (1 where nothing is seen), top row first. Attached where the seen
     side's normal faces away from ``light`` (screen coordinates); cast where the
     point lies under its own layer's horizon (hmax / hmin[layer], the sweeps') or
@@ -332,12 +333,12 @@ def shadow_lookup(gbuf, ebuf, width, cu, cv, wo, light, hmax, hmin, hsurf, slope
                     continue
                 g = gbuf[b, j, lane]
                 if rho > 0.0:
-                    val = soft_shadow(s, g[G_U] + cu, g[G_V] + cv, g[G_W] + wo, g[G_NX], g[G_NY],
+                    val = soft_shadow(s, g[G_U] + cu, g[G_V] + cv, g[G_W], g[G_NX], g[G_NY],
                                       g[G_NZ],
                                       light, hmax, hmin, hsurf, slopes, layer, gu, gv,
                                       tan_theta, s0, t0, h, grazing, bias, rho)
                 else:
-                    val = point_shadow(s, g[G_U] + cu, g[G_V] + cv, g[G_W] + wo, g[G_NX],
+                    val = point_shadow(s, g[G_U] + cu, g[G_V] + cv, g[G_W], g[G_NX],
                                        g[G_NY], g[G_NZ], light, hmax, hmin, hsurf, layer, gu, gv,
                                        tan_theta, s0, t0, h, grazing, bias)
                 shadow[i, c] = val
@@ -346,8 +347,8 @@ def shadow_lookup(gbuf, ebuf, width, cu, cv, wo, light, hmax, hmin, hsurf, slope
 
 @ngjit_parallel
 def horizon_sweeps(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h, hmax, hmin,
-                   hsurf, layer):
-    """hmax[layer, k, i] (hmin[...]): the highest (lowest) H = f - sigma tan_theta on
+                   hsurf, layer, wo):
+    """hmax[layer, k, i] (hmin[...]): the highest (lowest) H = f - wo - sigma tan_theta on
     line k strictly beyond sample i toward the light, -NONE (+NONE) where there is none
     (finite, so that the lookup's interpolation stays finite). Line k's sample i lies at
     sigma = s0 + i h, tau = tau0 + k h, that is at (u, v) = sigma (gu, gv) + tau (-gv,
@@ -355,7 +356,9 @@ def horizon_sweeps(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h,
     evaluated a line at a time by the batch evaluator fb (SIMD code, kernels/_jit.py
     BATCH_SIG; surface.py's stand-in leaves every point NaN); a point it leaves NaN is
     evaluated again by f alone, which alone decides holes. hsurf[layer, k, i]: the
-    sample's own H (NaN outside the domain and at holes)."""
+    sample's own H (NaN outside the domain and at holes). The heights are kept from wo
+    (the view's w_origin, as the G-buffer's w: layout.py G_W), so float32 holds them
+    to the picture's own spread however far f lies from 0."""
     n_lines = hmax.shape[1]
     n = hmax.shape[2]
     ua, ub, va, vb = domain[0], domain[1], domain[2], domain[3]
@@ -378,7 +381,7 @@ def horizon_sweeps(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h,
             hmax[layer, k, i] = run_max
             hmin[layer, k, i] = run_min
             H = _texel_height(kind, f, hf, hfp, ua, ub, va, vb, gu, gv, tan_theta,
-                              s0 + i * h, tau, out[i] * cw)
+                              s0 + i * h, tau, out[i] * cw, wo)
             hsurf[layer, k, i] = H
             if H == H:
                 run_max = max(run_max, H)
@@ -386,10 +389,10 @@ def horizon_sweeps(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, tau0, h,
 
 
 @ngjit_inline
-def _texel_height(kind, f, hf, hfp, ua, ub, va, vb, gu, gv, tan_theta, sigma, tau, w):
-    """H = f - sigma tan(theta) of the texel at (sigma, tau), f there ``w`` (the batch
-    evaluator's; f alone decides where it left NaN); NaN outside the domain ua..ub,
-    va..vb and at holes (a hole casts no shadow)."""
+def _texel_height(kind, f, hf, hfp, ua, ub, va, vb, gu, gv, tan_theta, sigma, tau, w, wo):
+    """H = f - wo - sigma tan(theta) of the texel at (sigma, tau), f there ``w`` (the
+    batch evaluator's; f alone decides where it left NaN); NaN outside the domain
+    ua..ub, va..vb and at holes (a hole casts no shadow)."""
     u = sigma * gu - tau * gv
     v = sigma * gv + tau * gu
     if u < ua or u > ub or v < va or v > vb:
@@ -398,7 +401,7 @@ def _texel_height(kind, f, hf, hfp, ua, ub, va, vb, gu, gv, tan_theta, sigma, ta
         w = surface_value(kind, f, hf, hfp, u, v)
         if not math.isfinite(w):
             return np.nan
-    return w - sigma * tan_theta
+    return (w - wo) - sigma * tan_theta
 
 
 @ngjit_parallel
@@ -523,7 +526,8 @@ def shadow_sweep(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, t0, h, n_s
     tan(theta) (horizon_sweeps') and only their last two samples: the front, O(lines)
     memory. When the front holds samples m and m + 1, the pixels of that step
     (sweep_order's cells) are answered from it as from the texture (point_shadow: the
-    same interpolation). Pixels not seen are left as they are."""
+    same interpolation). Pixels not seen are left as they are. The G-buffer's u, v are
+    kept from (cu, cv), its w and the sweep's heights from wo (layout.py G_U, G_W)."""
     H = gbuf.shape[1]
     T = gbuf.shape[2]
     n_bands = (n_tau - 2) // BAND + 1
@@ -556,7 +560,7 @@ def shadow_sweep(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, t0, h, n_s
                 hmax[0, q, 0] = run_max[q]
                 hmin[0, q, 0] = run_min[q]
                 Hq = _texel_height(kind, f, hf, hfp, ua, ub, va, vb, gu, gv, tan_theta, sigma,
-                                   t0 + (k0 + q) * h, out[q] * cw)
+                                   t0 + (k0 + q) * h, out[q] * cw, wo)
                 hsurf[0, q, 0] = Hq
                 if Hq == Hq:
                     run_max[q] = max(run_max[q], Hq)
@@ -574,7 +578,7 @@ def shadow_sweep(kind, f, fb, hf, hfp, domain, gu, gv, tan_theta, s0, t0, h, n_s
                 x = ebuf[b, E_SEEN, j, lane]
                 s = x - E_FLAG if x > 0.5 * E_FLAG else x
                 g = gbuf[b, j, lane]
-                val = point_shadow(s, g[G_U] + cu, g[G_V] + cv, g[G_W] + wo, g[G_NX], g[G_NY],
+                val = point_shadow(s, g[G_U] + cu, g[G_V] + cv, g[G_W], g[G_NX], g[G_NY],
                                    g[G_NZ], light, hmax, hmin, hsurf, 0, gu, gv, tan_theta, sigma,
                                    t0 + k0 * h, h, grazing, bias)
                 shadow[r, c] = val

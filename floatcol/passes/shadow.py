@@ -82,6 +82,9 @@ class Texture:
         #: section 6.2.2: no texture, the sweep runs with the lookup (shadow_pass)
         self.on_the_fly = method == "on-the-fly"
         self.light = lw / np.linalg.norm(lw)
+        #: what the texture's heights are kept from: the view's w_origin, as the
+        #: G-buffer's w (layout.py G_W)
+        self.w_origin = view.w_origin
         ground = math.hypot(self.light[0], self.light[1])
         self.texels = 0
         self.zenith = ground <= ZENITH
@@ -141,7 +144,8 @@ class Texture:
                   and surface.kind == SURF_FUNCTION else None)
             kind, f, _, fb, hf, hfp = surface.kernel_args(fb)
             horizon_sweeps(kind, f, fb, hf, hfp, domain, self.gu, self.gv, self.tan_theta,
-                           self.s0, self.t0, h, self.hmax, self.hmin, self.hsurf, layer)
+                           self.s0, self.t0, h, self.hmax, self.hmin, self.hsurf, layer,
+                           self.w_origin)
         if self.rho > 0.0:
             self.slopes = _pool.empty((4 * len(drawn), n_tau, n_sig), np.float64)
             for layer in range(len(drawn)):
@@ -186,15 +190,14 @@ def _objects_cast(occluders, geom, W, H, shadow, lit):
 
 def _lookup(texture, geom, W, light, shadow, lit, layer):
     """shadow_pass's texture lookup (kernels/shadow.py shadow_lookup)."""
-    cu, cv = geom.vp[VP_CU], geom.vp[VP_CV]     # (the G-buffer's u, v from there, and
-    wo = geom.vp[VP_WORG]                       # its w from wo: layout.py G_U, G_W)
+    cu, cv = geom.vp[VP_CU], geom.vp[VP_CV]     # (the G-buffer's u, v from there)
     if texture.zenith:
         none = np.zeros((0, 1, 1), dtype=np.float32)
-        shadow_lookup(geom.gbuf, geom.ebuf, W, cu, cv, wo, light, none, none, none, none,
+        shadow_lookup(geom.gbuf, geom.ebuf, W, cu, cv, light, none, none, none, none,
                       layer, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, GRAZING, BIAS_TEXELS, 0.0, shadow,
                       lit)
     else:
-        shadow_lookup(geom.gbuf, geom.ebuf, W, cu, cv, wo, light, texture.hmax, texture.hmin,
+        shadow_lookup(geom.gbuf, geom.ebuf, W, cu, cv, light, texture.hmax, texture.hmin,
                       texture.hsurf, texture.slopes, layer, texture.gu, texture.gv,
                       texture.tan_theta, texture.s0, texture.t0, texture.h, GRAZING,
                       BIAS_TEXELS, texture.rho, shadow, lit)
@@ -205,7 +208,7 @@ def _on_the_fly(sweep, geom, W, H, light, shadow, lit):
     n_sig, n_tau, h = sweep.n_sig, sweep.n_tau, sweep.h
     cell = _pool.empty((H, W), np.int32)
     cu, cv = geom.vp[VP_CU], geom.vp[VP_CV]     # (the G-buffer's u, v from there, and
-    wo = geom.vp[VP_WORG]                       # its w from wo: layout.py G_U, G_W)
+    wo = geom.vp[VP_WORG]                       # its w and the sweep's heights from wo)
     sweep_cells(geom.gbuf, geom.ebuf, W, cu, cv, sweep.gu, sweep.gv, sweep.s0, sweep.t0, h,
                 n_sig, n_tau, cell)
     n_cells = ((n_tau - 2) // BAND + 1) * n_sig

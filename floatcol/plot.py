@@ -324,11 +324,12 @@ class SurfacePlot(_ScalarMappable):
             gu, gv = np.meshgrid(np.linspace(ua, ub, 129), np.linspace(va, vb, 129))
             w = surface.evaluate(gu, gv)
             if np.isfinite(w).any():
-                lo, hi = _robust_range(np.where(np.isfinite(w), w, np.nan))
                 if hasattr(surface, "extremes"):   # data (a mesh): its every height
                     both = np.concatenate([w[np.isfinite(w)], surface.extremes(
                         ((ua, ub), (va, vb)))[2]])
                     lo, hi = float(both.min()), float(both.max())
+                else:
+                    lo, hi = _robust_range(np.where(np.isfinite(w), w, np.nan))
                 los.append(lo)
                 his.append(hi)
         if not los:

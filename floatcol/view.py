@@ -393,8 +393,6 @@ def _fit(surface, domain):
         gu, gv, gw = fit["u"], fit["v"], fit["w"]
         ok = np.isfinite(gw)
         seen = ok.any()
-        fit["range"] = _robust_range(gw) if seen else (0.0, 0.0)
-        fit["all"] = (float(gw[ok].min()), float(gw[ok].max())) if seen else (0.0, 0.0)
         xu = xv = xw = np.zeros(0)
         if seen and hasattr(surface, "extremes"):
             # a height field's heights are data: every one in the picture, a spike at
@@ -402,6 +400,9 @@ def _fit(surface, domain):
             xu, xv, xw = surface.extremes(domain)
             both = np.concatenate([gw[ok], xw])
             fit["range"] = fit["all"] = (float(both.min()), float(both.max()))
+        else:
+            fit["range"] = _robust_range(gw) if seen else (0.0, 0.0)
+            fit["all"] = (float(gw[ok].min()), float(gw[ok].max())) if seen else (0.0, 0.0)
         fit["pu"] = np.concatenate([gu[ok], gu.ravel(), xu])
         fit["pv"] = np.concatenate([gv[ok], gv.ravel(), xv])
         fit["pw_extra"] = xw

@@ -70,7 +70,12 @@ def _as_colours(resampled, like):
     if like.dtype.kind in "iu":
         info = np.iinfo(like.dtype)
         return np.clip(np.round(out), info.min, info.max).astype(like.dtype)
-    return out
+    # (barycentric weights sum to 1 within rounding: a flat colour of 1 came out
+    # 1 + 2e-16, beyond a colour's range)
+    fin = np.isfinite(like)
+    if not fin.any():
+        return out
+    return np.clip(out, like[fin].min(), like[fin].max())
 
 
 def _even(a):
@@ -82,15 +87,48 @@ def _even(a):
     return np.linspace(a[0], a[-1], int(n))
 
 
-def uneven(x, y, Z, extra=None):
-    """(x, y, Z, extra) of the rectilinear mesh with ascending, unevenly spaced x
-    (Z's columns) and y (its rows), resampled bilinearly onto evenly spaced ones."""
+def uneven(x, y, Z):
+    """(x, y, Z) of the rectilinear mesh with ascending, unevenly spaced x (Z's
+    columns) and y (its rows), resampled bilinearly onto evenly spaced ones (its
+    facecolors: face_texture)."""
     xe, ye = _even(x), _even(y)
-    Z = _linear(y, _linear(x, Z, xe, 1), ye, 0)
-    if extra is not None:
-        extra = _as_colours(_linear(y, _linear(x, np.asarray(extra, dtype=float), xe, 1),
-                                    ye, 0), extra)
-    return xe, ye, Z, extra
+    return xe, ye, _linear(y, _linear(x, Z, xe, 1), ye, 0)
+
+
+#: facecolors as a texture (face_texture): about this many texels a side, each face a
+#: power of two of them (at most 64: its edges then blur over 1/64 of a face where it
+#: is magnified, and its level of the mip-map is the faces' colours exactly) ...
+FACE_TEXELS = 1024
+#: ... and at most this many (faces narrower than a texel then share them)
+MAX_FACE_TEXELS = 4096
+
+
+def _face_texels(a):
+    """The texels along the ascending node coordinates ``a`` of a row of faces: each
+    texel's face (the one its centre lies in) and the extent of the texels' centres
+    (the texture's, node-centred as a height field's grid)."""
+    span = a[-1] - a[0]
+    cells = span / np.diff(a).min()                  # (an even grid: its faces)
+    if abs(cells - round(cells)) <= 1e-6 * cells:
+        cells = float(round(cells))
+    k = 2 ** int(np.clip(np.floor(np.log2(FACE_TEXELS / cells)), 0, 6))
+    n = int(min(np.ceil(cells * k - 1e-9), MAX_FACE_TEXELS))
+    centres = a[0] + (np.arange(n) + 0.5) * (span / n)
+    face = np.clip(np.searchsorted(a, centres, side="right") - 1, 0, len(a) - 2)
+    half = 0.5 * span / n
+    return face, (a[0] + half, a[-1] - half)
+
+
+def face_texture(x, y, faces):
+    """matplotlib's facecolors over a rectilinear mesh as a texture: ``faces`` (rows,
+    columns, channels) the colour of each face, face (i, j) between y[i], y[i + 1] and
+    x[j], x[j + 1] (x, y ascending, evenly spaced or not). Returns (texture, extent):
+    each face whole texels of its own colour (evenly spaced faces: the same number
+    each), so that its edges stay sharp where the picture magnifies it and the
+    mip-map averages the faces where it shrinks them."""
+    fx, (u0, u1) = _face_texels(np.asarray(x, dtype=float))
+    fy, (v0, v1) = _face_texels(np.asarray(y, dtype=float))
+    return np.ascontiguousarray(np.asarray(faces)[fy][:, fx]), (u0, u1, v0, v1)
 
 
 def _parametric(why):
@@ -99,10 +137,13 @@ def _parametric(why):
                       f"ones")
 
 
-def curvilinear(X, Y, Z, extra=None):
-    """(x, y, Z, extra) of the curvilinear mesh X, Y, Z (2-D, one shape), linear on
+def curvilinear(X, Y, Z, faces=None):
+    """(x, y, Z, colours) of the curvilinear mesh X, Y, Z (2-D, one shape), linear on
     the two triangles of each quad, at the nodes of an evenly spaced grid (NaN
-    outside the mesh); ValueError where it is not a function's grid."""
+    outside the mesh); ValueError where it is not a function's grid. ``faces``: a
+    colour for each quad (rows - 1, columns - 1, channels), its two triangles that
+    colour: ``colours`` at the grid's nodes (a texture over its extent; None
+    without)."""
     from .kernels.mesh import mesh_kernel
     m, n = Z.shape
     x, y, z = X.ravel(), Y.ravel(), Z.ravel()
@@ -137,13 +178,15 @@ def curvilinear(X, Y, Z, extra=None):
     a, b, c, d = idx[:-1, :-1], idx[:-1, 1:], idx[1:, 1:], idx[1:, :-1]
     tris = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3),
                            np.stack([a, c, d], -1).reshape(-1, 3)])
+    quad = np.tile(np.arange(a.size), 2)                 # (each triangle's quad)
     tris = node[tris]
-    tris = tris[(tris >= 0).all(axis=1)]
+    keep = (tris >= 0).all(axis=1)
+    tris, quad = tris[keep], quad[keep]
     px, py = x[tris], y[tris]
     area = 0.5 * ((px[:, 1] - px[:, 0]) * (py[:, 2] - py[:, 0])
                   - (px[:, 2] - px[:, 0]) * (py[:, 1] - py[:, 0]))
     flat = np.abs(area) <= 1e-12 * size * size
-    tris, area, px, py = tris[~flat], area[~flat], px[~flat], py[~flat]
+    tris, area, px, py, quad = tris[~flat], area[~flat], px[~flat], py[~flat], quad[~flat]
     if len(tris) == 0:
         raise ValueError("plot_surface(X, Y, Z): X and Y span no area")
     # the quads of a function's grid all turn one way in the x-y plane; a parametric
@@ -164,16 +207,17 @@ def curvilinear(X, Y, Z, extra=None):
     if boxes > MAX_VISITS:
         raise ValueError("plot_surface(X, Y, Z): the mesh's cells are too long and thin to "
                          "resample (a curvilinear grid whose quads cross much of it)")
-    values = z[:, None] if extra is None else np.column_stack(
-        [z, np.asarray(extra, dtype=float).reshape(m * n, -1)])
-    out = np.full((len(ye), len(xe), values.shape[1]), np.nan)
+    corners = z[tris][..., None]                         # (triangles, 3, values)
+    if faces is not None:               # a quad's colour on both its triangles, flat
+        colours = np.asarray(faces, dtype=float).reshape(a.size, -1)[quad]
+        corners = np.concatenate([corners, np.repeat(colours[:, None], 3, axis=1)], axis=2)
+    out = np.full((len(ye), len(xe), corners.shape[2]), np.nan)
     hits = np.zeros((len(ye), len(xe)), dtype=np.int64)
     mesh_kernel(np.ascontiguousarray(x[tris]), np.ascontiguousarray(y[tris]),
-                np.ascontiguousarray(values[tris]), xe[0], xe[1] - xe[0], len(xe),
+                np.ascontiguousarray(corners), xe[0], xe[1] - xe[0], len(xe),
                 ye[0], ye[1] - ye[0], len(ye), out, hits)
     # quads that lie over one another without folding (a mesh wound round twice)
     if hits.max() > 1:
         raise _parametric("its quads overlap")
-    extra = None if extra is None else _as_colours(out[..., 1:], extra)
-    out = out[..., 0]
-    return xe, ye, out, extra
+    colours = None if faces is None else _as_colours(out[..., 1:], faces)
+    return xe, ye, out[..., 0], colours

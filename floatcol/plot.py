@@ -18,6 +18,7 @@ from . import color
 from .color import colormap_lut
 from .output import png_bytes, save_image
 from .light import world_to_screen_direction  # noqa: F401 (kept importable here)
+from .mesh import face_texture
 from .render import DEFAULT_RANGE, Render, render
 from .kernels.layout import SURF_HEIGHTFIELD
 from .surface import HeightField, Surface, as_surface, check_range, free_names
@@ -683,7 +684,9 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     interactive : with ``ax``: drag to rotate, scroll to zoom.
     cmap, norm, vmin, vmax, color, shade, lightsource : as matplotlib's plot_surface.
     facecolors : as matplotlib's: an array of colours, one per point of the mesh (or
-        of the grid over the ranges), drawn as a texture over the surface.
+        of a grid over the ranges; or one per face), each face of the mesh taking its
+        first corner's colour (with rstride/cstride or rcount/ccount, mplot3d's larger
+        faces; without, every cell is a face), drawn as a texture over the surface.
     edgecolor, linewidth, rcount, ccount, rstride, cstride : as matplotlib's: with an
         edge colour, the mesh's lines drawn on the exact surface (a wireframe of
         linewidth points; render's ``wireframe``).
@@ -712,6 +715,7 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     SurfacePlot
     """
     facecolors = options.pop("facecolors", None)
+    faces = face_tex = None
     if facecolors is not None:
         facecolors = _face_colours(facecolors)
     mesh_shape = None
@@ -721,7 +725,8 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
         if facecolors is None:
             expr = mesh_surface(expr, *ranges)
         else:
-            expr, facecolors = mesh_surface(expr, *ranges, extra=facecolors)
+            faces = _faces(facecolors, np.shape(ranges[1]), options)
+            expr, face_tex = mesh_surface(expr, *ranges, faces=faces)
         ranges = ()
         resampled = expr.resampled
         if resampled and options.get("fill", True) is False:     # (plot_wireframe's)
@@ -732,7 +737,8 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     if facecolors is not None:                # the colours of the faces: a texture
         if "texture" in options or "color_field" in options:
             raise ValueError("give one of facecolors, texture and color_field")
-        options["texture"] = facecolors
+        if faces is None:                     # (over the grid of the ranges: below)
+            faces = _faces(facecolors, facecolors.shape[:2], options)
     _mesh_lines(options, mesh_shape, resampled)   # edgecolor: matplotlib's mesh lines
     zorder = options.pop("zorder", None)
     unknown = sorted(set(options) - _RENDER_OPTIONS - _OWN_OPTIONS - {"color_field"})
@@ -761,6 +767,14 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     else:
         items = [_surface_domain(expr, ranges)]
     (surface, domain), others = items[0], items[1:]
+    if faces is not None:
+        if face_tex is None:                  # the faces between the points of a grid
+            (ua, ub), (va, vb) = domain       # over the ranges
+            face_tex = face_texture(np.linspace(ua, ub, faces.shape[1] + 1),
+                                    np.linspace(va, vb, faces.shape[0] + 1), faces)
+        options["texture"], extent = face_tex
+        if extent is not None:
+            options["texture_extent"] = extent
     own = {k: options.pop(k) for k in list(options) if k in _OWN_OPTIONS}
     if ax is not None:
         own.setdefault("size", _axes_pixels(ax))
@@ -832,6 +846,38 @@ def _face_colours(facecolors):
                      f"got shape {arr.shape}")
 
 
+def _faces(colours, shape, options):
+    """matplotlib's facecolors (one colour per point of a mesh of ``shape``, or per
+    face) as the colour of each face (rows - 1, columns - 1, channels): a face takes
+    the colour of its first corner, as mplot3d's. With rstride/cstride (or rcount/
+    ccount) the faces are mplot3d's, of that many cells, each the colour of its first
+    corner; without them every cell is a face (floatcol draws the whole mesh: mplot3d
+    thins it to 50 x 50 faces)."""
+    if len(shape) != 2:
+        raise ValueError(f"plot_surface(X, Y, Z): Z must be 2-D, got shape {tuple(shape)}")
+    rows, cols = shape
+    if colours.shape[:2] not in ((rows, cols), (rows - 1, cols - 1)):
+        raise ValueError(f"facecolors must have a colour for each point of the mesh, shape "
+                         f"{(rows, cols)} (or for each face, {(rows - 1, cols - 1)}), got "
+                         f"{colours.shape[:2]}")
+    strided = any(k in options for k in ("rstride", "cstride"))   # (before counts)
+    counted = any(k in options for k in ("rcount", "ccount"))
+
+    def stride(key_stride, key_count, n):
+        try:
+            if strided:               # (as mplot3d: a stride not given is 10)
+                return max(int(options.get(key_stride, 10)), 1)
+            if counted:
+                return max(int(np.ceil(n / max(int(options.get(key_count, MPL_MESH_COUNT)),
+                                               1))), 1)
+        except (TypeError, ValueError, OverflowError):
+            raise ValueError(f"{key_stride} and {key_count} must be whole numbers") from None
+        return 1
+    rs = stride("rstride", "rcount", rows)
+    cs = stride("cstride", "ccount", cols)
+    return colours[(np.arange(rows - 1) // rs) * rs][:, (np.arange(cols - 1) // cs) * cs]
+
+
 def _mesh_lines(options, shape, resampled=False):
     """matplotlib's mesh keywords: with an edge colour, the mesh's lines (rcount x
     ccount of them, or every rstride-th / cstride-th row and column of a mesh of
@@ -867,10 +913,12 @@ def _mesh_lines(options, shape, resampled=False):
 
 
 def _is_mesh(expr, ranges):
+    """matplotlib's (X, Y, Z): three arrays, Z 2-D or an array (mesh_surface says what
+    is wrong with one that is not)."""
     return (len(ranges) == 2 and all(isinstance(a, np.ndarray) or
                                      (isinstance(a, (list, tuple)) and _numeric(a))
                                      for a in (expr, *ranges))
-            and np.ndim(ranges[1]) == 2)
+            and (np.ndim(ranges[1]) == 2 or isinstance(ranges[1], np.ndarray)))
 
 
 def _numeric(a):
@@ -891,13 +939,15 @@ def _constant(a):
     return bool(np.all(a == a[:1]))
 
 
-def mesh_surface(X, Y, Z, extra=None):
+def mesh_surface(X, Y, Z, faces=None):
     """The HeightField of matplotlib's plot_surface(X, Y, Z): X and Y a meshgrid (either
     indexing) or 1-D x (along Z's columns) and y (along its rows), ascending or
     descending (a north-up raster); unevenly spaced, or a curvilinear grid of Z's
     shape, resampled onto an evenly spaced one (mesh.py: ``resampled`` says so). With
-    ``extra`` (an array of Z's shape and more axes: facecolors), (HeightField, extra
-    in the same order)."""
+    ``faces`` (a colour for each face: Z's shape less one, and a third axis; _faces),
+    (HeightField, (texture, texture_extent)): the faces' colours as a texture (extent
+    None: the HeightField's domain)."""
+    extra = faces
     try:
         # (a masked array's masked values are holes, as mplot3d leaves them out)
         X, Y, Z = (np.ma.filled(np.ma.asarray(a, dtype=float), np.nan) for a in (X, Y, Z))
@@ -905,9 +955,9 @@ def mesh_surface(X, Y, Z, extra=None):
         raise ValueError("plot_surface(X, Y, Z): X, Y and Z must be arrays of numbers") from None
     if Z.ndim != 2:
         raise ValueError(f"plot_surface(X, Y, Z): Z must be 2-D, got shape {Z.shape}")
-    if extra is not None and np.shape(extra)[:2] != Z.shape:
-        raise ValueError(f"plot_surface(X, Y, Z): facecolors must have Z's shape {Z.shape} "
-                         f"(and colours), got {np.shape(extra)}")
+    if extra is not None and np.shape(extra)[:2] != (Z.shape[0] - 1, Z.shape[1] - 1):
+        raise ValueError(f"plot_surface(X, Y, Z): facecolors must have a colour a face, "
+                         f"shape {(Z.shape[0] - 1, Z.shape[1] - 1)}, got {np.shape(extra)}")
     if X.ndim == 2 and X.shape == Z.shape and Y.shape == Z.shape and \
             _constant(X[0]) and _constant(Y[:, 0]) and Z.shape != (1, 1):
         X, Y, Z = X.T, Y.T, Z.T                    # meshgrid(..., indexing="ij")
@@ -920,8 +970,8 @@ def mesh_surface(X, Y, Z, extra=None):
             not (_close(X, X[:1]) and _close(Y, Y[:, :1])):
         # a curvilinear grid (X = R cos P, Y = R sin P): resampled (mesh.py)
         from .mesh import curvilinear
-        x, y, Z, extra = curvilinear(X, Y, Z, extra)
-        return _mesh_field(x, y, Z, extra, resampled=True)
+        x, y, Z, extra = curvilinear(X, Y, Z, faces=extra)
+        return _mesh_field(x, y, Z, None if extra is None else (extra, None), resampled=True)
     if X.ndim == 2:
         if X.shape != Z.shape or not _close(X, X[:1]):
             raise ValueError("plot_surface(X, Y, Z): X must repeat one row of x values "
@@ -953,16 +1003,18 @@ def mesh_surface(X, Y, Z, extra=None):
     if Y[1] < Y[0]:
         Y, Z = Y[::-1], Z[::-1]
         extra = None if extra is None else extra[::-1]
+    if extra is not None:                     # the faces between the mesh's x and y
+        extra = face_texture(X, Y, extra)
     if not even:                              # (np.geomspace's): resampled (mesh.py)
         from .mesh import uneven
-        X, Y, Z, extra = uneven(X, Y, Z, extra)
+        X, Y, Z = uneven(X, Y, Z)
     return _mesh_field(X, Y, Z, extra, resampled=not even)
 
 
 def _mesh_field(x, y, Z, extra, resampled):
     hf = HeightField(Z, u=(x[0], x[-1]), v=(y[0], y[-1]))
     hf.resampled = resampled                  # (mesh.py: not the mesh's own grid)
-    return hf if extra is None else (hf, np.ascontiguousarray(extra))
+    return hf if extra is None else (hf, (np.ascontiguousarray(extra[0]), extra[1]))
 
 
 def _has_ranges(e):

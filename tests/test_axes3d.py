@@ -136,6 +136,10 @@ def test_mesh_call_forms():
         fc.plot.mesh_surface(x ** 2, y, Z)
     with pytest.raises(ValueError, match="Z must be 2-D"):
         fc.plot.mesh_surface(x, y, Z[0])
+    # ... and so says plot_surface (it named a range: "(symbol, low, high)")
+    for bad in (Z[0], Z[None]):
+        with pytest.raises(ValueError, match="Z must be 2-D"):
+            fc.plot_surface(x, y, bad)
     # one row of values: no surface between them (it said "Y must be evenly spaced")
     with pytest.raises(ValueError, match="at least 2 x 2"):
         fc.plot.mesh_surface(X[:1], Y[:1], Z[:1])
@@ -152,7 +156,9 @@ def test_matplotlib_keywords_accepted():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         q = fc.plot_surface(X, Y, Z, facecolors=cm.viridis(Z), size=(40, 30))
-    assert q.options["texture"].shape == Z.shape + (4,)
+    tex = q.options["texture"]                       # whole texels a face (mesh.py)
+    assert tex.shape[2] == 4 and tex.shape[0] % (Z.shape[0] - 1) == 0 and \
+        tex.shape[1] % (Z.shape[1] - 1) == 0
 
 
 def _blue(fig):
@@ -921,3 +927,32 @@ def test_a_plot_is_removed_hidden_labelled_and_made_translucent_as_an_artist():
     with pytest.warns(UserWarning, match="No artists with labels"):
         assert ax.legend().get_texts() == []
     plt.close(fig)
+
+
+def test_the_checkerboard_example_as_mplot3d_draws_it():
+    """matplotlib's surface3d_3 example (facecolors, a checkerboard of yellow and blue
+    faces) in a 3-D Axes, drawn by mplot3d and by fc.plot_surface: of the pixels both
+    paint yellow or blue, the two agree on the colour at 99 % (measured 2026-12-06:
+    99.19 % of 21 217; the rest along the faces' edges. The faces' colours read as a
+    texture through the points, as before, blended them: 49.6 % of 10 746)."""
+    X, Y = np.meshgrid(np.arange(-5, 5, 0.25), np.arange(-5, 5, 0.25))
+    Z = np.sin(np.sqrt(X ** 2 + Y ** 2))
+    colors = np.where(np.add.outer(np.arange(40), np.arange(40)) % 2 == 0, "y", "b")
+
+    def classes(draw):
+        fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
+        ax = fig.add_subplot(projection="3d")
+        draw(ax)
+        ax.set_zlim(-1, 1)
+        ax.set_axis_off()
+        fig.canvas.draw()
+        a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
+        plt.close(fig)
+        return ((a[..., 0] > 100) & (a[..., 1] > 100) & (a[..., 2] < 80),
+                (a[..., 2] > 100) & (a[..., 0] < 80) & (a[..., 1] < 80))
+    ym, bm = classes(lambda ax: ax.plot_surface(X, Y, Z, facecolors=colors, linewidth=0))
+    yf, bf = classes(lambda ax: fc.plot_surface(X, Y, Z, ax=ax, facecolors=colors,
+                                                linewidth=0))
+    both = (ym | bm) & (yf | bf)
+    assert both.sum() > 15000
+    assert ((ym == yf) & (bm == bf))[both].mean() > 0.98

@@ -65,11 +65,23 @@ def test_a_polar_grid_is_resampled_exactly_where_the_surface_is_linear():
     assert not inside[r > 1.25 + 1e-9].any()
     # the polygon of 50 angles inscribed in the circle holds all within cos(pi/49) r
     assert inside[r < 1.25 * np.cos(np.pi / 49) - step].all()
-    # facecolors linear in x and y: resampled the same way (a texture over the domain)
-    colours = np.stack([(X + 1.25) / 2.5, (Y + 1.25) / 2.5, 0.5 + 0 * X], axis=-1)
-    hf, tex = mesh_surface(X, Y, f(X, Y), extra=colours)
-    want = np.stack([(U + 1.25) / 2.5, (V + 1.25) / 2.5, 0.5 + 0 * U], axis=-1)
-    assert np.abs(tex[inside] - want[inside]).max() < 1e-9
+    # facecolors, a colour a quad (its angle's row, its radius's column): each node
+    # inside the mesh takes its quad's, the quad bounded by two rays and two chords
+    n_p, n_r = X.shape
+    k, l_ = np.meshgrid(np.arange(n_p - 1), np.arange(n_r - 1), indexing="ij")
+    faces = np.stack([k / (n_p - 2), l_ / (n_r - 2), 0.5 + 0 * k], axis=-1)
+    hf, (tex, extent) = mesh_surface(X, Y, f(X, Y), faces=faces)
+    assert extent is None and tex.shape[:2] == z.shape      # at the height field's nodes
+    dp = 2 * np.pi / (n_p - 1)
+    ang = np.mod(np.arctan2(V, U), 2 * np.pi)
+    kk = np.clip(np.floor(ang / dp).astype(int), 0, n_p - 2)
+    chord = r * np.cos(ang - kk * dp - dp / 2) / np.cos(dp / 2)     # (radius at the ray)
+    ll = np.clip(np.floor(chord / (1.25 / (n_r - 1))).astype(int), 0, n_r - 2)
+    edge = 1.25 / (n_r - 1)
+    clear = inside & (np.abs(chord / edge - np.rint(chord / edge)) * edge > 1e-6) & \
+        (np.abs(ang / dp - np.rint(ang / dp)) * r > 1e-6)     # (not on an edge)
+    assert clear.sum() > 0.9 * inside.sum()
+    assert np.abs(tex[clear] - faces[kk, ll][clear]).max() < 1e-9
     assert np.isfinite(tex).all() and tex.min() >= 0.0 and tex.max() <= 1.0
 
 

@@ -4,7 +4,10 @@ sympy hands the backend its data series; the surface series z = f(x, y) are draw
 :func:`floatcol.plot_surface` into one matplotlib Axes, several of them into one
 picture where they hide each other (``plot3d(f, g, ...)``). floatcol options (elev, azim,
 cmap, proj_type, method, ...) can be given to ``plot3d`` directly, as can sympy's
-``title`` and ``size`` (inches, as for sympy's matplotlib backend).
+``title`` and ``size`` (inches, as for sympy's matplotlib backend). As sympy's
+matplotlib backend, it draws into a figure and Axes given (``fig=``, ``ax=``; sympy's
+``PlotGrid`` of several plots gives each its cell), and ``.fig``, ``.ax`` are
+matplotlib's.
 """
 from __future__ import annotations
 
@@ -22,11 +25,15 @@ class SympyBackend(Plot):
     def __init__(self, *series, **kwargs):
         self._fc_options = {k: kwargs.pop(k) for k in list(kwargs) if k in _FLOATCOL_OPTIONS}
         self._zlim = kwargs.get("zlim")          # (sympy's Plot keeps no zlim of its own)
+        # a figure and Axes to draw into, as sympy's MatplotlibBackend (PlotGrid sets
+        # them before it calls process_series)
+        self._plotgrid_fig = kwargs.pop("fig", None)
+        self._plotgrid_ax = kwargs.pop("ax", None)
         super().__init__(*series, **kwargs)
         if any(getattr(s, "is_parametric", False) for s in self._series):
             raise ValueError("floatcol's sympy backend draws surfaces z = f(x, y) (plot3d); "
                              "use sympy's default backend for parametric plots")
-        self._fig = None
+        self._fig = self._ax = None
         self._want_window = False      # show() builds the figure through pyplot
         self.plots = []
 
@@ -36,6 +43,19 @@ class SympyBackend(Plot):
         if self._fig is None:
             self._build()
         return self._fig
+
+    @property
+    def ax(self):
+        """The matplotlib Axes the surfaces are drawn in (built on first use)."""
+        if self._fig is None:
+            self._build()
+        return self._ax
+
+    def process_series(self):
+        """Draw the series (again) into the figure: sympy's PlotGrid calls this once it
+        has given the plot its cell's figure and Axes."""
+        self._fig = None
+        self._build()
 
     def _build(self):
         from matplotlib.figure import Figure
@@ -47,14 +67,18 @@ class SympyBackend(Plot):
         if not surfaces:
             raise ValueError("nothing to draw: plot3d needs an expression")
         figsize = self.size if self.size else (8.0, 6.0)
-        if self._want_window:
-            import matplotlib.pyplot as plt
-            fig = plt.figure(figsize=figsize)
+        if self._plotgrid_ax is not None:         # (given: PlotGrid's cell, or ax=)
+            ax = self._plotgrid_ax
+            fig = self._plotgrid_fig if self._plotgrid_fig is not None else ax.figure
         else:
-            fig = Figure(figsize=figsize)
-        # matplotlib's own 3-D Axes, as sympy's default backend: panes, ticks, labels,
-        # limits and title stay (mpl.py Surface3DImage)
-        ax = fig.add_subplot(projection="3d")
+            if self._want_window:
+                import matplotlib.pyplot as plt
+                fig = plt.figure(figsize=figsize)
+            else:
+                fig = Figure(figsize=figsize)
+            # matplotlib's own 3-D Axes, as sympy's default backend: panes, ticks,
+            # labels, limits and title stay (mpl.py Surface3DImage)
+            ax = fig.add_subplot(projection="3d")
         # several surfaces: one picture where they hide each other (render_many)
         items = [(s.expr, (s.var_x, s.start_x, s.end_x), (s.var_y, s.start_y, s.end_y))
                  for s in surfaces]
@@ -74,7 +98,7 @@ class SympyBackend(Plot):
             ax.set_title(str(self.title))
         if getattr(self, "legend", False):
             ax.legend()                  # (an entry a surface: its expression, mpl.py)
-        self._fig = fig
+        self._fig, self._ax = fig, ax
 
     def show(self):
         import matplotlib.pyplot as plt

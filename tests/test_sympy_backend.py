@@ -115,3 +115,36 @@ def test_legend_true_shows_an_entry_a_surface():
     q.close()
     with pytest.raises(ValueError, match="one a surface"):
         fc.plot_surface([x * y, x - y], (x, -1, 1), (y, -1, 1), label=["only one"])
+
+
+def test_plotgrid_gives_each_plot_its_cell(tmp_path):
+    """sympy's PlotGrid of a 2-D plot and two floatcol plots (it raised AttributeError:
+    no process_series): each floatcol plot draws into its own cell's 3-D Axes, and the
+    saved grid shows each render where that Axes put it (as the single plot's test)."""
+    from sympy.plotting import PlotGrid
+    p1 = plot(sp.sin(x), show=False)
+    p2 = plot3d(sp.sin(x * y), (x, -2, 2), (y, -2, 2), backend=fc.SympyBackend, show=False)
+    p3 = plot3d(sp.cos(x) * y, (x, -2, 2), (y, -2, 2), backend=fc.SympyBackend, show=False,
+                cmap="magma")
+    g = PlotGrid(1, 3, p1, p2, p3, show=False, size=(9, 3))
+    g.save(tmp_path / "grid.png")
+    assert p2.fig is g.fig and p3.fig is g.fig
+    assert p2.ax is not p3.ax and {p2.ax, p3.ax} <= set(g.fig.axes)
+    assert p2.ax.name == "3d" and p2.plots[0].artist.axes is p2.ax
+    im = np.asarray(Image.open(tmp_path / "grid.png"))
+    for p in (p2, p3):
+        share, n = _figure_matches_render(im, p.plots[0])
+        assert n > 2000 and share > 0.99
+    # the cells' Axes lie side by side: the two pictures are not the same place
+    assert p2.plots[0].artist.placed[0, 2] < p3.plots[0].artist.placed[0, 2]
+
+
+def test_fig_and_ax_given_are_drawn_into(tmp_path):
+    import matplotlib.pyplot as plt
+    fig = plt.figure(figsize=(4, 3))
+    ax = fig.add_subplot(projection="3d")
+    p = plot3d(x * y, (x, -2, 2), (y, -2, 2), backend=fc.SympyBackend, show=False,
+               fig=fig, ax=ax)
+    p.save(tmp_path / "given.png")
+    assert p.fig is fig and p.ax is ax and p.plots[0].artist.axes is ax
+    plt.close(fig)

@@ -409,10 +409,12 @@ class Surface3DImage(Artist):
         # mplot3d's own artists: what the surfaces hide drawn under their picture (the
         # composite's depth is the nearest surface's), the rest over it when they draw
         depth_test_mplot3d_artists(ax)
-        for a in sorted(ax.get_children(), key=lambda a: a.get_zorder()):
-            if isinstance(a.__dict__.get("draw"), DepthTested) and \
-                    a.get_zorder() >= self.get_zorder():
-                a.draw.draw_hidden(renderer, [r])
+        tested = [a.draw for a in sorted(ax.get_children(), key=lambda a: a.get_zorder())
+                  if isinstance(a.__dict__.get("draw"), DepthTested) and
+                  a.get_zorder() >= self.get_zorder()]
+        for d in tested:
+            d.cross(renderer, r)              # (polygons through the surface: below)
+            d.draw_hidden(renderer, [r])
         m = mag / f
         gc = renderer.new_gc()
         gc.set_clip_rectangle(bb)
@@ -431,6 +433,8 @@ class Surface3DImage(Artist):
             x0, y0 = int(np.floor(bb.x0)), int(np.floor(bb.y0))
             renderer.draw_image(gc, x0, y0, _turned(r.rgba, T, x0, y0, W, H, m)[::-1])
         gc.restore()
+        for d in tested:                      # polygons through the surface, a pixel
+            d.draw_crossing(renderer, T)      # at a time
         self.stale = False
 
 
@@ -663,7 +667,8 @@ class DepthTested:
     hidden (its markers only at its visible vertices), a text not drawn where its
     anchor is hidden, polygons (a contourf level's, a Poly3DCollection's) whole, over
     the picture where any of their points lies in front of a surface (_faces_kept,
-    _paths_kept). The hidden part is drawn the same way under the surfaces' picture
+    _paths_kept), but for a Poly3DCollection's opaque polygons that cross a surface
+    on a raster canvas: those a pixel at a time (cross, draw_crossing). The hidden part is drawn the same way under the surfaces' picture
     (``draw_hidden``; with several floatcol surfaces, under their composite), so that it
     shows through a translucent surface and at the partly covered pixels of its
     edges. ``visible`` says, after a draw, which points (a line's samples, a
@@ -673,6 +678,7 @@ class DepthTested:
     def __init__(self, art):
         self.art = art
         self.visible = None
+        self._crossing = None     # (render, crossing polygons, their pixels): cross()
 
     def __call__(self, renderer):
         art = self.art
@@ -688,6 +694,73 @@ class DepthTested:
         except _INTERNALS:              # (another Matplotlib's mplot3d: drawn as it is)
             self.visible = None
             type(art).draw(art, renderer)
+
+    def cross(self, renderer, render):
+        """Find the polygons of a Poly3DCollection that cross the (opaque) surface of
+        ``render`` and the picture's pixels where they are not behind it
+        (_not_behind_pixels), to be drawn under the picture (draw_hidden) and over it
+        at those pixels alone (draw_crossing), not as whole polygons over it: their
+        line through the surface a pixel at a time. Only on a raster canvas (Agg): a
+        vector file takes them whole, as before."""
+        from matplotlib.backends.backend_agg import RendererAgg
+        from mpl_toolkits.mplot3d import art3d
+        self._crossing = None
+        art = self.art
+        faces = getattr(art, "_faces", None)
+        if not (isinstance(art, art3d.Poly3DCollection) and isinstance(renderer, RendererAgg)
+                and art.get_visible() and faces is not None and len(faces)):
+            return
+        try:
+            crossing = _crossing_faces(art, faces, render)
+            if not crossing.any():
+                return
+            pixels = _not_behind_pixels(render,
+                                        _fan_triangles(_valid_faces(art, faces)[crossing]))
+        except _INTERNALS:
+            return
+        if pixels is not None:
+            self._crossing = (render, crossing, pixels)
+
+    def _crossing_for(self, renders):
+        c = self._crossing
+        return c[1] if c is not None and len(renders) == 1 and renders[0] is c[0] else None
+
+    def draw_crossing(self, renderer, T):
+        """Draw the polygons that cross the surface (cross) over its picture, at the
+        pixels where they are not behind it: drawn on a canvas of their own, their
+        antialiased edges kept, the rest of it cleared. T: the picture's pixel (col,
+        row) at the canvas point T @ (col, row, 1) (Surface3DImage.placed)."""
+        if self._crossing is None:
+            return
+        import copy
+
+        from matplotlib.backends.backend_agg import RendererAgg
+        render, crossing, pixels = self._crossing
+        art = self.art
+        try:
+            c = copy.copy(art)
+            c._faces = np.where(crossing[:, None, None], art._faces, np.nan)
+            c.do_3d_projection()
+            own = RendererAgg(renderer.width, renderer.height, renderer.dpi)
+            type(c).draw(c, own)
+        except _INTERNALS:
+            return
+        buf = np.array(own.buffer_rgba())          # (top row first, straight alpha)
+        ys, xs = np.nonzero(buf[..., 3])
+        # each canvas pixel's pixel of the picture (off the picture: no surface there)
+        x, y = xs + 0.5, buf.shape[0] - ys - 0.5
+        inv = np.linalg.inv(T[:, :2])
+        col = np.round(inv[0, 0] * (x - T[0, 2]) + inv[0, 1] * (y - T[1, 2])).astype(int)
+        row = np.round(inv[1, 0] * (x - T[0, 2]) + inv[1, 1] * (y - T[1, 2])).astype(int)
+        H, W = pixels.shape
+        on = (col >= 0) & (col < W) & (row >= 0) & (row < H)
+        keep = np.ones(len(xs), dtype=bool)
+        keep[on] = pixels[row[on], col[on]]
+        buf[ys[~keep], xs[~keep], 3] = 0
+        gc = renderer.new_gc()
+        gc.set_clip_rectangle(art.axes.bbox)
+        renderer.draw_image(gc, 0, 0, np.ascontiguousarray(buf[::-1]))
+        gc.restore()
 
     def draw_hidden(self, renderer, renders):
         """Draw the part of the artist that the surfaces of ``renders`` hide."""
@@ -800,7 +873,7 @@ class DepthTested:
                 if front:
                     type(art).draw(art, renderer)
                 return
-            keep = _faces_kept(art, faces, renders, front)
+            keep = _faces_kept(art, faces, renders, front, self._crossing_for(renders))
             if front:
                 self.visible = keep
             if not whole(keep):
@@ -817,16 +890,32 @@ class DepthTested:
 FACE_LATTICE = 6
 
 
-def _faces_kept(art, faces, renders, front):
+def _faces_kept(art, faces, renders, front, crossing=None):
     """Which polygons (faces (n, m, 3), padded) of a Poly3DCollection to draw over the
     surfaces' pictures (``front``) or under them: under where none of the polygon's
     points (its corners and a lattice over the triangles of its fan) lies in front of
     a surface that is there (a contour's filled projection on a far wall, a floor
-    below), over where any does; whole polygons, so one that crosses a surface goes
-    over it."""
+    below), over where any does; whole polygons. ``crossing`` (n,) bool: polygons that
+    cross a surface and are drawn over the picture a pixel at a time
+    (DepthTested.draw_crossing): under, and not over."""
+    seen_front = _face_points_in_front(art, faces, renders)
+    if crossing is None:
+        return seen_front if front else ~seen_front
+    return seen_front & ~crossing if front else ~seen_front | crossing
+
+
+def _valid_faces(art, faces):
+    """A Poly3DCollection's polygons (faces (n, m, 3)) with its invalid corners NaN."""
     n, m, _ = faces.shape
     bad = np.broadcast_to(np.asarray(getattr(art, "_invalid_vertices", False)), (n, m))
-    f = np.where(bad[..., None], np.nan, faces)
+    return np.where(bad[..., None], np.nan, faces)
+
+
+def _fan_points(art, faces):
+    """(points (n, k, 3), the lattice over each polygon's fan of triangles) of the
+    polygons (faces (n, m, 3), padded with NaN) of a Poly3DCollection."""
+    n = faces.shape[0]
+    f = _valid_faces(art, faces)
     # (the padding of a polygon with fewer corners is NaN: its fan's triangles that
     # reach it give NaN points, which count for nothing)
     L = FACE_LATTICE
@@ -837,8 +926,98 @@ def _faces_kept(art, faces, renders, front):
     p1 = f[:, 1:-1, None, :]
     p2 = f[:, 2:, None, :]
     pts = p0 + wa[None, None, :, None] * (p1 - p0) + wb[None, None, :, None] * (p2 - p0)
-    seen_front = _any_in_front(list(pts.reshape(n, -1, 3)), renders)
-    return seen_front if front else ~seen_front
+    return pts.reshape(n, -1, 3)
+
+
+def _face_points_in_front(art, faces, renders):
+    """Whether any point of each polygon (_fan_points) lies in front of a surface of
+    ``renders`` that is there."""
+    return _any_in_front(list(_fan_points(art, faces)), renders)
+
+
+def _crossing_faces(art, faces, render):
+    """Which polygons of a Poly3DCollection cross the surface of ``render``: opaque,
+    with points of their lattice (_fan_points) both in front of it and behind it."""
+    pts = _fan_points(art, faces)
+    n, k, _ = pts.shape
+    flat = pts.reshape(-1, 3)
+    good = np.isfinite(flat).all(axis=1)
+    with np.errstate(invalid="ignore", over="ignore"):
+        _, front, behind = depth_sides(render, np.where(good[:, None], flat, 0.0),
+                                       render.box)
+    front = (front & good).reshape(n, k).any(axis=1)
+    behind = (behind & good).reshape(n, k).any(axis=1)
+    alpha = np.asarray(art._facecolor3d, dtype=float)
+    alpha = np.broadcast_to(alpha[:, 3] if alpha.ndim == 2 and len(alpha) else 1.0, (n,))
+    if art.get_alpha() is not None:
+        alpha = alpha * float(art.get_alpha())
+    return front & behind & (alpha >= 1.0)
+
+
+#: the most pixels the triangles of the polygons that cross a surface may cover in
+#: their boxes (_not_behind_pixels; beyond, they are drawn whole, as the others)
+MAX_CROSSING_PIXELS = 2e7
+
+
+def _not_behind_pixels(render, tris):
+    """(H, W) bool: the pixels of ``render``'s picture where one of the triangles
+    ``tris`` (k, 3, 3) in the surface's units covers the pixel's centre at a point that
+    is not behind the surface seen there (depth_sides: in front, or no surface there);
+    None where they cover more than MAX_CROSSING_PIXELS pixels in their boxes. Each
+    pixel's point on its triangle is interpolated perspective-correctly (weights over
+    the depth of the corners) and tested as visible_points tests a point."""
+    view, box = render.view, render.box
+    H, W = render.side.shape
+    out = np.zeros((H, W), dtype=bool)
+    P = tris * np.asarray(box, dtype=float)
+    with np.errstate(invalid="ignore", over="ignore"):
+        col, row = view.project(P[..., 0], P[..., 1], P[..., 2])
+        _, _, z = view.to_screen(P[..., 0], P[..., 1], P[..., 2])
+        depth = np.ones_like(z) if view.orthographic else z + view.d3
+        ok = np.isfinite(col).all(axis=1) & np.isfinite(row).all(axis=1)
+        c0 = np.clip(np.ceil(np.nanmin(col, axis=1)), 0, W)
+        c1 = np.clip(np.floor(np.nanmax(col, axis=1)), -1, W - 1)
+        r0 = np.clip(np.ceil(np.nanmin(row, axis=1)), 0, H)
+        r1 = np.clip(np.floor(np.nanmax(row, axis=1)), -1, H - 1)
+    nc = np.where(ok, c1 - c0 + 1, 0).clip(0).astype(np.int64)
+    nr = np.where(ok, r1 - r0 + 1, 0).clip(0).astype(np.int64)
+    counts = nc * nr
+    total = int(counts.sum())
+    if total > MAX_CROSSING_PIXELS:
+        return None
+    if total == 0:
+        return out
+    t = np.repeat(np.arange(len(tris)), counts)
+    local = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
+    cc = c0[t].astype(np.int64) + local % nc[t]
+    rr = r0[t].astype(np.int64) + local // nc[t]
+    # the pixel centre's barycentric weights in the picture, then on the triangle
+    x0, x1, x2 = col[t, 0], col[t, 1], col[t, 2]
+    y0, y1, y2 = row[t, 0], row[t, 1], row[t, 2]
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        area = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
+        b1 = ((cc - x0) * (y2 - y0) - (x2 - x0) * (rr - y0)) / area
+        b2 = ((x1 - x0) * (rr - y0) - (cc - x0) * (y1 - y0)) / area
+        b0 = 1.0 - b1 - b2
+        inside = (b0 >= -1e-9) & (b1 >= -1e-9) & (b2 >= -1e-9) & (area != 0.0)
+        q0, q1, q2 = b0 / depth[t, 0], b1 / depth[t, 1], b2 / depth[t, 2]
+        q = q0 + q1 + q2
+        pts = (tris[t, 0] * (q0 / q)[:, None] + tris[t, 1] * (q1 / q)[:, None]
+               + tris[t, 2] * (q2 / q)[:, None])
+    inside &= np.isfinite(pts).all(axis=1)
+    pts, cc, rr = pts[inside], cc[inside], rr[inside]
+    with np.errstate(invalid="ignore", over="ignore"):
+        shown = visible_points(render, pts, box)
+    out[rr[shown], cc[shown]] = True
+    return out
+
+
+def _fan_triangles(faces):
+    """The triangles (k, 3, 3) of the fans of polygons (faces (n, m, 3), padded and
+    invalid corners NaN: their triangles that reach one are left out)."""
+    tri = np.stack([np.broadcast_to(faces[:, :1], faces[:, 1:-1].shape), faces[:, 1:-1],
+                    faces[:, 2:]], axis=2).reshape(-1, 3, 3)
+    return tri[np.isfinite(tri).all(axis=(1, 2))]
 
 
 def _subpaths(vs, codes):

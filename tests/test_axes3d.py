@@ -956,3 +956,50 @@ def test_the_checkerboard_example_as_mplot3d_draws_it():
     both = (ym | bm) & (yf | bf)
     assert both.sum() > 15000
     assert ((ym == yf) & (bm == bf))[both].mean() > 0.98
+
+
+def test_mplot3d_polygons_through_the_surface_are_cut_a_pixel_at_a_time():
+    """mplot3d's own plot_surface of a plane z = 0.2 through a floatcol surface in one
+    3-D Axes: the plane shows exactly where it lies in front of the surface, its line
+    through the surface drawn a pixel at a time (its polygons that cross the surface
+    were drawn whole over it, a staircase of quads; mplot3d alone draws the whole plane
+    over the surface). Orthographic: the ray to the surface's point (u, v, w) seen at
+    a pixel meets the plane in front of it where w < 0.2 and the ray crosses z = 0.2
+    over the plane's square. Of the pixels whose 3 x 3 neighbourhood sees the surface
+    away from the plane's height and edges, red exactly there at 99.5 % (measured
+    2026-12-06: 99.71 % of 10 628, the rest beside the line, where the depth test's
+    tolerance of 2 pixels of depth gives the plane; whole quads: 91.8 %)."""
+    X, Y = np.meshgrid(np.linspace(-3, 3, 60), np.linspace(-3, 3, 60))
+    P, Q = np.meshgrid(np.linspace(-5.5, 5.5, 12), np.linspace(-5.5, 5.5, 12))
+    fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
+    ax = fig.add_subplot(projection="3d", proj_type="ortho")
+    p = fc.plot_surface(X, Y, np.sin(X) * np.cos(Y), ax=ax, cmap="viridis")
+    ax.plot_surface(P, Q, 0 * P + 0.2, color="red", shade=False, linewidth=0)
+    fig.canvas.draw()
+    a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
+    plt.close(fig)
+    r, T = p.render, p.artist.placed
+    assert abs(T[0, 1]) < 1e-9 and abs(T[1, 0]) < 1e-9       # (no roll)
+    red = (a[..., 0] > 150) & (a[..., 1] < 60) & (a[..., 2] < 60)
+    rows, cols = np.mgrid[0:r.side.shape[0], 0:r.side.shape[1]]
+    ix = np.round(T[0, 0] * cols + T[0, 2] - 0.5).astype(int)
+    iy = a.shape[0] - 1 - np.round(T[1, 1] * rows + T[1, 2] - 0.5).astype(int)
+    # the view's direction in the data's units: screen z from the box's (to_screen)
+    lin = np.array([r.view.to_screen(*e) for e in np.eye(3)]).T - \
+        np.array(r.view.to_screen(0.0, 0.0, 0.0))[:, None]
+    d = np.linalg.solve(lin, [0.0, 0.0, 1.0]) / np.asarray(r.box, dtype=float)
+    u, v = (np.nan_to_num(np.asarray(q, dtype=float)) for q in (r.u, r.v))
+    w = np.nan_to_num(np.asarray(r.w, dtype=float), nan=0.2)
+    t = (0.2 - w) / d[2]
+    cu, cv = u + t * d[0], v + t * d[1]                        # where the ray meets z = 0.2
+    want = (w < 0.2) & (np.abs(cu) < 5.5) & (np.abs(cv) < 5.5)
+    seen = (r.side != 0) & (r.rgba[..., 3] == 255) & (np.abs(w - 0.2) > 0.05) & \
+        (np.abs(np.abs(cu) - 5.5) > 0.1) & (np.abs(np.abs(cv) - 5.5) > 0.1)
+    ok = seen.copy()
+    for di in (-1, 0, 1):
+        for dj in (-1, 0, 1):
+            ok &= np.roll(np.roll(seen, di, 0), dj, 1) & \
+                (np.roll(np.roll(want, di, 0), dj, 1) == want)
+    ok &= (ix >= 0) & (ix < a.shape[1]) & (iy >= 0) & (iy < a.shape[0])
+    assert ok.sum() > 8000 and 0.2 < want[ok].mean() < 0.8
+    assert (red[iy[ok], ix[ok]] == want[ok]).mean() > 0.995

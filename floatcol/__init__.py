@@ -7,7 +7,7 @@ from .material import Material
 from .quality import Quality
 from .renderer import render_scene
 from .scene import Layer, Scene
-from .plot import SurfacePlot, plot_surface, plot_wireframe
+from .plot import SurfacePlot, plot_surface, plot_trisurf, plot_wireframe
 from .render import Render, render
 from .surface import HeightField, Surface, as_surface
 from .terrain import read_dem, terrain
@@ -28,5 +28,5 @@ def __getattr__(name):
 __all__ = ["Animation", "Camera", "HeightField", "Layer", "Light", "Material", "Mesh", "Quality",
            "Render", "Scene", "Surface", "SurfacePlot", "SympyBackend", "View", "__version__",
            "animate", "as_surface", "box", "composite", "fly", "marker", "pole", "tree",
-           "plot_surface", "plot_wireframe", "read_dem", "render", "render_many", "render_scene",
-           "terrain"]
+           "plot_surface", "plot_trisurf", "plot_wireframe", "read_dem", "render", "render_many",
+           "render_scene", "terrain"]

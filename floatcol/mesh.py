@@ -144,7 +144,6 @@ def curvilinear(X, Y, Z, faces=None):
     colour for each quad (rows - 1, columns - 1, channels), its two triangles that
     colour: ``colours`` at the grid's nodes (a texture over its extent; None
     without)."""
-    from .kernels.mesh import mesh_kernel
     m, n = Z.shape
     x, y, z = X.ravel(), Y.ravel(), Z.ravel()
     ok = np.isfinite(x) & np.isfinite(y)
@@ -198,26 +197,75 @@ def curvilinear(X, Y, Z, faces=None):
     if np.abs(area).sum() > 1.05 * (hi_x - lo_x) * (hi_y - lo_y):
         raise _parametric("its quads overlap")
     nodes = int(np.clip(CURVED_NODES_PER_LINE * max(m, n), MIN_NODES, MAX_NODES))
-    step = size / (nodes - 1)
+    corners = z[tris][..., None]                         # (triangles, 3, values)
+    if faces is not None:               # a quad's colour on both its triangles, flat
+        colours = np.asarray(faces, dtype=float).reshape(a.size, -1)[quad]
+        corners = np.concatenate([corners, np.repeat(colours[:, None], 3, axis=1)], axis=2)
+    xe, ye, out, hits = _rasterise(
+        x[tris], y[tris], corners, (lo_x, hi_x, lo_y, hi_y), nodes,
+        "plot_surface(X, Y, Z): the mesh's cells are too long and thin to resample (a "
+        "curvilinear grid whose quads cross much of it)")
+    # quads that lie over one another without folding (a mesh wound round twice)
+    if hits.max() > 1:
+        raise _parametric("its quads overlap")
+    colours = None if faces is None else _as_colours(out[..., 1:], faces)
+    return xe, ye, out[..., 0], colours
+
+
+def _rasterise(px, py, corners, extent, nodes, too_thin):
+    """(xe, ye, out, hits): triangles with corners (px, py) (k, 3) and values there
+    (k, 3, c), linear on each, at the nodes of an evenly spaced grid over ``extent``
+    (x0, x1, y0, y1) with ``nodes`` nodes along its longer side (kernels/mesh.py: out
+    (ny, nx, c) NaN outside them, hits where a node lies inside one); ValueError
+    ``too_thin`` where the triangles' boxes hold more than MAX_VISITS nodes."""
+    from .kernels.mesh import mesh_kernel
+    lo_x, hi_x, lo_y, hi_y = extent
+    step = max(hi_x - lo_x, hi_y - lo_y) / (nodes - 1)
     xe = np.linspace(lo_x, hi_x, max(int(round((hi_x - lo_x) / step)) + 1, 2))
     ye = np.linspace(lo_y, hi_y, max(int(round((hi_y - lo_y) / step)) + 1, 2))
     # the kernel visits each triangle's box of nodes: long thin cells across the
     # whole mesh would take minutes
     boxes = ((np.ptp(px, axis=1) / step + 1) * (np.ptp(py, axis=1) / step + 1)).sum()
     if boxes > MAX_VISITS:
-        raise ValueError("plot_surface(X, Y, Z): the mesh's cells are too long and thin to "
-                         "resample (a curvilinear grid whose quads cross much of it)")
-    corners = z[tris][..., None]                         # (triangles, 3, values)
-    if faces is not None:               # a quad's colour on both its triangles, flat
-        colours = np.asarray(faces, dtype=float).reshape(a.size, -1)[quad]
-        corners = np.concatenate([corners, np.repeat(colours[:, None], 3, axis=1)], axis=2)
+        raise ValueError(too_thin)
     out = np.full((len(ye), len(xe), corners.shape[2]), np.nan)
     hits = np.zeros((len(ye), len(xe)), dtype=np.int64)
-    mesh_kernel(np.ascontiguousarray(x[tris]), np.ascontiguousarray(y[tris]),
-                np.ascontiguousarray(corners), xe[0], xe[1] - xe[0], len(xe),
+    mesh_kernel(np.ascontiguousarray(px, dtype=float), np.ascontiguousarray(py, dtype=float),
+                np.ascontiguousarray(corners, dtype=float), xe[0], xe[1] - xe[0], len(xe),
                 ye[0], ye[1] - ye[0], len(ye), out, hits)
-    # quads that lie over one another without folding (a mesh wound round twice)
+    return xe, ye, out, hits
+
+
+#: plot_trisurf's resampled grid: nodes along its longer side per point along it (the
+#: square root of the number of points), and at most MAX_NODES
+TRI_NODES_PER_POINT = 16
+
+
+def triangulated(x, y, z, triangles):
+    """(x, y, Z) of matplotlib's plot_trisurf: the surface through the points (x, y, z)
+    (1-D, n), linear on ``triangles`` (k, 3) of point indices, at the nodes of an
+    evenly spaced grid over the points' extent with TRI_NODES_PER_POINT sqrt(n) nodes
+    along its longer side (at least MIN_NODES, at most MAX_NODES); NaN outside the
+    triangles. ValueError where the triangles overlap, span no area, or are too long
+    and thin to resample."""
+    x, y, z = (np.asarray(a, dtype=float) for a in (x, y, z))
+    tris = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    px, py = x[tris], y[tris]
+    with np.errstate(over="ignore", invalid="ignore"):
+        area = 0.5 * ((px[:, 1] - px[:, 0]) * (py[:, 2] - py[:, 0])
+                      - (px[:, 2] - px[:, 0]) * (py[:, 1] - py[:, 0]))
+        lo_x, hi_x, lo_y, hi_y = x.min(), x.max(), y.min(), y.max()
+        size = max(hi_x - lo_x, hi_y - lo_y)
+    if not np.isfinite(size):
+        raise ValueError("plot_trisurf: x or y spans more than the largest double")
+    keep = np.abs(area) > 1e-12 * size * size
+    if not keep.any():
+        raise ValueError("plot_trisurf: the points span no area (all on one line)")
+    nodes = int(np.clip(TRI_NODES_PER_POINT * np.sqrt(len(x)), MIN_NODES, MAX_NODES))
+    xe, ye, out, hits = _rasterise(
+        px[keep], py[keep], z[tris[keep]][..., None], (lo_x, hi_x, lo_y, hi_y), nodes,
+        "plot_trisurf: the triangles are too long and thin to resample")
     if hits.max() > 1:
-        raise _parametric("its quads overlap")
-    colours = None if faces is None else _as_colours(out[..., 1:], faces)
-    return xe, ye, out[..., 0], colours
+        raise ValueError("plot_trisurf: triangles lie over one another; give triangles "
+                         "that do not overlap (or none: the points' Delaunay triangulation)")
+    return xe, ye, out[..., 0]

@@ -821,6 +821,96 @@ def plot_wireframe(expr, *ranges, ax=None, interactive=False, label="",
                         edgecolor=colour, fill=False, **options)
 
 
+def plot_trisurf(*args, ax=None, interactive=False, label="", **options) -> SurfacePlot:
+    """matplotlib's ``Axes3D.plot_trisurf`` call form: the surface through scattered
+    points, ``fc.plot_trisurf(x, y, z, ax=ax, cmap="viridis")``, linear on the triangles
+    of their Delaunay triangulation, or on ``triangles`` (``plot_trisurf(x, y,
+    triangles, z)`` or ``triangles=``), less those ``mask`` hides, or on a matplotlib
+    ``Triangulation`` (``plot_trisurf(tri, z)``); holes outside them. It is resampled
+    onto an evenly spaced grid (mesh.py's ``triangulated``: 16 sqrt(n) nodes a side for
+    n points, at most 2049) and drawn as a height field, coloured by height a pixel at
+    a time (mplot3d colours each triangle by its mean height). ``edgecolor`` and
+    ``linewidth`` draw the triangles' edges in a 3-D Axes (mplot3d's own lines, hidden
+    where the surface lies in front of them); any :func:`plot_surface` option else."""
+    from matplotlib.tri import Triangulation
+
+    from .mesh import triangulated
+    edges = {k: options.pop(k) for k in list(options)
+             if k in ("edgecolor", "edgecolors", "ec", "linewidth", "linewidths", "lw")}
+    for k in ("antialiased", "antialiaseds", "aa"):
+        options.pop(k, None)                  # (floatcol antialiases by its own rules)
+    tri_kw = {k: options.pop(k) for k in ("triangles", "mask") if k in options}
+    if args and isinstance(args[0], Triangulation):
+        pts = (args[0].x, args[0].y)
+    elif len(args) >= 2:
+        pts = args[:2]
+    else:
+        raise ValueError("plot_trisurf(x, y, z): give the points' x, y and z (or a "
+                         "matplotlib Triangulation and z)")
+    try:
+        x, y = (np.asarray(a, dtype=float) for a in pts)
+    except (TypeError, ValueError):
+        raise ValueError("plot_trisurf(x, y, z): x and y must be arrays of numbers") from None
+    if x.ndim != 1 or x.shape != y.shape:
+        raise ValueError(f"plot_trisurf(x, y, z): x and y must be 1-D of one length, got "
+                         f"shapes {x.shape} and {y.shape}")
+    if not (np.isfinite(x).all() and np.isfinite(y).all()):
+        raise ValueError("plot_trisurf(x, y, z): x and y must be finite (a missing "
+                         "height is a NaN z)")
+    if len(x) < 3 or np.linalg.matrix_rank(np.column_stack([x - x.mean(), y - y.mean()]),
+                                           tol=1e-12 * max(np.ptp(x), np.ptp(y), 1e-300)) < 2:
+        raise ValueError("plot_trisurf(x, y, z): the points span no area (fewer than 3, or "
+                         "all on one line)")
+    try:
+        tri, rest, extra = Triangulation.get_from_args_and_kwargs(*args, **tri_kw)
+        mask = tri.mask
+        triangles = tri.get_masked_triangles()
+    except (ValueError, TypeError, IndexError, RuntimeError) as exc:
+        raise ValueError(f"plot_trisurf: {exc}") from None
+    if len(rest) != 1 or extra:
+        raise ValueError("plot_trisurf(x, y, z): give x, y (or a Triangulation, or x, y, "
+                         "triangles) and then z, one height a point")
+    try:
+        z = np.ma.filled(np.ma.asarray(rest[0], dtype=float), np.nan)
+    except (TypeError, ValueError):
+        raise ValueError("plot_trisurf(x, y, z): z must be an array of numbers") from None
+    if z.shape != x.shape:
+        raise ValueError(f"plot_trisurf(x, y, z): z must have one height a point, shape "
+                         f"{x.shape}, got {z.shape}")
+    if mask is not None and len(triangles) == 0:
+        raise ValueError("plot_trisurf: the mask hides every triangle")
+    xe, ye, Z = triangulated(tri.x, tri.y, z, triangles)
+    hf = HeightField(Z, u=(xe[0], xe[-1]), v=(ye[0], ye[-1]))
+    hf.resampled = True
+    plot = plot_surface(hf, ax=ax, interactive=interactive, label=label, **options)
+    _triangle_edges(plot, ax, tri.x, tri.y, z, triangles, edges)
+    return plot
+
+
+def _triangle_edges(plot, ax, x, y, z, triangles, edges):
+    """plot_trisurf's edgecolor: the triangles' edges as mplot3d's own lines in a 3-D
+    Axes (depth-tested against the surface, mpl.py's DepthTested); elsewhere a
+    RuntimeWarning says they are not drawn."""
+    ec = next((edges[k] for k in ("edgecolor", "edgecolors", "ec") if k in edges), None)
+    if ec is None or (isinstance(ec, str) and ec in ("none", "face")):
+        return
+    lw = next((edges[k] for k in ("linewidth", "linewidths", "lw") if k in edges), 1.0)
+    if getattr(ax, "name", "") != "3d":
+        import warnings
+        warnings.warn("plot_trisurf: the triangles' edges (edgecolor) are drawn in a "
+                      "matplotlib 3-D Axes only (ax=fig.add_subplot(projection='3d'))",
+                      RuntimeWarning, stacklevel=3)
+        return
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+    pairs = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]])
+    pairs = np.unique(np.sort(pairs, axis=1), axis=0)
+    seg = np.stack([np.column_stack([x[pairs[:, k]], y[pairs[:, k]], z[pairs[:, k]]])
+                    for k in (0, 1)], axis=1)
+    lines = Line3DCollection(seg, colors=ec, linewidths=lw)
+    ax.add_collection3d(lines)
+    plot._placed.append(lines)            # (removed with the plot)
+
+
 #: Axes3D.plot_surface's keywords about its polygon mesh: the lines of its edges, drawn
 #: as a wireframe on the exact surface where an edge colour is given (_mesh_lines);
 #: antialiasing by floatcol's own rules (docs/options.md)

@@ -2,7 +2,9 @@
 plot_surface call changed, markers hidden behind a hill, two crossing surfaces in one
 Axes, a terrain with matplotlib's LightSource, a surface clipped at the Axes' limits
 (axlim_clip), plot_wireframe with the hidden lines removed, beside mplot3d's own, and
-the surface3d_radial example's polar grid (resampled onto an even one), and an
+the surface3d_radial example's polar grid (resampled onto an even one), the
+checkerboard example's facecolors beside a plane of mplot3d's cut where it passes
+through the surface, the trisurf3d example's scattered points (fc.plot_trisurf), and an
 animation made as matplotlib's are (remove the last frame's plot, plot the next) under
 a translucent lid, with a legend.
 
@@ -116,6 +118,32 @@ ax.set_xlabel(r"$\phi_\mathrm{real}$")
 ax.set_ylabel(r"$\phi_\mathrm{im}$")
 ax.set_zlabel(r"$V(\phi)$")
 fig.savefig("surface3d_radial.png")
+
+# matplotlib's checkerboard example (surface3d_3): facecolors colour whole faces; a
+# plane drawn by mplot3d's own plot_surface, cut where it passes through the surface
+fig = plt.figure(figsize=(10, 4.5))
+ax = fig.add_subplot(1, 2, 1, projection="3d")
+XC, YC = np.meshgrid(np.arange(-5, 5, 0.25), np.arange(-5, 5, 0.25))
+ZC = np.sin(np.sqrt(XC**2 + YC**2))
+colors = np.where(np.add.outer(np.arange(40), np.arange(40)) % 2 == 0, "y", "b")
+fc.plot_surface(XC, YC, ZC, ax=ax, facecolors=colors, linewidth=0)
+ax.set_zlim(-1, 1)
+ax = fig.add_subplot(1, 2, 2, projection="3d")
+fc.plot_surface(XC, YC, ZC, ax=ax, cmap="viridis")
+ax.plot_surface(XC, YC, 0 * ZC + 0.3, color="tab:red", rcount=10, ccount=10, edgecolor="k",
+                linewidth=0.3)
+fig.savefig("faces_and_planes.png")
+
+# matplotlib's trisurf3d example: scattered points, linear on their Delaunay triangles
+# (fc.plot_trisurf), the triangles' edges drawn as mplot3d's lines, depth-tested
+radii = np.linspace(0.125, 1.0, 8)
+angles = np.linspace(0, 2 * np.pi, 36, endpoint=False)[..., np.newaxis]
+xs = np.append(0, (radii * np.cos(angles)).flatten())
+ys = np.append(0, (radii * np.sin(angles)).flatten())
+fig, ax = plt.subplots(subplot_kw={"projection": "3d"})
+fc.plot_trisurf(xs, ys, np.sin(-xs * ys), ax=ax, cmap="viridis", edgecolor="k",
+                linewidth=0.2)
+fig.savefig("trisurf3d.png")
 
 # matplotlib's way to animate a surface: each frame removes the last frame's plot and
 # plots the next (plot.remove(), as an mplot3d artist's); a label puts it in the legend

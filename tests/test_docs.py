@@ -45,6 +45,17 @@ def test_pictures_and_pages_exist():
     assert len(nav) >= 6 and all((DOCS / n).is_file() for n in nav)
 
 
+def test_every_gallery_script_is_on_the_gallery_pages():
+    """docs/gallery.md and gallery/README.md name every script of gallery/ (four were
+    missing from the docs' page)."""
+    pages = [(DOCS / "gallery.md").read_text(encoding="utf-8"),
+             (ROOT / "gallery" / "README.md").read_text(encoding="utf-8")]
+    scripts = sorted(p.name for p in (ROOT / "gallery").glob("*.py"))
+    assert len(scripts) > 10
+    for page in pages:
+        assert [s for s in scripts if s not in page] == []
+
+
 def test_mkdocs_builds_strict(tmp_path):
     p = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "-q",
                         "-d", str(tmp_path / "site")], cwd=ROOT, capture_output=True, text=True)

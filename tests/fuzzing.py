@@ -258,6 +258,7 @@ def mesh_case(rng: random.Random) -> dict:
     c["facecolors"] = rng.random() < 0.2
     c["edges"] = rng.random() < 0.2
     c["axes3d"] = rng.random() < 0.3
+    c["trisurf"] = rng.random() < 0.2         # the points as plot_trisurf's scattered ones
     return {"mesh": c}
 
 
@@ -299,6 +300,14 @@ def _mesh_call(c):
     import floatcol as fc
     X, Y, Z = _mesh_arrays(c)
     kw = {"size": tuple(c["size"])}
+    draw = fc.plot_surface
+    if c.get("trisurf"):
+        X, Y, Z = X.ravel(), Y.ravel(), Z.ravel()
+        draw = fc.plot_trisurf
+        c = dict(c, facecolors=False)
+        if c["edges"]:
+            kw.update(edgecolor="k", linewidth=0.5)
+            c["edges"] = False
     if c["facecolors"]:
         kw["facecolors"] = np.random.default_rng(1).uniform(0, 1, Z.shape + (3,))
     if c["edges"]:
@@ -310,14 +319,16 @@ def _mesh_call(c):
         fig = plt.figure(figsize=(2, 1.5), dpi=50)
         ax = fig.add_subplot(projection="3d")
         try:
-            p = fc.plot_surface(X, Y, Z, ax=ax, **kw)
+            p = draw(X, Y, Z, ax=ax, **kw)
             ax.scatter([0.0], [0.0], [0.0])
             ax.plot([0.0, 1.0], [0.0, 1.0], [0.0, 1.0])
+            # mplot3d's own polygons through the surface (cut a pixel at a time)
+            ax.bar3d([0.0], [0.0], [-1.0], 0.5, 0.5, [2.0])
             fig.canvas.draw()
             return p.render
         finally:
             plt.close(fig)
-    return fc.plot_surface(X, Y, Z, **kw).draw()
+    return draw(X, Y, Z, **kw).draw()
 
 
 def run_case(c: dict) -> dict:

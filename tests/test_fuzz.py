@@ -75,7 +75,8 @@ def test_random_terrains_draw_or_raise_value_error(worker):
 
 
 #: matplotlib's plot_surface(X, Y, Z) on meshes of every kind (a fixed seed): even,
-#: uneven, polar, wound twice, a sphere's, scattered, on a line, at one point
+#: uneven, polar, wound twice, a sphere's, scattered, on a line, at one point; a fifth
+#: of them as plot_trisurf's scattered points
 N_MESH = 120
 
 

@@ -336,7 +336,8 @@ class Surface3DImage(Artist):
         for others in plot._items()[1:]:
             (a, b), (c, d) = others[1]
             ua, ub, va, vb = min(ua, a), max(ub, b), min(va, c), max(vb, d)
-        lo, hi = plot.norm.vmin, plot.norm.vmax
+        # z: the heights (vmin/vmax and a colour field's range colour them only)
+        lo, hi = plot.w_range()
         ax.auto_scale_xyz([ua, ub], [va, vb], [lo, hi], had_data=ax.has_data())
         # mplot3d's own calls after this one (ax.plot, ax.scatter) keep the data limits
         # only where ax.has_data(), which counts lines, collections, patches and images,

@@ -320,6 +320,18 @@ class SurfacePlot(_ScalarMappable):
                 return 0.0, 1.0
             lo, hi = float(c.min()), float(c.max())
             return (lo, hi) if hi > lo else (lo - 0.5, hi + 0.5)
+        return self.w_range()
+
+    def w_range(self):
+        """The range of the surfaces' heights over their domains (a 129 x 129 grid's,
+        robust to poles; a mesh's every height): the colormap's default range, and
+        what a 3-D Axes' z limits take (not the colour range: vmin/vmax or a colour
+        field do not move them, as in mplot3d). Computed once."""
+        if getattr(self, "_w_range", None) is None:
+            self._w_range = self._heights()
+        return self._w_range
+
+    def _heights(self):
         los, his = [], []
         for surface, ((ua, ub), (va, vb)) in [(self.surface, self.domain), *self.others]:
             gu, gv = np.meshgrid(np.linspace(ua, ub, 129), np.linspace(va, vb, 129))

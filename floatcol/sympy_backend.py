@@ -25,6 +25,10 @@ class SympyBackend(Plot):
     def __init__(self, *series, **kwargs):
         self._fc_options = {k: kwargs.pop(k) for k in list(kwargs) if k in _FLOATCOL_OPTIONS}
         self._zlim = kwargs.get("zlim")          # (sympy's Plot keeps no zlim of its own)
+        # a function given as surface_color (sympy's older form): sympy 1.14's series
+        # drop it for their default color_func, so it is read here (_surface_colour)
+        self._colour_function = kwargs.get("surface_color") if callable(
+            kwargs.get("surface_color")) else None
         # a figure and Axes to draw into, as sympy's MatplotlibBackend (PlotGrid sets
         # them before it calls process_series)
         self._plotgrid_fig = kwargs.pop("fig", None)
@@ -82,8 +86,18 @@ class SympyBackend(Plot):
         # several surfaces: one picture where they hide each other (render_many)
         items = [(s.expr, (s.var_x, s.start_x, s.end_x), (s.var_y, s.start_y, s.end_y))
                  for s in surfaces]
-        self.plots = [plot_surface(items, ax=ax, label=[str(s.expr) for s in surfaces],
-                                   **self._fc_options)]
+        colours = [_surface_colour(s, self._fc_options, self._colour_function)
+                   for s in surfaces]
+        if any(colours):
+            # sympy's surface_color (or color_func): each surface its own plot_surface
+            # in the Axes, with its colours (they still hide one another a pixel at a
+            # time, mpl.py)
+            self.plots = [plot_surface(*item, ax=ax, label=str(s.expr),
+                                       **{**self._fc_options, **c})
+                          for item, s, c in zip(items, surfaces, colours)]
+        else:
+            self.plots = [plot_surface(items, ax=ax, label=[str(s.expr) for s in surfaces],
+                                       **self._fc_options)]
         first = surfaces[0]
         labels = [getattr(self, k, None) for k in ("xlabel", "ylabel", "zlabel")]
         ax.set_xlabel(str(labels[0]) if labels[0] else str(first.var_x))
@@ -120,3 +134,79 @@ class SympyBackend(Plot):
             import matplotlib.pyplot as plt
             plt.close(self._fig)
         self._fig = None
+
+
+#: a colour function's values are read on a grid of this many points a side (a colour
+#: field over the surface's domain, bilinear between them)
+COLOUR_GRID = 256
+
+
+def _surface_colour(series, options, given=None):
+    """plot_surface keywords for a sympy surface series' colours, as sympy's matplotlib
+    backend draws them: ``color_func`` (or ``surface_color``, ``given``: the function
+    plot3d was given as surface_color) a function of x, of (x, y) or of (x, y, z), or
+    a sympy expression: a colour field through the colour map (a function's values on
+    a COLOUR_GRID grid; an expression compiled as the surface is); a number: one
+    value, the colour map's first colour (matplotlib maps a constant there); a colour:
+    that colour. {} where none is given (the default colour by height)."""
+    from sympy import Expr
+
+    func = getattr(series, "color_func", None)
+    value = getattr(series, "surface_color", None)
+    if isinstance(func, Expr):
+        return {"color_field": func}
+    if callable(func) and getattr(func, "__module__", "") != "sympy.plotting.series":
+        return {"color_field": _colour_grid(series, func)}
+    if given is not None:
+        return {"color_field": _colour_grid(series, given)}
+    if value is None:
+        return {}
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        import matplotlib
+        cmap = options.get("cmap", "viridis")
+        cmap = matplotlib.colormaps[cmap] if isinstance(cmap, str) else cmap
+        return {"color": tuple(float(c) for c in cmap(0.0))}
+    from matplotlib.colors import to_rgba
+    try:
+        return {"color": to_rgba(value)}
+    except (TypeError, ValueError):
+        raise ValueError(f"surface_color must be a colour, a number or a function of x, y "
+                         f"(and z), got {value!r}") from None
+
+
+def _colour_grid(series, func):
+    """The values of a colour function on a COLOUR_GRID x COLOUR_GRID grid over the
+    series' domain (rows along y): called with arrays, as sympy's backend calls it, or
+    a point at a time where it takes no arrays."""
+    import inspect
+
+    import numpy as np
+
+    from .surface import as_surface
+    n = COLOUR_GRID
+    x = np.linspace(float(series.start_x), float(series.end_x), n)
+    y = np.linspace(float(series.start_y), float(series.end_y), n)
+    X, Y = np.meshgrid(x, y)
+    try:
+        nargs = len(inspect.signature(func).parameters)
+    except (TypeError, ValueError):
+        nargs = 3
+    args = [X, Y]
+    if nargs >= 3:
+        surface = as_surface(series.expr, [series.var_x, series.var_y])
+        args.append(surface.evaluate(X, Y))
+    args = args[:max(1, min(nargs, 3))]
+    try:
+        with np.errstate(all="ignore"):
+            vals = np.asarray(func(*args), dtype=float)
+        if vals.shape != X.shape:
+            vals = np.broadcast_to(vals, X.shape).astype(float)
+    except Exception:                             # (a function of numbers, not arrays)
+        try:
+            with np.errstate(all="ignore"):
+                vals = np.vectorize(lambda *a: float(func(*a)), otypes=[float])(*args)
+        except Exception as exc:
+            raise ValueError(f"surface_color: the colour function failed: {exc}") from None
+    vals = np.array(vals, dtype=float)
+    vals[~np.isfinite(vals)] = np.nan
+    return vals

@@ -1003,3 +1003,28 @@ def test_mplot3d_polygons_through_the_surface_are_cut_a_pixel_at_a_time():
     ok &= (ix >= 0) & (ix < a.shape[1]) & (iy >= 0) & (iy < a.shape[0])
     assert ok.sum() > 8000 and 0.2 < want[ok].mean() < 0.8
     assert (red[iy[ok], ix[ok]] == want[ok]).mean() > 0.995
+
+
+def test_z_limits_follow_the_heights_not_the_colours():
+    """In a 3-D Axes the z limits take the surface's heights, as mplot3d's: vmin/vmax
+    and a colour field's range colour it only (they set z to -5..5 for heights in
+    -1..1, and to a colour field's -2..2 for heights in -4..4)."""
+    X, Y = np.meshgrid(np.linspace(-2, 2, 40), np.linspace(-2, 2, 40))
+    for kw, Z in ((dict(vmin=-5, vmax=5), np.sin(X) * np.cos(Y)),
+                  (dict(color_field=X), X * Y)):
+        fig = plt.figure()
+        ax = fig.add_subplot(projection="3d")
+        fc.plot_surface(X, Y, Z, ax=ax, **kw)
+        mine = ax.get_zlim()
+        plt.close(fig)
+        fig = plt.figure()
+        ax = fig.add_subplot(projection="3d")
+        ax.plot_surface(X, Y, Z)
+        theirs = ax.get_zlim()
+        plt.close(fig)
+        assert mine == pytest.approx(theirs, abs=1e-9)
+    fig = plt.figure()
+    ax = fig.add_subplot(projection="3d")
+    p = fc.plot_surface("x*y", ("x", -2, 2), ("y", -2, 2), ax=ax, color_field="x")
+    assert p.norm.vmin == pytest.approx(-2) and ax.get_zlim()[1] > 3.9    # (x y reaches 4)
+    plt.close(fig)

@@ -148,3 +148,53 @@ def test_fig_and_ax_given_are_drawn_into(tmp_path):
     p.save(tmp_path / "given.png")
     assert p.fig is fig and p.ax is ax and p.plots[0].artist.axes is ax
     plt.close(fig)
+
+
+@pytest.mark.parametrize("how", ["color_func", "surface_color function", "expression",
+                                 "function of z"])
+def test_colour_functions_colour_the_surface(how, tmp_path):
+    """sympy's colour function (color_func=, or the older surface_color=function; a
+    function of x, y or of x, y, z; a sympy expression) colours the surface through
+    the colour map as sympy's matplotlib backend does (it was ignored). Unshaded, each
+    pixel's colour is the colour map's at the function's value at its seen (x, y), to
+    4 levels at 99 % of the wholly seen pixels (measured 2026-12-06: median 0.76, 99th
+    percentile 3.01: the colour map's 256 rows against matplotlib's continuous map)."""
+    import matplotlib
+    f = {"color_func": dict(color_func=lambda a, b: a + b * b),
+         "surface_color function": dict(surface_color=lambda a, b: a + b * b),
+         "expression": dict(color_func=x + y * y),
+         "function of z": dict(color_func=lambda a, b, c: c - a)}[how]
+    p = plot3d(sp.sin(x) * y, (x, -2, 2), (y, -1.5, 1.5), backend=fc.SympyBackend,
+               show=False, size=(4, 3), shade=False, **f)
+    p.save(tmp_path / "c.png")
+    (sp_,) = p.plots
+    r = sp_.render
+    u, v = np.nan_to_num(r.u), np.nan_to_num(r.v)
+    val = np.sin(u) * v - u if how == "function of z" else u + v * v
+    lo, hi = sp_.norm.vmin, sp_.norm.vmax
+    assert hi - lo > 1.0
+    want = (matplotlib.colormaps["viridis"](np.clip((val - lo) / (hi - lo), 0, 1))[..., :3]
+            * 255)
+    seen = (r.side == 1) & (r.rgba[..., 3] == 255)
+    assert seen.sum() > 3000
+    off = np.abs(r.rgba[..., :3].astype(float) - want).max(axis=-1)
+    assert (off[seen] <= 4).mean() > 0.99
+
+
+def test_surface_colour_values(tmp_path):
+    """surface_color a colour: that colour; a number: the colour map's first (as
+    matplotlib maps a constant); not a colour: a ValueError that says so."""
+    import matplotlib
+    for value, want in (("red", (255, 0, 0)), ((0.2, 0.5, 0.9), (51, 128, 230)),
+                        (0.5, tuple(round(255 * c) for c in
+                                    matplotlib.colormaps["viridis"](0.0)[:3]))):
+        p = plot3d(x * y, (x, -2, 2), (y, -2, 2), backend=fc.SympyBackend, show=False,
+                   size=(4, 3), shade=False, surface_color=value)
+        p.save(tmp_path / "c.png")
+        r = p.plots[0].render
+        seen = (r.side == 1) & (r.rgba[..., 3] == 255)
+        assert seen.sum() > 2000
+        assert (np.abs(r.rgba[seen][:, :3].astype(int) - want).max(axis=1) <= 1).mean() > 0.99
+    with pytest.raises(ValueError, match="surface_color must be a colour"):
+        plot3d(x * y, (x, -2, 2), (y, -2, 2), backend=fc.SympyBackend, show=False,
+               surface_color="nocolour").fig

@@ -237,11 +237,28 @@ def fraction(name, x):
 
 def norm_lut(norm, lut, w_lo, w_hi):
     """(lut (n, 4), w_lo, w_hi) for a non-linear norm: each row's colour and the height
-    where it begins, norm.inverse(k / (n - 1)) (shade._side_rgb). A norm without
-    ends gets the seen range's (as a matplotlib mappable's autoscale)."""
+    where it begins, norm.inverse(k / (n - 1)) (shade._side_rgb); a BoundaryNorm's, a
+    row a bin. A norm without ends gets the seen range's (as a matplotlib mappable's
+    autoscale)."""
     if getattr(norm, "vmin", 0.0) is None or getattr(norm, "vmax", 0.0) is None:
         norm.autoscale_None(np.array([w_lo, w_hi]))
     n = lut.shape[0]
+    bounds = getattr(norm, "boundaries", None)
+    if bounds is not None:
+        # matplotlib's BoundaryNorm (discrete levels; it has no inverse): a row a bin,
+        # beginning at its lower boundary, coloured as the norm colours its middle (the
+        # norm gives an index into a colour map of norm.Ncmap colours)
+        try:
+            b = np.asarray(bounds, dtype=np.float64)
+            k = np.ma.filled(np.ma.asarray(norm(0.5 * (b[:-1] + b[1:])), dtype=np.float64),
+                             0.0)
+        except (ValueError, TypeError) as e:
+            raise ValueError(f"norm {norm!r}: {e}") from None
+        if b.ndim != 1 or len(b) < 2 or not np.isfinite(b).all() or (np.diff(b) <= 0).any():
+            raise ValueError(f"norm {norm!r} must have ascending, finite boundaries")
+        rows = np.clip(np.round(k / max(getattr(norm, "Ncmap", n) - 1, 1) * (n - 1)), 0, n - 1)
+        return (np.column_stack([lut[rows.astype(np.int64), :3], b[:-1]]), float(b[0]),
+                float(b[-1]))
     try:
         starts = np.asarray(norm.inverse(np.linspace(0.0, 1.0, n)), dtype=np.float64)
     except (ValueError, TypeError, ZeroDivisionError) as e:

@@ -483,10 +483,12 @@ def axes_camera(plot, ax, W, H, mag=1.0):
 
     from .plot import mpl_to_paper_angles
     (x0, x1), (y0, y1), (z0, z1) = ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()
-    ba = np.asarray(ax._box_aspect, dtype=float)
+    # (with another vertical axis mplot3d keeps the box's proportions rolled: its
+    # get_proj's box_aspect)
+    ba = np.roll(np.asarray(ax._box_aspect, dtype=float), getattr(ax, "_vertical_axis", 2) - 2)
     box = (ba[0] / abs(x1 - x0), ba[1] / abs(y1 - y0), ba[2] / abs(z1 - z0))
     center = ((x0 + x1) / 2.0, (y0 + y1) / 2.0, (z0 + z1) / 2.0)
-    elev, azim = mpl_to_paper_angles(ax.elev, ax.azim)
+    elev, azim = mpl_to_paper_angles(*_z_up_angles(ax))
     # An inverted axis (ax.invert_zaxis(), limits high to low) shows the data mirrored
     # in it: S W seen from the Axes' eye is W seen from the mirrored eye S C, whose
     # view direction is S d (u: azim -> -azim, v: azim -> 180 - azim, w: elev -> -elev)
@@ -507,8 +509,10 @@ def axes_camera(plot, ax, W, H, mag=1.0):
     cx, cy, cz = (a.ravel() for a in np.meshgrid([x0, x1], [y0, y1], [z0, z1]))
     xs, ys, _ = proj3d.proj_transform(cx, cy, cz, ax.M)
     disp = ax.transData.transform(np.column_stack([xs, ys])) * mag
-    # (a roll turns the picture: it must cover the Axes' diagonal)
-    base = (W, H) if not getattr(ax, "roll", 0.0) else (int(np.ceil(np.hypot(W, H))),) * 2
+    # (a roll, or another vertical axis, turns the picture: it must cover the Axes'
+    # diagonal)
+    turned = getattr(ax, "roll", 0.0) or getattr(ax, "_vertical_axis", 2) != 2
+    base = (W, H) if not turned else (int(np.ceil(np.hypot(W, H))),) * 2
     # One fit, at the base size: the picture drawn at any other size with the scale
     # s times the fit's is the same projection about the same centre pixel, the
     # view's centre (the camera's d1, d2 and centre are given): pixel (col, row) of a
@@ -527,6 +531,21 @@ def axes_camera(plot, ax, W, H, mag=1.0):
     T = np.column_stack([A[:, 0] / s, A[:, 1] / s,
                          A[:, 0] * (cW - cW1 / s) + A[:, 1] * (cH - cH1 / s) + A[:, 2]]) / mag
     return kw, T, size
+
+
+def _z_up_angles(ax):
+    """matplotlib's (elev, azim) of the Axes' eye as seen with z up. With another
+    vertical axis (``view_init(..., vertical_axis="y")``) mplot3d puts its eye at
+    np.roll((cos e cos a, cos e sin a, sin e), vertical_axis - 2) in the box (its
+    get_proj): that direction's angles about z; the picture it makes is the Axes'
+    up to a turn, which _fit finds."""
+    va = getattr(ax, "_vertical_axis", 2)
+    if va == 2:
+        return ax.elev, ax.azim
+    e, a = np.radians(ax.elev), np.radians(ax.azim)
+    d = np.roll([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)], va - 2)
+    return (float(np.degrees(np.arcsin(np.clip(d[2], -1.0, 1.0)))),
+            float(np.degrees(np.arctan2(d[1], d[0]))))
 
 
 def _fit(plot, kw, size, corners, box, disp):

@@ -511,7 +511,8 @@ def axes_camera(plot, ax, W, H, mag=1.0):
     disp = ax.transData.transform(np.column_stack([xs, ys])) * mag
     # (a roll, or another vertical axis, turns the picture: it must cover the Axes'
     # diagonal)
-    turned = getattr(ax, "roll", 0.0) or getattr(ax, "_vertical_axis", 2) != 2
+    turned = (getattr(ax, "roll", 0.0) or getattr(ax, "_vertical_axis", 2) != 2
+              or not -90.0 <= ax.elev <= 90.0)
     base = (W, H) if not turned else (int(np.ceil(np.hypot(W, H))),) * 2
     # One fit, at the base size: the picture drawn at any other size with the scale
     # s times the fit's is the same projection about the same centre pixel, the
@@ -534,13 +535,13 @@ def axes_camera(plot, ax, W, H, mag=1.0):
 
 
 def _z_up_angles(ax):
-    """matplotlib's (elev, azim) of the Axes' eye as seen with z up. With another
-    vertical axis (``view_init(..., vertical_axis="y")``) mplot3d puts its eye at
-    np.roll((cos e cos a, cos e sin a, sin e), vertical_axis - 2) in the box (its
-    get_proj): that direction's angles about z; the picture it makes is the Axes'
-    up to a turn, which _fit finds."""
+    """matplotlib's (elev, azim) of the Axes' eye as seen with z up, elev within
+    [-90, 90]. mplot3d puts its eye at np.roll((cos e cos a, cos e sin a, sin e),
+    vertical_axis - 2) in the box (its get_proj), with any elev (a drag over the top
+    takes it past 90: the view upside down): that direction's angles about z; the
+    picture it makes is the Axes' up to a turn, which _fit finds."""
     va = getattr(ax, "_vertical_axis", 2)
-    if va == 2:
+    if va == 2 and -90.0 <= ax.elev <= 90.0:
         return ax.elev, ax.azim
     e, a = np.radians(ax.elev), np.radians(ax.azim)
     d = np.roll([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)], va - 2)

@@ -1030,12 +1030,16 @@ def test_z_limits_follow_the_heights_not_the_colours():
     plt.close(fig)
 
 
-@pytest.mark.parametrize("vertical", ["y", "x"])
-def test_another_vertical_axis_as_mplot3d_draws_it(vertical):
-    """view_init(..., vertical_axis="y" or "x") (mplot3d's eye and box rolled to that
-    axis): the surface covers where mplot3d draws the same mesh, both flat red
-    (intersection over union; measured 2026-12-06: 0.979-0.981 perspective and
-    orthographic; the picture was drawn as if z were up: 0.16)."""
+@pytest.mark.parametrize("elev, azim, roll, vertical", [
+    (25, -50, 0, "y"), (25, -50, 0, "x"), (60, 30, 40, "y"), (120, 30, 0, "z"),
+    (-120, 30, 0, "z"), (179, -60, 0, "z"), (100, 10, 0, "y")])
+def test_views_as_mplot3d_draws_them(elev, azim, roll, vertical):
+    """view_init(elev, azim, roll, vertical_axis) (mplot3d's eye and box rolled to a
+    vertical axis "y" or "x"; an elev past 90, where a drag over the top takes it, the
+    view upside down): the surface covers where mplot3d draws the same mesh, both flat
+    red (intersection over union; measured 2026-12-06: 0.958-0.986 perspective and
+    orthographic. Before, another vertical axis was drawn as if z were up, 0.16, and an
+    elev past 90 raised ValueError from the Axes' draw)."""
     X, Y = np.meshgrid(np.linspace(-3, 3, 40), np.linspace(-2, 2, 30))
     Z = np.sin(X) * np.cos(Y) + 0.3 * X
 
@@ -1043,7 +1047,7 @@ def test_another_vertical_axis_as_mplot3d_draws_it(vertical):
         fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
         ax = fig.add_subplot(projection="3d", proj_type=proj)
         draw(ax)
-        ax.view_init(elev=25, azim=-50, vertical_axis=vertical)
+        ax.view_init(elev=elev, azim=azim, roll=roll, vertical_axis=vertical)
         fig.canvas.draw()
         a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
         plt.close(fig)
@@ -1053,5 +1057,5 @@ def test_another_vertical_axis_as_mplot3d_draws_it(vertical):
                                               shade=False), proj)
         theirs = red(lambda ax: ax.plot_surface(X, Y, Z, color="red", shade=False,
                                                 linewidth=0, antialiased=False), proj)
-        assert theirs.sum() > 20000
+        assert theirs.sum() > 10000
         assert (ours & theirs).sum() / (ours | theirs).sum() > 0.95

@@ -62,6 +62,22 @@ def _named_lut(cmap):
     return cm(np.linspace(0.0, 1.0, 256))[:, :3].astype(np.float32)
 
 
+def extremes(cmap):
+    """(under, over): a Colormap's colours for heights below and above its range
+    (``cmap.with_extremes(under=..., over=...)``, ``set_under``) where they differ from
+    its end colours, else None each (a name's registered map has none)."""
+    from matplotlib.colors import Colormap
+    if not isinstance(cmap, Colormap):
+        return None, None
+    try:
+        under, over = cmap.get_under(), cmap.get_over()
+        lo, hi = cmap(0.0), cmap(1.0)
+    except (AttributeError, TypeError, ValueError):
+        return None, None
+    return (None if np.allclose(under[:3], lo[:3]) else np.asarray(under[:3], dtype=np.float64),
+            None if np.allclose(over[:3], hi[:3]) else np.asarray(over[:3], dtype=np.float64))
+
+
 #: lower_color's word for "as the upper side" (mplot3d colours both sides alike)
 SAME = "same"
 

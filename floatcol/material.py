@@ -183,6 +183,8 @@ class Material:
         w_lo, w_hi = height_limits(wrange if c_w == 1.0 else wrange / c_w, self.vmin, self.vmax)
         if self.norm is not None and lut.shape[0] > 1:
             lut, w_lo, w_hi = norm_lut(self.norm, lut, w_lo, w_hi)
+        if lut.shape[0] > 1 and self.upper_color is None and self.shading != "lambert":
+            lut = with_extremes(lut, w_lo, w_hi, *color.extremes(self.cmap))
         w_limits = (w_lo, w_hi)
         if c_w != 1.0:                  # the kernels colour the box's heights
             w_lo, w_hi = w_lo * c_w, w_hi * c_w
@@ -233,6 +235,27 @@ def fraction(name, x):
     if not 0.0 <= x <= 1.0 or math.isnan(x):
         raise ValueError(f"{name} must be in [0, 1], got {x}")
     return x
+
+
+def with_extremes(lut, w_lo, w_hi, under, over):
+    """The colour table with a colour map's extremes (color.extremes): heights below
+    w_lo take ``under``, above w_hi ``over``, as matplotlib colours values outside
+    vmin/vmax; a table (n, 4) whose rows begin at the heights in its last column
+    (shade._side_rgb; a linear table's rows begin k (w_hi - w_lo) / (n - 1) above
+    w_lo). Unchanged where both are None (no extremes: bit for bit the same picture)."""
+    if (under is None and over is None) or not w_hi > w_lo:
+        return lut
+    if lut.shape[1] == 3:
+        starts = w_lo + np.arange(lut.shape[0]) * ((w_hi - w_lo) / (lut.shape[0] - 1))
+        starts[-1] = w_hi
+        lut = np.column_stack([lut, starts])
+    rows = [lut]
+    if under is not None:
+        rows.insert(0, np.r_[np.asarray(under, dtype=np.float64)[:3], -np.inf][None])
+    if over is not None:
+        rows.append(np.r_[np.asarray(over, dtype=np.float64)[:3],
+                          np.nextafter(w_hi, np.inf)][None])
+    return np.concatenate(rows)
 
 
 def norm_lut(norm, lut, w_lo, w_hi):

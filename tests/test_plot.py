@@ -153,6 +153,32 @@ def test_a_boundary_norm_colours_in_bands(ncolors, cmap):
     assert len(np.unique(r.rgba[up][away][:, :3], axis=0)) == min(ncolors, len(bounds) - 1)
 
 
+@pytest.mark.parametrize("norm", [None, "log"])
+def test_a_colour_maps_extremes_colour_beyond_vmin_vmax(norm):
+    """cmap.with_extremes(under=, over=) colours heights below vmin and above vmax as
+    matplotlib does (they took the map's end colours): every whole pixel away from
+    vmin and vmax (by 0.01) has matplotlib's colour for its seen height, to 4 levels
+    (measured 2026-12-06: at most 3, the colour table's 256 rows against matplotlib's
+    continuous map), and both extremes show."""
+    import matplotlib
+    from matplotlib.colors import LogNorm, Normalize
+    cm = matplotlib.colormaps["viridis"].with_extremes(under="black", over="red")
+    lo, hi = 1.4, 2.6
+    kw = dict(norm=LogNorm(lo, hi)) if norm else dict(vmin=lo, vmax=hi)
+    p = fc.plot_surface("2 + sin(x)*cos(y)", ("x", -3, 3), ("y", -3, 3), size=(160, 120),
+                        shade=False, cmap=cm, antialias=False, **kw)
+    r = p.draw()
+    up = inner(r.side > 0)
+    w = r.w[up]
+    away = (np.abs(w - lo) > 0.01) & (np.abs(w - hi) > 0.01)
+    n = LogNorm(lo, hi) if norm else Normalize(lo, hi)
+    want = np.round(cm(n(w[away]))[:, :3] * 255)
+    got = r.rgba[up][away][:, :3].astype(float)
+    assert np.abs(got - want).max() <= 4.0
+    assert (w[away] < lo).sum() > 300 and (w[away] > hi).sum() > 300
+    assert (got[w[away] > hi] == [255, 0, 0]).all() and (got[w[away] < lo] == 0).all()
+
+
 def test_a_nonlinear_norm_keeps_highlights_and_antialiasing():
     """A LogNorm colours inside the kernel (each colormap row starts at
     norm.inverse(k/255)), so the picture keeps what the linear colormap has: the

@@ -206,6 +206,16 @@ def _surface_options(p, default_size="800x600", many=False, terrain=False):
     p.add_argument("--vmax", type=_value("vmax"), default=None,
                    help="height at the colormap's end (a number or a constant such as pi/2)")
     p.add_argument("--no-shade", action="store_true", help="flat colours, no lighting")
+    p.add_argument("--ambient", type=_value("ambient"), default=None, metavar="A",
+                   help="the ambient share of the light, 0 to 1 (default 0.25)")
+    p.add_argument("--specular", type=_value("specular"), default=None, metavar="S",
+                   help="the highlights' strength (default 0.2; 0: none)")
+    p.add_argument("--shininess", type=_value("shininess"), default=None, metavar="N",
+                   help="the highlights' Phong exponent (default 30: larger, smaller spots)")
+    p.add_argument("--pixel-step", type=_value("pixel-step"), default=None, metavar="PX",
+                   help="pixels between sampling planes (default 1; larger: faster, coarser)")
+    p.add_argument("--texture-filter", choices=("mipmap", "linear", "point"), default=None,
+                   help="how --texture is read: mipmap (default, no shimmer), linear or point")
     p.add_argument("--light", type=_sun, default=None, metavar="AZ/ALT",
                    help="a sun fixed to the surface: azimuth clockwise from north and altitude, "
                         "in degrees, as matplotlib's LightSource (e.g. 315/25)")
@@ -371,13 +381,14 @@ _API_TO_CLI = {
     "alpha": "--opacity", "lightsource": "--light", "color_field": "--color-by",
     "proj_type": "--proj", "projection": "--proj", "focal_length": "--focal-length",
     "lower_color": "--lower-color", "light_radius": "--light-radius",
-    "vert_exag": "--vert-exag",
+    "vert_exag": "--vert-exag", "pixel_step": "--pixel-step", "texture_filter": "--texture-filter",
 }
 #: keywords spelled the same way, --NAME
 _SAME = ("opacity", "wireframe", "contours", "shading", "shadows", "antialias", "sampling",
          "corrections", "interpolation", "aspect", "vmin", "vmax", "cmap", "texture",
          "background", "device", "method", "lines", "size", "elev", "azim", "dpi", "pitch",
-         "fov", "heading", "above", "extent", "nodata", "frames", "fps")
+         "fov", "heading", "above", "extent", "nodata", "frames", "fps", "ambient", "specular",
+         "shininess")
 
 
 def cli_words(message):
@@ -458,7 +469,8 @@ def _options(args):
         opts["antialias"] = {"on": True, "off": False, "2": 2, "3": 3, "4": 4,
                              "area": "area"}[args.antialias]
     for name in ("focal_length", "cmap", "color", "vmin", "vmax", "lines", "corrections",
-                 "sampling", "device"):
+                 "sampling", "device", "ambient", "specular", "shininess", "pixel_step",
+                 "texture_filter"):
         value = getattr(args, name)
         if value is not None:
             opts[name] = value

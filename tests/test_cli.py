@@ -79,6 +79,10 @@ def test_several_expressions_make_one_picture(capsys, monkeypatch, tmp_path):
     (("--antialias", "3", "--sampling", "adaptive"), dict(antialias=3, sampling="adaptive")),
     (("--aspect", "equal"), dict(aspect="equal")),
     (("--aspect", "1:2:1"), dict(aspect=(1.0, 2.0, 1.0))),
+    (("--ambient", "0.6", "--specular", "0.5", "--shininess", "8"),
+     dict(ambient=0.6, specular=0.5, shininess=8.0)),
+    (("--pixel-step", "3"), dict(pixel_step=3.0)),
+    (("--ambient", "1", "--specular", "0"), dict(shade=False)),      # (flat: as --no-shade)
 ])
 def test_fidelity_flags_match_plot_surface(capsys, monkeypatch, tmp_path, flags, opts):
     import floatcol as fc
@@ -132,6 +136,11 @@ def test_animate_writes_gif_with_frames(capsys, monkeypatch, tmp_path):
     (["render", "u*v", "--vars", "u", "-o", "x.png"], "--vars"),
     (["render", "u", "--vmin", "3", "--vmax", "1", "-o", "x.png"], "vmin must not exceed vmax"),
     (["render", "u", "--vmin", "nan", "-o", "x.png"], "vmin must be a finite number"),
+    (["render", "u", "--ambient", "2", "-o", "x.png"], "--ambient must be in [0, 1]"),
+    (["render", "u", "--specular", "-1", "-o", "x.png"], "--specular must be in [0, 1]"),
+    (["render", "u", "--shininess", "0", "-o", "x.png"], "--shininess must be positive"),
+    (["render", "u", "--pixel-step", "0", "-o", "x.png"], "--pixel-step must be positive"),
+    (["render", "u", "--texture-filter", "cubic", "-o", "x.png"], "invalid choice"),
     (["animate", "sin(u - t)", "--frames", "0", "-o", "x.gif"], "frames"),
     (["animate", "sin(u - t)", "--t", "1:1", "-o", "x.gif"], "time range"),
     (["animate", "sin(u - t)", "-o", "x.png"], "must end in .gif, .mp4"),

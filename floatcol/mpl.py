@@ -700,6 +700,7 @@ class DepthTested:
         self.art = art
         self.visible = None
         self._crossing = None     # (render, crossing polygons, their pixels): cross()
+        self._front = None        # (render, the polygons with a point in front): cross()
 
     def __call__(self, renderer):
         art = self.art
@@ -725,14 +726,15 @@ class DepthTested:
         vector file takes them whole, as before."""
         from matplotlib.backends.backend_agg import RendererAgg
         from mpl_toolkits.mplot3d import art3d
-        self._crossing = None
+        self._crossing = self._front = None
         art = self.art
         faces = getattr(art, "_faces", None)
         if not (isinstance(art, art3d.Poly3DCollection) and isinstance(renderer, RendererAgg)
                 and art.get_visible() and faces is not None and len(faces)):
             return
         try:
-            crossing = _crossing_faces(art, faces, render)
+            crossing, front = _crossing_faces(art, faces, render)
+            self._front = (render, front)       # (the passes' whole polygons take it)
             if not crossing.any():
                 return
             pixels = _not_behind_pixels(render,
@@ -744,6 +746,10 @@ class DepthTested:
 
     def _crossing_for(self, renders):
         c = self._crossing
+        return c[1] if c is not None and len(renders) == 1 and renders[0] is c[0] else None
+
+    def _front_for(self, renders):
+        c = self._front
         return c[1] if c is not None and len(renders) == 1 and renders[0] is c[0] else None
 
     def draw_crossing(self, renderer, T):
@@ -894,7 +900,8 @@ class DepthTested:
                 if front:
                     type(art).draw(art, renderer)
                 return
-            keep = _faces_kept(art, faces, renders, front, self._crossing_for(renders))
+            keep = _faces_kept(art, faces, renders, front, self._crossing_for(renders),
+                               self._front_for(renders))
             if front:
                 self.visible = keep
             if not whole(keep):
@@ -911,15 +918,17 @@ class DepthTested:
 FACE_LATTICE = 6
 
 
-def _faces_kept(art, faces, renders, front, crossing=None):
+def _faces_kept(art, faces, renders, front, crossing=None, seen_front=None):
     """Which polygons (faces (n, m, 3), padded) of a Poly3DCollection to draw over the
     surfaces' pictures (``front``) or under them: under where none of the polygon's
     points (its corners and a lattice over the triangles of its fan) lies in front of
     a surface that is there (a contour's filled projection on a far wall, a floor
     below), over where any does; whole polygons. ``crossing`` (n,) bool: polygons that
     cross a surface and are drawn over the picture a pixel at a time
-    (DepthTested.draw_crossing): under, and not over."""
-    seen_front = _face_points_in_front(art, faces, renders)
+    (DepthTested.draw_crossing): under, and not over. ``seen_front``: which polygons
+    have a point in front of the surfaces, where already known (DepthTested.cross)."""
+    if seen_front is None:
+        seen_front = _face_points_in_front(art, faces, renders)
     if crossing is None:
         return seen_front if front else ~seen_front
     return seen_front & ~crossing if front else ~seen_front | crossing
@@ -957,8 +966,9 @@ def _face_points_in_front(art, faces, renders):
 
 
 def _crossing_faces(art, faces, render):
-    """Which polygons of a Poly3DCollection cross the surface of ``render``: opaque,
-    with points of their lattice (_fan_points) both in front of it and behind it."""
+    """(crossing, front): which polygons of a Poly3DCollection cross the surface of
+    ``render`` (opaque, with points of their lattice, _fan_points, both in front of it
+    and behind it), and which have a point in front of it (_face_points_in_front's)."""
     pts = _fan_points(art, faces)
     n, k, _ = pts.shape
     flat = pts.reshape(-1, 3)
@@ -972,7 +982,7 @@ def _crossing_faces(art, faces, render):
     alpha = np.broadcast_to(alpha[:, 3] if alpha.ndim == 2 and len(alpha) else 1.0, (n,))
     if art.get_alpha() is not None:
         alpha = alpha * float(art.get_alpha())
-    return front & behind & (alpha >= 1.0)
+    return front & behind & (alpha >= 1.0), front
 
 
 #: the most pixels the triangles of the polygons that cross a surface may cover in

@@ -689,12 +689,13 @@ class DepthTested:
     anchor is hidden, polygons (a contourf level's, a Poly3DCollection's) whole, over
     the picture where any of their points lies in front of a surface (_faces_kept,
     _paths_kept), but for a Poly3DCollection's opaque polygons that cross a surface
-    on a raster canvas: those a pixel at a time (cross, draw_crossing). The hidden part is drawn the same way under the surfaces' picture
-    (``draw_hidden``; with several floatcol surfaces, under their composite), so that it
-    shows through a translucent surface and at the partly covered pixels of its
-    edges. ``visible`` says, after a draw, which points (a line's samples, a
-    collection's segments' samples end to end) were shown; None where the artist was
-    drawn as it is (no surface drawn with the Axes' projection)."""
+    on a raster canvas: those a pixel at a time (cross, draw_crossing). The hidden
+    part is drawn the same way under the surfaces' picture (``draw_hidden``; with
+    several floatcol surfaces, under their composite), so that it shows through a
+    translucent surface and at the partly covered pixels of its edges. ``visible``
+    says, after a draw, which points (a line's samples, a collection's segments'
+    samples end to end) were shown; None where the artist was drawn as it is (no
+    surface drawn with the Axes' projection)."""
 
     def __init__(self, art):
         self.art = art

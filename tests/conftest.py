@@ -97,6 +97,26 @@ def matplotlib_agrees(view, world, box_points, limits, elev, azim):
     return np.abs(ours - theirs).max() < 1e-9
 
 
+def red_overlap(ours, theirs, setup, proj):
+    """(intersection over union, mplot3d's red pixels): where two drawings into a fresh
+    6.4 x 4.8 inch 3-D Axes (proj_type ``proj``), ``ours(ax)`` (floatcol's) and
+    ``theirs(ax)`` (mplot3d's own), each flat red and followed by ``setup(ax)``
+    (limits, view), paint red."""
+    import matplotlib.pyplot as plt
+
+    def red(draw):
+        fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
+        ax = fig.add_subplot(projection="3d", proj_type=proj)
+        draw(ax)
+        setup(ax)
+        fig.canvas.draw()
+        a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
+        plt.close(fig)
+        return (a[..., 0] > 200) & (a[..., 1] < 60) & (a[..., 2] < 60)
+    a, b = red(ours), red(theirs)
+    return (a & b).sum() / max((a | b).sum(), 1), int(b.sum())
+
+
 def plane(antialias, scale=42.3):
     """w = 0 on [-1, 1]^2, orthographic, elev 30, azim 0, origin at the image centre:
     the far edge v = 1 projects to screen y = 0.5, the near edge to -0.5, the side

@@ -19,6 +19,7 @@ from matplotlib import cm  # noqa: E402
 from matplotlib.ticker import LinearLocator  # noqa: E402
 
 import floatcol as fc  # noqa: E402
+from conftest import red_overlap  # noqa: E402
 
 
 def _data():
@@ -1043,19 +1044,12 @@ def test_views_as_mplot3d_draws_them(elev, azim, roll, vertical):
     X, Y = np.meshgrid(np.linspace(-3, 3, 40), np.linspace(-2, 2, 30))
     Z = np.sin(X) * np.cos(Y) + 0.3 * X
 
-    def red(draw, proj):
-        fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
-        ax = fig.add_subplot(projection="3d", proj_type=proj)
-        draw(ax)
-        ax.view_init(elev=elev, azim=azim, roll=roll, vertical_axis=vertical)
-        fig.canvas.draw()
-        a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
-        plt.close(fig)
-        return (a[..., 0] > 200) & (a[..., 1] < 60) & (a[..., 2] < 60)
     for proj in ("persp", "ortho"):
-        ours = red(lambda ax: fc.plot_surface(X, Y, Z, ax=ax, color="red", lower_color="red",
-                                              shade=False), proj)
-        theirs = red(lambda ax: ax.plot_surface(X, Y, Z, color="red", shade=False,
-                                                linewidth=0, antialiased=False), proj)
-        assert theirs.sum() > 10000
-        assert (ours & theirs).sum() / (ours | theirs).sum() > 0.95
+        iou, theirs = red_overlap(
+            lambda ax: fc.plot_surface(X, Y, Z, ax=ax, color="red", lower_color="red",
+                                       shade=False),
+            lambda ax: ax.plot_surface(X, Y, Z, color="red", shade=False, linewidth=0,
+                                       antialiased=False),
+            lambda ax: ax.view_init(elev=elev, azim=azim, roll=roll, vertical_axis=vertical),
+            proj)
+        assert theirs > 10000 and iou > 0.95

@@ -782,9 +782,9 @@ class DepthTested:
         row = np.round(inv[1, 0] * (x - T[0, 2]) + inv[1, 1] * (y - T[1, 2])).astype(int)
         H, W = pixels.shape
         on = (col >= 0) & (col < W) & (row >= 0) & (row < H)
-        keep = np.ones(len(xs), dtype=bool)
+        keep = np.ones(len(xs))
         keep[on] = pixels[row[on], col[on]]
-        buf[ys[~keep], xs[~keep], 3] = 0
+        buf[ys, xs, 3] = np.round(buf[ys, xs, 3] * keep).astype(np.uint8)
         gc = renderer.new_gc()
         gc.set_clip_rectangle(art.axes.bbox)
         renderer.draw_image(gc, 0, 0, np.ascontiguousarray(buf[::-1]))
@@ -992,15 +992,16 @@ MAX_CROSSING_PIXELS = 2e7
 
 
 def _not_behind_pixels(render, tris):
-    """(H, W) bool: the pixels of ``render``'s picture where one of the triangles
-    ``tris`` (k, 3, 3) in the surface's units covers the pixel's centre at a point that
-    is not behind the surface seen there (depth_sides: in front, or no surface there);
-    None where they cover more than MAX_CROSSING_PIXELS pixels in their boxes. Each
-    pixel's point on its triangle is interpolated perspective-correctly (weights over
-    the depth of the corners) and tested as visible_points tests a point."""
+    """(H, W) in [0, 1]: how much of each pixel of ``render``'s picture the triangles
+    ``tris`` (k, 3, 3) in the surface's units cover where they are not behind the
+    surface seen there (in front of it within depth_sides's tolerance, or no surface
+    there; _coverage: antialiased where they pass through it), at the pixels whose
+    centres they cover; None where they cover more than MAX_CROSSING_PIXELS pixels in
+    their boxes. Each pixel's point on its triangle is interpolated
+    perspective-correctly (weights over the depth of the corners)."""
     view, box = render.view, render.box
     H, W = render.side.shape
-    out = np.zeros((H, W), dtype=bool)
+    out = np.zeros((H, W))
     P = tris * np.asarray(box, dtype=float)
     with np.errstate(invalid="ignore", over="ignore"):
         col, row = view.project(P[..., 0], P[..., 1], P[..., 2])
@@ -1038,10 +1039,50 @@ def _not_behind_pixels(render, tris):
                + tris[t, 2] * (q2 / q)[:, None])
     inside &= np.isfinite(pts).all(axis=1)
     pts, cc, rr = pts[inside], cc[inside], rr[inside]
+    # each pixel's gap in depth from the polygon's point to the surface seen there,
+    # beyond depth_sides's tolerance (< 0: the polygon in front; -inf: no surface)
     with np.errstate(invalid="ignore", over="ignore"):
-        shown = visible_points(render, pts, box)
-    out[rr[shown], cc[shown]] = True
-    return out
+        _, _, z = view.to_screen(pts[:, 0] * box[0], pts[:, 1] * box[1], pts[:, 2] * box[2])
+        tol = 2.0 / view.scale
+        if not view.orthographic:
+            tol = tol * (z + view.d3) / view.d1
+        seen = np.asarray(render.depth)[rr, cc]
+        gap = np.where(np.isfinite(seen), z - seen - tol, -np.inf)
+    gap[~np.isfinite(z)] = np.inf
+    d = np.full((H, W), np.inf)
+    np.minimum.at(d, (rr, cc), gap)          # (the nearest polygon's, where several)
+    return _coverage(d)
+
+
+def _coverage(d):
+    """(H, W) in [0, 1]: how much of each pixel a polygon covers in front of the
+    surface, from the gaps ``d`` (H, W) in depth at the pixels' centres (+inf: no
+    polygon; -inf: no surface). Where the gap changes sign between pixels the line
+    where it is 0 runs through them: the part of a pixel on the polygon's side, from
+    the gap over its change a pixel across (the line straight over the pixel),
+    antialiases the line where the polygon passes through the surface."""
+    fin = np.isfinite(d)
+    grads = []
+    for axis in (0, 1):
+        fwd = np.roll(d, -1, axis)
+        bwd = np.roll(d, 1, axis)
+        ok_f = np.roll(fin, -1, axis)
+        ok_b = np.roll(fin, 1, axis)
+        edge = [slice(None), slice(None)]
+        edge[axis] = -1
+        ok_f[tuple(edge)] = False
+        edge[axis] = 0
+        ok_b[tuple(edge)] = False
+        with np.errstate(invalid="ignore", over="ignore"):
+            g = np.where(ok_f & ok_b, 0.5 * (fwd - bwd),
+                         np.where(ok_f, fwd - d, np.where(ok_b, d - bwd, 0.0)))
+        grads.append(np.where(fin, g, 0.0))
+    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+        slope = np.hypot(*grads)
+        cov = np.where(slope > 0.0, np.clip(0.5 - d / slope, 0.0, 1.0), (d < 0.0) * 1.0)
+    cov[d == -np.inf] = 1.0
+    cov[d == np.inf] = 0.0
+    return cov
 
 
 def _fan_triangles(faces):

@@ -1053,3 +1053,30 @@ def test_views_as_mplot3d_draws_them(elev, azim, roll, vertical):
             lambda ax: ax.view_init(elev=elev, azim=azim, roll=roll, vertical_axis=vertical),
             proj)
         assert theirs > 10000 and iou > 0.95
+
+
+def test_the_line_through_the_surface_is_antialiased():
+    """Where an mplot3d polygon passes through the surface, each pixel shows the part
+    of it on the polygon's side (mpl._coverage, from the gap in depth at the pixels'
+    centres and its change across them): against the exact share of each pixel on one
+    side of straight lines at 13 angles (a 16 x 16 sub-pixel count), mean error under
+    0.005 and at most 0.06 (measured 2026-12-06: means 0.0002-0.0010, at most 0.041);
+    no surface there: all of it; no polygon: none."""
+    from floatcol.mpl import _coverage
+    H, W = 40, 50
+    yy, xx = np.mgrid[0:H, 0:W].astype(float)
+    s = (np.arange(16) + 0.5) / 16 - 0.5
+    sx, sy = np.meshgrid(s, s)
+    for ang in np.linspace(0, np.pi, 13):
+        a, b = np.cos(ang), np.sin(ang)
+        c = -(a * 25.3 + b * 20.7)
+        cov = _coverage(0.37 * (a * xx + b * yy + c))
+        exact = ((a * (xx[..., None, None] + sx) + b * (yy[..., None, None] + sy) + c) < 0
+                 ).mean(axis=(-1, -2))
+        err = np.abs(cov - exact)[2:-2, 2:-2]
+        assert err.mean() < 0.005 and err.max() < 0.06
+        assert ((cov > 0.05) & (cov < 0.95)).sum() > 20              # (a blended line)
+    d = np.full((4, 4), np.inf)
+    d[1, 1], d[2, 2] = -np.inf, 0.5
+    cov = _coverage(d)
+    assert cov[1, 1] == 1.0 and cov[0, 0] == 0.0 and cov[2, 2] == 0.0

@@ -1015,12 +1015,25 @@ def _mesh_lines(options, shape, resampled=False):
 
 
 def _is_mesh(expr, ranges):
-    """matplotlib's (X, Y, Z): three arrays, Z 2-D or an array (mesh_surface says what
-    is wrong with one that is not)."""
-    return (len(ranges) == 2 and all(isinstance(a, np.ndarray) or
+    """matplotlib's (X, Y, Z): three arrays (numpy's, or anything numpy reads as one:
+    pandas, xarray), Z 2-D or an array (mesh_surface says what is wrong with one that
+    is not)."""
+    return (len(ranges) == 2 and all(_array_like(a) or
                                      (isinstance(a, (list, tuple)) and _numeric(a))
                                      for a in (expr, *ranges))
-            and (np.ndim(ranges[1]) == 2 or isinstance(ranges[1], np.ndarray)))
+            and (np.ndim(ranges[1]) == 2 or _array_like(ranges[1])))
+
+
+def _array_like(a):
+    """An array, or an object numpy reads as one through __array__ (a pandas Index or
+    DataFrame, an xarray DataArray), not a sympy object (a Matrix has __array__)."""
+    if isinstance(a, np.ndarray):
+        return True
+    if isinstance(a, (str, bytes)) or not hasattr(a, "__array__"):
+        return False
+    from sympy import Basic
+    from sympy.matrices import MatrixBase
+    return not isinstance(a, (Basic, MatrixBase, Surface))
 
 
 def _numeric(a):

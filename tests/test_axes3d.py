@@ -1080,3 +1080,25 @@ def test_the_line_through_the_surface_is_antialiased():
     d[1, 1], d[2, 2] = -np.inf, 0.5
     cov = _coverage(d)
     assert cov[1, 1] == 1.0 and cov[0, 0] == 0.0 and cov[2, 2] == 0.0
+
+
+def test_objects_numpy_reads_as_arrays_are_a_mesh():
+    """X, Y, Z that numpy reads through __array__ (pandas' Index and DataFrame,
+    xarray's DataArray: not installed here, so a stand-in) are matplotlib's mesh, the
+    same picture as numpy arrays (they were taken for an expression and its ranges:
+    "a range must be (symbol, low, high)")."""
+    class Frame:
+        def __init__(self, a):
+            self.a = np.asarray(a)
+
+        def __array__(self, dtype=None, copy=None):
+            return self.a if dtype is None else self.a.astype(dtype)
+    x, y = np.linspace(-2, 2, 30), np.linspace(-1, 1, 20)
+    X, Y = np.meshgrid(x, y)
+    Z = np.sin(X) * Y
+    p = fc.plot_surface(Frame(x), Frame(y), Frame(Z), size=(60, 40))
+    q = fc.plot_surface(x, y, Z, size=(60, 40))
+    assert p.domain == ((-2.0, 2.0), (-1.0, 1.0))
+    assert np.array_equal(p.draw().rgba, q.draw().rgba)
+    t = fc.plot_trisurf(Frame(X.ravel()), Frame(Y.ravel()), Frame(Z.ravel()), size=(60, 40))
+    assert t.draw().rgba[..., 3].any()

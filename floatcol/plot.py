@@ -22,6 +22,7 @@ from .mesh import face_texture
 from .render import DEFAULT_RANGE, Render, render
 from .kernels.layout import SURF_HEIGHTFIELD
 from .surface import HeightField, Surface, as_surface, check_range, free_names
+from .surface import array_like as _array_like
 from .view import _number, _robust_range
 
 #: plot_surface's own defaults where they differ from render()'s
@@ -1024,16 +1025,6 @@ def _is_mesh(expr, ranges):
             and (np.ndim(ranges[1]) == 2 or _array_like(ranges[1])))
 
 
-def _array_like(a):
-    """An array, or an object numpy reads as one through __array__ (a pandas Index or
-    DataFrame, an xarray DataArray), not a sympy object (a Matrix has __array__)."""
-    if isinstance(a, np.ndarray):
-        return True
-    if isinstance(a, (str, bytes)) or not hasattr(a, "__array__"):
-        return False
-    from sympy import Basic
-    from sympy.matrices import MatrixBase
-    return not isinstance(a, (Basic, MatrixBase, Surface))
 
 
 def _numeric(a):

@@ -22,6 +22,19 @@ from .kernels._jit import compile_batch_fn, compile_grad_fn, compile_surface_fn
 from .kernels.layout import HFP_CW, HFP_IU, HFP_IV, SURF_FUNCTION, SURF_HEIGHTFIELD
 from .kernels.sample import eval_grid
 
+
+def array_like(a):
+    """An array, or an object numpy reads as one through __array__ (a pandas Index or
+    DataFrame, an xarray DataArray), not a sympy object (a Matrix has __array__) nor a
+    Surface."""
+    if isinstance(a, np.ndarray):
+        return True
+    if isinstance(a, (str, bytes)) or not hasattr(a, "__array__"):
+        return False
+    from sympy import Basic
+    from sympy.matrices import MatrixBase
+    return not isinstance(a, (Basic, MatrixBase, Surface))
+
 log = logging.getLogger(__name__)
 
 DEFAULT_VARS = ("u", "v")

@@ -1102,3 +1102,8 @@ def test_objects_numpy_reads_as_arrays_are_a_mesh():
     assert np.array_equal(p.draw().rgba, q.draw().rgba)
     t = fc.plot_trisurf(Frame(X.ravel()), Frame(Y.ravel()), Frame(Z.ravel()), size=(60, 40))
     assert t.draw().rgba[..., 3].any()
+    # ... and a colour from data as such an object (render's color=)
+    c = np.cos(X) * Y
+    a = fc.render("sin(u)*cos(v)", u=(-2, 2), v=(-1, 1), size=(60, 40), color=Frame(c))
+    b = fc.render("sin(u)*cos(v)", u=(-2, 2), v=(-1, 1), size=(60, 40), color=c)
+    assert np.array_equal(a.rgba, b.rgba)

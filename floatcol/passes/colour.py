@@ -357,7 +357,8 @@ def prepare(material, domain, vars=None):
         tex = _levels(tex)
     field = material.color
     if field is not None:
-        if isinstance(field, (np.ndarray, list)) and np.ndim(field) == 2:
+        from ..surface import array_like, as_surface
+        if (isinstance(field, list) or array_like(field)) and np.ndim(field) == 2:
             try:
                 field = np.array(field, dtype=np.float64)
             except (TypeError, ValueError):
@@ -367,7 +368,6 @@ def prepare(material, domain, vars=None):
                                  f"{field.shape}")
             field[~np.isfinite(field)] = np.nan
         else:
-            from ..surface import as_surface
             field = as_surface(field, vars)
     if field is not None and material.opacity < 1.0:
         # the translucent layers read a texture: the field sampled on a grid, coloured

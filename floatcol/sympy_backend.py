@@ -198,15 +198,26 @@ def _colour_grid(series, func):
     args = args[:max(1, min(nargs, 3))]
     try:
         with np.errstate(all="ignore"):
-            vals = np.asarray(func(*args), dtype=float)
+            vals = _real(func(*args))
         if vals.shape != X.shape:
             vals = np.broadcast_to(vals, X.shape).astype(float)
     except Exception:                             # (a function of numbers, not arrays)
         try:
             with np.errstate(all="ignore"):
-                vals = np.vectorize(lambda *a: float(func(*a)), otypes=[float])(*args)
+                vals = np.vectorize(lambda *a: float(_real(func(*a))), otypes=[float])(*args)
         except Exception as exc:
-            raise ValueError(f"surface_color: the colour function failed: {exc}") from None
+            raise ValueError(f"color_func (surface_color): the colour function failed: "
+                             f"{exc}") from None
     vals = np.array(vals, dtype=float)
     vals[~np.isfinite(vals)] = np.nan
     return vals
+
+
+def _real(values):
+    """A colour function's values as real numbers: a complex value is NaN (no colour)
+    unless its imaginary part is 0, as sympy's backend reads them."""
+    import numpy as np
+    a = np.asarray(values)
+    if np.iscomplexobj(a):
+        return np.where(np.isclose(a.imag, 0.0), a.real, np.nan)
+    return np.asarray(a, dtype=float)

@@ -198,3 +198,20 @@ def test_surface_colour_values(tmp_path):
     with pytest.raises(ValueError, match="surface_color must be a colour"):
         plot3d(x * y, (x, -2, 2), (y, -2, 2), backend=fc.SympyBackend, show=False,
                surface_color="nocolour").fig
+
+
+def test_a_colour_functions_complex_values_are_no_colour(tmp_path):
+    """A colour function's complex values (sqrt of a negative) are NaN in the colour
+    field, as sympy's backend reads them, whether it takes arrays or numbers; one that
+    fails says so in a ValueError."""
+    import cmath
+    for f in (lambda a, b: np.sqrt(a + 0j), lambda a, b: cmath.sqrt(a)):
+        p = plot3d(x * y, (x, -2, 2), (y, -2, 2), backend=fc.SympyBackend, show=False,
+                   size=(3, 2), color_func=f)
+        p.save(tmp_path / "c.png")
+        field = p.plots[0].options["color_field"]
+        xs = np.linspace(-2, 2, field.shape[1])
+        assert np.isnan(field[:, xs < -1e-9]).all() and np.isfinite(field[:, xs > 0]).all()
+    with pytest.raises(ValueError, match="colour function failed"):
+        plot3d(x * y, (x, -2, 2), (y, -2, 2), backend=fc.SympyBackend, show=False,
+               color_func=lambda a, b: 1 / 0).fig

@@ -743,38 +743,56 @@ class DepthTested:
         except _INTERNALS:
             return
         if pixels is not None:
-            self._crossing = (render, crossing, pixels)
+            self._crossing = (render, crossing, front, pixels)
 
     def _crossing_for(self, renders):
+        """The polygons draw_crossing draws (its collection's that go over the picture:
+        those that cross the surface and the others with a point in front of it, so
+        that mplot3d's order among them holds), for the front pass to leave out."""
         c = self._crossing
-        return c[1] if c is not None and len(renders) == 1 and renders[0] is c[0] else None
+        return c[2] if c is not None and len(renders) == 1 and renders[0] is c[0] else None
 
     def _front_for(self, renders):
         c = self._front
         return c[1] if c is not None and len(renders) == 1 and renders[0] is c[0] else None
 
     def draw_crossing(self, renderer, T):
-        """Draw the polygons that cross the surface (cross) over its picture, at the
-        pixels where they are not behind it: drawn on a canvas of their own, their
-        antialiased edges kept, the rest of it cleared. T: the picture's pixel (col,
-        row) at the canvas point T @ (col, row, 1) (Surface3DImage.placed)."""
+        """Draw the collection's polygons that go over the picture (cross): on a canvas
+        of their own in mplot3d's order among them, their antialiased edges kept;
+        where one that crosses the surface is on top, only at the pixels where it is
+        not behind the surface (its coverage there), the rest of it cleared. T: the
+        picture's pixel (col, row) at the canvas point T @ (col, row, 1)
+        (Surface3DImage.placed)."""
         if self._crossing is None:
             return
         import copy
 
         from matplotlib.backends.backend_agg import RendererAgg
-        render, crossing, pixels = self._crossing
+        render, crossing, over, pixels = self._crossing
         art = self.art
         try:
+            faces = np.where(over[:, None, None], art._faces, np.nan)
             c = copy.copy(art)
-            c._faces = np.where(crossing[:, None, None], art._faces, np.nan)
+            c._faces = faces
             c.do_3d_projection()
             own = RendererAgg(renderer.width, renderer.height, renderer.dpi)
             type(c).draw(c, own)
+            # which polygon is on top at each canvas pixel, one that crosses (red) or
+            # not (blue): the same polygons drawn again in those flat colours
+            flag = copy.copy(art)
+            flag._faces = faces
+            which = np.where(crossing[:, None], [1.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0])
+            flag.set_facecolor(which)
+            flag.set_edgecolor(which)
+            flag.set_antialiased(False)
+            flag.do_3d_projection()
+            tops = RendererAgg(renderer.width, renderer.height, renderer.dpi)
+            type(flag).draw(flag, tops)
         except _INTERNALS:
             return
         buf = np.array(own.buffer_rgba())          # (top row first, straight alpha)
-        ys, xs = np.nonzero(buf[..., 3])
+        top = np.asarray(tops.buffer_rgba())
+        ys, xs = np.nonzero((buf[..., 3] > 0) & (top[..., 0] > top[..., 2]))
         # each canvas pixel's pixel of the picture (off the picture: no surface there)
         x, y = xs + 0.5, buf.shape[0] - ys - 0.5
         inv = np.linalg.inv(T[:, :2])

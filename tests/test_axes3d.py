@@ -1031,28 +1031,36 @@ def test_z_limits_follow_the_heights_not_the_colours():
     plt.close(fig)
 
 
-@pytest.mark.parametrize("elev, azim, roll, vertical", [
-    (25, -50, 0, "y"), (25, -50, 0, "x"), (60, 30, 40, "y"), (120, 30, 0, "z"),
-    (-120, 30, 0, "z"), (179, -60, 0, "z"), (100, 10, 0, "y")])
-def test_views_as_mplot3d_draws_them(elev, azim, roll, vertical):
+@pytest.mark.parametrize("elev, azim, roll, vertical, inverted, box", [
+    (25, -50, 0, "y", "", None), (25, -50, 0, "x", "", None), (60, 30, 40, "y", "", None),
+    (120, 30, 0, "z", "", None), (-120, 30, 0, "z", "", None), (179, -60, 0, "z", "", None),
+    (100, 10, 0, "y", "", None), (141, 99, -65, "x", "z", (1.6, 0.7, 1.2)),
+    (171, 33, 96, "y", "xyz", (0.8, 1.9, 0.6)), (-140, -159, 0, "y", "y", None)])
+def test_views_as_mplot3d_draws_them(elev, azim, roll, vertical, inverted, box):
     """view_init(elev, azim, roll, vertical_axis) (mplot3d's eye and box rolled to a
     vertical axis "y" or "x"; an elev past 90, where a drag over the top takes it, the
-    view upside down): the surface covers where mplot3d draws the same mesh, both flat
-    red (intersection over union; measured 2026-12-06: 0.958-0.986 perspective and
-    orthographic. Before, another vertical axis was drawn as if z were up, 0.16, and an
-    elev past 90 raised ValueError from the Axes' draw)."""
+    view upside down), with inverted axes and box aspects too: the surface covers where
+    mplot3d draws the same mesh, both flat red (intersection over union; measured
+    2026-12-06: 0.94-0.99 perspective and orthographic, the least on the smallest
+    pictures, whose rims weigh most; 60 random such views: at least 0.939. Before,
+    another vertical axis was drawn as if z were up, 0.16, and an elev past 90 raised
+    ValueError from the Axes' draw)."""
     X, Y = np.meshgrid(np.linspace(-3, 3, 40), np.linspace(-2, 2, 30))
     Z = np.sin(X) * np.cos(Y) + 0.3 * X
 
+    def setup(ax):
+        if box is not None:
+            ax.set_box_aspect(box)
+        ax.view_init(elev=elev, azim=azim, roll=roll, vertical_axis=vertical)
+        for name in inverted:
+            getattr(ax, f"invert_{name}axis")()
     for proj in ("persp", "ortho"):
         iou, theirs = red_overlap(
             lambda ax: fc.plot_surface(X, Y, Z, ax=ax, color="red", lower_color="red",
                                        shade=False),
             lambda ax: ax.plot_surface(X, Y, Z, color="red", shade=False, linewidth=0,
-                                       antialiased=False),
-            lambda ax: ax.view_init(elev=elev, azim=azim, roll=roll, vertical_axis=vertical),
-            proj)
-        assert theirs > 10000 and iou > 0.95
+                                       antialiased=False), setup, proj)
+        assert theirs > 5000 and iou > 0.93
 
 
 def test_the_line_through_the_surface_is_antialiased():

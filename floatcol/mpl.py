@@ -702,6 +702,7 @@ class DepthTested:
         self.visible = None
         self._crossing = None     # (render, crossing polygons, their pixels): cross()
         self._front = None        # (render, the polygons with a point in front): cross()
+        self._planar = None       # (render, a filled contour set's flat levels): cross()
 
     def __call__(self, renderer):
         art = self.art
@@ -727,8 +728,19 @@ class DepthTested:
         vector file takes them whole, as before."""
         from matplotlib.backends.backend_agg import RendererAgg
         from mpl_toolkits.mplot3d import art3d
-        self._crossing = self._front = None
+        self._crossing = self._front = self._planar = None
         art = self.art
+        if (isinstance(art, getattr(art3d, "Collection3D", ())) and
+                hasattr(art, "_3dverts_codes") and getattr(art, "filled", True) and
+                isinstance(renderer, RendererAgg) and art.get_visible()):
+            try:
+                planar = np.array([_plane_of(np.asarray(vs, dtype=float)) is not None
+                                   for vs, _ in art._3dverts_codes], dtype=bool)
+            except _INTERNALS:
+                return
+            if planar.any():
+                self._planar = (render, planar)
+            return
         faces = getattr(art, "_faces", None)
         if not (isinstance(art, art3d.Poly3DCollection) and isinstance(renderer, RendererAgg)
                 and art.get_visible() and faces is not None and len(faces)):
@@ -752,6 +764,10 @@ class DepthTested:
         c = self._crossing
         return c[2] if c is not None and len(renders) == 1 and renders[0] is c[0] else None
 
+    def _planar_for(self, renders):
+        c = self._planar
+        return c[1] if c is not None and len(renders) == 1 and renders[0] is c[0] else None
+
     def _front_for(self, renders):
         c = self._front
         return c[1] if c is not None and len(renders) == 1 and renders[0] is c[0] else None
@@ -763,6 +779,9 @@ class DepthTested:
         not behind the surface (its coverage there), the rest of it cleared. T: the
         picture's pixel (col, row) at the canvas point T @ (col, row, 1)
         (Surface3DImage.placed)."""
+        if self._planar is not None:
+            self._draw_planar(renderer)
+            return
         if self._crossing is None:
             return
         import copy
@@ -807,6 +826,82 @@ class DepthTested:
         gc.set_clip_rectangle(art.axes.bbox)
         renderer.draw_image(gc, 0, 0, np.ascontiguousarray(buf[::-1]))
         gc.restore()
+
+    def _draw_planar(self, renderer):
+        """A filled contour set's flat levels (a contourf projected at an ``offset``)
+        over the picture a pixel at a time: the levels of each plane drawn on a canvas
+        of their own, each canvas pixel's point of the plane found through the plane's
+        homography onto the canvas (mplot3d's projection of four of its points), and
+        the pixel kept as much as that point is not behind the surface (_coverage)."""
+        import copy
+
+        from matplotlib.backends.backend_agg import RendererAgg
+        from mpl_toolkits.mplot3d import proj3d
+        render, planar = self._planar
+        art = self.art
+        ax = art.axes
+        vc = art._3dverts_codes
+        planes = {}
+        for i, (vs, _) in enumerate(vc):
+            if planar[i]:
+                planes.setdefault(_plane_of(np.asarray(vs, dtype=float)), []).append(i)
+        view, box = render.view, np.asarray(render.box, dtype=float)
+        H, W = render.side.shape
+        for (axis, value), levels in planes.items():
+            try:
+                c = copy.copy(art)
+                c._3dverts_codes = [vc[i] if i in levels else (np.zeros((0, 3)), None)
+                                    for i in range(len(vc))]
+                c.do_3d_projection()
+                own = RendererAgg(renderer.width, renderer.height, renderer.dpi)
+                type(c).draw(c, own)
+                pts = np.concatenate([np.asarray(vc[i][0], dtype=float) for i in levels])
+                other = [k for k in range(3) if k != axis]
+                lo, hi = pts[:, other].min(axis=0), pts[:, other].max(axis=0)
+                corners = np.zeros((4, 3))
+                corners[:, axis] = value
+                corners[:, other[0]] = [lo[0], hi[0], hi[0], lo[0]]
+                corners[:, other[1]] = [lo[1], lo[1], hi[1], hi[1]]
+                xs, ys, _ = proj3d.proj_transform(*corners.T, ax.M)
+                disp = ax.transData.transform(np.column_stack([xs, ys]))
+                Hm = _homography(corners[:, other], disp)
+            except (*_INTERNALS, np.linalg.LinAlgError):
+                continue
+            if Hm is None:
+                continue
+            buf = np.array(own.buffer_rgba())
+            yy, xx = np.nonzero(buf[..., 3])
+            if not len(yy):
+                continue
+            q = np.linalg.inv(Hm) @ np.vstack([xx + 0.5, buf.shape[0] - yy - 0.5,
+                                               np.ones(len(xx))])
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                p3 = np.zeros((len(xx), 3))
+                p3[:, axis] = value
+                p3[:, other[0]] = q[0] / q[2]
+                p3[:, other[1]] = q[1] / q[2]
+                col, row = view.project(p3[:, 0] * box[0], p3[:, 1] * box[1],
+                                        p3[:, 2] * box[2])
+                _, _, z = view.to_screen(p3[:, 0] * box[0], p3[:, 1] * box[1],
+                                         p3[:, 2] * box[2])
+                ok = np.isfinite(col) & np.isfinite(row) & np.isfinite(z)
+                ci = np.clip(np.round(np.nan_to_num(col)), 0, W - 1).astype(int)
+                ri = np.clip(np.round(np.nan_to_num(row)), 0, H - 1).astype(int)
+                inside = ok & (np.round(col) == ci) & (np.round(row) == ri)
+                seen = np.where(inside, np.asarray(render.depth)[ri, ci], np.inf)
+                tol = 2.0 / view.scale
+                if not view.orthographic:
+                    tol = tol * (z + view.d3) / view.d1
+                gap = np.where(np.isfinite(seen), z - seen - tol, -np.inf)
+            gap[~ok] = np.inf
+            grid = np.full(buf.shape[:2], np.inf)
+            grid[yy, xx] = gap
+            cov = _coverage(grid)[yy, xx]
+            buf[yy, xx, 3] = np.round(buf[yy, xx, 3] * cov).astype(np.uint8)
+            gc = renderer.new_gc()
+            gc.set_clip_rectangle(ax.bbox)
+            renderer.draw_image(gc, 0, 0, np.ascontiguousarray(buf[::-1]))
+            gc.restore()
 
     def draw_hidden(self, renderer, renders):
         """Draw the part of the artist that the surfaces of ``renders`` hide."""
@@ -883,6 +978,9 @@ class DepthTested:
             vc = art._3dverts_codes
             if getattr(art, "filled", True):
                 keep = _paths_kept(vc, renders, front)
+                planar = self._planar_for(renders)
+                if planar is not None:          # (those: draw_crossing, a pixel at a time)
+                    keep = keep & ~planar if front else keep | planar
                 if front:
                     self.visible = keep
                 if not whole(keep):
@@ -1101,6 +1199,37 @@ def _coverage(d):
     cov[d == -np.inf] = 1.0
     cov[d == np.inf] = 0.0
     return cov
+
+
+def _plane_of(vs):
+    """(axis, value) of the plane a contour level's vertices (k, 3) lie in, one
+    coordinate the same for all (a contourf's zdir and offset), else None."""
+    fin = vs[np.isfinite(vs).all(axis=1)]
+    if len(fin) < 3:
+        return None
+    span = np.ptp(fin, axis=0)
+    size = float(span.max())
+    for axis in (2, 1, 0):
+        if size > 0.0 and span[axis] <= 1e-9 * size:
+            return axis, float(fin[0, axis])
+    return None
+
+
+def _homography(ab, xy):
+    """The 3 x 3 H taking points (a, b) of a plane to their canvas points (x, y) (four
+    of each; mplot3d's projection of a plane is one), or None where they are
+    degenerate."""
+    A = []
+    rhs = []
+    for (a, b), (x, y) in zip(ab, xy):
+        A.append([a, b, 1.0, 0.0, 0.0, 0.0, -a * x, -b * x])
+        A.append([0.0, 0.0, 0.0, a, b, 1.0, -a * y, -b * y])
+        rhs += [x, y]
+    A = np.asarray(A)
+    if not np.isfinite(A).all() or abs(np.linalg.det(A)) < 1e-300:
+        return None
+    h = np.linalg.solve(A, np.asarray(rhs))
+    return np.append(h, 1.0).reshape(3, 3)
 
 
 def _fan_triangles(faces):

@@ -959,23 +959,32 @@ def test_the_checkerboard_example_as_mplot3d_draws_it():
     assert ((ym == yf) & (bm == bf))[both].mean() > 0.98
 
 
-def test_mplot3d_polygons_through_the_surface_are_cut_a_pixel_at_a_time():
+@pytest.mark.parametrize("plane", ["plot_surface", "contourf"])
+def test_mplot3d_polygons_through_the_surface_are_cut_a_pixel_at_a_time(plane):
     """mplot3d's own plot_surface of a plane z = 0.2 through a floatcol surface in one
     3-D Axes: the plane shows exactly where it lies in front of the surface, its line
     through the surface drawn a pixel at a time (its polygons that cross the surface
     were drawn whole over it, a staircase of quads; mplot3d alone draws the whole plane
-    over the surface). Orthographic: the ray to the surface's point (u, v, w) seen at
-    a pixel meets the plane in front of it where w < 0.2 and the ray crosses z = 0.2
-    over the plane's square. Of the pixels whose 3 x 3 neighbourhood sees the surface
-    away from the plane's height and edges, red exactly there at 99.5 % (measured
-    2026-12-06: 99.71 % of 10 628, the rest beside the line, where the depth test's
-    tolerance of 2 pixels of depth gives the plane; whole quads: 91.8 %)."""
+    over the surface). The same plane as a filled contour projected at offset 0.2
+    (``ax.contourf(..., zdir="z", offset=0.2)``: its flat levels drawn through the
+    plane's homography, a pixel at a time; it too was drawn whole over the surface).
+    Orthographic: the ray to the surface's point (u, v, w) seen at a pixel meets the
+    plane in front of it where w < 0.2 and the ray crosses z = 0.2 over the plane's
+    square. Of the pixels whose 3 x 3 neighbourhood sees the surface away from the
+    plane's height and edges, red exactly there at 99.5 % (measured 2026-12-06:
+    plot_surface's 99.86 % of 10 628, the rest beside the line, where the depth test's
+    tolerance of 2 pixels of depth gives the plane; contourf's 100 % of 6 746. Drawn
+    whole: 91.8 % and 64.1 %)."""
     X, Y = np.meshgrid(np.linspace(-3, 3, 60), np.linspace(-3, 3, 60))
     P, Q = np.meshgrid(np.linspace(-5.5, 5.5, 12), np.linspace(-5.5, 5.5, 12))
     fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
     ax = fig.add_subplot(projection="3d", proj_type="ortho")
     p = fc.plot_surface(X, Y, np.sin(X) * np.cos(Y), ax=ax, cmap="viridis")
-    ax.plot_surface(P, Q, 0 * P + 0.2, color="red", shade=False, linewidth=0)
+    if plane == "plot_surface":
+        ax.plot_surface(P, Q, 0 * P + 0.2, color="red", shade=False, linewidth=0)
+    else:
+        ax.contourf(P, Q, P, levels=[-6, 0, 6], colors="red", zdir="z", offset=0.2)
+        ax.set(xlim=(-5.5, 5.5), ylim=(-5.5, 5.5))
     fig.canvas.draw()
     a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
     plt.close(fig)
@@ -1002,7 +1011,7 @@ def test_mplot3d_polygons_through_the_surface_are_cut_a_pixel_at_a_time():
             ok &= np.roll(np.roll(seen, di, 0), dj, 1) & \
                 (np.roll(np.roll(want, di, 0), dj, 1) == want)
     ok &= (ix >= 0) & (ix < a.shape[1]) & (iy >= 0) & (iy < a.shape[0])
-    assert ok.sum() > 8000 and 0.2 < want[ok].mean() < 0.8
+    assert ok.sum() > 5000 and 0.2 < want[ok].mean() < 0.8
     assert (red[iy[ok], ix[ok]] == want[ok]).mean() > 0.995
 
 

@@ -734,8 +734,8 @@ class DepthTested:
                 hasattr(art, "_3dverts_codes") and getattr(art, "filled", True) and
                 isinstance(renderer, RendererAgg) and art.get_visible()):
             try:
-                planar = np.array([_plane_of(np.asarray(vs, dtype=float)) is not None
-                                   for vs, _ in art._3dverts_codes], dtype=bool)
+                planar = np.array([_flat_level_crosses(render, np.asarray(vs, dtype=float), cs)
+                                   for vs, cs in art._3dverts_codes], dtype=bool)
             except _INTERNALS:
                 return
             if planar.any():
@@ -1199,6 +1199,38 @@ def _coverage(d):
     cov[d == -np.inf] = 1.0
     cov[d == np.inf] = 0.0
     return cov
+
+
+#: a flat contour level is tested against the surface at its corners and at the
+#: points of a lattice this many a side over its box that lie inside it
+LEVEL_LATTICE = 16
+
+
+def _flat_level_crosses(render, vs, codes):
+    """Whether a contour level's path (vertices (k, 3), codes) lies in a plane
+    (_plane_of) and passes through the surface of ``render``: some of its points (its
+    corners and a lattice inside it) in front of the surface, some behind. The
+    others are drawn whole, under or over the picture, as before."""
+    from matplotlib.path import Path
+    plane = _plane_of(vs)
+    if plane is None:
+        return False
+    axis, value = plane
+    other = [k for k in range(3) if k != axis]
+    fin = vs[np.isfinite(vs).all(axis=1)]
+    lo, hi = fin[:, other].min(axis=0), fin[:, other].max(axis=0)
+    g = np.linspace(0.0, 1.0, LEVEL_LATTICE)
+    a, b = np.meshgrid(lo[0] + g * (hi[0] - lo[0]), lo[1] + g * (hi[1] - lo[1]))
+    grid = np.column_stack([a.ravel(), b.ravel()])
+    inside = Path(vs[:, other], codes).contains_points(grid) if len(vs) > 2 else \
+        np.zeros(len(grid), dtype=bool)
+    pts = np.zeros((int(inside.sum()), 3))
+    pts[:, axis] = value
+    pts[:, other] = grid[inside]
+    pts = np.concatenate([fin, pts])
+    with np.errstate(invalid="ignore", over="ignore"):
+        _, front, behind = depth_sides(render, pts, render.box)
+    return bool(front.any() and behind.any())
 
 
 def _plane_of(vs):

@@ -845,8 +845,6 @@ class DepthTested:
         for i, (vs, _) in enumerate(vc):
             if planar[i]:
                 planes.setdefault(_plane_of(np.asarray(vs, dtype=float)), []).append(i)
-        view, box = render.view, np.asarray(render.box, dtype=float)
-        H, W = render.side.shape
         for (axis, value), levels in planes.items():
             try:
                 c = copy.copy(art)
@@ -880,22 +878,8 @@ class DepthTested:
                 p3[:, axis] = value
                 p3[:, other[0]] = q[0] / q[2]
                 p3[:, other[1]] = q[1] / q[2]
-                col, row = view.project(p3[:, 0] * box[0], p3[:, 1] * box[1],
-                                        p3[:, 2] * box[2])
-                _, _, z = view.to_screen(p3[:, 0] * box[0], p3[:, 1] * box[1],
-                                         p3[:, 2] * box[2])
-                ok = np.isfinite(col) & np.isfinite(row) & np.isfinite(z)
-                ci = np.clip(np.round(np.nan_to_num(col)), 0, W - 1).astype(int)
-                ri = np.clip(np.round(np.nan_to_num(row)), 0, H - 1).astype(int)
-                inside = ok & (np.round(col) == ci) & (np.round(row) == ri)
-                seen = np.where(inside, np.asarray(render.depth)[ri, ci], np.inf)
-                tol = 2.0 / view.scale
-                if not view.orthographic:
-                    tol = tol * (z + view.d3) / view.d1
-                gap = np.where(np.isfinite(seen), z - seen - tol, -np.inf)
-            gap[~ok] = np.inf
             grid = np.full(buf.shape[:2], np.inf)
-            grid[yy, xx] = gap
+            grid[yy, xx] = _depth_gaps(render, p3)
             cov = _coverage(grid)[yy, xx]
             buf[yy, xx, 3] = np.round(buf[yy, xx, 3] * cov).astype(np.uint8)
             gc = renderer.new_gc()
@@ -1155,18 +1139,8 @@ def _not_behind_pixels(render, tris):
                + tris[t, 2] * (q2 / q)[:, None])
     inside &= np.isfinite(pts).all(axis=1)
     pts, cc, rr = pts[inside], cc[inside], rr[inside]
-    # each pixel's gap in depth from the polygon's point to the surface seen there,
-    # beyond depth_sides's tolerance (< 0: the polygon in front; -inf: no surface)
-    with np.errstate(invalid="ignore", over="ignore"):
-        _, _, z = view.to_screen(pts[:, 0] * box[0], pts[:, 1] * box[1], pts[:, 2] * box[2])
-        tol = 2.0 / view.scale
-        if not view.orthographic:
-            tol = tol * (z + view.d3) / view.d1
-        seen = np.asarray(render.depth)[rr, cc]
-        gap = np.where(np.isfinite(seen), z - seen - tol, -np.inf)
-    gap[~np.isfinite(z)] = np.inf
     d = np.full((H, W), np.inf)
-    np.minimum.at(d, (rr, cc), gap)          # (the nearest polygon's, where several)
+    np.minimum.at(d, (rr, cc), _depth_gaps(render, pts))   # (the nearest polygon's)
     return _coverage(d)
 
 
@@ -1378,6 +1352,18 @@ def depth_sides(r, pts, box, pixels=2.0):
     """(ok, front, behind): which points (n, 3) are numbers that project, and which of
     them lie in front of (or on) the surface the Render ``r`` saw at their pixel, and
     which behind it (neither where it saw none there)."""
+    ok, inside, z, seen, tol = _depth_test(r, pts, box, pixels)
+    with np.errstate(invalid="ignore", over="ignore"):     # (points far off: not shown)
+        there = inside & np.isfinite(seen)
+        near = z <= seen + tol
+        return ok, ok & there & near, ok & there & ~near
+
+
+def _depth_test(r, pts, box, pixels=2.0):
+    """(ok, inside, z, seen, tol) of points (n, 3) in the surface's units against the
+    Render ``r``: which are numbers that project, which of those fall on the picture,
+    their screen depth, the depth r saw at their pixel (the nearest pixel clamped to
+    the picture) and the tolerance of ``pixels`` pixels of depth (depth_sides)."""
     view = r.view
     bx, by, bz = (pts[:, 0] * box[0], pts[:, 1] * box[1], pts[:, 2] * box[2])
     col, row = view.project(bx, by, bz)
@@ -1392,8 +1378,15 @@ def depth_sides(r, pts, box, pixels=2.0):
     tol = pixels / view.scale
     if not view.orthographic:
         tol = tol * (z + view.d3) / view.d1
-    seen = np.asarray(r.depth)[j, c]
-    with np.errstate(invalid="ignore", over="ignore"):     # (points far off: not shown)
-        there = inside & np.isfinite(seen)
-        near = z <= seen + tol
-        return ok, ok & there & near, ok & there & ~near
+    return ok, inside, z, np.asarray(r.depth)[j, c], tol
+
+
+def _depth_gaps(r, pts):
+    """Each point's gap in depth behind the surface the Render ``r`` saw at its pixel,
+    beyond depth_sides's tolerance (< 0: in front; -inf: no surface there, or off the
+    picture; +inf: a point that does not project): _coverage's input."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        ok, inside, z, seen, tol = _depth_test(r, pts, r.box)
+        gap = np.where(inside & np.isfinite(seen), z - seen - tol, -np.inf)
+    gap[~(ok & np.isfinite(z))] = np.inf
+    return gap

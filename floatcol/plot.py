@@ -176,6 +176,7 @@ class SurfacePlot(_ScalarMappable):
         self.render: Render | None = None
         self.artist = None
         self._placed = []              # the objects put on it (scatter, plot, text, quiver)
+        self._w_range = None           # the heights' range (w_range), once computed
 
         if isinstance(cmap, str):
             colormap_lut(cmap)                # a clear error for an unknown name, now
@@ -328,7 +329,7 @@ class SurfacePlot(_ScalarMappable):
         robust to poles; a mesh's every height): the colormap's default range, and
         what a 3-D Axes' z limits take (not the colour range: vmin/vmax or a colour
         field do not move them, as in mplot3d). Computed once."""
-        if getattr(self, "_w_range", None) is None:
+        if self._w_range is None:
             self._w_range = self._heights()
         return self._w_range
 
@@ -1053,7 +1054,6 @@ def mesh_surface(X, Y, Z, faces=None):
     ``faces`` (a colour for each face: Z's shape less one, and a third axis; _faces),
     (HeightField, (texture, texture_extent)): the faces' colours as a texture (extent
     None: the HeightField's domain)."""
-    extra = faces
     try:
         # (a masked array's masked values are holes, as mplot3d leaves them out)
         X, Y, Z = (np.ma.filled(np.ma.asarray(a, dtype=float), np.nan) for a in (X, Y, Z))
@@ -1061,14 +1061,14 @@ def mesh_surface(X, Y, Z, faces=None):
         raise ValueError("plot_surface(X, Y, Z): X, Y and Z must be arrays of numbers") from None
     if Z.ndim != 2:
         raise ValueError(f"plot_surface(X, Y, Z): Z must be 2-D, got shape {Z.shape}")
-    if extra is not None and np.shape(extra)[:2] != (Z.shape[0] - 1, Z.shape[1] - 1):
+    if faces is not None and np.shape(faces)[:2] != (Z.shape[0] - 1, Z.shape[1] - 1):
         raise ValueError(f"plot_surface(X, Y, Z): facecolors must have a colour a face, "
-                         f"shape {(Z.shape[0] - 1, Z.shape[1] - 1)}, got {np.shape(extra)}")
+                         f"shape {(Z.shape[0] - 1, Z.shape[1] - 1)}, got {np.shape(faces)}")
     if X.ndim == 2 and X.shape == Z.shape and Y.shape == Z.shape and \
             _constant(X[0]) and _constant(Y[:, 0]) and Z.shape != (1, 1):
         X, Y, Z = X.T, Y.T, Z.T                    # meshgrid(..., indexing="ij")
-        if extra is not None:
-            extra = np.swapaxes(extra, 0, 1)
+        if faces is not None:
+            faces = np.swapaxes(faces, 0, 1)
     if min(Z.shape) < 2:
         raise ValueError(f"plot_surface(X, Y, Z): Z must have at least 2 x 2 values (a "
                          f"surface between them), got shape {Z.shape}")
@@ -1076,8 +1076,9 @@ def mesh_surface(X, Y, Z, faces=None):
             not (_close(X, X[:1]) and _close(Y, Y[:, :1])):
         # a curvilinear grid (X = R cos P, Y = R sin P): resampled (mesh.py)
         from .mesh import curvilinear
-        x, y, Z, extra = curvilinear(X, Y, Z, faces=extra)
-        return _mesh_field(x, y, Z, None if extra is None else (extra, None), resampled=True)
+        x, y, Z, colours = curvilinear(X, Y, Z, faces=faces)
+        return _mesh_field(x, y, Z, None if colours is None else (colours, None),
+                           resampled=True)
     if X.ndim == 2:
         if X.shape != Z.shape or not _close(X, X[:1]):
             raise ValueError("plot_surface(X, Y, Z): X must repeat one row of x values "
@@ -1105,22 +1106,24 @@ def mesh_surface(X, Y, Z, faces=None):
         even = even and np.allclose(d, d[0], rtol=1e-6, atol=0)
     if X[1] < X[0]:
         X, Z = X[::-1], Z[:, ::-1]
-        extra = None if extra is None else extra[:, ::-1]
+        faces = None if faces is None else faces[:, ::-1]
     if Y[1] < Y[0]:
         Y, Z = Y[::-1], Z[::-1]
-        extra = None if extra is None else extra[::-1]
-    if extra is not None:                     # the faces between the mesh's x and y
-        extra = face_texture(X, Y, extra)
+        faces = None if faces is None else faces[::-1]
+    # (the faces between the mesh's x and y)
+    texture = None if faces is None else face_texture(X, Y, faces)
     if not even:                              # (np.geomspace's): resampled (mesh.py)
         from .mesh import uneven
         X, Y, Z = uneven(X, Y, Z)
-    return _mesh_field(X, Y, Z, extra, resampled=not even)
+    return _mesh_field(X, Y, Z, texture, resampled=not even)
 
 
-def _mesh_field(x, y, Z, extra, resampled):
+def _mesh_field(x, y, Z, texture, resampled):
+    """The HeightField of heights Z over x, y; with ``texture`` (image, extent or None),
+    (HeightField, texture)."""
     hf = HeightField(Z, u=(x[0], x[-1]), v=(y[0], y[-1]))
     hf.resampled = resampled                  # (mesh.py: not the mesh's own grid)
-    return hf if extra is None else (hf, (np.ascontiguousarray(extra[0]), extra[1]))
+    return hf if texture is None else (hf, (np.ascontiguousarray(texture[0]), texture[1]))
 
 
 def _has_ranges(e):

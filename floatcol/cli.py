@@ -205,6 +205,9 @@ def _surface_options(p, default_size="800x600", many=False, terrain=False):
                    help="height at the colormap's start (a number or a constant such as pi/2)")
     p.add_argument("--vmax", type=_value("vmax"), default=None,
                    help="height at the colormap's end (a number or a constant such as pi/2)")
+    p.add_argument("--norm", default=None, choices=["linear", "log", "symlog", "asinh", "logit"],
+                   help="the colormap's scale of the heights, as matplotlib's norm=\"log\" "
+                        "(default linear; with --vmin/--vmax its ends)")
     p.add_argument("--no-shade", action="store_true", help="flat colours, no lighting")
     p.add_argument("--ambient", type=_value("ambient"), default=None, metavar="A",
                    help="the ambient share of the light, 0 to 1 (default 0.25)")
@@ -388,7 +391,7 @@ _SAME = ("opacity", "wireframe", "contours", "shading", "shadows", "antialias", 
          "corrections", "interpolation", "aspect", "vmin", "vmax", "cmap", "texture",
          "background", "device", "method", "lines", "size", "elev", "azim", "dpi", "pitch",
          "fov", "heading", "above", "extent", "nodata", "frames", "fps", "ambient", "specular",
-         "shininess")
+         "shininess", "norm")
 
 
 def cli_words(message):
@@ -470,7 +473,7 @@ def _options(args):
                              "area": "area"}[args.antialias]
     for name in ("focal_length", "cmap", "color", "vmin", "vmax", "lines", "corrections",
                  "sampling", "device", "ambient", "specular", "shininess", "pixel_step",
-                 "texture_filter"):
+                 "texture_filter", "norm"):
         value = getattr(args, name)
         if value is not None:
             opts[name] = value

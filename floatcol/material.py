@@ -163,6 +163,9 @@ class Material:
                              "(as in matplotlib)")
         if norm is None:
             return
+        if isinstance(norm, str):
+            scale_norm(norm)             # (a clear error for an unknown name, now)
+            return                       # (vmin/vmax with a scale's name: matplotlib's too)
         if not (callable(norm) and callable(getattr(norm, "inverse", None))):
             raise ValueError(f"norm must be a matplotlib norm (callable, with an inverse), "
                              f"got {norm!r}")
@@ -180,9 +183,16 @@ class Material:
         w), and the limits in the surface's units (Render.stats["w_limits"]), from the
         column pass's seen range ``wrange``."""
         lut, _ = self.colors()
-        w_lo, w_hi = height_limits(wrange if c_w == 1.0 else wrange / c_w, self.vmin, self.vmax)
+        seen = wrange if c_w == 1.0 else wrange / c_w
+        w_lo, w_hi = height_limits(seen, self.vmin, self.vmax)
         if self.norm is not None and lut.shape[0] > 1:
-            lut, w_lo, w_hi = norm_lut(self.norm, lut, w_lo, w_hi)
+            norm = self.norm
+            if isinstance(norm, str):
+                # a scale's name: a norm of its own each picture, its ends vmin and vmax
+                # where given, else autoscaled to the seen range as a norm object's
+                norm = scale_norm(norm)
+                norm.vmin, norm.vmax = self.vmin, self.vmax
+            lut, w_lo, w_hi = norm_lut(norm, lut, w_lo, w_hi, seen, name=self.norm)
         if lut.shape[0] > 1 and self.upper_color is None and self.shading != "lambert":
             lut = with_extremes(lut, w_lo, w_hi, *color.extremes(self.cmap))
         w_limits = (w_lo, w_hi)
@@ -258,13 +268,31 @@ def with_extremes(lut, w_lo, w_hi, under, over):
     return np.concatenate(rows)
 
 
-def norm_lut(norm, lut, w_lo, w_hi):
+def scale_norm(name):
+    """A matplotlib norm from a scale's name ("log", "symlog", "asinh", "logit",
+    "linear"), as matplotlib's mappables take ``norm="log"`` (matplotlib 3.6's); its
+    vmin and vmax unset. A ValueError names the scales where ``name`` is none."""
+    import matplotlib.cm
+    import matplotlib.scale
+    names = [n for n in matplotlib.scale.get_scale_names() if not n.startswith("function")]
+    if name not in names:
+        raise ValueError(f"norm must be a matplotlib norm or a scale's name: one of "
+                         f"{', '.join(repr(n) for n in names)}, got {name!r}")
+    return matplotlib.cm.ScalarMappable(norm=name).norm
+
+
+def norm_lut(norm, lut, w_lo, w_hi, seen=None, name=None):
     """(lut (n, 4), w_lo, w_hi) for a non-linear norm: each row's colour and the height
     where it begins, norm.inverse(k / (n - 1)) (shade._side_rgb); a BoundaryNorm's, a
-    row a bin. A norm without ends gets the seen range's (as a matplotlib mappable's
-    autoscale)."""
+    row a bin. A norm without ends gets the seen heights' (``seen``: the columns' lowest
+    and highest; else [w_lo, w_hi]), as a matplotlib mappable's autoscale: a LogNorm's
+    vmin the lowest positive of them (its scale masks the others). ``name``: what
+    errors call the norm (default its class's name)."""
+    name = repr(name) if isinstance(name, str) else type(norm).__name__
     if getattr(norm, "vmin", 0.0) is None or getattr(norm, "vmax", 0.0) is None:
-        norm.autoscale_None(np.array([w_lo, w_hi]))
+        seen = np.array([w_lo, w_hi]) if seen is None else np.asarray(seen, np.float64)
+        norm.autoscale_None(seen[np.isfinite(seen)] if np.isfinite(seen).any() else
+                            np.array([w_lo, w_hi]))
     n = lut.shape[0]
     bounds = getattr(norm, "boundaries", None)
     if bounds is not None:
@@ -276,18 +304,20 @@ def norm_lut(norm, lut, w_lo, w_hi):
             k = np.ma.filled(np.ma.asarray(norm(0.5 * (b[:-1] + b[1:])), dtype=np.float64),
                              0.0)
         except (ValueError, TypeError) as e:
-            raise ValueError(f"norm {norm!r}: {e}") from None
+            raise ValueError(f"norm {name}: {e}") from None
         if b.ndim != 1 or len(b) < 2 or not np.isfinite(b).all() or (np.diff(b) <= 0).any():
-            raise ValueError(f"norm {norm!r} must have ascending, finite boundaries")
+            raise ValueError(f"norm {name} must have ascending, finite boundaries")
         rows = np.clip(np.round(k / max(getattr(norm, "Ncmap", n) - 1, 1) * (n - 1)), 0, n - 1)
         return (np.column_stack([lut[rows.astype(np.int64), :3], b[:-1]]), float(b[0]),
                 float(b[-1]))
     try:
         starts = np.asarray(norm.inverse(np.linspace(0.0, 1.0, n)), dtype=np.float64)
     except (ValueError, TypeError, ZeroDivisionError) as e:
-        raise ValueError(f"norm {norm!r} cannot be inverted: {e}") from None
+        raise ValueError(f"norm {name} cannot colour heights from {norm.vmin!r} to "
+                         f"{norm.vmax!r} ({e}): give vmin= and vmax= inside its scale's "
+                         "domain") from None
     if starts.shape != (n,) or not np.isfinite(starts).all() or (np.diff(starts) < 0).any():
-        raise ValueError(f"norm {norm!r} must map heights to [0, 1] monotonically "
+        raise ValueError(f"norm {name} must map heights to [0, 1] monotonically "
                          "(its inverse gave non-finite or decreasing heights)")
     return np.column_stack([lut[:, :3], starts]), float(starts[0]), float(starts[-1])
 

@@ -18,6 +18,7 @@ from . import color
 from .color import colormap_lut
 from .output import png_bytes, save_image
 from .light import world_to_screen_direction  # noqa: F401 (kept importable here)
+from .material import scale_norm
 from .mesh import face_texture
 from .render import DEFAULT_RANGE, Render, render
 from .kernels.layout import SURF_HEIGHTFIELD
@@ -160,9 +161,12 @@ class SurfacePlot(_ScalarMappable):
         self.upper_color = None
         if color is not None and cmap is None:
             self.upper_color = _rgb(color)
-        if norm is not None and not isinstance(norm, _Normalize):
-            raise ValueError(f"norm must be a matplotlib.colors.Normalize, got {norm!r}")
-        if norm is not None and (vmin is not None or vmax is not None):
+        if isinstance(norm, str):
+            norm = scale_norm(norm)      # norm="log": matplotlib's, vmin/vmax allowed
+        elif norm is not None and not isinstance(norm, _Normalize):
+            raise ValueError(f"norm must be a matplotlib.colors.Normalize or a scale's name "
+                             f"('log', 'symlog', ...), got {norm!r}")
+        elif norm is not None and (vmin is not None or vmax is not None):
             raise ValueError("give either norm or vmin/vmax, not both (as in matplotlib)")
         self.options = dict(render_options or {})
         if not isinstance(axlim_clip, (bool, np.bool_)):
@@ -185,6 +189,10 @@ class SurfacePlot(_ScalarMappable):
         norm = self.norm
         if norm.vmin is None:
             norm.vmin = float(lo if vmin is None else vmin)
+            if vmin is None and lo <= 0.0 and not _valid_ends(norm, hi):
+                # a log scale's norm: autoscaled to the positive heights, as matplotlib's
+                # mappables mask the others (those heights take the lowest colour)
+                norm.vmin = self._w_positive
         if norm.vmax is None:
             norm.vmax = float(hi if vmax is None else vmax)
         self.set_array(np.array([norm.vmin, norm.vmax]))
@@ -318,6 +326,7 @@ class SurfacePlot(_ScalarMappable):
             gu, gv = np.meshgrid(np.linspace(ua, ub, 129), np.linspace(va, vb, 129))
             c = field_values(src.field, gu, gv, np.ones(gu.shape, bool), src.extent)
             c = c[np.isfinite(c)]
+            self._w_positive = float(c[c > 0].min()) if (c > 0).any() else 1.0
             if c.size == 0:
                 return 0.0, 1.0
             lo, hi = float(c.min()), float(c.max())
@@ -335,6 +344,7 @@ class SurfacePlot(_ScalarMappable):
 
     def _heights(self):
         los, his = [], []
+        pos = [np.inf]
         for surface, ((ua, ub), (va, vb)) in [(self.surface, self.domain), *self.others]:
             gu, gv = np.meshgrid(np.linspace(ua, ub, 129), np.linspace(va, vb, 129))
             w = surface.evaluate(gu, gv)
@@ -345,8 +355,12 @@ class SurfacePlot(_ScalarMappable):
                     lo, hi = float(both.min()), float(both.max())
                 else:
                     lo, hi = _robust_range(np.where(np.isfinite(w), w, np.nan))
+                w = w[np.isfinite(w) & (w > 0.0)]
+                pos.append(float(w.min()) if w.size else np.inf)
                 los.append(lo)
                 his.append(hi)
+        #: the lowest positive height (a log norm's autoscaled vmin)
+        self._w_positive = min(pos) if min(pos) < np.inf else 1.0
         if not los:
             return 0.0, 1.0
         lo, hi = min(los), max(his)
@@ -668,6 +682,20 @@ def render_view(surface, kw):
     views, _, box = fit([(surface, layer_domain(surface, kw.get("u"), kw.get("v")))], cam,
                         Quality())
     return views[0], box
+
+
+def _valid_ends(norm, hi):
+    """Whether ``norm``, its vmin set, takes its ends (a LogNorm's vmin must be > 0);
+    its vmax set to ``hi`` for the test, then unset."""
+    vmax = norm.vmax
+    norm.vmax = float(hi) if vmax is None else vmax
+    try:
+        norm(np.array([norm.vmin, norm.vmax]))
+        return True
+    except ValueError:
+        return False
+    finally:
+        norm.vmax = vmax
 
 
 def _label(label, n):

@@ -60,7 +60,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     norm : instead of vmin/vmax, a matplotlib norm (LogNorm, PowerNorm, ...; any
         monotonic w -> [0, 1] with an ``inverse``), unscaled ends scaled to the seen
         range; the colormap's rows begin at norm.inverse(k / 255); a BoundaryNorm's,
-        a row a band.
+        a row a band. Or a scale's name ("log", "symlog", "asinh", "logit", "linear"),
+        as matplotlib's mappables take it, with vmin/vmax as its ends.
     step : distance between sampling planes; default ``pixel_step`` (1) pixels on screen
         (at the nearest point in perspective).
     specular, shininess : Phong highlights on top of the diffuse light (default

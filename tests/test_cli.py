@@ -82,6 +82,7 @@ def test_several_expressions_make_one_picture(capsys, monkeypatch, tmp_path):
     (("--ambient", "0.6", "--specular", "0.5", "--shininess", "8"),
      dict(ambient=0.6, specular=0.5, shininess=8.0)),
     (("--pixel-step", "3"), dict(pixel_step=3.0)),
+    (("--norm", "symlog", "--vmin", "-2"), dict(norm="symlog", vmin=-2.0)),
     (("--ambient", "1", "--specular", "0"), dict(shade=False)),      # (flat: as --no-shade)
 ])
 def test_fidelity_flags_match_plot_surface(capsys, monkeypatch, tmp_path, flags, opts):
@@ -137,6 +138,7 @@ def test_animate_writes_gif_with_frames(capsys, monkeypatch, tmp_path):
     (["render", "u", "--vmin", "3", "--vmax", "1", "-o", "x.png"], "vmin must not exceed vmax"),
     (["render", "u", "--vmin", "nan", "-o", "x.png"], "vmin must be a finite number"),
     (["render", "u", "--ambient", "2", "-o", "x.png"], "--ambient must be in [0, 1]"),
+    (["render", "u*v", "--norm", "logit", "-o", "x.png"], "give --vmin and --vmax inside"),
     (["render", "u", "--specular", "-1", "-o", "x.png"], "--specular must be in [0, 1]"),
     (["render", "u", "--shininess", "0", "-o", "x.png"], "--shininess must be positive"),
     (["render", "u", "--pixel-step", "0", "-o", "x.png"], "--pixel-step must be positive"),

@@ -128,6 +128,56 @@ def test_vmin_vmax_and_norm_set_the_colours():
     assert (lin.norm.vmin, lin.norm.vmax) == (1, 3)
 
 
+@pytest.mark.parametrize("name", ["log", "symlog", "asinh", "linear"])
+def test_a_scales_name_is_a_norm_as_in_matplotlib(name):
+    """norm="log" (a scale's name, matplotlib 3.6's form; it raised "must be a
+    Normalize") colours as that scale's norm does, in plot_surface and render, with
+    vmin/vmax (allowed beside a name, as in matplotlib) or autoscaled: every whole pixel
+    has matplotlib's colour for its seen height, to 2 levels (measured 2026-12-07: at
+    most 1, the colour table's rows against matplotlib's continuous map)."""
+    import matplotlib
+    cm = matplotlib.colormaps["gray"]
+    expr, rx, ry = "exp(x)*(1 + y*y)", ("x", -3, 2), ("y", -1, 1)
+    for kw in (dict(vmin=0.1, vmax=8.0), {}):
+        p = fc.plot_surface(expr, rx, ry, size=(120, 90), shade=False, cmap="gray",
+                            norm=name, antialias=False, **kw)
+        r = p.draw()
+        up = inner(r.side > 0)
+        assert up.sum() > 1500
+        n = matplotlib.cm.ScalarMappable(norm=name).norm
+        n.vmin, n.vmax = r.stats["w_limits"]
+        if kw:
+            assert (n.vmin, n.vmax) == pytest.approx((0.1, 8.0))
+        else:          # plot_surface's autoscale: f over its domain, as matplotlib's mesh
+            assert (n.vmin, n.vmax) == pytest.approx((np.exp(-3), 2 * np.exp(2)), rel=1e-3)
+        want = np.round(cm(n(r.w[up]))[:, 0] * 255)
+        assert np.abs(r.rgba[up][:, 0].astype(float) - want).max() <= 2.0
+        assert type(p.norm).__name__ == type(n).__name__
+    r = fc.render("exp(u)*(1 + v*v)", u=(-3, 2), v=(-1, 1),
+                  size=(120, 90), shading="lambert", antialias=False, norm=name, vmin=0.1,
+                  vmax=8.0, cmap="gray")
+    assert r.stats["w_limits"] == pytest.approx((0.1, 8.0))
+
+
+def test_a_log_norm_autoscales_to_the_positive_heights():
+    """A log norm over heights that reach zero or below takes its vmin from the positive
+    ones, as matplotlib's autoscale masks the others (it raised "cannot be inverted"):
+    in plot_surface (f over the domain) and render (the heights seen); those below take
+    the lowest colour. A scale with no norm (or none) raises ValueError naming them."""
+    p = fc.plot_surface("x*y", ("x", 0, 2), ("y", -1, 2), size=(80, 60), norm="log")
+    p.draw()
+    assert 0.0 < p.norm.vmin < 1e-3 and p.norm.vmax == pytest.approx(4.0, rel=1e-3)
+    r = fc.render("u*v", u=(0, 2), v=(-1, 2), size=(80, 60), norm="log")
+    lo, hi = r.stats["w_limits"]
+    seen = fc.render("u*v", u=(0, 2), v=(-1, 2), size=(80, 60)).stats["w_limits"]
+    assert seen[0] < -1.5 and 0.0 < lo < 0.1 and hi == pytest.approx(seen[1])  # (seen top)
+    for bad in ("function", "Log", "lin"):
+        with pytest.raises(ValueError, match="'log', 'logit', 'symlog'"):
+            fc.plot_surface("x*y", ("x", 0, 2), ("y", -1, 2), norm=bad)
+        with pytest.raises(ValueError, match="'log', 'logit', 'symlog'"):
+            fc.render("u*v", norm=bad, size=(40, 30))
+
+
 @pytest.mark.parametrize("ncolors, cmap", [(256, "viridis"), (4, "listed")])
 def test_a_boundary_norm_colours_in_bands(ncolors, cmap):
     """matplotlib's BoundaryNorm (discrete levels, no inverse: it raised "cannot be

@@ -65,7 +65,12 @@ class Material:
         levels, or the levels; of f, or of ``color`` when it is given.
     contour_color, contour_width : their colour and width in pixels.
     wireframe : lines at u = const and v = const: N lines each way, or (nu, nv) (as
-        matplotlib's rcount, ccount); ``edgecolor``, ``linewidth`` (pixels).
+        matplotlib's rcount, ccount), or (us, vs) the lines' positions (1-D sequences:
+        an unevenly spaced mesh's own lines); ``edgecolor``, ``linewidth`` (pixels).
+    wire_coords : (grid, extent): the wireframe's lines are those of two other
+        coordinates than u and v, bilinear from ``grid`` (ny, nx, 2) over ``extent``
+        (u0, u1, v0, v1), at the positions ``wireframe`` gives (a curvilinear mesh's
+        column and row index: plot_surface(X, Y, Z, edgecolor=...) sets it).
     fill : False draws the lines alone (a hidden-line drawing: plot_wireframe): the
         surface is not drawn but still hides the lines behind it.
     """
@@ -92,6 +97,7 @@ class Material:
     edgecolor: Any = "black"
     linewidth: float = 0.75
     fill: bool = True
+    wire_coords: Any = None
 
     def check(self):
         """Validate the fields (ValueError naming what to fix); returns self."""
@@ -114,6 +120,11 @@ class Material:
             if self.opacity < 1.0:
                 raise ValueError("fill=False draws no surface to see through: give "
                                  "opacity=1")
+        if self.wireframe is not None:
+            from .passes.overlays import wire_lines
+            wire_lines(self.wireframe)           # (a clear error now)
+        if self.wire_coords is not None:
+            _check_wire_coords(self.wire_coords, self.wireframe)
         for name in ("contour_width", "linewidth"):
             x = getattr(self, name)
             if isinstance(x, bool) or not isinstance(x, numbers.Real) or \
@@ -266,6 +277,26 @@ def with_extremes(lut, w_lo, w_hi, under, over):
         rows.append(np.r_[np.asarray(over, dtype=np.float64)[:3],
                           np.nextafter(w_hi, np.inf)][None])
     return np.concatenate(rows)
+
+
+def _check_wire_coords(coords, wireframe):
+    """Material.wire_coords: (grid (ny, nx, 2) of numbers, extent of 4 finite numbers
+    with u0 < u1, v0 < v1), with a wireframe of positions."""
+    try:
+        grid, extent = coords
+        grid = np.asarray(grid, dtype=np.float64)
+        extent = tuple(float(x) for x in extent)
+    except (TypeError, ValueError):
+        grid, extent = np.zeros(0), ()
+    if grid.ndim != 3 or grid.shape[2] != 2 or min(grid.shape[:2]) < 2 or len(extent) != 4 \
+            or not all(math.isfinite(x) for x in extent) or not (
+                extent[0] < extent[1] and extent[2] < extent[3]):
+        raise ValueError("wire_coords must be (grid of shape (ny, nx, 2), (u0, u1, v0, v1)) "
+                         "with u0 < u1 and v0 < v1")
+    from .passes.overlays import wire_lines
+    if wireframe is None or wire_lines(wireframe)[0][0] is None:
+        raise ValueError("wire_coords needs wireframe=(positions, positions): the levels of "
+                         "its two coordinates")
 
 
 def scale_norm(name):

@@ -137,13 +137,15 @@ def _parametric(why):
                       f"ones")
 
 
-def curvilinear(X, Y, Z, faces=None):
+def curvilinear(X, Y, Z, faces=None, coords=False):
     """(x, y, Z, colours) of the curvilinear mesh X, Y, Z (2-D, one shape), linear on
     the two triangles of each quad, at the nodes of an evenly spaced grid (NaN
     outside the mesh); ValueError where it is not a function's grid. ``faces``: a
     colour for each quad (rows - 1, columns - 1, channels), its two triangles that
     colour: ``colours`` at the grid's nodes (a texture over its extent; None
-    without)."""
+    without). ``coords``: (x, y, Z, colours, ij) with ij (ny, nx, 2) the mesh's
+    column and row index at the grid's nodes, linear on each triangle as the heights
+    (a mesh line is a level of one: its edges, Material.wire_coords)."""
     m, n = Z.shape
     x, y, z = X.ravel(), Y.ravel(), Z.ravel()
     ok = np.isfinite(x) & np.isfinite(y)
@@ -178,14 +180,16 @@ def curvilinear(X, Y, Z, faces=None):
     tris = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3),
                            np.stack([a, c, d], -1).reshape(-1, 3)])
     quad = np.tile(np.arange(a.size), 2)                 # (each triangle's quad)
+    orig = tris                                          # (the corners' own indices)
     tris = node[tris]
     keep = (tris >= 0).all(axis=1)
-    tris, quad = tris[keep], quad[keep]
+    tris, quad, orig = tris[keep], quad[keep], orig[keep]
     px, py = x[tris], y[tris]
     area = 0.5 * ((px[:, 1] - px[:, 0]) * (py[:, 2] - py[:, 0])
                   - (px[:, 2] - px[:, 0]) * (py[:, 1] - py[:, 0]))
     flat = np.abs(area) <= 1e-12 * size * size
     tris, area, px, py, quad = tris[~flat], area[~flat], px[~flat], py[~flat], quad[~flat]
+    orig = orig[~flat]
     if len(tris) == 0:
         raise ValueError("plot_surface(X, Y, Z): X and Y span no area")
     # the quads of a function's grid all turn one way in the x-y plane; a parametric
@@ -201,6 +205,9 @@ def curvilinear(X, Y, Z, faces=None):
     if faces is not None:               # a quad's colour on both its triangles, flat
         colours = np.asarray(faces, dtype=float).reshape(a.size, -1)[quad]
         corners = np.concatenate([corners, np.repeat(colours[:, None], 3, axis=1)], axis=2)
+    if coords:                          # each corner's column and row in the mesh
+        corners = np.concatenate([corners, (orig % n)[..., None].astype(float),
+                                  (orig // n)[..., None].astype(float)], axis=2)
     xe, ye, out, hits = _rasterise(
         x[tris], y[tris], corners, (lo_x, hi_x, lo_y, hi_y), nodes,
         "plot_surface(X, Y, Z): the mesh's cells are too long and thin to resample (a "
@@ -208,8 +215,36 @@ def curvilinear(X, Y, Z, faces=None):
     # quads that lie over one another without folding (a mesh wound round twice)
     if hits.max() > 1:
         raise _parametric("its quads overlap")
-    colours = None if faces is None else _as_colours(out[..., 1:], faces)
+    colours = None if faces is None else _as_colours(out[..., 1:out.shape[2] - 2 * coords],
+                                                     faces)
+    if coords:
+        return xe, ye, out[..., 0], colours, _carried_on(out[..., -2:])
     return xe, ye, out[..., 0], colours
+
+
+def _carried_on(ij, rings=2):
+    """The index grids ``ij`` (ny, nx, 2) carried on linearly past the mesh's edge by
+    ``rings`` nodes (each NaN node beside finite ones: the mean of 2 q1 - q2 over the
+    directions where its next two nodes are finite): the surface ends at its last
+    whole grid cell, up to a cell inside the mesh's edge, and a seen pixel there reads
+    its indices bilinearly from the cell's four nodes (Material.wire_coords)."""
+    q = np.array(ij, dtype=np.float64)
+    for _ in range(rings):
+        p = np.pad(q, ((2, 2), (2, 2), (0, 0)), constant_values=np.nan)
+        ny, nx = q.shape[:2]
+        total = np.zeros_like(q)
+        count = np.zeros(q.shape[:2] + (1,))
+        for di, dj in ((0, 1), (0, -1), (1, 0), (-1, 0)):
+            q1 = p[2 + di:2 + di + ny, 2 + dj:2 + dj + nx]
+            q2 = p[2 + 2 * di:2 + 2 * di + ny, 2 + 2 * dj:2 + 2 * dj + nx]
+            ok = np.isfinite(q1).all(axis=2) & np.isfinite(q2).all(axis=2)
+            total[ok] += 2.0 * q1[ok] - q2[ok]
+            count[ok] += 1.0
+        fill = ~np.isfinite(q).all(axis=2) & (count[..., 0] > 0)
+        if not fill.any():
+            break
+        q[fill] = total[fill] / count[fill]
+    return np.ascontiguousarray(q)
 
 
 def _rasterise(px, py, corners, extent, nodes, too_thin):

@@ -762,26 +762,24 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
         facecolors = _face_colours(facecolors)
     mesh_shape = None
     resampled = False
+    mesh_lines = None
     if _is_mesh(expr, ranges):                # matplotlib's plot_surface(X, Y, Z, ...)
         mesh_shape = np.shape(ranges[1])
+        edges = _edge_colour(options) is not None
         if facecolors is None:
-            expr = mesh_surface(expr, *ranges)
+            expr = mesh_surface(expr, *ranges, lines=edges)
         else:
             faces = _faces(facecolors, np.shape(ranges[1]), options)
-            expr, face_tex = mesh_surface(expr, *ranges, faces=faces)
+            expr, face_tex = mesh_surface(expr, *ranges, faces=faces, lines=edges)
         ranges = ()
         resampled = expr.resampled
-        if resampled and options.get("fill", True) is False:     # (plot_wireframe's)
-            raise ValueError("plot_wireframe(X, Y, Z): the lines of a mesh that is not an "
-                             "evenly spaced grid (unevenly spaced, or curvilinear) are not "
-                             "drawn; use plot_surface, with mplot3d's ax.plot_wireframe over "
-                             "it")
+        mesh_lines = getattr(expr, "mesh_lines", None)
     if facecolors is not None:                # the colours of the faces: a texture
         if "texture" in options or "color_field" in options:
             raise ValueError("give one of facecolors, texture and color_field")
         if faces is None:                     # (over the grid of the ranges: below)
             faces = _faces(facecolors, facecolors.shape[:2], options)
-    _mesh_lines(options, mesh_shape, resampled)   # edgecolor: matplotlib's mesh lines
+    _mesh_lines(options, mesh_shape, resampled, mesh_lines)   # edgecolor: mplot3d's lines
     zorder = options.pop("zorder", None)
     unknown = sorted(set(options) - _RENDER_OPTIONS - _OWN_OPTIONS - {"color_field"})
     if unknown:
@@ -1010,16 +1008,37 @@ def _faces(colours, shape, options):
     return colours[(np.arange(rows - 1) // rs) * rs][:, (np.arange(cols - 1) // cs) * cs]
 
 
-def _mesh_lines(options, shape, resampled=False):
+def _edge_colour(options):
+    """matplotlib's edge colour among plot_surface's keywords (None: no edges)."""
+    ec = next((options[k] for k in ("edgecolor", "edgecolors", "ec") if k in options), None)
+    return None if ec is None or (isinstance(ec, str) and ec in ("none", "face")) else ec
+
+
+def _mpl_line_rows(n, options, key_stride, key_count):
+    """The rows (or columns) of a mesh of n whose lines mplot3d's plot_surface draws:
+    0, s, 2 s, ... and the last, s the stride given (10 where only the other one is)
+    or n / count rounded up (count 50 by default)."""
+    try:
+        if "rstride" in options or "cstride" in options:
+            s = max(int(options.get(key_stride, 10)), 1)
+        else:
+            s = max(int(np.ceil(n / max(int(options.get(key_count, MPL_MESH_COUNT)), 1))), 1)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{key_stride} and {key_count} must be whole numbers") from None
+    return np.array(list(range(0, n - 1, s)) + [n - 1])
+
+
+def _mesh_lines(options, shape, resampled=False, mesh_lines=None):
     """matplotlib's mesh keywords: with an edge colour, the mesh's lines (rcount x
     ccount of them, or every rstride-th / cstride-th row and column of a mesh of
     ``shape``) as a wireframe of linewidth points; without one they draw nothing.
-    A ``resampled`` mesh's (mesh.py: not an evenly spaced grid) are not drawn: the
-    wireframe's lines are evenly spaced, and the mesh's are not (a RuntimeWarning
-    says so)."""
+    A ``resampled`` mesh's (mesh.py: not an evenly spaced grid) are its own lines,
+    ``mesh_lines`` (MeshLines), at mplot3d's rows and columns: at their positions, or
+    the levels of a curvilinear mesh's index (not on a translucent surface: a
+    RuntimeWarning says so)."""
     mesh = {k: options.pop(k) for k in list(options) if k in _MPL_MESH_OPTIONS}
-    ec = next((mesh[k] for k in ("edgecolor", "edgecolors", "ec") if k in mesh), None)
-    if ec is None or (isinstance(ec, str) and ec in ("none", "face")):
+    ec = _edge_colour(mesh)
+    if ec is None:
         return
     lw = next((mesh[k] for k in ("linewidth", "linewidths", "lw") if k in mesh), 1.0)
     if np.ndim(lw) > 0:
@@ -1027,9 +1046,18 @@ def _mesh_lines(options, shape, resampled=False):
     if not (isinstance(lw, (int, float, np.number)) and not isinstance(lw, bool)) or lw <= 0:
         return
     if resampled:
-        import warnings
-        warnings.warn("plot_surface(X, Y, Z): the edges of a mesh that is not an evenly "
-                      "spaced grid are not drawn (edgecolor)", RuntimeWarning, stacklevel=3)
+        alpha = options.get("alpha", options.get("opacity", 1.0))
+        if mesh_lines is None or shape is None or (
+                isinstance(alpha, (int, float, np.number)) and alpha < 1.0):
+            import warnings
+            warnings.warn("plot_surface(X, Y, Z): the edges of a mesh that is not an evenly "
+                          "spaced grid are not drawn (edgecolor) on a translucent surface",
+                          RuntimeWarning, stacklevel=3)
+            return
+        options.update(mesh_lines.wireframe(_mpl_line_rows(shape[0], mesh, "rstride", "rcount"),
+                                            _mpl_line_rows(shape[1], mesh, "cstride", "ccount")))
+        options["edgecolor"] = ec if not isinstance(ec, np.ndarray) else tuple(ec)
+        options["linewidth"] = min(float(lw) * 100.0 / 72.0, 64.0)     # points -> pixels
         return
     rows, cols = shape if shape is not None else (MPL_MESH_COUNT, MPL_MESH_COUNT)
 
@@ -1074,14 +1102,34 @@ def _constant(a):
     return bool(np.all(a == a[:1]))
 
 
-def mesh_surface(X, Y, Z, faces=None):
+class MeshLines:
+    """A resampled mesh's own lines (mesh_surface's ``lines``): for an unevenly spaced
+    one, the coordinate of each of Z's rows and columns (``rows``, ``cols``) and the
+    axis its rows run across ("v", or "u" for meshgrid's ij indexing); for a
+    curvilinear one, ``coords`` (grid (ny, nx, 2) of the column and row index, extent)."""
+
+    def __init__(self, rows=None, cols=None, row_axis="v", coords=None):
+        self.rows, self.cols, self.row_axis, self.coords = rows, cols, row_axis, coords
+
+    def wireframe(self, rows, cols):
+        """render()'s wireframe (and wire_coords) for the lines of Z's rows ``rows`` and
+        columns ``cols`` (indices)."""
+        if self.coords is not None:
+            return dict(wireframe=(cols.astype(float), rows.astype(float)),
+                        wire_coords=self.coords)
+        at_rows, at_cols = self.rows[rows], self.cols[cols]
+        return dict(wireframe=(at_cols, at_rows) if self.row_axis == "v" else (at_rows, at_cols))
+
+
+def mesh_surface(X, Y, Z, faces=None, lines=False):
     """The HeightField of matplotlib's plot_surface(X, Y, Z): X and Y a meshgrid (either
     indexing) or 1-D x (along Z's columns) and y (along its rows), ascending or
     descending (a north-up raster); unevenly spaced, or a curvilinear grid of Z's
     shape, resampled onto an evenly spaced one (mesh.py: ``resampled`` says so). With
     ``faces`` (a colour for each face: Z's shape less one, and a third axis; _faces),
     (HeightField, (texture, texture_extent)): the faces' colours as a texture (extent
-    None: the HeightField's domain)."""
+    None: the HeightField's domain). ``lines``: a resampled mesh's HeightField holds
+    its own lines, ``mesh_lines`` (MeshLines: plot_surface's edgecolor)."""
     try:
         # (a masked array's masked values are holes, as mplot3d leaves them out)
         X, Y, Z = (np.ma.filled(np.ma.asarray(a, dtype=float), np.nan) for a in (X, Y, Z))
@@ -1092,9 +1140,11 @@ def mesh_surface(X, Y, Z, faces=None):
     if faces is not None and np.shape(faces)[:2] != (Z.shape[0] - 1, Z.shape[1] - 1):
         raise ValueError(f"plot_surface(X, Y, Z): facecolors must have a colour a face, "
                          f"shape {(Z.shape[0] - 1, Z.shape[1] - 1)}, got {np.shape(faces)}")
+    transposed = False
     if X.ndim == 2 and X.shape == Z.shape and Y.shape == Z.shape and \
             _constant(X[0]) and _constant(Y[:, 0]) and Z.shape != (1, 1):
         X, Y, Z = X.T, Y.T, Z.T                    # meshgrid(..., indexing="ij")
+        transposed = True
         if faces is not None:
             faces = np.swapaxes(faces, 0, 1)
     if min(Z.shape) < 2:
@@ -1104,9 +1154,10 @@ def mesh_surface(X, Y, Z, faces=None):
             not (_close(X, X[:1]) and _close(Y, Y[:, :1])):
         # a curvilinear grid (X = R cos P, Y = R sin P): resampled (mesh.py)
         from .mesh import curvilinear
-        x, y, Z, colours = curvilinear(X, Y, Z, faces=faces)
+        x, y, Z, colours, *ij = curvilinear(X, Y, Z, faces=faces, coords=lines)
+        mesh_lines = MeshLines(coords=(ij[0], (x[0], x[-1], y[0], y[-1]))) if lines else None
         return _mesh_field(x, y, Z, None if colours is None else (colours, None),
-                           resampled=True)
+                           resampled=True, lines=mesh_lines)
     if X.ndim == 2:
         if X.shape != Z.shape or not _close(X, X[:1]):
             raise ValueError("plot_surface(X, Y, Z): X must repeat one row of x values "
@@ -1132,6 +1183,10 @@ def mesh_surface(X, Y, Z, faces=None):
                 raise ValueError(f"plot_surface(X, Y, Z): {name} spans more than the "
                                  "largest double")
         even = even and np.allclose(d, d[0], rtol=1e-6, atol=0)
+    # (each of Z's rows' and columns' coordinate, in its order: the mesh's lines)
+    mesh_lines = MeshLines(rows=X.copy() if transposed else Y.copy(),
+                           cols=Y.copy() if transposed else X.copy(),
+                           row_axis="u" if transposed else "v") if lines else None
     if X[1] < X[0]:
         X, Z = X[::-1], Z[:, ::-1]
         faces = None if faces is None else faces[:, ::-1]
@@ -1143,14 +1198,16 @@ def mesh_surface(X, Y, Z, faces=None):
     if not even:                              # (np.geomspace's): resampled (mesh.py)
         from .mesh import uneven
         X, Y, Z = uneven(X, Y, Z)
-    return _mesh_field(X, Y, Z, texture, resampled=not even)
+    return _mesh_field(X, Y, Z, texture, resampled=not even,
+                       lines=None if even else mesh_lines)
 
 
-def _mesh_field(x, y, Z, texture, resampled):
+def _mesh_field(x, y, Z, texture, resampled, lines=None):
     """The HeightField of heights Z over x, y; with ``texture`` (image, extent or None),
-    (HeightField, texture)."""
+    (HeightField, texture). ``lines``: a resampled mesh's own (MeshLines)."""
     hf = HeightField(Z, u=(x[0], x[-1]), v=(y[0], y[-1]))
     hf.resampled = resampled                  # (mesh.py: not the mesh's own grid)
+    hf.mesh_lines = lines
     return hf if texture is None else (hf, (np.ascontiguousarray(texture[0]), texture[1]))
 
 

@@ -37,7 +37,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            shadows=False, light_radius=0.0, opacity=1.0, texture=None, texture_extent=None,
            texture_filter="mipmap", color=None, contours=None, contour_color="black",
            contour_width=1.0, wireframe=None, edgecolor="black", linewidth=0.75,
-           fill=True, objects=None, tiles=None, client=None, device="cpu") -> Render:
+           fill=True, wire_coords=None, objects=None, tiles=None, client=None,
+           device="cpu") -> Render:
     """Render w = f(u, v) with the floating column algorithm (Gordon 2001).
 
     Parameters
@@ -163,8 +164,13 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         or the levels; ``contour_color``, ``contour_width`` in pixels (default 1).
         Antialiased, of constant width, hidden where the surface hides them.
     wireframe : lines at u = const and v = const: N each way or (nu, nv), spread
-        over the domain from edge to edge (matplotlib's rcount, ccount);
-        ``edgecolor``, ``linewidth`` in pixels (default 0.75).
+        over the domain from edge to edge (matplotlib's rcount, ccount), or (us, vs)
+        the lines' positions (an unevenly spaced mesh's lines); ``edgecolor``,
+        ``linewidth`` in pixels (default 0.75).
+    wire_coords : (grid, extent): the wireframe's lines at the positions ``wireframe``
+        gives of two other coordinates than u and v, bilinear from ``grid`` (ny, nx, 2)
+        over ``extent`` (u0, u1, v0, v1): a curvilinear mesh's column and row index,
+        which plot_surface(X, Y, Z, edgecolor=...) gives.
     fill : False draws the lines (wireframe, contours) alone over the background, the
         surface itself not drawn but hiding the lines behind it: a hidden-line drawing
         (matplotlib's plot_wireframe, with the hidden lines removed).
@@ -206,7 +212,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
             interpolation=interpolation, opacity=opacity, texture=texture,
             texture_extent=texture_extent, texture_filter=texture_filter, color=color,
             contours=contours, contour_color=contour_color, contour_width=contour_width,
-            wireframe=wireframe, edgecolor=edgecolor, linewidth=linewidth, fill=fill))],
+            wireframe=wireframe, edgecolor=edgecolor, linewidth=linewidth, fill=fill,
+            wire_coords=wire_coords))],
         camera=Camera(size=size, elev=elev, azim=azim, projection=projection, d1=d1, d2=d2,
                       scale=scale, center=center, focal_length=focal_length, aspect=aspect,
                       box=box),

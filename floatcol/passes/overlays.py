@@ -30,10 +30,11 @@ def _draw(rgba, q, seen, width, rgb, levels=None, origin=0.0, spacing=0.0):
                  np.asarray(rgb, dtype=np.float64)[:3], rgba)
 
 
-def _draw_rim(rgba, q, qe, seen, width, rgb, lo, hi, n):
-    """The wireframe lines q = lo + k (hi - lo) / (n - 1) on the pixels just off the
-    surface: the outer half of a line along the domain's edge, which no pixel centre
-    on the surface draws. Where the edge buffer has the surface there (qe: its q, NaN
+def _draw_rim(rgba, q, qe, seen, width, rgb, lo, hi, n, levels=None):
+    """The wireframe lines q = lo + k (hi - lo) / (n - 1) (or q = the sorted
+    ``levels``, lo and hi their ends) on the pixels just off the surface: the outer
+    half of a line along the domain's edge, which no pixel centre on the surface
+    draws. Where the edge buffer has the surface there (qe: its q, NaN
     elsewhere: the ends of the columns' runs), any line at its q; elsewhere (across
     the columns) the edge lines q = lo, hi where q carried on from the two pixels
     beside it on the surface (2 q1 - q2) lies outside [lo, hi] (a silhouette, where
@@ -55,8 +56,13 @@ def _draw_rim(rgba, q, qe, seen, width, rgb, lo, hi, n):
         near = np.fmax(np.fmax(grad[:-2, 1:-1], grad[2:, 1:-1]),
                        np.fmax(grad[1:-1, :-2], grad[1:-1, 2:]))
         rim = ~seen & np.isfinite(qe)
-        dist = np.where(rim, np.abs(qe - (lo + np.floor((qe - lo) / spacing + 0.5) * spacing)),
-                        np.nan)
+        if levels is None:
+            nearest = lo + np.floor((qe - lo) / spacing + 0.5) * spacing
+        else:
+            k = np.clip(np.searchsorted(levels, np.nan_to_num(qe)), 1, max(len(levels) - 1, 1))
+            a, b = levels[k - 1], levels[np.minimum(k, len(levels) - 1)]
+            nearest = np.where(np.abs(qe - a) <= np.abs(qe - b), a, b)
+        dist = np.where(rim, np.abs(qe - nearest), np.nan)
         # across the columns: q carried on from the two pixels beside, each way
         for di, dj in ((0, -1), (0, 1), (-1, 0), (1, 0)):
             ext = 2.0 * shifted(di, dj) - shifted(2 * di, 2 * dj)
@@ -91,13 +97,88 @@ def contour_levels(contours, lo, hi):
 
 
 def wire_counts(wireframe):
-    """(nu, nv) lines of a wireframe: N both ways, or a pair."""
+    """(nu, nv) lines of a wireframe: N both ways, or a pair (wire_lines' counts of
+    evenly spaced lines; ValueError for lines at given positions)."""
     vals = wireframe if isinstance(wireframe, (tuple, list)) else (wireframe, wireframe)
     if len(vals) != 2 or any(isinstance(x, bool) or not isinstance(x, (int, np.integer))
                              or not 2 <= x <= 10000 for x in vals):
         raise ValueError("wireframe must be a count of lines from 2 to 10000, or (nu, nv), "
                          f"got {wireframe!r}")
     return int(vals[0]), int(vals[1])
+
+
+def _positions(name, x):
+    """The sorted positions of a wireframe's lines along one axis (wire_lines)."""
+    try:
+        a = np.asarray(x, dtype=np.float64)
+    except (TypeError, ValueError):
+        a = np.zeros((0, 0))
+    if a.ndim != 1 or not 1 <= a.size <= 10000 or not np.isfinite(a).all():
+        raise ValueError(f"wireframe's {name} positions must be 1 to 10000 finite numbers")
+    return np.unique(a)
+
+
+def wire_lines(wireframe):
+    """The wireframe's lines along u and along v (or along a mesh's two coordinates,
+    Material.wire_coords): each (levels, n), ``levels`` None for n evenly spaced lines
+    over the domain (wireframe N or (nu, nv)), else the sorted positions of its lines
+    (wireframe (positions along u, positions along v): a mesh's own lines)."""
+    if isinstance(wireframe, (tuple, list)) and len(wireframe) == 2 and \
+            all(np.ndim(x) == 1 for x in wireframe):
+        return [(_positions(name, x), 0) for name, x in zip(("first", "second"), wireframe)]
+    return [(None, n) for n in wire_counts(wireframe)]
+
+
+def _draw_boundary(rgba, q, step, seen, width, rgb, lo, hi):
+    """A curvilinear mesh's lines q = lo and q = hi where they are its edge: the
+    resampled surface ends at its last whole grid cell, up to two cells inside the
+    mesh's edge, so those lines lie up to two cells' change of q (``step``, at each
+    pixel) off the seen surface. A seen pixel on the surface's edge (a neighbour not
+    seen) within that of lo or hi takes the line, covering it by min(width, 1)."""
+    H, W = seen.shape
+    p = np.pad(seen, 1, constant_values=False)
+    edge = seen & ~(p[:-2, 1:-1] & p[2:, 1:-1] & p[1:-1, :-2] & p[1:-1, 2:])
+    with np.errstate(invalid="ignore"):
+        near = edge & np.isfinite(q) & ((np.abs(q - lo) <= 2.0 * step) |
+                                        (np.abs(q - hi) <= 2.0 * step))
+    if not near.any():
+        return
+    c = min(float(width), 1.0)
+    line = np.asarray(rgb, dtype=np.float64)[:3] * 255.0
+    rgba[near, :3] = np.round(rgba[near, :3] * (1.0 - c) + line * c).astype(np.uint8)
+
+
+def _cell_steps(grid):
+    """The most each of a grid's two coordinates changes over one of its cells, at its
+    nodes (NaN where no neighbour is finite)."""
+    out = np.full(grid.shape, np.nan)
+    with np.errstate(invalid="ignore"):
+        for axis in (0, 1):
+            d = np.abs(np.diff(grid, axis=axis))
+            lo = [slice(None)] * 3
+            hi = [slice(None)] * 3
+            lo[axis], hi[axis] = slice(0, -1), slice(1, None)
+            out[tuple(lo)] = np.fmax(out[tuple(lo)], d)
+            out[tuple(hi)] = np.fmax(out[tuple(hi)], d)
+    return out
+
+
+def _coordinates(material, u, v, seen, rims):
+    """The two fields whose levels the wireframe's lines are: u and v, or a resampled
+    mesh's column and row index (Material.wire_coords: a grid (ny, nx, 2) over an
+    extent, bilinear as a height field's) at the seen pixels and the rims' (NaN where
+    neither)."""
+    if material.wire_coords is None:
+        return (u, v), rims
+    # (no rims: the mesh's edge lies inside its grid's extent, _draw_boundary's)
+    grid, extent = material.wire_coords
+    qs = []
+    for c in range(2):
+        q = np.full(u.shape, np.nan)
+        if seen.any():
+            q[seen] = field_values(grid[..., c], u, v, seen, extent)
+        qs.append(q)
+    return tuple(qs), (None, None)
 
 
 def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domain,
@@ -116,11 +197,30 @@ def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domai
     if not seen.any():
         return
     if material.wireframe is not None:
-        nu, nv = wire_counts(material.wireframe)
+        lines = wire_lines(material.wireframe)
         rgb = color.to_rgb(material.edgecolor, "edgecolor")
         (ua, ub), (va, vb) = domain
         rims = rim_uv if edges else (None, None)
-        for q, qe, lo, hi, n in ((u, rims[0], ua, ub, nu), (v, rims[1], va, vb, nv)):
+        qs, qes = _coordinates(material, u, v, seen, rims)
+        steps = (None, None)
+        if material.wire_coords is not None:
+            grid, extent = material.wire_coords
+            cell = _cell_steps(np.asarray(grid, dtype=np.float64))
+            steps = []
+            for c in range(2):
+                st = np.full(u.shape, np.nan)
+                st[seen] = field_values(np.nan_to_num(cell[..., c]), u, v, seen, extent)
+                steps.append(st)
+        for q, qe, st, lo, hi, (levels, n) in zip(qs, qes, steps, (ua, va), (ub, vb), lines):
+            if levels is not None:             # (a mesh's own lines)
+                _draw(rgba, q, seen & np.isfinite(q), material.linewidth, rgb, levels=levels)
+                if st is not None:
+                    _draw_boundary(rgba, q, st, seen, material.linewidth, rgb, levels[0],
+                                   levels[-1])
+                if qe is not None:
+                    _draw_rim(rgba, q, qe, seen, material.linewidth, rgb, levels[0],
+                              levels[-1], max(len(levels), 2), levels=levels)
+                continue
             _draw(rgba, q, seen, material.linewidth, rgb, origin=lo, spacing=(hi - lo) / (n - 1))
             if qe is not None:
                 _draw_rim(rgba, q, qe, seen, material.linewidth, rgb, lo, hi, n)

@@ -30,7 +30,7 @@ from ..kernels import layers as K
 from ..kernels.layout import G_SIZE, TILE, VP_AA, VP_XOFF
 from ..result import Render
 from . import geometry
-from .overlays import contour_levels, wire_counts
+from .overlays import contour_levels, wire_counts, wire_lines
 from .shadow import BIAS_TEXELS, GRAZING
 
 #: bytes of crossing lists and their G-buffer records a band of columns may hold
@@ -114,6 +114,10 @@ def layer_lines(material, domain, box, w_limits, source=None):
         head[T.LN_CW] = material.contour_width
         head[T.LN_CR:T.LN_CB + 1] = color.to_rgb(material.contour_color, "contour_color")[:3]
     if material.wireframe is not None:
+        if material.wire_coords is not None or wire_lines(material.wireframe)[0][0] is not None:
+            raise ValueError("a wireframe at given positions (a mesh's own lines) is not "
+                             "drawn on a translucent surface: give opacity=1, or wireframe "
+                             "as counts of evenly spaced lines")
         nu, nv = wire_counts(material.wireframe)
         (ua, ub), (va, vb) = domain
         head[T.LN_WIRE] = 1.0

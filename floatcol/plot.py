@@ -990,21 +990,9 @@ def _faces(colours, shape, options):
         raise ValueError(f"facecolors must have a colour for each point of the mesh, shape "
                          f"{(rows, cols)} (or for each face, {(rows - 1, cols - 1)}), got "
                          f"{colours.shape[:2]}")
-    strided = any(k in options for k in ("rstride", "cstride"))   # (before counts)
-    counted = any(k in options for k in ("rcount", "ccount"))
-
-    def stride(key_stride, key_count, n):
-        try:
-            if strided:               # (as mplot3d: a stride not given is 10)
-                return max(int(options.get(key_stride, 10)), 1)
-            if counted:
-                return max(int(np.ceil(n / max(int(options.get(key_count, MPL_MESH_COUNT)),
-                                               1))), 1)
-        except (TypeError, ValueError, OverflowError):
-            raise ValueError(f"{key_stride} and {key_count} must be whole numbers") from None
-        return 1
-    rs = stride("rstride", "rcount", rows)
-    cs = stride("cstride", "ccount", cols)
+    given = any(k in options for k in ("rstride", "cstride", "rcount", "ccount"))
+    rs = _mpl_stride(rows, options, "rstride", "rcount") if given else 1
+    cs = _mpl_stride(cols, options, "cstride", "ccount") if given else 1
     return colours[(np.arange(rows - 1) // rs) * rs][:, (np.arange(cols - 1) // cs) * cs]
 
 
@@ -1014,17 +1002,22 @@ def _edge_colour(options):
     return None if ec is None or (isinstance(ec, str) and ec in ("none", "face")) else ec
 
 
-def _mpl_line_rows(n, options, key_stride, key_count):
-    """The rows (or columns) of a mesh of n whose lines mplot3d's plot_surface draws:
-    0, s, 2 s, ... and the last, s the stride given (10 where only the other one is)
-    or n / count rounded up (count 50 by default)."""
+def _mpl_stride(n, options, key_stride, key_count):
+    """mplot3d's stride along n rows (or columns) of a mesh: the stride given (10 where
+    only the other one is: strides before counts), or n / count rounded up (count 50
+    by default)."""
     try:
         if "rstride" in options or "cstride" in options:
-            s = max(int(options.get(key_stride, 10)), 1)
-        else:
-            s = max(int(np.ceil(n / max(int(options.get(key_count, MPL_MESH_COUNT)), 1))), 1)
+            return max(int(options.get(key_stride, 10)), 1)
+        return max(int(np.ceil(n / max(int(options.get(key_count, MPL_MESH_COUNT)), 1))), 1)
     except (TypeError, ValueError, OverflowError):
         raise ValueError(f"{key_stride} and {key_count} must be whole numbers") from None
+
+
+def _mpl_line_rows(n, options, key_stride, key_count):
+    """The rows (or columns) of a mesh of n whose lines mplot3d's plot_surface draws:
+    0, s, 2 s, ... and the last (_mpl_stride's s)."""
+    s = _mpl_stride(n, options, key_stride, key_count)
     return np.array(list(range(0, n - 1, s)) + [n - 1])
 
 

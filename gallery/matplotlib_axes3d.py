@@ -2,7 +2,8 @@
 plot_surface call changed, markers hidden behind a hill, two crossing surfaces in one
 Axes, a terrain with matplotlib's LightSource, a surface clipped at the Axes' limits
 (axlim_clip), plot_wireframe with the hidden lines removed, beside mplot3d's own, and
-the surface3d_radial example's polar grid (resampled onto an even one), the
+the surface3d_radial example's polar grid (resampled onto an even one; its edges, and an
+unevenly spaced mesh's, mplot3d's lines), the
 checkerboard example's facecolors beside a plane of mplot3d's cut where it passes
 through the surface, the trisurf3d example's scattered points (fc.plot_trisurf), and an
 animation made as matplotlib's are (remove the last frame's plot, plot the next) under
@@ -110,13 +111,23 @@ p = np.linspace(0, 2 * np.pi, 50)
 R, P = np.meshgrid(r, p)
 Z = ((R**2 - 1)**2)
 X, Y = R * np.cos(P), R * np.sin(P)
-fig = plt.figure()
-ax = fig.add_subplot(projection="3d")
+fig = plt.figure(figsize=(10, 4.5))
+ax = fig.add_subplot(1, 2, 1, projection="3d")
 fc.plot_surface(X, Y, Z, ax=ax, cmap=plt.cm.YlGnBu_r, lower_color="same")   # as mplot3d
 ax.set_zlim(0, 1)
 ax.set_xlabel(r"$\phi_\mathrm{real}$")
 ax.set_ylabel(r"$\phi_\mathrm{im}$")
 ax.set_zlabel(r"$V(\phi)$")
+# ... and with the mesh's own edges (every other circle and ray: rcount, ccount), and
+# an unevenly spaced mesh's (x along np.geomspace): mplot3d's lines, drawn on the
+# resampled surface a pixel at a time
+ax = fig.add_subplot(1, 2, 2, projection="3d")
+fc.plot_surface(X, Y, Z, ax=ax, cmap=plt.cm.YlGnBu_r, lower_color="same", edgecolor="k",
+                linewidth=0.3, rcount=25, ccount=25)
+XG, YG = np.meshgrid(np.geomspace(1.4, 3, 12), np.linspace(-1.25, 1.25, 10))
+fc.plot_surface(XG, YG, 0.5 + 0.3 * np.sin(3 * YG) / XG, ax=ax, color="tab:orange",
+                edgecolor="k", linewidth=0.5)
+ax.set_zlim(0, 1)
 fig.savefig("surface3d_radial.png")
 
 # matplotlib's checkerboard example (surface3d_3): facecolors colour whole faces; a

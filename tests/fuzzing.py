@@ -250,7 +250,7 @@ def mesh_case(rng: random.Random) -> dict:
     ``seed``): evenly and unevenly spaced grids, curvilinear ones (a polar grid, one
     wound round twice, a sphere's), scattered points, points on a line, all at one
     point; heights and coordinates now and then NaN, infinite or at the doubles'
-    edges; facecolors, edge lines, a 3-D Axes."""
+    edges; facecolors, edge lines (or plot_wireframe's lines alone), a 3-D Axes."""
     sides = [1, 2, 3, 5, 17, 40]
     c = {"seed": rng.randrange(2 ** 31), "shape": [rng.choice(sides), rng.choice(sides)],
          "grid": rng.choice(MESH_GRIDS), "scale": rng.choice([1.0, 1.0, 1e-300, 1e300, 1e308, 1e6]),
@@ -312,6 +312,9 @@ def _mesh_call(c):
         kw["facecolors"] = np.random.default_rng(1).uniform(0, 1, Z.shape + (3,))
     if c["edges"]:
         kw.update(edgecolor="k", linewidth=0.5, rstride=2, cstride=2)
+        if c["seed"] % 3 == 0 and not c["facecolors"]:     # the lines alone
+            draw = fc.plot_wireframe
+            del kw["edgecolor"]
     if c["axes3d"]:
         import matplotlib
         matplotlib.use("Agg")

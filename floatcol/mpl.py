@@ -688,8 +688,8 @@ class DepthTested:
     hidden (its markers only at its visible vertices), a text not drawn where its
     anchor is hidden, polygons (a contourf level's, a Poly3DCollection's) whole, over
     the picture where any of their points lies in front of a surface (_faces_kept,
-    _paths_kept), but for a Poly3DCollection's opaque polygons that cross a surface
-    on a raster canvas: those a pixel at a time (cross, draw_crossing). The hidden
+    _paths_kept), but for a Poly3DCollection's polygons (opaque or not) that cross a
+    surface on a raster canvas: those a pixel at a time (cross, draw_crossing). The hidden
     part is drawn the same way under the surfaces' picture (``draw_hidden``; with
     several floatcol surfaces, under their composite), so that it shows through a
     translucent surface and at the partly covered pixels of its edges. ``visible``
@@ -1068,7 +1068,7 @@ def _face_points_in_front(art, faces, renders):
 
 def _crossing_faces(art, faces, render):
     """(crossing, front): which polygons of a Poly3DCollection cross the surface of
-    ``render`` (opaque, with points of their lattice, _fan_points, both in front of it
+    ``render`` (with points of their lattice, _fan_points, both in front of it
     and behind it), and which have a point in front of it (_face_points_in_front's)."""
     pts = _fan_points(art, faces)
     n, k, _ = pts.shape
@@ -1079,11 +1079,7 @@ def _crossing_faces(art, faces, render):
                                        render.box)
     front = (front & good).reshape(n, k).any(axis=1)
     behind = (behind & good).reshape(n, k).any(axis=1)
-    alpha = np.asarray(art._facecolor3d, dtype=float)
-    alpha = np.broadcast_to(alpha[:, 3] if alpha.ndim == 2 and len(alpha) else 1.0, (n,))
-    if art.get_alpha() is not None:
-        alpha = alpha * float(art.get_alpha())
-    return front & behind & (alpha >= 1.0), front
+    return front & behind, front
 
 
 #: the most pixels the triangles of the polygons that cross a surface may cover in
@@ -1141,7 +1137,25 @@ def _not_behind_pixels(render, tris):
     pts, cc, rr = pts[inside], cc[inside], rr[inside]
     d = np.full((H, W), np.inf)
     np.minimum.at(d, (rr, cc), _depth_gaps(render, pts))   # (the nearest polygon's)
-    return _coverage(d)
+    return _coverage(_outlined(d))
+
+
+def _outlined(d, rings=2):
+    """The gaps ``d`` (H, W) with each pixel whose centre no polygon covers (+inf)
+    given its neighbours' least (of the 3 x 3 around it; ``rings`` times): the pixels
+    along the polygons' outlines, which their antialiased edges partly cover on the
+    canvas (up to 2 pixels beyond the centres covered, measured), take the side of the
+    surface the polygon lies on beside them (they were cleared: a seam between two
+    polygons, and the outline of a translucent one, showed the surface through it)."""
+    H, W = d.shape
+    for _ in range(rings):
+        p = np.pad(d, 1, constant_values=np.inf)
+        near = np.full((H, W), np.inf)
+        for di in (0, 1, 2):
+            for dj in (0, 1, 2):
+                near = np.minimum(near, p[di:di + H, dj:dj + W])
+        d = np.where(d == np.inf, near, d)
+    return d
 
 
 def _coverage(d):

@@ -1027,8 +1027,7 @@ def _mesh_lines(options, shape, resampled=False, mesh_lines=None):
     ``shape``) as a wireframe of linewidth points; without one they draw nothing.
     A ``resampled`` mesh's (mesh.py: not an evenly spaced grid) are its own lines,
     ``mesh_lines`` (MeshLines), at mplot3d's rows and columns: at their positions, or
-    the levels of a curvilinear mesh's index (not on a translucent surface: a
-    RuntimeWarning says so)."""
+    the levels of a curvilinear mesh's index."""
     mesh = {k: options.pop(k) for k in list(options) if k in _MPL_MESH_OPTIONS}
     ec = _edge_colour(mesh)
     if ec is None:
@@ -1039,13 +1038,7 @@ def _mesh_lines(options, shape, resampled=False, mesh_lines=None):
     if not (isinstance(lw, (int, float, np.number)) and not isinstance(lw, bool)) or lw <= 0:
         return
     if resampled:
-        alpha = options.get("alpha", options.get("opacity", 1.0))
-        if mesh_lines is None or shape is None or (
-                isinstance(alpha, (int, float, np.number)) and alpha < 1.0):
-            import warnings
-            warnings.warn("plot_surface(X, Y, Z): the edges of a mesh that is not an evenly "
-                          "spaced grid are not drawn (edgecolor) on a translucent surface",
-                          RuntimeWarning, stacklevel=3)
+        if mesh_lines is None or shape is None:     # (mesh_surface gives them)
             return
         options.update(mesh_lines.wireframe(_mpl_line_rows(shape[0], mesh, "rstride", "rcount"),
                                             _mpl_line_rows(shape[1], mesh, "cstride", "ccount")))

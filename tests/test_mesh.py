@@ -258,15 +258,45 @@ def test_plot_wireframe_of_a_resampled_mesh_draws_its_lines():
     assert (r.rgba[seen & (off > 3)][:, :3] == 255).all()          # no surface drawn
 
 
-def test_a_translucent_resampled_meshs_edges_say_they_are_not_drawn():
-    X, Y = _polar(12, 24)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        p = fc.plot_surface(X, Y, X * Y, edgecolor="k", linewidth=0.5, alpha=0.5,
-                            size=(60, 40))
-    assert any("not drawn (edgecolor) on a translucent surface" in str(w.message)
-               for w in caught)
-    assert p.rgba[..., 3].any()
+@pytest.mark.parametrize("grid", ["uneven", "polar"])
+def test_a_translucent_resampled_meshs_edges_are_its_own_lines(grid):
+    """With alpha < 1 (the translucent layers' kernel, every layer's lines at its
+    alpha) the same lines: an uneven mesh's at their positions, a polar one's as levels
+    of its index (they were left out with a warning). A surface that does not lie over
+    itself, seen from above, so that each pixel shows one layer: of the seen pixels a
+    third of a pixel from a line 99 % drawn, 99 % of the drawn ones within 2 px of one
+    (measured 2026-12-07: uneven 100 % of 1 364 and 99.90 %; polar 100 % of 2 594 and
+    99.95 %)."""
+    if grid == "uneven":
+        x, y = np.geomspace(0.1, 10, 30), np.linspace(-2, 2, 25)
+        X, Y = np.meshgrid(x, y)
+        Z = 0.3 * np.log(X) + 0.2 * Y
+        rows, cols = np.arange(0, 25, 3), np.array(list(range(0, 29, 3)) + [29])
+
+        def coords(u, v):
+            return u, v
+        levels = (x[cols], y[rows])
+    else:
+        X, Y = _polar(30, 40)
+        Z = 0.2 * (X ** 2 + Y ** 2)
+        step = 2 * np.pi / 39
+
+        def coords(u, v):          # (test_a_curvilinear_meshs_edges_follow_its_index's)
+            a = np.arctan2(v, u) % (2 * np.pi)
+            mid = (np.floor(a / step) + 0.5) * step
+            return np.hypot(u, v) * np.cos(a - mid) / np.cos(step / 2) / 1.25 * 29, a / step
+        levels = (np.array(list(range(0, 29, 2)) + [29]),
+                  np.array(list(range(0, 39, 3)) + [39]))
+    off, drawn, seen = _line_pixels(X, Y, Z, coords, levels, size=(320, 240), alpha=0.5,
+                                    elev=60, rstride=3, cstride=3) if grid == "uneven" else \
+        _line_pixels(X, Y, Z, coords, levels, size=(320, 240), alpha=0.5, elev=60,
+                     rcount=15, ccount=15)
+    if grid == "polar":
+        plain = fc.plot_surface(X, Y, Z, size=(320, 240), elev=60).draw()
+        seen &= np.hypot(plain.u, plain.v) > 0.3          # (away from where rays meet)
+    on = seen & (off < 0.33)
+    assert on.sum() > 800 and drawn[on].mean() >= 0.99
+    assert (off[seen & drawn] <= 2.0).mean() >= 0.99
 
 
 @pytest.mark.parametrize("kw, match", [

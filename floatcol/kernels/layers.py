@@ -48,7 +48,7 @@ from .layout import (
 )
 from .sample import column_x0, sample_point
 from .shade import _light, _side_rgb, toward_viewer
-from .texture import LN_FN, layer_field, layer_lines, layer_texel
+from .texture import LN_FN, LN_WIRE, layer_field, layer_lines, layer_texel, layer_wire_coords
 from .raster import _blocked_at
 from .shadow import point_shadow, soft_shadow
 
@@ -324,7 +324,13 @@ def _emit(vp, x0, j, p, cov, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists,
         if lut[5][LN_FN] > 0.0:          # the contours are a colour field's
             q, qu, qv = layer_field(lut[5], p[A_U], p[A_V])
             gw = _field_grad(vp, qu, qv, nx, ny, nz, vx, vy, vz, depth)
-        lr, lg, lb, la = layer_lines(lut[5], p[A_U], p[A_V], q, gu, gv, gw)
+        wa = p[A_U]
+        wb = p[A_V]
+        if lut[5][LN_WIRE] == 3.0:       # a curvilinear mesh's lines: of its indices
+            wa, au, av, wb, bu, bv = layer_wire_coords(lut[5], p[A_U], p[A_V])
+            gu = _field_grad(vp, au, av, nx, ny, nz, vx, vy, vz, depth)
+            gv = _field_grad(vp, bu, bv, nx, ny, nz, vx, vy, vz, depth)
+        lr, lg, lb, la = layer_lines(lut[5], wa, wb, q, gu, gv, gw)
         if la > 0.0:
             keep = 1.0 - a * la
             crec[C_R] = a * lr + keep * crec[C_R]

@@ -137,7 +137,15 @@ LN_FU0 = 15      # grid after the levels (rows along v), at x = (u - FU0) FSU,
 LN_FSU = 16      # y = (v - FV0) FSV (u, v in box units), the levels in its units
 LN_FV0 = 17
 LN_FSV = 18
-LN_SIZE = 19
+LN_NWU = 19      # LN_WIRE 2: wireframe lines at the LN_NWU sorted positions of u and the
+LN_NWV = 20      # LN_NWV of v (box units) after the colour field's grid; 3: of a curvilinear
+LN_GNX = 21      # mesh's column and row index, bilinear on an LN_GNY x LN_GNX grid of
+LN_GNY = 22      # pairs after the positions (rows along v), at x = (u - GU0) GSU,
+LN_GU0 = 23      # y = (v - GV0) GSV (u, v in box units)
+LN_GSU = 24
+LN_GV0 = 25
+LN_GSV = 26
+LN_SIZE = 27
 
 
 @ngjit_inline
@@ -179,6 +187,44 @@ def layer_field(lines, u, v):
 
 
 @ngjit_inline
+def _wire_base(lines):
+    """Where the wireframe's positions begin in ``lines`` (after the contour levels
+    and the colour field's grid)."""
+    n = int(lines[LN_FN])
+    return LN_SIZE + int(lines[LN_NLEV]) + n * n
+
+
+@ngjit_inline
+def layer_wire_coords(lines, u, v):
+    """(a, da/du, da/dv, b, db/du, db/dv): a curvilinear mesh's column and row index
+    at (u, v) (box units; LN_WIRE 3), bilinear on their grid (clamped to it)."""
+    base = _wire_base(lines) + int(lines[LN_NWU]) + int(lines[LN_NWV])
+    nx = int(lines[LN_GNX])
+    ny = int(lines[LN_GNY])
+    x = min(max((u - lines[LN_GU0]) * lines[LN_GSU], 0.0), nx - 1.0)
+    y = min(max((v - lines[LN_GV0]) * lines[LN_GSV], 0.0), ny - 1.0)
+    i = min(int(y), ny - 2)
+    j = min(int(x), nx - 2)
+    fx = x - j
+    fy = y - i
+    a, au, av = _pair_at(lines, base, nx, i, j, fx, fy, 0)
+    b, bu, bv = _pair_at(lines, base, nx, i, j, fx, fy, 1)
+    return a, au, av, b, bu, bv
+
+
+@ngjit_inline
+def _pair_at(lines, base, nx, i, j, fx, fy, c):
+    """(q, dq/du, dq/dv) of channel c of layer_wire_coords' grid in cell (i, j)."""
+    g00 = lines[base + (i * nx + j) * 2 + c]
+    g01 = lines[base + (i * nx + j + 1) * 2 + c]
+    g10 = lines[base + ((i + 1) * nx + j) * 2 + c]
+    g11 = lines[base + ((i + 1) * nx + j + 1) * 2 + c]
+    q = (g00 * (1.0 - fx) + g01 * fx) * (1.0 - fy) + (g10 * (1.0 - fx) + g11 * fx) * fy
+    return (q, ((g01 - g00) * (1.0 - fy) + (g11 - g10) * fy) * lines[LN_GSU],
+            ((g10 - g00) * (1.0 - fx) + (g11 - g01) * fx) * lines[LN_GSV])
+
+
+@ngjit_inline
 def _to_level(levels, q):
     """|q - the nearest of the sorted ``levels``| (inf: none)."""
     n = levels.shape[0]
@@ -216,11 +262,23 @@ def layer_lines(lines, u, v, w, grad_u, grad_v, grad_w):
     g = 0.0
     b = 0.0
     al = 0.0
-    if lines[LN_WIRE] != 0.0:
+    if lines[LN_WIRE] == 1.0:
         cov = _line_cover(_to_grid(u, lines[LN_U0], lines[LN_DU]), grad_u, lines[LN_EW])
         if cov > 0.0:
             r, g, b, al = _over(r, g, b, al, lines, LN_ER, cov)
         cov = _line_cover(_to_grid(v, lines[LN_V0], lines[LN_DV]), grad_v, lines[LN_EW])
+        if cov > 0.0:
+            r, g, b, al = _over(r, g, b, al, lines, LN_ER, cov)
+    elif lines[LN_WIRE] != 0.0:
+        # a mesh's own lines at their positions (of u and v, or of its indices: the
+        # caller's u, v and their changes are then those, layer_wire_coords')
+        base = _wire_base(lines)
+        nu = int(lines[LN_NWU])
+        nv = int(lines[LN_NWV])
+        cov = _line_cover(_to_level(lines[base:base + nu], u), grad_u, lines[LN_EW])
+        if cov > 0.0:
+            r, g, b, al = _over(r, g, b, al, lines, LN_ER, cov)
+        cov = _line_cover(_to_level(lines[base + nu:base + nu + nv], v), grad_v, lines[LN_EW])
         if cov > 0.0:
             r, g, b, al = _over(r, g, b, al, lines, LN_ER, cov)
     n = int(lines[LN_NLEV])

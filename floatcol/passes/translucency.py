@@ -113,19 +113,31 @@ def layer_lines(material, domain, box, w_limits, source=None):
         head[T.LN_NLEV] = len(levels)
         head[T.LN_CW] = material.contour_width
         head[T.LN_CR:T.LN_CB + 1] = color.to_rgb(material.contour_color, "contour_color")[:3]
+    wire = []
     if material.wireframe is not None:
-        if material.wire_coords is not None or wire_lines(material.wireframe)[0][0] is not None:
-            raise ValueError("a wireframe at given positions (a mesh's own lines) is not "
-                             "drawn on a translucent surface: give opacity=1, or wireframe "
-                             "as counts of evenly spaced lines")
-        nu, nv = wire_counts(material.wireframe)
-        (ua, ub), (va, vb) = domain
-        head[T.LN_WIRE] = 1.0
-        head[T.LN_U0], head[T.LN_DU] = ua * box[0], (ub - ua) / (nu - 1) * box[0]
-        head[T.LN_V0], head[T.LN_DV] = va * box[1], (vb - va) / (nv - 1) * box[1]
+        (pu, _), (pv, _) = wire_lines(material.wireframe)
+        if pu is None:                       # evenly spaced over the domain
+            nu, nv = wire_counts(material.wireframe)
+            (ua, ub), (va, vb) = domain
+            head[T.LN_WIRE] = 1.0
+            head[T.LN_U0], head[T.LN_DU] = ua * box[0], (ub - ua) / (nu - 1) * box[0]
+            head[T.LN_V0], head[T.LN_DV] = va * box[1], (vb - va) / (nv - 1) * box[1]
+        elif material.wire_coords is None:   # a mesh's own lines at their u and v
+            head[T.LN_WIRE] = 2.0
+            wire = [pu * box[0], pv * box[1]]
+        else:                                # ... at levels of its column and row index
+            ij, (u0, u1, v0, v1) = material.wire_coords
+            ij = np.ascontiguousarray(ij, dtype=np.float64)
+            head[T.LN_WIRE] = 3.0
+            head[T.LN_GNY], head[T.LN_GNX] = ij.shape[:2]
+            head[T.LN_GU0], head[T.LN_GSU] = u0 * box[0], (ij.shape[1] - 1) / ((u1 - u0) * box[0])
+            head[T.LN_GV0], head[T.LN_GSV] = v0 * box[1], (ij.shape[0] - 1) / ((v1 - v0) * box[1])
+            wire = [pu, pv, ij.ravel()]
+        if pu is not None:
+            head[T.LN_NWU], head[T.LN_NWV] = len(pu), len(pv)
         head[T.LN_EW] = material.linewidth
         head[T.LN_ER:T.LN_EB + 1] = color.to_rgb(material.edgecolor, "edgecolor")[:3]
-    return np.concatenate([head, levels, grid])
+    return np.concatenate([head, levels, grid, *wire])
 
 
 #: kernels/layers.py's occ where no objects cast shadows

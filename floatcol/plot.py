@@ -22,7 +22,7 @@ from .material import scale_norm
 from .mesh import face_texture
 from .render import DEFAULT_RANGE, Render, render
 from .kernels.layout import SURF_HEIGHTFIELD
-from .surface import HeightField, Surface, as_surface, check_range, free_names
+from .surface import HeightField, Surface, as_surface, check_range, free_names, heights_array
 from .surface import array_like as _array_like
 from .view import _number, _robust_range
 
@@ -719,7 +719,9 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     ----------
     expr : sympy expression, string, callable, Surface or HeightField; or a list of
         them (several surfaces in one picture, hiding each other: render_many), an
-        item ``(expr, (x, a, b), (y, c, d))`` with ranges of its own.
+        item ``(expr, (x, a, b), (y, c, d))`` with ranges of its own. Or a 2-D array
+        of heights alone (MATLAB's ``surf(Z)``): the mesh over its columns' and rows'
+        indices, as ``plot_surface(arange(columns), arange(rows), Z)``.
     *ranges : (symbol, low, high), up to two, as sympy's ``plot3d``; a missing range
         is (-10, 10) (a HeightField's own extent for a HeightField).
     ax : a matplotlib Axes to draw into (re-rendered at its pixel size on every draw).
@@ -763,6 +765,11 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     mesh_shape = None
     resampled = False
     mesh_lines = None
+    if not ranges and heights_array(expr) is not None:
+        # plot_surface(Z) (MATLAB's surf(Z)): the mesh of Z over its columns' and rows'
+        # indices, x along a row, as plot_surface(arange(columns), arange(rows), Z)
+        rows, cols = np.shape(expr)
+        expr, ranges = np.arange(cols, dtype=float), (np.arange(rows, dtype=float), expr)
     if _is_mesh(expr, ranges):                # matplotlib's plot_surface(X, Y, Z, ...)
         mesh_shape = np.shape(ranges[1])
         edges = _edge_colour(options) is not None

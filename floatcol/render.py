@@ -43,7 +43,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
 
     Parameters
     ----------
-    expr : sympy expression, str, callable f(u, v), Surface or HeightField
+    expr : sympy expression, str, callable f(u, v), Surface or HeightField, or a 2-D
+        array of heights (a HeightField over its columns' and rows' indices).
         Free symbols are u and v unless ``vars=(x, y)`` names others.
     u, v : (low, high)
         The domain rectangle; default (-10, 10), or a HeightField's own extent.

@@ -35,6 +35,23 @@ def array_like(a):
     from sympy.matrices import MatrixBase
     return not isinstance(a, (Basic, MatrixBase, Surface))
 
+def heights_array(a):
+    """``a`` as a 2-D array of heights (float, NaN where masked or not finite) where it
+    is one: a numpy array, anything numpy reads as one (array_like), or a list of lists
+    of numbers, of 2 dimensions and a numeric dtype; None otherwise (an expression, a
+    list of them, a callable)."""
+    if not (array_like(a) or (isinstance(a, list) and a and isinstance(a[0], (list, tuple)))):
+        return None
+    try:
+        arr = np.ma.asarray(a)
+    except (TypeError, ValueError):
+        return None
+    if arr.ndim != 2 or arr.dtype.kind not in "biuf":
+        return None
+    with np.errstate(invalid="ignore"):
+        return np.ma.filled(arr.astype(np.float64), np.nan)
+
+
 log = logging.getLogger(__name__)
 
 DEFAULT_VARS = ("u", "v")
@@ -340,6 +357,11 @@ def as_surface(expr, vars=None, time=None) -> Surface:
     ``surface.at(t)`` gives the surface at time t without compiling again."""
     if isinstance(expr, Surface):
         return expr
+    z = heights_array(expr)
+    if z is not None:          # (MATLAB's surf(Z): heights over their rows' and columns'
+        if time is not None:   # indices, u along a row, as HeightField's)
+            raise ValueError("a time-varying surface must be an expression, not an array")
+        return HeightField(z)
     names = _variable_names(vars)
     if callable(expr) and not _is_sympy(expr) and not isinstance(expr, str):
         if time is not None:
@@ -393,8 +415,11 @@ def sympy_expression(expr, names=()):
     elif isinstance(expr, sp.Basic):
         e = expr
     else:
-        raise ValueError(f"cannot draw {type(expr).__name__} {expr!r}: pass a sympy expression, "
-                         "a string, a callable f(u, v), a Surface or a HeightField")
+        import reprlib
+        what = (f"an array of shape {np.shape(expr)}" if array_like(expr) else
+                f"{type(expr).__name__} {reprlib.repr(expr)}")
+        raise ValueError(f"cannot draw {what}: pass a sympy expression, a string, a callable "
+                         "f(u, v), a 2-D array of heights, a Surface or a HeightField")
     if not isinstance(e, sp.Expr) or isinstance(e, (sp.core.relational.Relational,
                                                      sp.logic.boolalg.BooleanFunction,
                                                      sp.logic.boolalg.BooleanAtom)):

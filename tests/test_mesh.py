@@ -121,6 +121,48 @@ def test_a_parametric_surface_is_refused_saying_why(make, why):
         fc.plot_surface(X, Y, Z, size=(40, 30))
 
 
+def _bilinear_at(Z, u, v):
+    """Z (rows along v, columns along u, at their indices) bilinear at (u, v)."""
+    i = np.clip(np.floor(v).astype(int), 0, Z.shape[0] - 2)
+    j = np.clip(np.floor(u).astype(int), 0, Z.shape[1] - 2)
+    fy, fx = v - i, u - j
+    return ((Z[i, j] * (1 - fx) + Z[i, j + 1] * fx) * (1 - fy) +
+            (Z[i + 1, j] * (1 - fx) + Z[i + 1, j + 1] * fx) * fy)
+
+
+def test_an_array_alone_is_heights_over_its_indices():
+    """plot_surface(Z) and render(Z) (MATLAB's surf(Z), plotly's Surface(z=Z)): Z's
+    heights over its columns' (u) and rows' (v) indices, bilinear between them (they
+    raised "cannot draw ndarray", the whole array in the message): the surface is Z's
+    bilinear interpolation (to 1e-9 at random points), and each seen pixel's height
+    that at its (u, v) within 0.02 of heights spanning 12 (the pixels' values are
+    interpolated between the column's samples: measured 2026-12-07, at most 0.0083),
+    for a numpy array, a list of lists and a masked array (its masked values holes)."""
+    rng = np.random.default_rng(4)
+    Z = np.cumsum(rng.normal(size=(9, 14)), axis=1)
+    masked = np.ma.masked_where(np.add.outer(np.arange(9), np.arange(14)) < 4, Z)
+    pu, pv = rng.uniform(0, 13, 500), rng.uniform(0, 8, 500)
+    for arg in (Z, Z.tolist(), masked):
+        p = fc.plot_surface(arg, size=(120, 90))
+        assert p.domain == ((0, 13), (0, 8))
+        far = np.floor(pu) + np.floor(pv) >= 4      # (cells with no masked corner)
+        got = p.surface.evaluate(pu[far], pv[far])
+        assert np.abs(got - _bilinear_at(Z, pu[far], pv[far])).max() < 1e-9
+        for r in (p.draw(), fc.render(arg, size=(120, 90), elev=40, azim=20)):
+            seen = r.side != 0
+            assert seen.sum() > 2000
+            u, v, w = r.u[seen], r.v[seen], r.w[seen]
+            assert u.min() > -1e-6 and u.max() < 13 + 1e-6 and v.max() < 8 + 1e-6
+            assert np.abs(w - _bilinear_at(Z, u, v)).max() < 0.02
+            if arg is masked:
+                assert (u + v > 3.9).all()         # the masked corner's cells: a hole
+    with pytest.raises(ValueError, match=r"cannot draw an array of shape \(5,\)") as e:
+        fc.plot_surface(np.zeros(5))
+    assert len(str(e.value)) < 200
+    with pytest.raises(ValueError, match="cannot draw an array of shape"):
+        fc.render(np.zeros((3, 3, 3)))
+
+
 def test_masked_values_are_holes():
     """matplotlib's missing data, a masked array: its masked values are holes (as
     mplot3d leaves them out), not the numbers under the mask."""

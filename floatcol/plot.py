@@ -684,6 +684,30 @@ def render_view(surface, kw):
     return views[0], box
 
 
+def _labels(Z):
+    """(x, y): the coordinates of a labelled 2-D array's columns and rows: a pandas
+    DataFrame's columns and index, an xarray DataArray's coordinates of its second and
+    first dimensions (as its plot.surface takes them), where they are numbers, one a
+    column and one a row; None otherwise (a plain array: its indices)."""
+    try:
+        if hasattr(Z, "columns") and hasattr(Z, "index"):
+            x, y = np.asarray(Z.columns), np.asarray(Z.index)
+        elif hasattr(Z, "dims") and hasattr(Z, "coords") and len(Z.dims) == 2:
+            ydim, xdim = Z.dims
+            if xdim not in Z.coords or ydim not in Z.coords:
+                return None
+            x, y = np.asarray(Z.coords[xdim]), np.asarray(Z.coords[ydim])
+        else:
+            return None
+    except (TypeError, ValueError, KeyError, AttributeError):
+        return None
+    rows, cols = np.shape(Z)
+    if x.shape != (cols,) or y.shape != (rows,) or x.dtype.kind not in "iuf" or \
+            y.dtype.kind not in "iuf":
+        return None
+    return x.astype(float), y.astype(float)
+
+
 def _valid_ends(norm, hi):
     """Whether ``norm``, its vmin set, takes its ends (a LogNorm's vmin must be > 0);
     its vmax set to ``hi`` for the test, then unset."""
@@ -721,7 +745,8 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
         them (several surfaces in one picture, hiding each other: render_many), an
         item ``(expr, (x, a, b), (y, c, d))`` with ranges of its own. Or a 2-D array
         of heights alone (MATLAB's ``surf(Z)``): the mesh over its columns' and rows'
-        indices, as ``plot_surface(arange(columns), arange(rows), Z)``.
+        indices, as ``plot_surface(arange(columns), arange(rows), Z)``; a pandas
+        DataFrame's columns and index, an xarray DataArray's coordinates.
     *ranges : (symbol, low, high), up to two, as sympy's ``plot3d``; a missing range
         is (-10, 10) (a HeightField's own extent for a HeightField).
     ax : a matplotlib Axes to draw into (re-rendered at its pixel size on every draw).
@@ -767,9 +792,11 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
     mesh_lines = None
     if not ranges and heights_array(expr) is not None:
         # plot_surface(Z) (MATLAB's surf(Z)): the mesh of Z over its columns' and rows'
-        # indices, x along a row, as plot_surface(arange(columns), arange(rows), Z)
+        # indices, x along a row, as plot_surface(arange(columns), arange(rows), Z); a
+        # labelled array's own coordinates (a DataFrame's, a DataArray's)
         rows, cols = np.shape(expr)
-        expr, ranges = np.arange(cols, dtype=float), (np.arange(rows, dtype=float), expr)
+        x, y = _labels(expr) or (np.arange(cols, dtype=float), np.arange(rows, dtype=float))
+        expr, ranges = x, (y, expr)
     if _is_mesh(expr, ranges):                # matplotlib's plot_surface(X, Y, Z, ...)
         mesh_shape = np.shape(ranges[1])
         edges = _edge_colour(options) is not None

@@ -163,6 +163,41 @@ def test_an_array_alone_is_heights_over_its_indices():
         fc.render(np.zeros((3, 3, 3)))
 
 
+def test_a_labelled_array_alone_takes_its_coordinates():
+    """plot_surface(df) and plot_surface(da): a pandas DataFrame over its columns (x)
+    and index (y), an xarray DataArray over its coordinates (x its second dimension's,
+    as da.plot.surface) -- stand-ins with their attributes, neither is installed here:
+    a bilinear function's heights on the labels' grid come out as that function at
+    any point of those coordinates (to 1e-9: the resampling of an uneven grid keeps a
+    bilinear function); labels that are not numbers leave the indices."""
+    x, y = np.geomspace(1, 50, 8), np.linspace(-3, 3, 6)
+    X, Y = np.meshgrid(x, y)
+
+    def f(u, v):
+        return 0.5 + 0.1 * u - 0.7 * v + 0.02 * u * v
+    Z = f(X, Y)
+
+    class Frame:
+        def __init__(self, z, columns, index):
+            self.z, self.columns, self.index = z, columns, index
+
+        def __array__(self, dtype=None, copy=None):
+            return self.z if dtype is None else self.z.astype(dtype)
+
+    class DataArray(Frame):
+        def __init__(self, z, coords):
+            self.z, self.dims, self.coords = z, ("lat", "lon"), coords
+    want_u = np.array([1.0, 7.5, 50.0, 20.0])
+    want_v = np.array([-3.0, 0.3, 3.0, -1.2])
+    want = f(want_u, want_v)
+    for labelled in (Frame(Z, x, y), DataArray(Z, {"lon": x, "lat": y})):
+        p = fc.plot_surface(labelled, size=(60, 40))
+        assert p.domain == ((1.0, 50.0), (-3.0, 3.0))
+        assert np.abs(p.surface.evaluate(want_u, want_v) - want).max() < 1e-9
+    p = fc.plot_surface(Frame(Z, np.array(list("abcdefgh")), y), size=(60, 40))
+    assert p.domain == ((0, 7), (0, 5))
+
+
 def test_masked_values_are_holes():
     """matplotlib's missing data, a masked array: its masked values are holes (as
     mplot3d leaves them out), not the numbers under the mask."""

@@ -1189,8 +1189,10 @@ def mesh_surface(X, Y, Z, faces=None, lines=False):
                              "(a meshgrid), or X and Y be a curvilinear grid of Z's shape")
         Y = Y[:, 0]
     if X.shape != (Z.shape[1],) or Y.shape != (Z.shape[0],):
+        hint = (" (Z.T has a row for each y and a column for each x, as matplotlib's Z)"
+                if X.shape == (Z.shape[0],) and Y.shape == (Z.shape[1],) else "")
         raise ValueError(f"plot_surface(X, Y, Z): x has {X.size} and y {Y.size} values for Z "
-                         f"of shape {Z.shape}")
+                         f"of shape {Z.shape}{hint}")
     even = True
     for name, a in (("X", X), ("Y", Y)):
         with np.errstate(over="ignore", invalid="ignore"):

@@ -419,6 +419,12 @@ def test_odd_meshes_are_holes_or_a_clear_error_never_a_crash():
         fc.plot_surface(X * 1e308, Y * 1e308, Z, size=(40, 30))
     with pytest.raises(ValueError, match="finite and ascending or descending"):
         fc.plot_surface(np.array([0.0, 2.0, 1.0]), np.array([0.0, 1.0]), np.ones((2, 3)))
+    # Z with a row per x (the transposed layout): the message says Z.T
+    with pytest.raises(ValueError, match=r"x has 3 and y 2 values for Z of shape \(3, 2\) "
+                                         r"\(Z.T has a row for each y"):
+        fc.plot_surface(np.arange(3.0), np.arange(2.0), np.ones((3, 2)))
+    with pytest.raises(ValueError, match=r"of shape \(4, 2\)$"):
+        fc.plot_surface(np.arange(3.0), np.arange(2.0), np.ones((4, 2)))
 
 
 @pytest.mark.parametrize("projection", ["orthographic", "perspective"])

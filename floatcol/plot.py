@@ -67,17 +67,25 @@ def parse_ranges(expr, ranges, extra=()):
     if len(ranges) > 2:
         raise ValueError(f"give at most two ranges (symbol, low, high), got {len(ranges)}")
     names, bounds = [], []
-    for rng in ranges:
+    function = isinstance(expr, (Surface, HeightField)) or (callable(expr) and
+                                                            not _is_expression(expr))
+    for k, rng in enumerate(ranges):
         try:
-            sym, lo, hi = rng
+            if function and len(rng) == 2:
+                # a function's ranges need no symbol: (low, high) of its k-th argument
+                sym, (lo, hi) = _argument_name(expr, k), rng
+            else:
+                sym, lo, hi = rng
         except (TypeError, ValueError):
-            raise ValueError(f"a range must be (symbol, low, high), e.g. (x, -2, 2), got {rng!r}") from None
+            raise ValueError(f"a range must be (symbol, low, high), e.g. (x, -2, 2)"
+                             f"{' (or (low, high) for a function)' if function else ''}, "
+                             f"got {rng!r}") from None
         name = str(sym)
         if not name.isidentifier():
             raise ValueError(f"range variable {sym!r} must be a symbol or a name such as 'x'")
         names.append(name)
         bounds.append(check_range(name, (_real(name, lo), _real(name, hi))))
-    if isinstance(expr, (Surface, HeightField)) or (callable(expr) and not _is_expression(expr)):
+    if function:
         free = []
     else:
         free = [n for n in free_names(expr) if n not in extra]
@@ -103,6 +111,19 @@ def parse_ranges(expr, ranges, extra=()):
                          f"{', '.join(unknown)}: the variables are {names[0]} and {names[1]} "
                          "(give a range (symbol, low, high) for each variable)")
     return tuple(names), tuple(bounds)
+
+
+def _argument_name(f, k):
+    """The name of a callable's k-th argument (a Surface's k-th variable; x, y where it
+    has none)."""
+    if isinstance(f, Surface):
+        return f.variables[k]
+    try:
+        params = [q.name for q in inspect.signature(f).parameters.values()
+                  if q.kind in (q.POSITIONAL_ONLY, q.POSITIONAL_OR_KEYWORD)]
+    except (TypeError, ValueError):
+        params = []
+    return params[k] if k < len(params) else ("x", "y")[k]
 
 
 def _is_expression(obj):
@@ -747,8 +768,9 @@ def plot_surface(expr, *ranges, ax=None, interactive=False, label="", **options)
         of heights alone (MATLAB's ``surf(Z)``): the mesh over its columns' and rows'
         indices, as ``plot_surface(arange(columns), arange(rows), Z)``; a pandas
         DataFrame's columns and index, an xarray DataArray's coordinates.
-    *ranges : (symbol, low, high), up to two, as sympy's ``plot3d``; a missing range
-        is (-10, 10) (a HeightField's own extent for a HeightField).
+    *ranges : (symbol, low, high), up to two, as sympy's ``plot3d`` ((low, high) for
+        a Python function: of its first and second argument); a missing range is
+        (-10, 10) (a HeightField's own extent for a HeightField).
     ax : a matplotlib Axes to draw into (re-rendered at its pixel size on every draw).
     interactive : with ``ax``: drag to rotate, scroll to zoom.
     cmap, norm, vmin, vmax, color, shade, lightsource : as matplotlib's plot_surface.

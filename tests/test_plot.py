@@ -101,6 +101,24 @@ def test_lightsource_is_a_world_direction():
         assert np.allclose(low.intensity[low.side != 0], 0.2, atol=1e-5)
 
 
+def test_a_functions_ranges_need_no_symbol():
+    """plot_surface(f, (a, b), (c, d)) with a Python function: (low, high) of its first
+    and second argument (they raised "a range must be (symbol, low, high)"); the
+    surface is f there (to 1e-12), the symbol form still works, and an expression still
+    needs its symbols (which of its names a range is would be a guess)."""
+    def f(x, y):
+        return x * y + 0.5 * x
+
+    p = fc.plot_surface(f, (-1, 1), (-2, 3), size=SMALL)
+    assert p.domain == ((-1.0, 1.0), (-2.0, 3.0))
+    u, v = np.array([-1.0, 0.3, 1.0]), np.array([3.0, -0.7, -2.0])
+    assert np.abs(p.surface.evaluate(u, v) - f(u, v)).max() < 1e-12
+    assert fc.plot_surface(f, ("x", -1, 1), (-2, 3), size=SMALL).domain == p.domain
+    assert fc.plot_surface(lambda a, b: a - b, (0, 2), size=SMALL).domain[0] == (0.0, 2.0)
+    with pytest.raises(ValueError, match=r"a range must be \(symbol, low, high\)"):
+        fc.plot_surface("x*y", (-1, 1), (-1, 1))
+
+
 def test_shade_false_gives_flat_colour():
     p = fc.plot_surface("x*y", ("x", -1, 1), ("y", -1, 1), size=SMALL, color="red", shade=False)
     up = inner(p.render_kwargs(SMALL) and p.draw().side > 0)

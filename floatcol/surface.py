@@ -767,6 +767,14 @@ def _callable_surface(fn, names):
     import inspect
 
     py = getattr(fn, "py_func", None) or getattr(fn, "_pyfunc", None) or fn
+    if isinstance(fn, np.ufunc):         # np.hypot, np.arctan2, ...: called as Numba can
+        if fn.nin != 2 or fn.nout != 1:
+            raise ValueError(f"the numpy function {fn.__name__!r} must take two arguments "
+                             f"(u, v) and give one value; it takes {fn.nin}")
+
+        def py(u, v):
+            return fn(u, v)
+        py.__name__ = fn.__name__
     try:
         params = inspect.signature(py).parameters.values()
     except (TypeError, ValueError):      # builtins may have no signature: let Numba judge

@@ -105,7 +105,9 @@ def test_a_functions_ranges_need_no_symbol():
     """plot_surface(f, (a, b), (c, d)) with a Python function: (low, high) of its first
     and second argument (they raised "a range must be (symbol, low, high)"); the
     surface is f there (to 1e-12), the symbol form still works, and an expression still
-    needs its symbols (which of its names a range is would be a guess)."""
+    needs its symbols (which of its names a range is would be a guess). numpy's
+    functions of two arguments (np.hypot, np.arctan2) are functions too (Numba could
+    not compile them)."""
     def f(x, y):
         return x * y + 0.5 * x
 
@@ -117,6 +119,14 @@ def test_a_functions_ranges_need_no_symbol():
     assert fc.plot_surface(lambda a, b: a - b, (0, 2), size=SMALL).domain[0] == (0.0, 2.0)
     with pytest.raises(ValueError, match=r"a range must be \(symbol, low, high\)"):
         fc.plot_surface("x*y", (-1, 1), (-1, 1))
+    # numpy's functions of two arguments (ufuncs: Numba cannot compile them as they
+    # are, "The decorated object is not a function")
+    for uf in (np.hypot, np.arctan2):
+        q = fc.plot_surface(uf, (-1, 1), (-1, 1), size=SMALL)
+        assert np.abs(q.surface.evaluate(u, v / 3) - uf(u, v / 3)).max() < 1e-12
+        assert q.draw().side.any()
+    with pytest.raises(ValueError, match="'sin' must take two arguments"):
+        fc.plot_surface(np.sin, (-1, 1), (-1, 1))
 
 
 def test_shade_false_gives_flat_colour():

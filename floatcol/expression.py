@@ -45,8 +45,25 @@ def _functions():
     table = {n: getattr(sp, n) for n in names}
     table.update(ln=sp.log, abs=sp.Abs, ceil=sp.ceiling, min=sp.Min, max=sp.Max,
                  arcsin=sp.asin, arccos=sp.acos, arctan=sp.atan, arctan2=sp.atan2,
-                 arcsinh=sp.asinh, arccosh=sp.acosh, arctanh=sp.atanh)
+                 arcsinh=sp.asinh, arccosh=sp.acosh, arctanh=sp.atanh,
+                 # numpy's and the math module's names
+                 mod=sp.Mod, heaviside=sp.Heaviside, fabs=sp.Abs, absolute=sp.Abs,
+                 log10=_log_base(sp, 10), log2=_log_base(sp, 2), hypot=_hypot(sp),
+                 where=sp.Piecewise)
     return table
+
+
+def _log_base(sp, base):
+    """log10, log2: sympy's log to that base (log(x) / log(base))."""
+    def log_base(x, evaluate=True):
+        return sp.log(x, base)
+    return log_base
+
+
+def _hypot(sp):
+    def hypot(x, y, evaluate=True):
+        return sp.sqrt(x ** 2 + y ** 2)
+    return hypot
 
 
 def _constants():
@@ -65,20 +82,24 @@ CONSTANTS: dict = {}
 #: fail with an internal message
 _ARITY = {"atan2": (2, 2), "arctan2": (2, 2), "log": (1, 2), "ln": (1, 2), "root": (2, 2),
           "Mod": (2, 2), "Min": (1, 32), "Max": (1, 32), "min": (1, 32), "max": (1, 32),
-          "Piecewise": (1, 32), "DiracDelta": (1, 1), "Heaviside": (1, 1)}
+          "Piecewise": (1, 32), "DiracDelta": (1, 1), "Heaviside": (1, 1), "mod": (2, 2),
+          "heaviside": (1, 2), "hypot": (2, 2), "where": (3, 3)}
 
 #: functions whose value is undefined (a hole), not an error, where sympy refuses
 #: the arguments (NaN, a complex number, a zero modulus)
-_HOLE_WHEN_UNDEFINED = {"Min", "Max", "min", "max", "Mod"}
+_HOLE_WHEN_UNDEFINED = {"Min", "Max", "min", "max", "Mod", "mod"}
 
 _TOKEN = re.compile(r"""
     (?P<space>\s+)
   | (?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?[jJ]?)
-  | (?P<name>[A-Za-z_][A-Za-z_0-9]*)
+  | (?P<name>(?:(?:np|numpy|math|cmath|sp|sympy)\.)?[A-Za-z_][A-Za-z_0-9]*)
   | (?P<op>\*\*|//|<=|>=|==|!=|[-+*/%^()<>,&|~])
 """, re.VERBOSE)
 
 _KEYWORDS = {"and", "or", "not", "if", "else"}
+#: numpy's and math's constants by the names they have there (np.e, math.inf)
+_PREFIXED = {"e": "E", "euler_gamma": "EulerGamma", "Inf": "inf", "NaN": "nan", "NAN": "nan",
+             "PINF": "inf"}
 
 
 def _tables():
@@ -123,6 +144,12 @@ def _python_text(text, names=()):
     for kind, tok, pos in _tokens(text):
         if tok == "^":
             tok = "**"
+        if kind == "name" and "." in tok:
+            # numpy's, math's or sympy's name (np.sin, math.pi, np.e): the name alone,
+            # its constants as sympy's; never an attribute looked up
+            prefix, tok = tok.split(".")
+            pos += len(prefix) + 1
+            tok = _PREFIXED.get(tok, tok)
         if prev is not None and _implicit_product(prev, kind, tok, names):
             pieces.append("*")
             where.append(pos)
@@ -360,6 +387,12 @@ class _Builder:
                           f"got {len(node.args)}", ("py", node.col_offset))
         if name == "Piecewise":
             return self.piecewise(node)
+        if name == "where":                 # numpy's where(condition, a, b)
+            cond = self.boolean(self.node(node.args[0]), node.args[0])
+            a, b = self.node(node.args[1]), self.node(node.args[2])
+            self.scalar(a, node.args[1])
+            self.scalar(b, node.args[2])
+            return sp.Piecewise((a, cond), (b, True))
         args = []
         for a in node.args:
             x = self.node(a)

@@ -107,9 +107,10 @@ def parse_ranges(expr, ranges, extra=()):
             bounds.append(None)
     unknown = [n for n in free if n not in names]
     if unknown:
+        euler = "; Euler's number is E or exp(1)" if "e" in unknown else ""
         raise ValueError(f"unknown symbol{'s' if len(unknown) > 1 else ''} "
                          f"{', '.join(unknown)}: the variables are {names[0]} and {names[1]} "
-                         "(give a range (symbol, low, high) for each variable)")
+                         f"(give a range (symbol, low, high) for each variable{euler})")
     return tuple(names), tuple(bounds)
 
 

@@ -447,6 +447,8 @@ def parse_expression(expr, names=DEFAULT_VARS):
             unknown.append(s.name)
     if unknown:
         hint = f" (or pass vars={tuple(unknown)} to use them)" if len(unknown) == 2 else ""
+        if "e" in unknown:
+            hint += " (Euler's number is E or exp(1))"
         raise ValueError(
             f"unknown symbol{'s' if len(unknown) > 1 else ''} {', '.join(unknown)} in "
             f"{e}: the variables are {names[0]} and {names[1]}{hint}")

@@ -59,6 +59,16 @@ INJECTIONS = [
     ("gamma(10**60)", sp.oo),                # folded in doubles, not a factorial
     ("exp(exp(exp(100)))*u", sp.oo * u),
     ("10**10**10**10", sp.oo),
+    # numpy's and the math module's spellings (copied from NumPy code)
+    ("np.sin(u)*math.cos(v)", sp.sin(u) * sp.cos(v)),
+    ("numpy.exp(u) + sympy.pi + np.e", sp.exp(u) + sp.pi + sp.E),
+    ("log10(u)", sp.log(u) / sp.log(10)),
+    ("np.log2(u)", sp.log(u) / sp.log(2)),
+    ("mod(u, 2)", sp.Mod(u, 2)),
+    ("np.hypot(u, v)", sp.sqrt(u ** 2 + v ** 2)),
+    ("fabs(u) + np.absolute(v)", sp.Abs(u) + sp.Abs(v)),
+    ("np.heaviside(u, 0.5)", sp.Heaviside(u, 0.5)),
+    ("np.where(u > 0, u, v)", sp.Piecewise((u, u > 0), (v, True))),
 ])
 def test_parse_builds_the_expression(text, expected):
     assert parse(text, ("u", "v")) == expected
@@ -67,6 +77,10 @@ def test_parse_builds_the_expression(text, expected):
 @pytest.mark.parametrize("text,what,where", [
     ("__import__('os')", "the character \"'\" is not allowed", 12),
     ("u.real", "the character '.' is not allowed", 2),
+    ("np.sin.__class__", "the character '.' is not allowed", 7),   # a name, not attributes
+    ("os.system(u)", "the character '.' is not allowed", 3),
+    ("np.foo(u)", "unknown function foo", 4),
+    ("where(u, 1, 2)", "a number where a condition is expected", 7),
     ("u[0]", "the character '[' is not allowed", 2),
     ("lambda: 1", "the character ':' is not allowed", 7),
     ("sin(*u)", "a starred argument (*x) is not allowed", 5),
@@ -236,3 +250,12 @@ def test_cli_output_error_names_the_users_path(tmp_path):
     res = _cli("render", "u", "--size", "8x6", "-o", "/proc/a.png", cwd=tmp_path)
     assert res.returncode == 2
     assert "/proc/a.png" in res.stderr and ".floatcol-" not in res.stderr
+
+
+def test_an_unknown_e_says_eulers_number_is_E():
+    """np.e is E; a bare e is a name, and the message says how to write Euler's number."""
+    for call in (lambda: fc.render("e**u", size=(20, 10)),
+                 lambda: fc.plot_surface("e**x", ("x", -1, 1), ("y", -1, 1))):
+        with pytest.raises(ValueError, match=r"unknown symbol e.*Euler's number is E or exp\(1\)"):
+            call()
+    assert fc.render("np.e**u", u=(-1, 1), v=(-1, 1), size=(20, 10)).side.any()

@@ -1,4 +1,5 @@
-"""floatcol inside a matplotlib figure: subplots, titles and a colorbar.
+"""floatcol inside a matplotlib figure: subplots, titles and a colorbar; heights
+that span decades on a log colour scale (norm="log").
 
 Each surface is an artist in an ordinary Axes; it is rendered again at the Axes'
 pixel size whenever the figure is drawn, so savefig(dpi=200) is sharp.
@@ -19,3 +20,12 @@ for ax, (expr, title) in zip(axes, specs):
     ax.set_title(title)
 fig.colorbar(plot, ax=axes, shrink=0.8, label="height w")
 fig.savefig("matplotlib_subplots.png", dpi=100)
+
+# heights that span decades, coloured on a log scale: matplotlib's norm="log" (a
+# scale's name, or a LogNorm), its colorbar logarithmic too; a NumPy-style formula
+fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
+plot = fc.plot_surface("np.exp(np.hypot(x, y))", ("x", -4, 4), ("y", -4, 4), ax=ax,
+                       cmap="magma", norm="log")
+ax.set_title("exp(r), norm=\"log\"")
+fig.colorbar(plot, ax=ax, shrink=0.8, label="height w (log scale)")
+fig.savefig("matplotlib_log_norm.png", dpi=100)

@@ -165,25 +165,34 @@ def _line_cover(dist, grad, width):
 
 
 @ngjit_inline
+def _grid_bilinear(lines, base, stride, channel, nx, ny, x, y, su, sv):
+    """(q, dq/du, dq/dv): a grid in ``lines`` from ``base`` (ny rows of nx nodes, rows
+    along v, ``stride`` values a node, q its ``channel``-th) bilinear at the grid
+    coordinates (x, y) (clamped to it), su and sv its nodes per unit of u and v."""
+    x = min(max(x, 0.0), nx - 1.0)
+    y = min(max(y, 0.0), ny - 1.0)
+    i = min(int(y), ny - 2)
+    j = min(int(x), nx - 2)
+    fx = x - j
+    fy = y - i
+    g00 = lines[base + (i * nx + j) * stride + channel]
+    g01 = lines[base + (i * nx + j + 1) * stride + channel]
+    g10 = lines[base + ((i + 1) * nx + j) * stride + channel]
+    g11 = lines[base + ((i + 1) * nx + j + 1) * stride + channel]
+    q = (g00 * (1.0 - fx) + g01 * fx) * (1.0 - fy) + (g10 * (1.0 - fx) + g11 * fx) * fy
+    qx = (g01 - g00) * (1.0 - fy) + (g11 - g10) * fy
+    qy = (g10 - g00) * (1.0 - fx) + (g11 - g01) * fx
+    return q, qx * su, qy * sv
+
+
+@ngjit_inline
 def layer_field(lines, u, v):
     """(q, dq/du, dq/dv): the colour field of ``lines`` (LN_FN) at (u, v) (box units),
     bilinear on its grid (clamped to it), and its partials; NaN at its holes."""
     n = int(lines[LN_FN])
-    base = LN_SIZE + int(lines[LN_NLEV])
-    x = min(max((u - lines[LN_FU0]) * lines[LN_FSU], 0.0), n - 1.0)
-    y = min(max((v - lines[LN_FV0]) * lines[LN_FSV], 0.0), n - 1.0)
-    i = min(int(y), n - 2)
-    j = min(int(x), n - 2)
-    fx = x - j
-    fy = y - i
-    g00 = lines[base + i * n + j]
-    g01 = lines[base + i * n + j + 1]
-    g10 = lines[base + (i + 1) * n + j]
-    g11 = lines[base + (i + 1) * n + j + 1]
-    q = (g00 * (1.0 - fx) + g01 * fx) * (1.0 - fy) + (g10 * (1.0 - fx) + g11 * fx) * fy
-    qx = (g01 - g00) * (1.0 - fy) + (g11 - g10) * fy
-    qy = (g10 - g00) * (1.0 - fx) + (g11 - g01) * fx
-    return q, qx * lines[LN_FSU], qy * lines[LN_FSV]
+    return _grid_bilinear(lines, LN_SIZE + int(lines[LN_NLEV]), 1, 0, n, n,
+                          (u - lines[LN_FU0]) * lines[LN_FSU],
+                          (v - lines[LN_FV0]) * lines[LN_FSV], lines[LN_FSU], lines[LN_FSV])
 
 
 @ngjit_inline
@@ -201,27 +210,11 @@ def layer_wire_coords(lines, u, v):
     base = _wire_base(lines) + int(lines[LN_NWU]) + int(lines[LN_NWV])
     nx = int(lines[LN_GNX])
     ny = int(lines[LN_GNY])
-    x = min(max((u - lines[LN_GU0]) * lines[LN_GSU], 0.0), nx - 1.0)
-    y = min(max((v - lines[LN_GV0]) * lines[LN_GSV], 0.0), ny - 1.0)
-    i = min(int(y), ny - 2)
-    j = min(int(x), nx - 2)
-    fx = x - j
-    fy = y - i
-    a, au, av = _pair_at(lines, base, nx, i, j, fx, fy, 0)
-    b, bu, bv = _pair_at(lines, base, nx, i, j, fx, fy, 1)
+    x = (u - lines[LN_GU0]) * lines[LN_GSU]
+    y = (v - lines[LN_GV0]) * lines[LN_GSV]
+    a, au, av = _grid_bilinear(lines, base, 2, 0, nx, ny, x, y, lines[LN_GSU], lines[LN_GSV])
+    b, bu, bv = _grid_bilinear(lines, base, 2, 1, nx, ny, x, y, lines[LN_GSU], lines[LN_GSV])
     return a, au, av, b, bu, bv
-
-
-@ngjit_inline
-def _pair_at(lines, base, nx, i, j, fx, fy, c):
-    """(q, dq/du, dq/dv) of channel c of layer_wire_coords' grid in cell (i, j)."""
-    g00 = lines[base + (i * nx + j) * 2 + c]
-    g01 = lines[base + (i * nx + j + 1) * 2 + c]
-    g10 = lines[base + ((i + 1) * nx + j) * 2 + c]
-    g11 = lines[base + ((i + 1) * nx + j + 1) * 2 + c]
-    q = (g00 * (1.0 - fx) + g01 * fx) * (1.0 - fy) + (g10 * (1.0 - fx) + g11 * fx) * fy
-    return (q, ((g01 - g00) * (1.0 - fy) + (g11 - g10) * fy) * lines[LN_GSU],
-            ((g10 - g00) * (1.0 - fx) + (g11 - g01) * fx) * lines[LN_GSV])
 
 
 @ngjit_inline

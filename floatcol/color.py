@@ -78,6 +78,20 @@ def extremes(cmap):
             None if np.allclose(over[:3], hi[:3]) else np.asarray(over[:3], dtype=np.float64))
 
 
+def bad(cmap):
+    """A Colormap's colour for values it cannot map (NaN: ``set_bad``,
+    ``with_extremes(bad=...)``) as RGB where it is set to a visible one (alpha > 0),
+    else None (matplotlib's default is transparent)."""
+    from matplotlib.colors import Colormap
+    if not isinstance(cmap, Colormap):
+        return None
+    try:
+        rgba = np.asarray(cmap.get_bad(), dtype=np.float64)
+    except (AttributeError, TypeError, ValueError):
+        return None
+    return rgba[:3] if rgba.shape == (4,) and rgba[3] > 0.0 else None
+
+
 #: lower_color's word for "as the upper side" (mplot3d colours both sides alike)
 SAME = "same"
 

@@ -131,6 +131,34 @@ def _line_pixels(r, plain):
     return np.abs(r.rgba[..., :3].astype(int) - plain.rgba[..., :3].astype(int)).max(-1) > 40
 
 
+@pytest.mark.parametrize("opacity", [1.0, 0.99])
+def test_a_colour_fields_nan_takes_the_colour_maps_bad_colour(opacity):
+    """Where a colour field is NaN (an array's missing values, an expression's
+    undefined ones) the surface takes the colour map's "bad" colour where one is set
+    (``with_extremes(bad=...)``, ``set_bad``), as matplotlib colours a NaN: red at
+    every pixel inside the NaN region, lit flat (they took the lower side's colour, or
+    through a translucent surface its own). Without one it keeps its colour as before:
+    the lower side's (opaque), the surface's own (translucent). Translucent within 6
+    levels (the layer's alpha 0.99 over the background, the field's texture filtered:
+    measured 2026-12-07, at most 4)."""
+    import matplotlib
+    cm = matplotlib.colormaps["viridis"].with_extremes(bad="red")
+    C = np.add.outer(np.linspace(0, 1, 64), np.linspace(0, 1, 64))
+    C[20:44, 20:44] = np.nan                          # u, v in about (-1.1, 1.1)
+    kw = dict(u=(-3, 3), v=(-3, 3), size=(120, 90), elev=70, ambient=1.0, specular=0.0,
+              antialias=False, opacity=opacity)
+    for field, inside in ((C, lambda u, v: (np.abs(u) < 0.9) & (np.abs(v) < 0.9)),
+                          ("sqrt(u*u + v*v - 1)", lambda u, v: u * u + v * v < 0.8)):
+        red = fc.render("0*u", color=field, cmap=cm, **kw)
+        where = (red.side != 0) & inside(red.u, red.v)
+        assert where.sum() > 150
+        got = red.rgba[where][:, :3].astype(int)
+        assert np.abs(got - [255, 0, 0]).max() <= (0 if opacity == 1.0 else 6)
+        plain = fc.render("0*u", color=field, cmap="viridis", **kw)
+        want = [217, 146, 91] if opacity == 1.0 else [70, 4, 86]    # tan; viridis at 0
+        assert np.abs(plain.rgba[where][:, :3].astype(int) - want).max() <= 1
+
+
 def test_contours_lie_on_the_level_sets_of_f():
     """Contour pixels' true f (at the ray caster's hit) lies within 1.5 pixels' change
     of f of a level (measured: 100 % of 2179); the pixels within a quarter pixel of a

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _pool
+from .. import _pool, color
 from ..color import lower_or_upper
 from ..kernels.layout import VP_CU, VP_CV, VP_WORG
 from ..kernels.texture import (
@@ -238,8 +238,11 @@ def field_base(material, field, geom, W, H, box, lower_rgb):
             np.nanmax(vals) if np.isfinite(vals).any() else 1.0
     lut, c_lo, c_hi, limits = material.color_table(np.array([[lo, hi]], dtype=np.float64))
     base = _pool.empty((H, W, 6), np.float32)
+    # (a NaN value: the colour map's "bad" colour where one is set, else the lower side's)
+    nan_rgb = color.bad(material.cmap)
     colour_kernel(vals, e_vals, np.ascontiguousarray(lut, dtype=np.float64), float(c_lo),
-                  float(c_hi), np.asarray(lower_rgb, dtype=np.float64), base)
+                  float(c_hi), np.asarray(lower_rgb if nan_rgb is None else nan_rgb,
+                                          dtype=np.float64), base)
     return base, (limits if np.isfinite(vals).any() else None)
 
 
@@ -266,12 +269,15 @@ def base_colours(material, source, geom, W, H, box, colours):
         finite = vals[np.isfinite(vals)]
         rng = np.array([[finite.min(), finite.max()]]) if finite.size else np.array([[0.0, 1.0]])
         lut_c, lo, hi, limits = material.color_table(rng)
+        nan_rgb = color.bad(material.cmap)             # (else the lower side's colour)
+        if nan_rgb is None:
+            nan_rgb = lower_or_upper(lower_rgb, lut_c[0, :3])
         own = colour_table_rgb(vals, lut_c, lo, hi)
-        own[~np.isfinite(vals)] = lower_or_upper(lower_rgb, lut_c[0, :3])
+        own[~np.isfinite(vals)] = nan_rgb
         if edge.any():                                 # the edge surfaces' own values
             e_vals = field_values(source.field, eu, ev, edge, source.extent)
             e_own = colour_table_rgb(e_vals, lut_c, lo, hi)
-            e_own[~np.isfinite(e_vals)] = lower_or_upper(lower_rgb, lut_c[0, :3])
+            e_own[~np.isfinite(e_vals)] = nan_rgb
             base[edge, 3:] = np.clip(e_own, 0.0, 1.0)
     else:
         # the surface's own colour under a texture's transparent parts: its side's
@@ -411,7 +417,8 @@ def _field_grid(field, extent):
 
 def _field_texture(material, vals):
     """(levels, limits): the mip-map levels of the colour field's colours on its grid
-    ``vals`` (NaN: transparent, the surface's own colour shows) and the limits of its
+    ``vals`` (NaN: the colour map's "bad" colour where one is set, else transparent:
+    the surface's own colour shows) and the limits of its
     colours (Material.color_table's, in the field's units)."""
     n = vals.shape[0]
     finite = vals[np.isfinite(vals)]
@@ -421,6 +428,10 @@ def _field_texture(material, vals):
     ok = np.isfinite(vals)
     img[ok, :3] = colour_table_rgb(vals[ok], lut, lo, hi)
     img[ok, 3] = 1.0
+    nan_rgb = color.bad(material.cmap)                 # a "bad" colour set: NaN takes it
+    if nan_rgb is not None:
+        img[~ok, :3] = nan_rgb
+        img[~ok, 3] = 1.0
     return Levels(pyramid(img)), limits
 
 

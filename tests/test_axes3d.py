@@ -971,11 +971,11 @@ def test_mplot3d_polygons_through_the_surface_are_cut_a_pixel_at_a_time(plane):
     Orthographic: the ray to the surface's point (u, v, w) seen at a pixel meets the
     plane in front of it where w < 0.2 and the ray crosses z = 0.2 over the plane's
     square. Of the pixels whose 3 x 3 neighbourhood sees the surface away from the
-    plane's height and edges, red exactly there at 99.5 % (measured 2026-12-07:
+    plane's height and edges, red exactly there at 99.5 % (measured 2026-12-06:
     plot_surface's 100 % of 10 628, 99.86 % before the polygons' outlines took the side
     of the surface beside them; contourf's 100 % of 6 746. Drawn whole: 91.8 % and
     64.1 %). A translucent plane (alpha 0.5, 8 x 8 quads) the same: its tint over the
-    surface exactly there, the surface's own colour elsewhere (measured 2026-12-07:
+    surface exactly there, the surface's own colour elsewhere (measured 2026-12-06:
     100 % of 10 628; it was drawn whole over the surface, 85.2 %)."""
     X, Y = np.meshgrid(np.linspace(-3, 3, 60), np.linspace(-3, 3, 60))
     P, Q = np.meshgrid(np.linspace(-5.5, 5.5, 12), np.linspace(-5.5, 5.5, 12))

@@ -136,7 +136,7 @@ def test_an_array_alone_is_heights_over_its_indices():
     raised "cannot draw ndarray", the whole array in the message): the surface is Z's
     bilinear interpolation (to 1e-9 at random points), and each seen pixel's height
     that at its (u, v) within 0.02 of heights spanning 12 (the pixels' values are
-    interpolated between the column's samples: measured 2026-12-07, at most 0.0083),
+    interpolated between the column's samples: measured 2026-12-06, at most 0.0083),
     for a numpy array, a list of lists and a masked array (its masked values holes)."""
     rng = np.random.default_rng(4)
     Z = np.cumsum(rng.normal(size=(9, 14)), axis=1)
@@ -266,7 +266,7 @@ def test_an_uneven_meshs_edges_are_its_own_lines():
     draws mplot3d's lines, its rows and columns 0, s, 2 s, ... and the last (they were
     left out with a warning): of the seen pixels a third of a pixel from one (at the
     seen point's (u, v), in pixels of its screen gradient) 99 % are drawn, and 99 % of
-    the drawn pixels lie within 1.5 pixels of one (measured 2026-12-07: 99.77 % of 871
+    the drawn pixels lie within 1.5 pixels of one (measured 2026-12-06: 99.77 % of 871
     and 99.85 %; a 1-pixel line covers pixels up to 1 away)."""
     x, y = np.geomspace(0.1, 10, 30), np.linspace(-2, 2, 25)
     X, Y = np.meshgrid(x, y)
@@ -287,7 +287,7 @@ def test_a_curvilinear_meshs_edges_follow_its_index():
     between two nodes, as the surface is linear on the quads' triangles): of the seen
     pixels 0.3 px from one (the chords' and rays' exact index at the seen point; the
     chords lie up to 1.5 px inside the circles here) 99 % are drawn, and 99 % of the
-    drawn pixels lie within 2 px of one (measured 2026-12-07: 99.84 % of 1901 and
+    drawn pixels lie within 2 px of one (measured 2026-12-06: 99.84 % of 1901 and
     99.98 %), away from the centre where the rays meet. The mesh's outer edge is drawn
     along the surface's edge, which ends up to two grid cells inside it: of the edge's
     pixels 1.5 indices from it, more than half (measured 92.7 % of 245)."""
@@ -321,7 +321,7 @@ def test_a_curvilinear_meshs_edges_follow_its_index():
 def test_plot_wireframe_of_a_resampled_mesh_draws_its_lines():
     """fc.plot_wireframe of a mesh that is resampled draws the mesh's own lines alone
     (it raised "not drawn" before): lines of an uneven grid at its own positions, 99 %
-    of the dark pixels within 1.5 px of one (measured 2026-12-07: 99.63 % of 1709)."""
+    of the dark pixels within 1.5 px of one (measured 2026-12-06: 99.63 % of 1709)."""
     x, y = np.geomspace(0.1, 10, 20), np.linspace(-2, 2, 15)
     X, Y = np.meshgrid(x, y)
     p = fc.plot_wireframe(X, Y, np.log(X) * np.cos(Y), rstride=4, cstride=4, size=(240, 180),
@@ -342,7 +342,7 @@ def test_a_translucent_resampled_meshs_edges_are_its_own_lines(grid):
     of its index (they were left out with a warning). A surface that does not lie over
     itself, seen from above, so that each pixel shows one layer: of the seen pixels a
     third of a pixel from a line 99 % drawn, 99 % of the drawn ones within 2 px of one
-    (measured 2026-12-07: uneven 100 % of 1 364 and 99.90 %; polar 100 % of 2 594 and
+    (measured 2026-12-06: uneven 100 % of 1 364 and 99.90 %; polar 100 % of 2 594 and
     99.95 %)."""
     if grid == "uneven":
         x, y = np.geomspace(0.1, 10, 30), np.linspace(-2, 2, 25)

@@ -161,7 +161,7 @@ def test_a_scales_name_is_a_norm_as_in_matplotlib(name):
     """norm="log" (a scale's name, matplotlib 3.6's form; it raised "must be a
     Normalize") colours as that scale's norm does, in plot_surface and render, with
     vmin/vmax (allowed beside a name, as in matplotlib) or autoscaled: every whole pixel
-    has matplotlib's colour for its seen height, to 2 levels (measured 2026-12-07: at
+    has matplotlib's colour for its seen height, to 2 levels (measured 2026-12-06: at
     most 1, the colour table's rows against matplotlib's continuous map)."""
     import matplotlib
     cm = matplotlib.colormaps["gray"]

@@ -140,7 +140,7 @@ def test_a_colour_fields_nan_takes_the_colour_maps_bad_colour(opacity):
     through a translucent surface its own). Without one it keeps its colour as before:
     the lower side's (opaque), the surface's own (translucent). Translucent within 6
     levels (the layer's alpha 0.99 over the background, the field's texture filtered:
-    measured 2026-12-07, at most 4)."""
+    measured 2026-12-06, at most 4)."""
     import matplotlib
     cm = matplotlib.colormaps["viridis"].with_extremes(bad="red")
     C = np.add.outer(np.linspace(0, 1, 64), np.linspace(0, 1, 64))

@@ -1099,18 +1099,16 @@ def _mesh_lines(options, shape, resampled=False, mesh_lines=None):
             return
         options.update(mesh_lines.wireframe(_mpl_line_rows(shape[0], mesh, "rstride", "rcount"),
                                             _mpl_line_rows(shape[1], mesh, "cstride", "ccount")))
-        options["edgecolor"] = ec if not isinstance(ec, np.ndarray) else tuple(ec)
-        options["linewidth"] = min(float(lw) * 100.0 / 72.0, 64.0)     # points -> pixels
-        return
-    rows, cols = shape if shape is not None else (MPL_MESH_COUNT, MPL_MESH_COUNT)
+    else:
+        rows, cols = shape if shape is not None else (MPL_MESH_COUNT, MPL_MESH_COUNT)
 
-    def count(n, key_count, key_stride):
-        if key_stride in mesh and shape is not None:
-            return int(np.ceil((n - 1) / max(int(mesh[key_stride]), 1))) + 1
-        return min(int(mesh.get(key_count, MPL_MESH_COUNT)), n)
-    nv = max(count(rows, "rcount", "rstride"), 2)      # lines at v = const
-    nu = max(count(cols, "ccount", "cstride"), 2)      # lines at u = const
-    options["wireframe"] = (nu, nv)
+        def count(n, key_count, key_stride):
+            if key_stride in mesh and shape is not None:
+                return int(np.ceil((n - 1) / max(int(mesh[key_stride]), 1))) + 1
+            return min(int(mesh.get(key_count, MPL_MESH_COUNT)), n)
+        nv = max(count(rows, "rcount", "rstride"), 2)      # lines at v = const
+        nu = max(count(cols, "ccount", "cstride"), 2)      # lines at u = const
+        options["wireframe"] = (nu, nv)
     options["edgecolor"] = ec if not isinstance(ec, np.ndarray) else tuple(ec)
     options["linewidth"] = min(float(lw) * 100.0 / 72.0, 64.0)     # points -> pixels
 

@@ -164,21 +164,26 @@ def _cell_steps(grid):
 
 
 def _coordinates(material, u, v, seen, rims):
-    """The two fields whose levels the wireframe's lines are: u and v, or a resampled
-    mesh's column and row index (Material.wire_coords: a grid (ny, nx, 2) over an
-    extent, bilinear as a height field's) at the seen pixels and the rims' (NaN where
-    neither)."""
+    """(fields, their rims', their steps): the two fields whose levels the wireframe's
+    lines are, u and v (and ``rims``), or a resampled mesh's column and row index
+    (Material.wire_coords: a grid (ny, nx, 2) over an extent, bilinear as a height
+    field's) at the seen pixels (NaN elsewhere; no rims: the mesh's edge lies inside
+    its grid's extent, _draw_boundary's) with how much each changes over a grid cell
+    there (_cell_steps; None for u and v)."""
     if material.wire_coords is None:
-        return (u, v), rims
-    # (no rims: the mesh's edge lies inside its grid's extent, _draw_boundary's)
+        return (u, v), rims, (None, None)
     grid, extent = material.wire_coords
-    qs = []
+    cell = _cell_steps(np.asarray(grid, dtype=np.float64))
+    qs, steps = [], []
     for c in range(2):
         q = np.full(u.shape, np.nan)
+        st = np.full(u.shape, np.nan)
         if seen.any():
             q[seen] = field_values(grid[..., c], u, v, seen, extent)
+            st[seen] = field_values(np.nan_to_num(cell[..., c]), u, v, seen, extent)
         qs.append(q)
-    return tuple(qs), (None, None)
+        steps.append(st)
+    return tuple(qs), (None, None), tuple(steps)
 
 
 def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domain,
@@ -201,16 +206,7 @@ def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domai
         rgb = color.to_rgb(material.edgecolor, "edgecolor")
         (ua, ub), (va, vb) = domain
         rims = rim_uv if edges else (None, None)
-        qs, qes = _coordinates(material, u, v, seen, rims)
-        steps = (None, None)
-        if material.wire_coords is not None:
-            grid, extent = material.wire_coords
-            cell = _cell_steps(np.asarray(grid, dtype=np.float64))
-            steps = []
-            for c in range(2):
-                st = np.full(u.shape, np.nan)
-                st[seen] = field_values(np.nan_to_num(cell[..., c]), u, v, seen, extent)
-                steps.append(st)
+        qs, qes, steps = _coordinates(material, u, v, seen, rims)
         for q, qe, st, lo, hi, (levels, n) in zip(qs, qes, steps, (ua, va), (ub, vb), lines):
             if levels is not None:             # (a mesh's own lines)
                 _draw(rgba, q, seen & np.isfinite(q), material.linewidth, rgb, levels=levels)

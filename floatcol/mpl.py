@@ -372,6 +372,26 @@ class Surface3DImage(Artist):
         if group[0] is not self:
             self.stale = False
             return
+        vector = _raster_of(renderer) is None and hasattr(renderer, "start_rasterizing")
+        if self._draw_group(renderer, group, vector):
+            return
+        # a vector file (PDF, SVG, EPS: matplotlib's MixedModeRenderer) where mplot3d's
+        # polygons cross the surface: the picture and what is drawn with it (the
+        # artists' hidden parts, the crossing polygons cut a pixel at a time) go into
+        # the file as one image at the figure's dpi, as matplotlib draws a rasterized
+        # artist (set_rasterized); the rest of every artist stays vector
+        renderer.start_rasterizing()
+        try:
+            self._draw_group(renderer._raster_renderer, group)
+        finally:
+            renderer.stop_rasterizing()
+
+    def _draw_group(self, renderer, group, vector=False):
+        """Render the surfaces of ``group`` and draw their picture and the
+        depth-tested artists' parts that go with it; with ``vector`` (a vector file's
+        renderer, not rasterizing), False, drawing nothing, where mplot3d's polygons
+        cross the surface (DepthTested.cross), which a raster canvas draws."""
+        ax = self.axes
         mag = renderer.get_image_magnification()
         bb = ax.bbox
         W = max(1, int(round(bb.width * mag)))
@@ -414,7 +434,10 @@ class Surface3DImage(Artist):
                   if isinstance(a.__dict__.get("draw"), DepthTested) and
                   a.get_zorder() >= self.get_zorder()]
         for d in tested:
-            d.cross(renderer, r)              # (polygons through the surface: below)
+            d.cross(renderer, r, vector)      # (polygons through the surface: below)
+        if vector and any(d.crosses() for d in tested):
+            return False
+        for d in tested:
             d.draw_hidden(renderer, [r])
         m = mag / f
         gc = renderer.new_gc()
@@ -437,6 +460,7 @@ class Surface3DImage(Artist):
         for d in tested:                      # polygons through the surface, a pixel
             d.draw_crossing(renderer, T)      # at a time
         self.stale = False
+        return True
 
 
     def on_release(self, event):
@@ -719,20 +743,25 @@ class DepthTested:
             self.visible = None
             type(art).draw(art, renderer)
 
-    def cross(self, renderer, render):
+    def crosses(self):
+        """Whether the last ``cross`` found polygons to draw a pixel at a time."""
+        return self._crossing is not None or self._planar is not None
+
+    def cross(self, renderer, render, vector=False):
         """Find the polygons of a Poly3DCollection that cross the (opaque) surface of
         ``render`` and the picture's pixels where they are not behind it
         (_not_behind_pixels), to be drawn under the picture (draw_hidden) and over it
         at those pixels alone (draw_crossing), not as whole polygons over it: their
-        line through the surface a pixel at a time. Only on a raster canvas (Agg): a
-        vector file takes them whole, as before."""
-        from matplotlib.backends.backend_agg import RendererAgg
+        line through the surface a pixel at a time. On a raster canvas (Agg, or a
+        vector file's while it rasterizes); ``vector``: on a vector file's canvas,
+        which rasterizes where they are found (Surface3DImage.draw)."""
         from mpl_toolkits.mplot3d import art3d
         self._crossing = self._front = self._planar = None
         art = self.art
+        raster = vector or _raster_of(renderer) is not None
         if (isinstance(art, getattr(art3d, "Collection3D", ())) and
                 hasattr(art, "_3dverts_codes") and getattr(art, "filled", True) and
-                isinstance(renderer, RendererAgg) and art.get_visible()):
+                raster and art.get_visible()):
             try:
                 planar = np.array([_flat_level_crosses(render, np.asarray(vs, dtype=float), cs)
                                    for vs, cs in art._3dverts_codes], dtype=bool)
@@ -742,7 +771,7 @@ class DepthTested:
                 self._planar = (render, planar)
             return
         faces = getattr(art, "_faces", None)
-        if not (isinstance(art, art3d.Poly3DCollection) and isinstance(renderer, RendererAgg)
+        if not (isinstance(art, art3d.Poly3DCollection) and raster
                 and art.get_visible() and faces is not None and len(faces)):
             return
         try:
@@ -1302,6 +1331,18 @@ def _sampled(render, polylines):
     ``render``'s picture (pixel_samples), end to end."""
     parts = [pixel_samples(render.view, render.box, p)[0] for p in polylines]
     return (np.concatenate(parts) if parts else np.zeros((0, 3)), [len(q) for q in parts])
+
+
+def _raster_of(renderer):
+    """The Agg renderer that draws for ``renderer``: itself on a raster canvas, or a
+    vector file's raster renderer while it rasterizes (matplotlib's MixedModeRenderer,
+    which hands its drawing to it then); None where the drawing goes into a vector
+    file."""
+    from matplotlib.backends.backend_agg import RendererAgg
+    if isinstance(renderer, RendererAgg):
+        return renderer
+    inner = getattr(renderer, "__dict__", {}).get("_renderer")
+    return inner if isinstance(inner, RendererAgg) else None
 
 
 def depth_test_mplot3d_artists(ax):

@@ -9,6 +9,8 @@ limits cut to x in [-3, 6] 0.983 (the bounds below leave a margin; the goal is 0
 The rest lies along the edges: mplot3d's polygons are drawn without antialiasing
 and floatcol's silhouettes with it, and the red test takes only near-pure red.
 """
+import io
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -959,8 +961,38 @@ def test_the_checkerboard_example_as_mplot3d_draws_it():
     assert ((ym == yf) & (bm == bf))[both].mean() > 0.98
 
 
-@pytest.mark.parametrize("plane", ["plot_surface", "contourf", "translucent"])
-def test_mplot3d_polygons_through_the_surface_are_cut_a_pixel_at_a_time(plane):
+def _svg_images(fig, monkeypatch):
+    """The figure saved as SVG (its text), and its images drawn in order over white
+    on a canvas of the figure's pixels (at its dpi, top row first, as Agg's canvas)."""
+    from matplotlib.backends.backend_svg import RendererSVG
+    drawn = []
+    own = RendererSVG.draw_image
+
+    def record(self, gc, x, y, im, transform=None):
+        drawn.append((x, y, np.array(im), transform))
+        return own(self, gc, x, y, im, transform)
+    monkeypatch.setattr(RendererSVG, "draw_image", record)
+    buf = io.StringIO()
+    fig.savefig(buf, format="svg", dpi=fig.dpi)
+    W, H = (int(round(x)) for x in fig.get_size_inches() * fig.dpi)
+    canvas = np.full((H, W, 3), 255.0)
+    m = fig.dpi / 72.0                             # (x, y: points from the bottom left)
+    for x, y, im, transform in drawn:
+        assert transform is None
+        h, w = im.shape[:2]
+        x0, y0 = int(round(x * m)), int(round(y * m))
+        rows = H - 1 - (y0 + np.arange(h))         # (im: its bottom row first)
+        a = im[..., 3:4] / 255.0
+        part = canvas[rows[:, None], x0 + np.arange(w)[None, :]]
+        canvas[rows[:, None], x0 + np.arange(w)[None, :]] = im[..., :3] * a + part * (1 - a)
+    return buf.getvalue(), np.round(canvas).astype(int)
+
+
+@pytest.mark.parametrize("plane, output", [
+    ("plot_surface", "png"), ("contourf", "png"), ("translucent", "png"),
+    ("plot_surface", "svg"), ("contourf", "svg"), ("translucent", "svg")])
+def test_mplot3d_polygons_through_the_surface_are_cut_a_pixel_at_a_time(plane, output,
+                                                                      monkeypatch):
     """mplot3d's own plot_surface of a plane z = 0.2 through a floatcol surface in one
     3-D Axes: the plane shows exactly where it lies in front of the surface, its line
     through the surface drawn a pixel at a time (its polygons that cross the surface
@@ -976,7 +1008,11 @@ def test_mplot3d_polygons_through_the_surface_are_cut_a_pixel_at_a_time(plane):
     of the surface beside them; contourf's 100 % of 6 746. Drawn whole: 91.8 % and
     64.1 %). A translucent plane (alpha 0.5, 8 x 8 quads) the same: its tint over the
     surface exactly there, the surface's own colour elsewhere (measured 2026-12-06:
-    100 % of 10 628; it was drawn whole over the surface, 85.2 %)."""
+    100 % of 10 628; it was drawn whole over the surface, 85.2 %). In a vector file
+    (SVG, as PDF and EPS) the same: the picture and the polygons cut through it are
+    one image at the figure's dpi there, the plane no longer a vector path (it was,
+    whole over the surface: the file's images alone had no red). Measured 2026-12-06
+    on the SVG's images: the same 100 %, 100 % and 100 %."""
     X, Y = np.meshgrid(np.linspace(-3, 3, 60), np.linspace(-3, 3, 60))
     P, Q = np.meshgrid(np.linspace(-5.5, 5.5, 12), np.linspace(-5.5, 5.5, 12))
     fig = plt.figure(figsize=(6.4, 4.8), dpi=100)
@@ -990,8 +1026,13 @@ def test_mplot3d_polygons_through_the_surface_are_cut_a_pixel_at_a_time(plane):
     else:
         ax.contourf(P, Q, P, levels=[-6, 0, 6], colors="red", zdir="z", offset=0.2)
         ax.set(xlim=(-5.5, 5.5), ylim=(-5.5, 5.5))
-    fig.canvas.draw()
-    a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
+    if output == "svg":
+        ax.set_axis_off()
+        text, a = _svg_images(fig, monkeypatch)
+        assert "#ff0000" not in text                  # (no red vector path)
+    else:
+        fig.canvas.draw()
+        a = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(int)
     plt.close(fig)
     r, T = p.render, p.artist.placed
     assert abs(T[0, 1]) < 1e-9 and abs(T[1, 0]) < 1e-9       # (no roll)

@@ -478,11 +478,27 @@ _njit = numba.njit(error_model="numpy")
 
 
 def _numba_namespace():
+    from .kernels.special import besseli, besselj
+
     @numba.njit(cache=False)
     def dirac_delta(x, *args):
         return 0.0
 
-    return {"DiracDelta": dirac_delta}
+    return {"DiracDelta": dirac_delta, "besselj": besselj, "besseli": besseli}
+
+
+def _check_orders(e):
+    """ValueError where a Bessel function's order is not a whole number from -MAX_ORDER
+    to MAX_ORDER (kernels/special.py computes those; J_nu of another order is not)."""
+    import sympy as sp
+    from .kernels.special import MAX_ORDER
+    for fn in e.atoms(sp.besselj, sp.besseli):
+        order = fn.args[0]
+        if not (order.is_Integer and abs(int(order)) <= MAX_ORDER):
+            name = "besselj" if isinstance(fn, sp.besselj) else "besseli"
+            raise ValueError(f"cannot draw f = {_short(e)}: {name}'s order must be a whole "
+                             f"number from -{MAX_ORDER} to {MAX_ORDER}, e.g. {name}(2, x), "
+                             f"got {_short(order)}")
 
 
 @functools.lru_cache(maxsize=256)
@@ -663,6 +679,7 @@ def _compile_scalar(e, su, sv, st):
     """(njit-able python function that never raises, cfunc) for a scalar sympy
     expression."""
     import sympy as sp
+    _check_orders(e)
     try:
         if _is_complex(e):
             g = _njit(_lambdify_complex((su, sv, st), e))

@@ -1,0 +1,168 @@
+"""Bessel functions of a whole order in formulas (floatcol/kernels/special.py):
+besselj / jv / jn / j0 / j1 and besseli / iv / i0 / i1, against mpmath (sympy's own
+arbitrary-precision library) and, drawn, against the ray caster with a Bessel function
+of its own (Bessel's integral, below), not floatcol's."""
+import mpmath
+import numpy as np
+import pytest
+import sympy as sp
+
+import floatcol as fc
+from floatcol.kernels.special import besseli, besselj
+from reference import psnr, raycast
+
+
+def _points():
+    rng = np.random.default_rng(7)
+    return np.concatenate([rng.uniform(-30, 30, 40), rng.uniform(-300, 300, 20),
+                           [1e-7, 3e-6, 0.2, 24.9, 25.1, 59.9, 60.1, 1e3, 2e4]])
+
+
+ORDERS = list(range(-6, 7)) + [10, 20, 45, 100]
+
+
+def test_besselj_agrees_with_mpmath():
+    """J_n over whole orders -6..6, 10, 20, 45, 100 and |x| up to 2e4, each regime
+    (Miller's recurrence, Hankel's expansion with the upward recurrence, the tiny-x
+    series): measured 2026-12-06 an absolute error of at most 1.2e-15 (at 2e4: the
+    cosine of a large argument) and, where |J_n| > 1e-3, a relative one of at most
+    2.2e-13."""
+    worst_abs = worst_rel = 0.0
+    for n in ORDERS:
+        for x in _points():
+            got = besselj(n, float(x))
+            assert got == besselj(float(n), float(x))          # (an order as a float)
+            want = float(mpmath.besselj(n, mpmath.mpf(float(x))))
+            worst_abs = max(worst_abs, abs(got - want))
+            if abs(want) > 1e-3:
+                worst_rel = max(worst_rel, abs(got - want) / abs(want))
+    assert worst_abs < 1e-14 and worst_rel < 2e-12
+
+
+def test_besseli_agrees_with_mpmath():
+    """I_n, the series and the asymptotic expansion: measured 2026-12-06 a relative
+    error of at most 8.5e-14 (|x| up to 300, values up to 1e128)."""
+    worst = 0.0
+    for n in ORDERS:
+        for x in _points():
+            if abs(x) > 600:
+                continue
+            got = besseli(n, float(x))
+            want = float(mpmath.re(mpmath.besseli(n, mpmath.mpf(float(x)))))
+            if want != 0.0:
+                worst = max(worst, abs(got - want) / abs(want))
+    assert worst < 1e-12
+
+
+def test_orders_and_values_that_are_not_numbers():
+    """A fractional order is NaN (a hole), an infinite x J's limit 0 and I's
+    infinity, NaN stays NaN: nothing raises in a kernel."""
+    assert np.isnan(besselj(0.5, 1.0)) and np.isnan(besseli(2.5, 1.0))
+    assert besselj(0, np.inf) == 0.0 and besseli(3, np.inf) == np.inf
+    assert besseli(1, -np.inf) == -np.inf
+    assert np.isnan(besselj(0, np.nan)) and np.isnan(besseli(0, np.nan))
+    assert besselj(0, 0.0) == 1.0 and besselj(3, 0.0) == 0.0 and besseli(0, 0.0) == 1.0
+    assert np.isnan(besselj(5000, 1.0))                   # (beyond MAX_ORDER)
+
+
+@pytest.mark.parametrize("text, other", [
+    ("besselj(2, u)", sp.besselj(2, sp.Symbol("u"))),
+    ("jv(2, u)", sp.besselj(2, sp.Symbol("u"))),
+    ("jn(2, u)", sp.besselj(2, sp.Symbol("u"))),
+    ("j0(u) + j1(v)", sp.besselj(0, sp.Symbol("u")) + sp.besselj(1, sp.Symbol("v"))),
+    ("np.i0(u) * iv(3, v)", sp.besseli(0, sp.Symbol("u")) * sp.besseli(3, sp.Symbol("v"))),
+])
+def test_formulas_name_them_as_sympy_and_scipy_do(text, other):
+    """The same surface from a string in sympy's, scipy's or numpy's names as from
+    sympy's expression: the same heights."""
+    u = np.linspace(-9.0, 9.0, 7)
+    a, b = fc.as_surface(text), fc.as_surface(other)
+    for x in u:
+        for y in u:
+            assert a.f(x, y, 0.0) == b.f(x, y, 0.0)
+    assert np.isfinite(a.f(3.0, -2.0, 0.0))
+
+
+@pytest.mark.parametrize("text", ["besselj(2.5, u)", "besselj(u, v)", "iv(2000, u)",
+                                  "besseli(v, 2)"])
+def test_an_order_that_is_not_whole_says_so(text):
+    with pytest.raises(ValueError, match="order must be a whole number"):
+        fc.render(text, u=(-3, 3), v=(-3, 3), size=(20, 15))
+
+
+def _jn(n, x, nodes=64):
+    """J_n(x) by Bessel's integral (1/2pi) int_0^2pi cos(n t - x sin t) dt (A&S 9.1.21),
+    the trapezoid rule on its periodic integrand (exact to double precision for
+    |x| + n well below ``nodes``)."""
+    t = np.linspace(0.0, 2.0 * np.pi, nodes, endpoint=False)
+    x = np.asarray(x, dtype=float)
+    return np.cos(n * t - x[..., None] * np.sin(t)).mean(axis=-1)
+
+
+def test_the_integral_is_bessels():
+    """The reference's own J_n (the trapezoid rule) against mpmath: 1e-14."""
+    x = np.linspace(0.0, 14.0, 57)
+    for n in (1, 2, 3):
+        want = np.array([float(mpmath.besselj(n, float(v))) for v in x])
+        assert np.abs(_jn(n, x) - want).max() < 1e-14
+
+
+#: the ray caster's J_1, J_2, J_3: Bessel's integral on r in [0, R_MAX] every 1/2048,
+#: linear between (its error below 1e-7: h^2 / 8 |J''|)
+R_MAX = 8.5
+_TABLE_R = np.linspace(0.0, R_MAX, int(R_MAX * 2048) + 1)
+_TABLE = {}
+
+
+def _j(n, r):
+    if n not in _TABLE:
+        _TABLE[n] = _jn(n, _TABLE_R)
+    return np.interp(r, _TABLE_R, _TABLE[n], right=np.nan)
+
+
+def _drum_mode():
+    """w = J_2(r) cos(2 phi) = J_2(r) (u^2 - v^2) / r^2 and its partials, for the ray
+    caster (J_2' = (J_1 - J_3) / 2, A&S 9.1.27)."""
+    def parts(u, v):
+        r2 = u * u + v * v
+        r = np.sqrt(r2)
+        c = (u * u - v * v) / r2
+        return r, c, _j(2, r), 0.5 * (_j(1, r) - _j(3, r))
+
+    def f(u, v):
+        with np.errstate(all="ignore"):
+            u, v = np.broadcast_arrays(np.asarray(u, float), np.asarray(v, float))
+            r2 = u * u + v * v
+            return _j(2, np.sqrt(r2)) * (u * u - v * v) / r2
+
+    def fu(u, v):
+        with np.errstate(all="ignore"):
+            u, v = np.broadcast_arrays(np.asarray(u, float), np.asarray(v, float))
+            r, c, j2, dj2 = parts(u, v)
+            return dj2 * u / r * c + j2 * 4.0 * u * v * v / r ** 4
+
+    def fv(u, v):
+        with np.errstate(all="ignore"):
+            u, v = np.broadcast_arrays(np.asarray(u, float), np.asarray(v, float))
+            r, c, j2, dj2 = parts(u, v)
+            return dj2 * v / r * c - j2 * 4.0 * u * u * v / r ** 4
+    return f, fu, fv
+
+
+@pytest.mark.parametrize("projection, min_psnr", [("orthographic", 72.0),
+                                                  ("perspective", 75.0)])
+def test_a_drum_mode_matches_the_ray_caster(projection, min_psnr):
+    """A drum's (2, 2) mode J_2(r) cos(2 phi) on r < 8.4, drawn from the formula (its
+    partials sympy's, through J_1 and J_3) against the ray caster with Bessel's
+    integral: measured 2026-12-06 100 % of the pixels on the same side, 77.47 dB
+    orthographic and 80.73 dB perspective."""
+    expr = "besselj(2, sqrt(u^2 + v^2)) * (u^2 - v^2) / (u^2 + v^2)"
+    dom = (-6.0, 6.0)
+    r = fc.render(expr, u=dom, v=dom, size=(100, 75), elev=35, azim=30,
+                  projection=projection, shading="lambert")
+    vw = r.view
+    ref = raycast(_drum_mode(), dom, dom, (100, 75), 35, 30, projection, vw.d1, vw.d2,
+                  vw.scale, center=vw.center)
+    assert (ref.side != 0).mean() > 0.3
+    assert (r.side == ref.side).mean() >= 0.9999
+    assert psnr(r.intensity, ref.intensity) >= min_psnr

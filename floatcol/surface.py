@@ -632,6 +632,15 @@ def _lambdify_real(args, e, cse=False, functions=None, modules="math"):
                 return "(1/(%s))" % self._print(sp.Pow(expr.base, -expr.exp, evaluate=False))
             return super()._print_Pow(expr, rational=rational)
 
+        def _print_Piecewise(self, expr):
+            # where no condition holds, NaN (a hole): sympy's printer gives None there
+            # (Piecewise((u, u > 0)), factorial2's rewrite), which a compiled function
+            # returning a double raised as a TypeError at every such point ("Exception
+            # ignored" printed from inside the kernels, the value undefined)
+            if expr.args[-1].cond is not sp.true:
+                expr = sp.Piecewise(*expr.args, (sp.nan, True), evaluate=False)
+            return super()._print_Piecewise(expr)
+
     namespace = _numba_namespace()
     if functions:
         namespace.update(functions)

@@ -9,6 +9,7 @@ import os
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 import sympy as sp
 
@@ -259,3 +260,19 @@ def test_an_unknown_e_says_eulers_number_is_E():
         with pytest.raises(ValueError, match=r"unknown symbol e.*Euler's number is E or exp\(1\)"):
             call()
     assert fc.render("np.e**u", u=(-1, 1), v=(-1, 1), size=(20, 10)).side.any()
+
+
+def test_a_piecewise_without_otherwise_is_a_hole_where_no_condition_holds(capfd):
+    """Piecewise((u, u > 0)): where no condition holds, NaN (a hole). sympy's printer
+    wrote None there, which the compiled function raised as a TypeError at every such
+    point: "Exception ignored" printed from inside the kernels over and over (2 494
+    times, with a traceback each, for a 40 x 30 picture), the values there undefined. The same for sympy's
+    functions that print as such a Piecewise (factorial2)."""
+    s = fc.as_surface("Piecewise((u, u > 0), (v, v > 1))")
+    assert s.f(1.0, 0.0, 0.0) == 1.0 and s.f(-1.0, 2.0, 0.0) == 2.0
+    assert np.isnan(s.f(-1.0, 0.0, 0.0))
+    r = fc.render("Piecewise((u, u > 0))", u=(-2, 2), v=(-2, 2), size=(40, 30))
+    seen = r.side != 0
+    assert 0.1 < seen.mean() < 0.6 and np.nanmin(r.u[seen]) > -0.05
+    out, err = capfd.readouterr()
+    assert "Exception ignored" not in err and "TypeError" not in err

@@ -630,6 +630,12 @@ def _lambdify_real(args, e, cse=False, functions=None, modules="math"):
         def _print_Pow(self, expr, rational=False):
             if expr.exp.is_Integer and expr.exp < -1:
                 return "(1/(%s))" % self._print(sp.Pow(expr.base, -expr.exp, evaluate=False))
+            if not expr.exp.is_Number:
+                # an exponent that is a formula: a double, so that 0.0 ** -2 is an
+                # infinity; one of whole numbers (u**floor(v), where floor is an int)
+                # raised a ZeroDivisionError at u = 0 from inside the kernels
+                return "%s**float(%s)" % (self.parenthesize(expr.base, 61),
+                                          self._print(expr.exp))
             return super()._print_Pow(expr, rational=rational)
 
         def _print_Piecewise(self, expr):

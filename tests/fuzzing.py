@@ -9,7 +9,10 @@ failure, not a dead test runner, and a hang is a time-out that kills the worker.
 
 Outcomes: "ok" (a picture), "value" (a ValueError), "other" (any other exception: a
 bug), "crash" (the worker died), "hang" (no answer within the time-out), "leak" (a
-message, error or warning, naming floatcol's, numba's or sympy's internals).
+message, error or warning, naming floatcol's, numba's or sympy's internals),
+"raised" (an exception raised inside compiled code, a kernel's call of the surface's
+function, which Python prints as "Exception ignored" and the kernel goes on with an
+undefined value: u**floor(v) at u = 0, Piecewise((u, u > 0)) where u <= 0 were).
 """
 from __future__ import annotations
 
@@ -345,6 +348,27 @@ def run_case(c: dict) -> dict:
     for k in ("u", "v", "size", "aspect"):
         if isinstance(kw.get(k), list):
             kw[k] = tuple(kw[k])
+    unraised = []                       # (exceptions raised inside compiled code)
+    hook = sys.unraisablehook
+    sys.unraisablehook = unraised.append
+    try:
+        out, caught = _run_call(c, kw, warnings, np, fc)
+    finally:
+        sys.unraisablehook = hook
+    messages = [out["message"]] + [str(w.message) for w in caught
+                                   if not issubclass(w.category, DeprecationWarning)]
+    for m in messages:
+        if INTERNAL.search(m):
+            out = {"outcome": "leak", "message": m}
+    if unraised:
+        first = unraised[0].exc_value
+        out = {"outcome": "raised", "message": f"{len(unraised)} exceptions raised inside "
+               f"compiled code, the first {type(first).__name__}: {first}"}
+    return out
+
+
+def _run_call(c, kw, warnings, np, fc):
+    """(outcome, the warnings caught) of one case's call."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
@@ -361,12 +385,7 @@ def run_case(c: dict) -> dict:
             out = {"outcome": "value", "message": str(exc)}
         except Exception as exc:                     # noqa: BLE001 - the finding
             out = {"outcome": "other", "message": f"{type(exc).__name__}: {exc}"}
-    messages = [out["message"]] + [str(w.message) for w in caught
-                                   if not issubclass(w.category, DeprecationWarning)]
-    for m in messages:
-        if INTERNAL.search(m):
-            out = {"outcome": "leak", "message": m}
-    return out
+    return out, caught
 
 
 def serve():

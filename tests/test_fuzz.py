@@ -106,6 +106,11 @@ REPRODUCERS = [
     ("0", dict(u=[-0.952, 9.389], v=[-1.991, 0.248], size=[41, 96], elev=-17.25,
                azim=-166.63, projection="persp", sampling="adaptive", corrections="spline")),
     ("1/u", dict(u=[-1, 1], v=[-1, 1], size=[60, 40], method="horizon")),
+    # exceptions raised inside the compiled function, printed as "Exception ignored"
+    # by the kernels' calls (fuzzing.py's "raised"): 0.0 ** -2 of an integer exponent,
+    # sympy's None where no condition of a Piecewise holds
+    ("u**floor(v)", dict(u=[-3, 3], v=[-3, 3], size=[40, 30])),
+    ("Piecewise((u, u > 0))", dict(u=[-2, 2], v=[-2, 2], size=[40, 30])),
 ]
 
 

@@ -51,8 +51,10 @@ def _functions():
                  log10=_log_base(sp, 10), log2=_log_base(sp, 2), hypot=_hypot(sp),
                  where=sp.Piecewise,
                  # Bessel functions of a whole order: sympy's names, scipy's
-                 besselj=sp.besselj, besseli=sp.besseli, jv=sp.besselj, iv=sp.besseli,
-                 jn=sp.besselj, j0=_bessel(sp.besselj, 0), j1=_bessel(sp.besselj, 1),
+                 besselj=sp.besselj, bessely=sp.bessely, besseli=sp.besseli,
+                 jv=sp.besselj, jn=sp.besselj, yv=sp.bessely, yn=sp.bessely, iv=sp.besseli,
+                 j0=_bessel(sp.besselj, 0), j1=_bessel(sp.besselj, 1),
+                 y0=_bessel(sp.bessely, 0), y1=_bessel(sp.bessely, 1),
                  i0=_bessel(sp.besseli, 0), i1=_bessel(sp.besseli, 1))
     return table
 
@@ -95,8 +97,9 @@ _ARITY = {"atan2": (2, 2), "arctan2": (2, 2), "log": (1, 2), "ln": (1, 2), "root
           "Mod": (2, 2), "Min": (1, 32), "Max": (1, 32), "min": (1, 32), "max": (1, 32),
           "Piecewise": (1, 32), "DiracDelta": (1, 1), "Heaviside": (1, 1), "mod": (2, 2),
           "heaviside": (1, 2), "hypot": (2, 2), "where": (3, 3), "besselj": (2, 2),
-          "besseli": (2, 2), "jv": (2, 2), "iv": (2, 2), "jn": (2, 2), "j0": (1, 1),
-          "j1": (1, 1), "i0": (1, 1), "i1": (1, 1)}
+          "bessely": (2, 2), "besseli": (2, 2), "jv": (2, 2), "jn": (2, 2), "yv": (2, 2),
+          "yn": (2, 2), "iv": (2, 2), "j0": (1, 1), "j1": (1, 1), "y0": (1, 1),
+          "y1": (1, 1), "i0": (1, 1), "i1": (1, 1)}
 
 #: functions whose value is undefined (a hole), not an error, where sympy refuses
 #: the arguments (NaN, a complex number, a zero modulus)

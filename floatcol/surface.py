@@ -478,13 +478,14 @@ _njit = numba.njit(error_model="numpy")
 
 
 def _numba_namespace():
-    from .kernels.special import besseli, besselj
+    from .kernels.special import besseli, besselj, bessely
 
     @numba.njit(cache=False)
     def dirac_delta(x, *args):
         return 0.0
 
-    return {"DiracDelta": dirac_delta, "besselj": besselj, "besseli": besseli}
+    return {"DiracDelta": dirac_delta, "besselj": besselj, "bessely": bessely,
+            "besseli": besseli}
 
 
 def _check_orders(e):
@@ -492,10 +493,10 @@ def _check_orders(e):
     to MAX_ORDER (kernels/special.py computes those; J_nu of another order is not)."""
     import sympy as sp
     from .kernels.special import MAX_ORDER
-    for fn in e.atoms(sp.besselj, sp.besseli):
+    for fn in e.atoms(sp.besselj, sp.bessely, sp.besseli):
         order = fn.args[0]
         if not (order.is_Integer and abs(int(order)) <= MAX_ORDER):
-            name = "besselj" if isinstance(fn, sp.besselj) else "besseli"
+            name = type(fn).__name__
             raise ValueError(f"cannot draw f = {_short(e)}: {name}'s order must be a whole "
                              f"number from -{MAX_ORDER} to {MAX_ORDER}, e.g. {name}(2, x), "
                              f"got {_short(order)}")

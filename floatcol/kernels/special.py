@@ -1,7 +1,7 @@
 """Bessel functions of whole order for compiled surfaces: J_n(x) (sympy's besselj,
-scipy's jv) and I_n(x) (besseli, iv), which Numba's math module lacks. A drum's modes
-J_n(k r) cos(n phi), a heat kernel's I_n: the surfaces physics plots most after the
-elementary functions.
+scipy's jv), Y_n(x) (bessely, yv) and I_n(x) (besseli, iv), which Numba's math module
+lacks. A drum's modes J_n(k r) cos(n phi), an annulus's J and Y together, a heat
+kernel's I_n: the surfaces physics plots most after the elementary functions.
 
 - J_n, |x| <= MILLER_MAX or n > |x|: Miller's backward recurrence from an order well
   above n and |x|, J_{k-1} = (2k/x) J_k - J_{k+1}, normalised by the identity
@@ -10,14 +10,18 @@ elementary functions.
 - J_n, |x| > MILLER_MAX and n <= |x|: J_0 and J_1 from Hankel's asymptotic expansion
   (A&S 9.2.5, 9.2.9, 9.2.10) summed until its terms are below double precision, then
   J_{k+1} = (2k/x) J_k - J_{k-1} upward, stable while k < |x| (A&S 9.1.27).
+- Y_n, x > 0: Y_0 by Neumann's series over the J_2k of Miller's sweep (A&S 9.1.88)
+  and Y_1 by its derivative, or Hankel's expansion beyond MILLER_MAX; then
+  Y_{k+1} = (2k/x) Y_k - Y_{k-1} upward, stable for every order (Y grows with it).
 - I_n: its power series (A&S 9.6.10), every term positive (no cancellation), for
   |x| <= ISERIES_MAX or n^2 > |x|; beyond, the asymptotic expansion (A&S 9.7.1).
 
 Agreement with mpmath (tests/test_special.py, orders -6..100, |x| up to 2e4): J_n to
-1.2e-15 absolute, and 2.2e-13 relative where |J_n| > 1e-3; I_n to 8.5e-14 relative. A
-whole order only (|n| <= MAX_ORDER): another order
-is NaN (a hole; the expression's compile refuses a symbolic one, surface.py). Infinite
-x: J_n 0, I_n infinite (a hole); NaN: NaN.
+1.2e-15 absolute, and 2.2e-13 relative where |J_n| > 1e-3; Y_n to 7.1e-15 of
+max(1, |Y_n|) and 3.7e-13 relative where |Y_n| > 1e-3; I_n to 8.5e-14 relative. A
+whole order only (|n| <= MAX_ORDER): another order is NaN (a hole; the expression's
+compile refuses a symbolic one, surface.py). Infinite x: J_n and Y_n 0, I_n infinite (a
+hole); Y_n of x <= 0 a hole (complex, or a pole at 0); NaN: NaN.
 """
 import math
 
@@ -34,6 +38,8 @@ _BIG = 1.0e10
 ISERIES_MAX = 60.0
 #: the largest order (a larger one is NaN; the expression's compile refuses it)
 MAX_ORDER = 1000
+#: Euler's constant gamma
+EULER_GAMMA = 0.57721566490153286061
 #: |x| below which both take their series' first two terms (A&S 9.1.10, 9.6.10)
 TINY = 1.0e-5
 
@@ -49,10 +55,13 @@ def _whole(order):
 
 @ngjit
 def _hankel01(x):
-    """(J_0(x), J_1(x)) for x > MILLER_MAX: Hankel's expansion (A&S 9.2.5, 9.2.9-10),
-    P and Q summed until a term is below 1e-17 of the sum or the terms grow."""
+    """(J_0(x), J_1(x), Y_0(x), Y_1(x)) for x > MILLER_MAX: Hankel's expansion (A&S
+    9.2.5-6, 9.2.9-10), P and Q summed until a term is below 1e-17 of the sum or the
+    terms grow."""
     out0 = 0.0
     out1 = 0.0
+    y0 = 0.0
+    y1 = 0.0
     for nu in range(2):
         mu = 4.0 * nu * nu
         p = 1.0
@@ -73,12 +82,16 @@ def _hankel01(x):
             if size < 1.0e-17:
                 break
         chi = x - (0.5 * nu + 0.25) * math.pi
-        value = math.sqrt(2.0 / (math.pi * x)) * (p * math.cos(chi) - q * math.sin(chi))
+        amp = math.sqrt(2.0 / (math.pi * x))
+        value = amp * (p * math.cos(chi) - q * math.sin(chi))
+        other = amp * (p * math.sin(chi) + q * math.cos(chi))
         if nu == 0:
             out0 = value
+            y0 = other
         else:
             out1 = value
-    return out0, out1
+            y1 = other
+    return out0, out1, y0, y1
 
 
 @ngjit
@@ -113,6 +126,90 @@ def _miller(n, x):
 
 
 @ngjit
+def _miller_y01(x):
+    """(Y_0(x), Y_1(x)), 0 < x <= MILLER_MAX, from Miller's sweep of J_m (normalised
+    as in _miller): Y_0 = (2/pi) ((ln(x/2) + gamma) J_0 - 2 sum_k (-1)^k J_2k / k)
+    (A&S 9.1.88), and Y_1 = -Y_0', its derivative through J_0' = -J_1 and
+    J_2k' = (J_2k-1 - J_2k+1) / 2 (A&S 9.1.27): Y_1 = -(2/pi) (J_0 / x -
+    (ln(x/2) + gamma) J_1 - sum_k (-1)^k (J_2k-1 - J_2k+1) / k)."""
+    m = 2 * ((int(x) + int(math.sqrt(MILLER_ACC * x)) + 16) // 2)
+    tox = 2.0 / x
+    bjp = 0.0
+    bj = 1.0
+    total = 0.0
+    s0 = 0.0                                # sum_k (-1)^k J_2k / k
+    s1 = 0.0                                # sum_k (-1)^k (J_2k-1 - J_2k+1) / k
+    j1 = 0.0
+    even = False
+    for j in range(m, 0, -1):
+        bjm = j * tox * bj - bjp
+        bjp = bj
+        bj = bjm
+        if abs(bj) > _BIG:
+            bj /= _BIG
+            bjp /= _BIG
+            total /= _BIG
+            s0 /= _BIG
+            s1 /= _BIG
+            j1 /= _BIG
+        if even:
+            total += bj
+        even = not even
+        i = j - 1                           # bj is J_i
+        if i >= 2 and i % 2 == 0:
+            k = i // 2
+            s0 += bj / k if k % 2 == 0 else -bj / k
+        elif i % 2 == 1:                    # J_{2k+1}: from the terms k + 1 and k
+            k = (i - 1) // 2
+            c = 1.0 / (k + 1.0) + (1.0 / k if k >= 1 else 0.0)
+            s1 += c * bj if k % 2 == 1 else -c * bj
+        if i == 1:
+            j1 = bj
+    norm = 2.0 * total - bj
+    lg = math.log(0.5 * x) + EULER_GAMMA
+    j0 = bj / norm
+    y0 = (2.0 / math.pi) * (lg * j0 - 2.0 * s0 / norm)
+    y1 = -(2.0 / math.pi) * (j0 / x - lg * j1 / norm - s1 / norm)
+    return y0, y1
+
+
+@ngjit
+def bessely(order, x):
+    """Y_order(x), the Bessel function of the second kind of a whole order: a hole
+    (NaN) for x < 0, where it is complex, and at 0 (minus infinity)."""
+    n, ok = _whole(order)
+    if not ok or math.isnan(x) or x < 0.0:
+        return math.nan
+    sign = 1.0
+    if n < 0:                               # Y_{-n} = (-1)^n Y_n (A&S 9.1.5)
+        n = -n
+        if n % 2 == 1:
+            sign = -sign
+    if x == 0.0:
+        return -math.inf if n % 2 == 0 or sign > 0.0 else math.inf
+    if math.isinf(x):
+        return 0.0
+    if x < 1.0e-100:                        # the series' leading terms (A&S 9.1.13)
+        y0 = (2.0 / math.pi) * (math.log(0.5 * x) + EULER_GAMMA)
+        y1 = -2.0 / (math.pi * x)
+    elif x <= MILLER_MAX:
+        y0, y1 = _miller_y01(x)
+    else:
+        _, _, y0, y1 = _hankel01(x)
+    if n == 0:
+        return sign * y0
+    prev = y0
+    cur = y1
+    for k in range(1, n):                   # upward, stable for Y: (2k/x) Y_k - Y_{k-1}
+        nxt = (2.0 * k / x) * cur - prev
+        prev = cur
+        cur = nxt
+        if math.isinf(cur):
+            break
+    return sign * cur
+
+
+@ngjit
 def besselj(order, x):
     """J_order(x), the Bessel function of the first kind of a whole order."""
     n, ok = _whole(order)
@@ -136,7 +233,7 @@ def besselj(order, x):
         return sign * lead * (1.0 - half * half / (n + 1.0))
     if ax <= MILLER_MAX or n > ax:
         return sign * _miller(n, ax)
-    j0, j1 = _hankel01(ax)
+    j0, j1, _, _ = _hankel01(ax)
     if n == 0:
         return sign * j0
     prev = j0

@@ -54,6 +54,33 @@ def _whole(order):
 
 
 @ngjit
+def _order(order):
+    """(|n|, the sign of J_n and Y_n against J_|n| and Y_|n|, whether the order is
+    whole): C_{-n} = (-1)^n C_n (A&S 9.1.5)."""
+    n, ok = _whole(order)
+    if n < 0:
+        return -n, (-1.0 if n % 2 != 0 else 1.0), ok
+    return n, 1.0, ok
+
+
+@ngjit
+def _upward(n, x, c0, c1):
+    """C_n(x) from C_0 and C_1 by C_{k+1} = (2k/x) C_k - C_{k-1} (A&S 9.1.27), for
+    J (stable while n <= x) and Y (stable always); it stops at an overflow."""
+    if n == 0:
+        return c0
+    prev = c0
+    cur = c1
+    for k in range(1, n):
+        nxt = (2.0 * k / x) * cur - prev
+        prev = cur
+        cur = nxt
+        if math.isinf(cur):
+            break
+    return cur
+
+
+@ngjit
 def _hankel01(x):
     """(J_0(x), J_1(x), Y_0(x), Y_1(x)) for x > MILLER_MAX: Hankel's expansion (A&S
     9.2.5-6, 9.2.9-10), P and Q summed until a term is below 1e-17 of the sum or the
@@ -96,8 +123,12 @@ def _hankel01(x):
 
 @ngjit
 def _miller(n, x):
-    """J_n(x), x > 0, by Miller's backward recurrence normalised by
-    J_0 + 2 sum J_2k = 1 (A&S 9.1.46)."""
+    """(J_n(x), Y_0(x), Y_1(x)), x > 0, by Miller's backward recurrence from an order
+    well above n and x, J_{j-1} = (2j/x) J_j - J_{j+1} (A&S 9.1.27), normalised by
+    J_0 + 2 sum_k J_2k = 1 (A&S 9.1.46). The same sweep's J_m give Y_0 by Neumann's
+    series, (2/pi) ((ln(x/2) + gamma) J_0 - 2 sum_k (-1)^k J_2k / k) (A&S 9.1.88),
+    and Y_1 = -Y_0', through J_0' = -J_1 and J_2k' = (J_2k-1 - J_2k+1) / 2:
+    -(2/pi) (J_0 / x - (ln(x/2) + gamma) J_1 - sum_k (-1)^k (J_2k-1 - J_2k+1) / k)."""
     top = max(float(n), x)
     m = 2 * ((int(top) + int(math.sqrt(MILLER_ACC * top)) + 16) // 2)
     tox = 2.0 / x
@@ -105,38 +136,6 @@ def _miller(n, x):
     bj = 1.0
     total = 0.0
     ans = 0.0
-    even = False
-    for j in range(m, 0, -1):
-        bjm = j * tox * bj - bjp            # J_{j-1} = (2j/x) J_j - J_{j+1} (A&S 9.1.27)
-        bjp = bj
-        bj = bjm
-        if abs(bj) > _BIG:
-            bj /= _BIG
-            bjp /= _BIG
-            ans /= _BIG
-            total /= _BIG
-        if even:
-            total += bj
-        even = not even
-        if j == n:
-            ans = bjp
-    if n == 0:
-        ans = bj
-    return ans / (2.0 * total - bj)
-
-
-@ngjit
-def _miller_y01(x):
-    """(Y_0(x), Y_1(x)), 0 < x <= MILLER_MAX, from Miller's sweep of J_m (normalised
-    as in _miller): Y_0 = (2/pi) ((ln(x/2) + gamma) J_0 - 2 sum_k (-1)^k J_2k / k)
-    (A&S 9.1.88), and Y_1 = -Y_0', its derivative through J_0' = -J_1 and
-    J_2k' = (J_2k-1 - J_2k+1) / 2 (A&S 9.1.27): Y_1 = -(2/pi) (J_0 / x -
-    (ln(x/2) + gamma) J_1 - sum_k (-1)^k (J_2k-1 - J_2k+1) / k)."""
-    m = 2 * ((int(x) + int(math.sqrt(MILLER_ACC * x)) + 16) // 2)
-    tox = 2.0 / x
-    bjp = 0.0
-    bj = 1.0
-    total = 0.0
     s0 = 0.0                                # sum_k (-1)^k J_2k / k
     s1 = 0.0                                # sum_k (-1)^k (J_2k-1 - J_2k+1) / k
     j1 = 0.0
@@ -148,6 +147,7 @@ def _miller_y01(x):
         if abs(bj) > _BIG:
             bj /= _BIG
             bjp /= _BIG
+            ans /= _BIG
             total /= _BIG
             s0 /= _BIG
             s1 /= _BIG
@@ -155,7 +155,9 @@ def _miller_y01(x):
         if even:
             total += bj
         even = not even
-        i = j - 1                           # bj is J_i
+        if j == n:
+            ans = bjp
+        i = j - 1                           # (bj is J_i)
         if i >= 2 and i % 2 == 0:
             k = i // 2
             s0 += bj / k if k % 2 == 0 else -bj / k
@@ -165,26 +167,23 @@ def _miller_y01(x):
             s1 += c * bj if k % 2 == 1 else -c * bj
         if i == 1:
             j1 = bj
+    if n == 0:
+        ans = bj
     norm = 2.0 * total - bj
     lg = math.log(0.5 * x) + EULER_GAMMA
     j0 = bj / norm
     y0 = (2.0 / math.pi) * (lg * j0 - 2.0 * s0 / norm)
     y1 = -(2.0 / math.pi) * (j0 / x - lg * j1 / norm - s1 / norm)
-    return y0, y1
+    return ans / norm, y0, y1
 
 
 @ngjit
 def bessely(order, x):
     """Y_order(x), the Bessel function of the second kind of a whole order: a hole
     (NaN) for x < 0, where it is complex, and at 0 (minus infinity)."""
-    n, ok = _whole(order)
+    n, sign, ok = _order(order)
     if not ok or math.isnan(x) or x < 0.0:
         return math.nan
-    sign = 1.0
-    if n < 0:                               # Y_{-n} = (-1)^n Y_n (A&S 9.1.5)
-        n = -n
-        if n % 2 == 1:
-            sign = -sign
     if x == 0.0:
         return -math.inf if n % 2 == 0 or sign > 0.0 else math.inf
     if math.isinf(x):
@@ -193,33 +192,18 @@ def bessely(order, x):
         y0 = (2.0 / math.pi) * (math.log(0.5 * x) + EULER_GAMMA)
         y1 = -2.0 / (math.pi * x)
     elif x <= MILLER_MAX:
-        y0, y1 = _miller_y01(x)
+        _, y0, y1 = _miller(0, x)
     else:
         _, _, y0, y1 = _hankel01(x)
-    if n == 0:
-        return sign * y0
-    prev = y0
-    cur = y1
-    for k in range(1, n):                   # upward, stable for Y: (2k/x) Y_k - Y_{k-1}
-        nxt = (2.0 * k / x) * cur - prev
-        prev = cur
-        cur = nxt
-        if math.isinf(cur):
-            break
-    return sign * cur
+    return sign * _upward(n, x, y0, y1)           # (stable for Y at every order)
 
 
 @ngjit
 def besselj(order, x):
     """J_order(x), the Bessel function of the first kind of a whole order."""
-    n, ok = _whole(order)
+    n, sign, ok = _order(order)
     if not ok or math.isnan(x):
         return math.nan
-    sign = 1.0
-    if n < 0:                               # J_{-n} = (-1)^n J_n (A&S 9.1.5)
-        n = -n
-        if n % 2 == 1:
-            sign = -sign
     if x < 0.0 and n % 2 == 1:              # J_n(-x) = (-1)^n J_n(x)
         sign = -sign
     ax = abs(x)
@@ -232,17 +216,9 @@ def besselj(order, x):
         lead = math.exp(n * math.log(half) - math.lgamma(n + 1.0))
         return sign * lead * (1.0 - half * half / (n + 1.0))
     if ax <= MILLER_MAX or n > ax:
-        return sign * _miller(n, ax)
+        return sign * _miller(n, ax)[0]
     j0, j1, _, _ = _hankel01(ax)
-    if n == 0:
-        return sign * j0
-    prev = j0
-    cur = j1
-    for k in range(1, n):                   # upward: J_{k+1} = (2k/x) J_k - J_{k-1}
-        nxt = (2.0 * k / ax) * cur - prev
-        prev = cur
-        cur = nxt
-    return sign * cur
+    return sign * _upward(n, ax, j0, j1)          # (stable for J while n <= x)
 
 
 @ngjit

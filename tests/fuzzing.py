@@ -28,7 +28,8 @@ CONSTANTS = ["0", "1", "-1", "1e300", "-1e300", "1e-300", "oo", "-oo", "nan", "z
              "pi", "E", "2.5", "1/2", "3"]
 UNARY = ["sin", "cos", "tan", "cot", "sec", "csc", "asin", "acos", "atan", "sinh", "cosh",
          "tanh", "asinh", "acosh", "atanh", "exp", "log", "sqrt", "cbrt", "Abs", "sign",
-         "floor", "ceiling", "frac", "re", "im", "arg", "erf", "gamma", "conjugate"]
+         "floor", "ceiling", "frac", "re", "im", "arg", "erf", "gamma", "conjugate",
+         "j0", "j1", "y0", "y1", "i0", "i1"]
 BINARY_OPS = ["+", "-", "*", "/", "**", "^", "%"]
 BINARY_FNS = ["atan2", "Min", "Max", "Mod", "log", "root"]
 OPTIONS = {

@@ -382,7 +382,10 @@ class Surface3DImage(Artist):
         # artist (set_rasterized); the rest of every artist stays vector
         renderer.start_rasterizing()
         try:
-            self._draw_group(renderer._raster_renderer, group)
+            # (its raster renderer, where this Matplotlib's layout is known; else the
+            # mixed renderer itself, which hands the drawing to it all the same)
+            inner = _raster_of(renderer)
+            self._draw_group(renderer if inner is None else inner, group)
         finally:
             renderer.stop_rasterizing()
 

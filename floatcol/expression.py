@@ -55,7 +55,9 @@ def _functions():
                  jv=sp.besselj, jn=sp.besselj, yv=sp.bessely, yn=sp.bessely, iv=sp.besseli,
                  j0=_bessel(sp.besselj, 0), j1=_bessel(sp.besselj, 1),
                  y0=_bessel(sp.bessely, 0), y1=_bessel(sp.bessely, 1),
-                 i0=_bessel(sp.besseli, 0), i1=_bessel(sp.besseli, 1))
+                 i0=_bessel(sp.besseli, 0), i1=_bessel(sp.besseli, 1),
+                 besselk=sp.besselk, kv=sp.besselk, kn=sp.besselk,
+                 k0=_bessel(sp.besselk, 0), k1=_bessel(sp.besselk, 1))
     return table
 
 
@@ -99,7 +101,8 @@ _ARITY = {"atan2": (2, 2), "arctan2": (2, 2), "log": (1, 2), "ln": (1, 2), "root
           "heaviside": (1, 2), "hypot": (2, 2), "where": (3, 3), "besselj": (2, 2),
           "bessely": (2, 2), "besseli": (2, 2), "jv": (2, 2), "jn": (2, 2), "yv": (2, 2),
           "yn": (2, 2), "iv": (2, 2), "j0": (1, 1), "j1": (1, 1), "y0": (1, 1),
-          "y1": (1, 1), "i0": (1, 1), "i1": (1, 1)}
+          "y1": (1, 1), "i0": (1, 1), "i1": (1, 1), "besselk": (2, 2), "kv": (2, 2),
+          "kn": (2, 2), "k0": (1, 1), "k1": (1, 1)}
 
 #: functions whose value is undefined (a hole), not an error, where sympy refuses
 #: the arguments (NaN, a complex number, a zero modulus)

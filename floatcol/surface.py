@@ -478,14 +478,14 @@ _njit = numba.njit(error_model="numpy")
 
 
 def _numba_namespace():
-    from .kernels.special import besseli, besselj, bessely
+    from .kernels.special import besseli, besselj, besselk, bessely
 
     @numba.njit(cache=False)
     def dirac_delta(x, *args):
         return 0.0
 
     return {"DiracDelta": dirac_delta, "besselj": besselj, "bessely": bessely,
-            "besseli": besseli}
+            "besseli": besseli, "besselk": besselk}
 
 
 def _check_orders(e):
@@ -493,7 +493,7 @@ def _check_orders(e):
     to MAX_ORDER (kernels/special.py computes those; J_nu of another order is not)."""
     import sympy as sp
     from .kernels.special import MAX_ORDER
-    for fn in e.atoms(sp.besselj, sp.bessely, sp.besseli):
+    for fn in e.atoms(sp.besselj, sp.bessely, sp.besseli, sp.besselk):
         order = fn.args[0]
         if not (order.is_Integer and abs(int(order)) <= MAX_ORDER):
             name = type(fn).__name__

@@ -49,20 +49,25 @@ def _functions():
                  # numpy's and the math module's names
                  mod=sp.Mod, heaviside=sp.Heaviside, fabs=sp.Abs, absolute=sp.Abs,
                  log10=_log_base(sp, 10), log2=_log_base(sp, 2), hypot=_hypot(sp),
-                 where=sp.Piecewise,
-                 # Bessel functions of a whole order: sympy's names, scipy's
-                 besselj=sp.besselj, bessely=sp.bessely, besseli=sp.besseli,
-                 jv=sp.besselj, jn=sp.besselj, yv=sp.bessely, yn=sp.bessely, iv=sp.besseli,
-                 j0=_bessel(sp.besselj, 0), j1=_bessel(sp.besselj, 1),
-                 y0=_bessel(sp.bessely, 0), y1=_bessel(sp.bessely, 1),
-                 i0=_bessel(sp.besseli, 0), i1=_bessel(sp.besseli, 1),
-                 besselk=sp.besselk, kv=sp.besselk, kn=sp.besselk,
-                 k0=_bessel(sp.besselk, 0), k1=_bessel(sp.besselk, 1))
+                 where=sp.Piecewise)
+    table.update({n: getattr(sp, f) for n, f in _BESSEL.items()})
+    table.update({n: _bessel(getattr(sp, f), k) for n, (f, k) in _BESSEL_OF_ORDER.items()})
     return table
 
 
+#: Bessel functions of a whole order, (order, x), by sympy's names and scipy's
+_BESSEL = {"besselj": "besselj", "jv": "besselj", "jn": "besselj",
+           "bessely": "bessely", "yv": "bessely", "yn": "bessely",
+           "besseli": "besseli", "iv": "besseli", "besselk": "besselk", "kv": "besselk",
+           "kn": "besselk"}
+#: ... and of one order, (x), by scipy's and numpy's names
+_BESSEL_OF_ORDER = {f"{c}{k}": (f, k) for c, f in (("j", "besselj"), ("y", "bessely"),
+                                                    ("i", "besseli"), ("k", "besselk"))
+                    for k in (0, 1)}
+
+
 def _bessel(fn, order):
-    """j0, j1, i0, i1 (scipy's and numpy's names): fn of that order."""
+    """j0, y1, i0, k1, ... (scipy's and numpy's names): fn of that order."""
     def bessel(x, evaluate=True):
         return fn(order, x)
     return bessel
@@ -98,11 +103,8 @@ CONSTANTS: dict = {}
 _ARITY = {"atan2": (2, 2), "arctan2": (2, 2), "log": (1, 2), "ln": (1, 2), "root": (2, 2),
           "Mod": (2, 2), "Min": (1, 32), "Max": (1, 32), "min": (1, 32), "max": (1, 32),
           "Piecewise": (1, 32), "DiracDelta": (1, 1), "Heaviside": (1, 1), "mod": (2, 2),
-          "heaviside": (1, 2), "hypot": (2, 2), "where": (3, 3), "besselj": (2, 2),
-          "bessely": (2, 2), "besseli": (2, 2), "jv": (2, 2), "jn": (2, 2), "yv": (2, 2),
-          "yn": (2, 2), "iv": (2, 2), "j0": (1, 1), "j1": (1, 1), "y0": (1, 1),
-          "y1": (1, 1), "i0": (1, 1), "i1": (1, 1), "besselk": (2, 2), "kv": (2, 2),
-          "kn": (2, 2), "k0": (1, 1), "k1": (1, 1)}
+          "heaviside": (1, 2), "hypot": (2, 2), "where": (3, 3),
+          **dict.fromkeys(_BESSEL, (2, 2))}
 
 #: functions whose value is undefined (a hole), not an error, where sympy refuses
 #: the arguments (NaN, a complex number, a zero modulus)

@@ -52,6 +52,8 @@ def _functions():
                  where=sp.Piecewise)
     table.update({n: getattr(sp, f) for n, f in _BESSEL.items()})
     table.update({n: _bessel(getattr(sp, f), k) for n, (f, k) in _BESSEL_OF_ORDER.items()})
+    table.update({n: getattr(sp, f) for n, f in _SPECIAL.items()})
+    table.update(expn=sp.expint, ellipkinc=sp.elliptic_f, ellipeinc=sp.elliptic_e)
     return table
 
 
@@ -64,6 +66,19 @@ _BESSEL = {"besselj": "besselj", "jv": "besselj", "jn": "besselj",
 _BESSEL_OF_ORDER = {f"{c}{k}": (f, k) for c, f in (("j", "besselj"), ("y", "bessely"),
                                                     ("i", "besseli"), ("k", "besselk"))
                     for k in (0, 1)}
+
+
+#: other special functions (kernels/airy.py, integrals.py, gammas.py), by sympy's names
+#: and scipy's (expi, exp1, psi, gammaln, lambertw, ellipk, ellipe; expn, ellipkinc and
+#: ellipeinc take the same arguments as expint, elliptic_f and elliptic_e)
+_SPECIAL = {**{n: n for n in (
+    "airyai", "airybi", "airyaiprime", "airybiprime", "Si", "Ci", "Shi", "Chi", "Ei", "E1",
+    "expint", "li", "Li", "erfi", "erfinv", "erfcinv", "fresnels", "fresnelc",
+    "polygamma", "digamma", "trigamma", "factorial", "loggamma", "beta", "LambertW",
+    "zeta", "dirichlet_eta", "elliptic_k", "elliptic_e", "elliptic_f")},
+    "expi": "Ei", "exp1": "E1", "psi": "digamma", "gammaln": "loggamma",
+    "lgamma": "loggamma", "lambertw": "LambertW", "ellipk": "elliptic_k",
+    "ellipe": "elliptic_e"}
 
 
 def _bessel(fn, order):
@@ -104,7 +119,10 @@ _ARITY = {"atan2": (2, 2), "arctan2": (2, 2), "log": (1, 2), "ln": (1, 2), "root
           "Mod": (2, 2), "Min": (1, 32), "Max": (1, 32), "min": (1, 32), "max": (1, 32),
           "Piecewise": (1, 32), "DiracDelta": (1, 1), "Heaviside": (1, 1), "mod": (2, 2),
           "heaviside": (1, 2), "hypot": (2, 2), "where": (3, 3),
-          **dict.fromkeys(_BESSEL, (2, 2))}
+          **dict.fromkeys(_BESSEL, (2, 2)),
+          **dict.fromkeys(("expint", "expn", "polygamma", "beta", "elliptic_f", "ellipkinc",
+                           "ellipeinc"), (2, 2)),
+          **dict.fromkeys(("LambertW", "lambertw", "zeta", "elliptic_e"), (1, 2))}
 
 #: functions whose value is undefined (a hole), not an error, where sympy refuses
 #: the arguments (NaN, a complex number, a zero modulus)

@@ -478,28 +478,57 @@ _njit = numba.njit(error_model="numpy")
 
 
 def _numba_namespace():
-    from .kernels.special import besseli, besselj, besselk, bessely
+    from .kernels import airy, gammas, integrals, special
 
     @numba.njit(cache=False)
     def dirac_delta(x, *args):
         return 0.0
 
-    return {"DiracDelta": dirac_delta, "besselj": besselj, "bessely": bessely,
-            "besseli": besseli, "besselk": besselk}
+    space = {"DiracDelta": dirac_delta}
+    for module, names in ((special, ("besselj", "bessely", "besseli", "besselk")),
+                          (airy, ("airyai", "airybi", "airyaiprime", "airybiprime")),
+                          (integrals, ("Si", "Ci", "Shi", "Chi", "Ei", "expint", "li", "Li",
+                                       "fresnels", "fresnelc", "erfi")),
+                          (gammas, ("polygamma", "erfinv", "erfcinv", "LambertW", "zeta",
+                                    "dirichlet_eta", "elliptic_k", "elliptic_e",
+                                    "elliptic_e1", "elliptic_f"))):
+        space.update({n: getattr(module, n) for n in names})
+    return space
+
+
+def _orders():
+    """{sympy function: (its order's argument, least, greatest, what it is)} for the
+    functions of kernels/special.py, integrals.py and gammas.py whose order must be a
+    whole number (they compute no other)."""
+    import sympy as sp
+    from .kernels.special import MAX_ORDER
+    whole = f"a whole number from -{MAX_ORDER} to {MAX_ORDER}"
+    return {sp.besselj: (0, -MAX_ORDER, MAX_ORDER, whole),
+            sp.bessely: (0, -MAX_ORDER, MAX_ORDER, whole),
+            sp.besseli: (0, -MAX_ORDER, MAX_ORDER, whole),
+            sp.besselk: (0, -MAX_ORDER, MAX_ORDER, whole),
+            sp.expint: (0, -MAX_ORDER, MAX_ORDER, whole),
+            sp.polygamma: (0, 0, MAX_ORDER, f"a whole number from 0 to {MAX_ORDER}"),
+            sp.LambertW: (1, -1, 0, "0 or -1 (the real branches)")}
 
 
 def _check_orders(e):
-    """ValueError where a Bessel function's order is not a whole number from -MAX_ORDER
-    to MAX_ORDER (kernels/special.py computes those; J_nu of another order is not)."""
+    """ValueError where a Bessel function's, E_n's or polygamma's order is not a whole
+    number in its range, or LambertW's branch is not a real one (the kernels compute
+    no other)."""
     import sympy as sp
-    from .kernels.special import MAX_ORDER
-    for fn in e.atoms(sp.besselj, sp.bessely, sp.besseli, sp.besselk):
-        order = fn.args[0]
-        if not (order.is_Integer and abs(int(order)) <= MAX_ORDER):
+    orders = _orders()
+    for fn in e.atoms(*orders):
+        at, lo, hi, what = orders[fn.func]
+        if at >= len(fn.args):
+            continue                            # (LambertW(x): the branch 0)
+        order = fn.args[at]
+        if not (order.is_Integer and lo <= int(order) <= hi):
             name = type(fn).__name__
-            raise ValueError(f"cannot draw f = {_short(e)}: {name}'s order must be a whole "
-                             f"number from -{MAX_ORDER} to {MAX_ORDER}, e.g. {name}(2, x), "
-                             f"got {_short(order)}")
+            kind = "branch" if fn.func is sp.LambertW else "order"
+            example = ("LambertW(x, -1)" if fn.func is sp.LambertW else f"{name}(2, x)")
+            raise ValueError(f"cannot draw f = {_short(e)}: {name}'s {kind} must be "
+                             f"{what}, e.g. {example}, got {_short(order)}")
 
 
 @functools.lru_cache(maxsize=256)
@@ -648,6 +677,28 @@ def _lambdify_real(args, e, cse=False, functions=None, modules="math"):
                 expr = sp.Piecewise(*expr.args, (sp.nan, True), evaluate=False)
             return super()._print_Piecewise(expr)
 
+        # the special functions' compiled forms (kernels/gammas.py) take every argument
+        def _print_factorial(self, expr):
+            return "gamma(%s + 1)" % self._print(expr.args[0])
+
+        def _print_zeta(self, expr):
+            a = self._print(expr.args[1]) if len(expr.args) > 1 else "1.0"
+            return "zeta(%s, %s)" % (self._print(expr.args[0]), a)
+
+        def _print_LambertW(self, expr):
+            k = self._print(expr.args[1]) if len(expr.args) > 1 else "0"
+            return "LambertW(%s, float(%s))" % (self._print(expr.args[0]), k)
+
+        def _print_fresnels(self, expr):             # (sympy's printer refuses these)
+            return self._print_Function(expr)
+
+        _print_fresnelc = _print_fresnels
+
+        def _print_elliptic_e(self, expr):
+            if len(expr.args) == 1:
+                return "elliptic_e1(%s)" % self._print(expr.args[0])
+            return "elliptic_e(%s, %s)" % tuple(self._print(a) for a in expr.args[:2])
+
     namespace = _numba_namespace()
     if functions:
         namespace.update(functions)
@@ -694,7 +745,6 @@ def _lambdify_complex(args, e, cse=False):
 def _compile_scalar(e, su, sv, st):
     """(njit-able python function that never raises, cfunc) for a scalar sympy
     expression."""
-    import sympy as sp
     _check_orders(e)
     try:
         if _is_complex(e):
@@ -716,7 +766,6 @@ def _compile_scalar(e, su, sv, st):
 def _compile_fused(e, derivs, su, sv, st):
     """The fused cfunc w = fg(u, v, t, p), p <- (f_u, f_v): f and both partials in
     one function, their common subexpressions computed once (sympy's cse)."""
-    import sympy as sp
     triple = (e, derivs[0], derivs[1])
     try:
         if any(_is_complex(x) for x in triple):

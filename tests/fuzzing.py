@@ -29,9 +29,12 @@ CONSTANTS = ["0", "1", "-1", "1e300", "-1e300", "1e-300", "oo", "-oo", "nan", "z
 UNARY = ["sin", "cos", "tan", "cot", "sec", "csc", "asin", "acos", "atan", "sinh", "cosh",
          "tanh", "asinh", "acosh", "atanh", "exp", "log", "sqrt", "cbrt", "Abs", "sign",
          "floor", "ceiling", "frac", "re", "im", "arg", "erf", "gamma", "conjugate",
-         "j0", "j1", "y0", "y1", "i0", "i1", "k0", "k1"]
+         "j0", "j1", "y0", "y1", "i0", "i1", "k0", "k1", "airyai", "airybi", "Si", "Ci",
+         "Ei", "li", "fresnels", "erfi", "erfinv", "erfcinv", "digamma", "trigamma",
+         "factorial", "lambertw", "zeta", "dirichlet_eta", "ellipk", "ellipe"]
 BINARY_OPS = ["+", "-", "*", "/", "**", "^", "%"]
-BINARY_FNS = ["atan2", "Min", "Max", "Mod", "log", "root"]
+BINARY_FNS = ["atan2", "Min", "Max", "Mod", "log", "root", "zeta", "beta", "ellipkinc",
+              "ellipeinc"]
 OPTIONS = {
     "projection": ["orthographic", "perspective", "ortho", "persp"],
     "shading": ["default", "lambert"],

@@ -285,14 +285,21 @@ def besselk(order, x):
         return math.inf
     if math.isinf(x):
         return 0.0
+    return _kv(float(n), x)
+
+
+@ngjit
+def _kv(nu, x):
+    """K_nu(x) of a real order nu >= 0 and x > 0: the trapezoid rule on
+    int_0^oo exp(-x cosh t) cosh(nu t) dt (A&S 9.6.24)."""
     # (through hypot: x^2 overflows past 1e154, which made h 0 and the loop endless)
-    h = min(0.1, 0.4 / math.sqrt(math.hypot(x, float(n)) + 1.0))
-    peak = math.asinh(n / x)
+    h = min(0.1, 0.4 / math.sqrt(math.hypot(x, nu) + 1.0))
+    peak = math.asinh(nu / x)
     total = 0.5 * math.exp(-x)              # (the trapezoid's half weight at t = 0)
     for k in range(1, 1000000):
         t = k * h
         a = -x * math.cosh(t)
-        term = 0.5 * (math.exp(a + n * t) + math.exp(a - n * t))
+        term = 0.5 * (math.exp(a + nu * t) + math.exp(a - nu * t))
         total += term
         if (t > peak and term <= 1.0e-17 * total) or math.isinf(total):
             break

@@ -53,7 +53,8 @@ def _functions():
     table.update({n: getattr(sp, f) for n, f in _BESSEL.items()})
     table.update({n: _bessel(getattr(sp, f), k) for n, (f, k) in _BESSEL_OF_ORDER.items()})
     table.update({n: getattr(sp, f) for n, f in _SPECIAL.items()})
-    table.update(expn=sp.expint, ellipkinc=sp.elliptic_f, ellipeinc=sp.elliptic_e)
+    table.update(expn=sp.expint, ellipkinc=sp.elliptic_f, ellipeinc=sp.elliptic_e,
+                 spherical_jn=sp.jn, spherical_yn=sp.yn)
     return table
 
 
@@ -69,8 +70,9 @@ _BESSEL_OF_ORDER = {f"{c}{k}": (f, k) for c, f in (("j", "besselj"), ("y", "bess
 
 
 #: other special functions (kernels/airy.py, integrals.py, gammas.py), by sympy's names
-#: and scipy's (expi, exp1, psi, gammaln, lambertw, ellipk, ellipe; expn, ellipkinc and
-#: ellipeinc take the same arguments as expint, elliptic_f and elliptic_e)
+#: and scipy's (expi, exp1, psi, gammaln, lambertw, ellipk, ellipe; expn, ellipkinc,
+#: ellipeinc, spherical_jn and spherical_yn take the same arguments as expint,
+#: elliptic_f, elliptic_e and sympy's jn and yn; a bare jn is scipy's, J_n)
 _SPECIAL = {**{n: n for n in (
     "airyai", "airybi", "airyaiprime", "airybiprime", "Si", "Ci", "Shi", "Chi", "Ei", "E1",
     "expint", "li", "Li", "erfi", "erfinv", "erfcinv", "fresnels", "fresnelc",
@@ -121,7 +123,7 @@ _ARITY = {"atan2": (2, 2), "arctan2": (2, 2), "log": (1, 2), "ln": (1, 2), "root
           "heaviside": (1, 2), "hypot": (2, 2), "where": (3, 3),
           **dict.fromkeys(_BESSEL, (2, 2)),
           **dict.fromkeys(("expint", "expn", "polygamma", "beta", "elliptic_f", "ellipkinc",
-                           "ellipeinc"), (2, 2)),
+                           "ellipeinc", "spherical_jn", "spherical_yn"), (2, 2)),
           **dict.fromkeys(("LambertW", "lambertw", "zeta", "elliptic_e"), (1, 2))}
 
 #: functions whose value is undefined (a hole), not an error, where sympy refuses

@@ -485,6 +485,7 @@ def _numba_namespace():
         return 0.0
 
     space = {"DiracDelta": dirac_delta}
+    space.update(jn=special.sph_jn, yn=special.sph_yn)     # (sympy's: the spherical ones)
     for module, names in ((special, ("besselj", "bessely", "besseli", "besselk")),
                           (airy, ("airyai", "airybi", "airyaiprime", "airybiprime")),
                           (integrals, ("Si", "Ci", "Shi", "Chi", "Ei", "expint", "li", "Li",
@@ -497,33 +498,36 @@ def _numba_namespace():
 
 
 def _orders():
-    """{sympy function: (its order's argument, least, greatest, what it is)} for the
-    functions of kernels/special.py, integrals.py and gammas.py whose order must be a
-    whole number (they compute no other)."""
+    """{sympy function: (its order's argument, least, greatest, whether it must be whole,
+    what it is)} for the functions of kernels/special.py, integrals.py and gammas.py
+    whose order must be a number in a range (they compute no other)."""
     import sympy as sp
     from .kernels.special import MAX_ORDER
     whole = f"a whole number from -{MAX_ORDER} to {MAX_ORDER}"
-    return {sp.besselj: (0, -MAX_ORDER, MAX_ORDER, whole),
-            sp.bessely: (0, -MAX_ORDER, MAX_ORDER, whole),
-            sp.besseli: (0, -MAX_ORDER, MAX_ORDER, whole),
-            sp.besselk: (0, -MAX_ORDER, MAX_ORDER, whole),
-            sp.expint: (0, -MAX_ORDER, MAX_ORDER, whole),
-            sp.polygamma: (0, 0, MAX_ORDER, f"a whole number from 0 to {MAX_ORDER}"),
-            sp.LambertW: (1, -1, 0, "0 or -1 (the real branches)")}
+    real = f"a number from -{MAX_ORDER} to {MAX_ORDER}"
+    bessel = (0, -MAX_ORDER, MAX_ORDER, False, real)
+    return {sp.besselj: bessel, sp.bessely: bessel, sp.besseli: bessel, sp.besselk: bessel,
+            sp.jn: (0, -MAX_ORDER, MAX_ORDER, True, whole),
+            sp.yn: (0, -MAX_ORDER, MAX_ORDER, True, whole),
+            sp.expint: (0, -MAX_ORDER, MAX_ORDER, True, whole),
+            sp.polygamma: (0, 0, MAX_ORDER, True, f"a whole number from 0 to {MAX_ORDER}"),
+            sp.LambertW: (1, -1, 0, True, "0 or -1 (the real branches)")}
 
 
 def _check_orders(e):
-    """ValueError where a Bessel function's, E_n's or polygamma's order is not a whole
-    number in its range, or LambertW's branch is not a real one (the kernels compute
-    no other)."""
+    """ValueError where a Bessel function's order is not a number from -MAX_ORDER to
+    MAX_ORDER (a formula of the variables, say), E_n's, polygamma's or a spherical Bessel
+    function's not a whole one in its range, or LambertW's branch not a real one (the
+    kernels compute no other)."""
     import sympy as sp
     orders = _orders()
     for fn in e.atoms(*orders):
-        at, lo, hi, what = orders[fn.func]
+        at, lo, hi, whole, what = orders[fn.func]
         if at >= len(fn.args):
             continue                            # (LambertW(x): the branch 0)
         order = fn.args[at]
-        if not (order.is_Integer and lo <= int(order) <= hi):
+        ok = order.is_Integer if whole else (order.is_number and order.is_real is True)
+        if not (ok and lo <= float(order) <= hi):
             name = type(fn).__name__
             kind = "branch" if fn.func is sp.LambertW else "order"
             example = ("LambertW(x, -1)" if fn.func is sp.LambertW else f"{name}(2, x)")

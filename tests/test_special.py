@@ -1,4 +1,5 @@
-"""Bessel functions of a whole order in formulas (floatcol/kernels/special.py):
+"""Bessel functions in formulas (floatcol/kernels/special.py), of whole orders and of
+any other real order, and the spherical ones:
 besselj / jv / jn / j0 / j1, bessely / yv / yn / y0 / y1, besseli / iv / i0 / i1 and
 besselk / kv / kn / k0 / k1, against mpmath (sympy's own
 arbitrary-precision library) and, drawn, against the ray caster with a Bessel function
@@ -88,16 +89,19 @@ def test_besselk_agrees_with_mpmath():
 
 
 def test_orders_and_values_that_are_not_numbers():
-    """A fractional order is NaN (a hole), an infinite x J's limit 0 and I's
-    infinity, NaN stays NaN: nothing raises in a kernel."""
-    assert np.isnan(besselj(0.5, 1.0)) and np.isnan(besseli(2.5, 1.0))
+    """An order beyond MAX_ORDER or not a number is NaN (a hole), an infinite x J's
+    limit 0 and I's infinity, NaN stays NaN: nothing raises in a kernel."""
+    assert np.isnan(besselj(np.nan, 1.0)) and np.isnan(besseli(np.inf, 1.0))
+    assert np.isnan(besselj(0.5, -1.0)) and np.isnan(besselk(2.5, -1.0))   # (complex)
+    assert besselj(0.5, 0.0) == 0.0 and besselj(-0.5, 0.0) == np.inf
+    assert besseli(1.5, np.inf) == np.inf and besselk(1.5, np.inf) == 0.0
     assert besselj(0, np.inf) == 0.0 and besseli(3, np.inf) == np.inf
     assert besseli(1, -np.inf) == -np.inf
     assert np.isnan(besselj(0, np.nan)) and np.isnan(besseli(0, np.nan))
     assert besselj(0, 0.0) == 1.0 and besselj(3, 0.0) == 0.0 and besseli(0, 0.0) == 1.0
     assert np.isnan(besselj(5000, 1.0))                   # (beyond MAX_ORDER)
     assert np.isnan(bessely(0, -1.0)) and bessely(0, 0.0) == -np.inf    # (complex; a pole)
-    assert bessely(2, np.inf) == 0.0 and np.isnan(bessely(0.5, 1.0))
+    assert bessely(2, np.inf) == 0.0 and np.isnan(bessely(5000.5, 1.0))
     assert np.isnan(besselk(0, -1.0)) and besselk(1, 0.0) == np.inf
     assert besselk(0, np.inf) == 0.0 and besselk(0, 1e6) == 0.0       # (underflows)
     # (x^2 overflowed past 1e154: a step of 0 and a million terms an evaluation)
@@ -127,11 +131,66 @@ def test_formulas_name_them_as_sympy_and_scipy_do(text, other):
     assert np.isfinite(a.f(3.0, 2.0, 0.0))
 
 
-@pytest.mark.parametrize("text", ["besselj(2.5, u)", "besselj(u, v)", "iv(2000, u)",
-                                  "besseli(v, 2)", "yv(0.5, u)", "kv(1.5, u)"])
-def test_an_order_that_is_not_whole_says_so(text):
-    with pytest.raises(ValueError, match="order must be a whole number"):
+@pytest.mark.parametrize("text, match", [
+    ("besselj(u, v)", "order must be a number from -1000 to 1000"),
+    ("iv(2000, u)", "order must be a number from"), ("besseli(v, 2)", "order must be a"),
+    ("yv(I, u)", "order must be a number"),
+    ("spherical_jn(0.5, u)", "jn's order must be a whole number")])
+def test_an_order_that_is_not_a_number_in_range_says_so(text, match):
+    with pytest.raises(ValueError, match=match):
         fc.render(text, u=(-3, 3), v=(-3, 3), size=(20, 15))
+
+
+FRACTIONAL = [0.5, -0.5, 1 / 3, -1 / 3, 2 / 3, 1.5, 2.25, -2.25, 7.5, 10.1, -10.1, 45.5,
+              100.3, 0.001, -0.999, 999.5]
+
+
+@pytest.mark.parametrize("fn, ref", [(besselj, mpmath.besselj), (bessely, mpmath.bessely),
+                                     (besseli, mpmath.besseli), (besselk, mpmath.besselk)])
+def test_orders_that_are_not_whole_agree_with_mpmath(fn, ref):
+    """J_nu, Y_nu (Steed's and Temme's methods, Numerical Recipes' bessjy, or Hankel's
+    expansion at the order's fraction and the upward recurrence), I_nu (its series or
+    asymptotic expansion) and K_nu (the trapezoid rule) over orders from -10.1 to 999.5
+    and x up to 2e4 (I and K: 600): measured 2026-12-07 an error of at most 6.9e-14 of
+    max(1, |value|), and where |value| > 1e-3, 7.4e-12 relative (at x = 2e4: the
+    cosine of a large argument; 7e-14 below x = 300). Before, a hole (NaN)."""
+    rng = np.random.default_rng(5)
+    xs = np.concatenate([rng.uniform(0, 30, 40), rng.uniform(30, 300, 10),
+                         [1e-8, 1e-3, 1.999, 2.001, 24.9, 25.1, 1e3, 2e4]])
+    worst_abs = worst_rel = 0.0
+    with mpmath.workdps(40):
+        for nu in FRACTIONAL:
+            for x in xs:
+                if fn in (besseli, besselk) and x > 600:
+                    continue
+                want = ref(mpmath.mpf(nu), mpmath.mpf(float(x)))
+                if mpmath.im(want) != 0 or not mpmath.isfinite(want) or abs(want) > 1e300:
+                    continue
+                want = float(mpmath.re(want))
+                got = fn(nu, float(x))
+                worst_abs = max(worst_abs, abs(got - want) / max(1.0, abs(want)))
+                if abs(want) > 1e-3:
+                    worst_rel = max(worst_rel, abs(got - want) / abs(want))
+    assert worst_abs < 5e-13 and worst_rel < 5e-11
+
+
+def test_spherical_bessel_functions_agree_with_mpmath():
+    """j_n and y_n (sympy's jn and yn, scipy's spherical_jn and spherical_yn), whole
+    orders -3..20, x of both signs: 5.7e-13 relative measured (j_1 near a zero at
+    x = 300)."""
+    from floatcol.kernels.special import sph_jn, sph_yn
+    worst = 0.0
+    with mpmath.workdps(40):
+        for n in (0, 1, 2, 5, 20, -1, -3):
+            for x in (1e-5, 0.3, 1.0, 2.5, 7.0, 30.0, 300.0, -2.5, -30.0):
+                ax = mpmath.mpf(abs(x))
+                for fn, ref, odd in ((sph_jn, mpmath.besselj, n % 2),
+                                     (sph_yn, mpmath.bessely, (n + 1) % 2)):
+                    want = mpmath.sqrt(mpmath.pi / (2 * ax)) * ref(n + 0.5, ax)
+                    want = float(want) * (-1.0 if x < 0 and odd else 1.0)
+                    worst = max(worst, abs(fn(float(n), x) - want) / abs(want))
+    assert worst < 5e-12
+    assert sph_jn(0.0, 0.0) == 1.0 and sph_jn(3.0, 0.0) == 0.0 and sph_yn(1.0, 0.0) == -np.inf
 
 
 def _jn(n, x, nodes=64):

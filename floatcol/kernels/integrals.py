@@ -321,25 +321,26 @@ def _fresnel(x):
 
 
 @ngjit
-def fresnels(x):
-    """Fresnel's S(x) = int_0^x sin(pi t^2 / 2) dt."""
+def _fresnel_odd(x, k):
+    """S (k = 0) or C (k = 1) at x: odd functions, +-1/2 at +-infinity."""
     if math.isnan(x):
         return math.nan
     if math.isinf(x):
         return math.copysign(0.5, x)
-    s = _fresnel(x)[0]
-    return -s if x < 0.0 else s
+    v = _fresnel(x)[k]
+    return -v if x < 0.0 else v
+
+
+@ngjit
+def fresnels(x):
+    """Fresnel's S(x) = int_0^x sin(pi t^2 / 2) dt."""
+    return _fresnel_odd(x, 0)
 
 
 @ngjit
 def fresnelc(x):
     """Fresnel's C(x) = int_0^x cos(pi t^2 / 2) dt."""
-    if math.isnan(x):
-        return math.nan
-    if math.isinf(x):
-        return math.copysign(0.5, x)
-    c = _fresnel(x)[1]
-    return -c if x < 0.0 else c
+    return _fresnel_odd(x, 1)
 
 
 @ngjit

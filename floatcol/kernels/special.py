@@ -269,7 +269,7 @@ def besseli(order, x):
         if x == 0.0 or math.isinf(x):
             return (0.0 if order > 0.0 else math.inf) if x == 0.0 else math.inf
         nu = abs(order)
-        i = _frac_i(nu, x)
+        i = _i_real(nu, x)
         if order < 0.0:                     # I_-nu = I_nu + (2/pi) sin(nu pi) K_nu (9.6.2)
             i += 2.0 / math.pi * _sincospi(nu)[0] * _kv(nu, x)
         return i
@@ -283,35 +283,7 @@ def besseli(order, x):
         return 1.0 if n == 0 else 0.0
     if math.isinf(ax):
         return sign * math.inf
-    if ax <= ISERIES_MAX or n * n > ax:
-        # sum_k (x/2)^(2k+n) / (k! (k+n)!) (A&S 9.6.10), its first term through
-        # logarithms (no overflow of (x/2)^n or n! on the way)
-        half = 0.5 * ax
-        term = math.exp(n * math.log(half) - math.lgamma(n + 1.0))
-        total = term
-        q = half * half
-        for k in range(1, 100000):
-            if total == 0.0 or math.isinf(total):
-                break                       # (under- or overflowed: 0 or a hole)
-            term *= q / (k * (k + n))
-            total += term
-            if term < 1.0e-17 * total:
-                break
-        return sign * total
-    # e^x / sqrt(2 pi x) sum_k (-1)^k prod_j (4n^2 - (2j-1)^2) / (k! (8x)^k) (A&S 9.7.1)
-    mu = 4.0 * n * n
-    total = 1.0
-    term = 1.0
-    last = 1.0e300
-    for k in range(1, 200):
-        term *= -(mu - (2.0 * k - 1.0) ** 2) / (k * 8.0 * ax)
-        if abs(term) >= last:
-            break
-        last = abs(term)
-        total += term
-        if last < 1.0e-17:
-            break
-    return sign * math.exp(ax) / math.sqrt(2.0 * math.pi * ax) * total
+    return sign * _i_real(float(n), ax)
 
 
 @ngjit
@@ -591,9 +563,11 @@ def _sincospi(nu):
 
 
 @ngjit
-def _frac_i(nu, x):
-    """I_nu(x), nu >= 0 not whole, x > 0: the series (A&S 9.6.10) or the asymptotic
-    expansion (9.7.1), as besseli's of a whole order."""
+def _i_real(nu, x):
+    """I_nu(x), nu >= 0, 0 < x < oo: its series (A&S 9.6.10), every term positive (no
+    cancellation), for x <= ISERIES_MAX or nu^2 > x, its first term through logarithms
+    (no overflow of (x/2)^nu or nu! on the way); beyond, the asymptotic expansion
+    e^x / sqrt(2 pi x) sum_k (-1)^k prod_j (4 nu^2 - (2j-1)^2) / (k! (8x)^k) (9.7.1)."""
     if x <= ISERIES_MAX or nu * nu > x:
         half = 0.5 * x
         term = math.exp(nu * math.log(half) - math.lgamma(nu + 1.0))
@@ -601,7 +575,7 @@ def _frac_i(nu, x):
         q = half * half
         for k in range(1, 100000):
             if total == 0.0 or math.isinf(total):
-                break
+                break                       # (under- or overflowed: 0 or a hole)
             term *= q / (k * (k + nu))
             total += term
             if term < 1.0e-17 * total:

@@ -419,7 +419,6 @@ def _steed_temme(nu, x):
     rjl = isign * _FPMIN
     rjpl = h * rjl
     rjl1 = rjl
-    rjp1 = rjpl
     fact = nu * xi
     for _ in range(nl, 0, -1):              # down to mu (A&S 9.1.27)
         rjtemp = fact * rjl + rjpl

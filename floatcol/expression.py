@@ -54,7 +54,7 @@ def _functions():
     table.update({n: _bessel(getattr(sp, f), k) for n, (f, k) in _BESSEL_OF_ORDER.items()})
     table.update({n: getattr(sp, f) for n, f in _SPECIAL.items()})
     table.update(expn=sp.expint, ellipkinc=sp.elliptic_f, ellipeinc=sp.elliptic_e,
-                 spherical_jn=sp.jn, spherical_yn=sp.yn)
+                 spherical_jn=sp.jn, spherical_yn=sp.yn, sph_harm_y=sp.Ynm)
     return table
 
 
@@ -71,13 +71,13 @@ _BESSEL_OF_ORDER = {f"{c}{k}": (f, k) for c, f in (("j", "besselj"), ("y", "bess
 
 #: other special functions (kernels/airy.py, integrals.py, gammas.py), by sympy's names
 #: and scipy's (expi, exp1, psi, gammaln, lambertw, ellipk, ellipe; expn, ellipkinc,
-#: ellipeinc, spherical_jn and spherical_yn take the same arguments as expint,
-#: elliptic_f, elliptic_e and sympy's jn and yn; a bare jn is scipy's, J_n)
+#: ellipeinc, spherical_jn, spherical_yn and sph_harm_y take the same arguments as
+#: expint, elliptic_f, elliptic_e and sympy's jn, yn and Ynm; a bare jn is scipy's, J_n)
 _SPECIAL = {**{n: n for n in (
     "airyai", "airybi", "airyaiprime", "airybiprime", "Si", "Ci", "Shi", "Chi", "Ei", "E1",
     "expint", "li", "Li", "erfi", "erfinv", "erfcinv", "fresnels", "fresnelc",
     "polygamma", "digamma", "trigamma", "factorial", "loggamma", "beta", "LambertW",
-    "zeta", "dirichlet_eta", "elliptic_k", "elliptic_e", "elliptic_f")},
+    "zeta", "dirichlet_eta", "elliptic_k", "elliptic_e", "elliptic_f", "Ynm", "Znm")},
     "expi": "Ei", "exp1": "E1", "psi": "digamma", "gammaln": "loggamma",
     "lgamma": "loggamma", "lambertw": "LambertW", "ellipk": "elliptic_k",
     "ellipe": "elliptic_e"}
@@ -124,7 +124,8 @@ _ARITY = {"atan2": (2, 2), "arctan2": (2, 2), "log": (1, 2), "ln": (1, 2), "root
           **dict.fromkeys(_BESSEL, (2, 2)),
           **dict.fromkeys(("expint", "expn", "polygamma", "beta", "elliptic_f", "ellipkinc",
                            "ellipeinc", "spherical_jn", "spherical_yn"), (2, 2)),
-          **dict.fromkeys(("LambertW", "lambertw", "zeta", "elliptic_e"), (1, 2))}
+          **dict.fromkeys(("LambertW", "lambertw", "zeta", "elliptic_e"), (1, 2)),
+          **dict.fromkeys(("Ynm", "Znm", "sph_harm_y"), (4, 4))}
 
 #: functions whose value is undefined (a hole), not an error, where sympy refuses
 #: the arguments (NaN, a complex number, a zero modulus)

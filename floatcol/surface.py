@@ -452,7 +452,7 @@ def parse_expression(expr, names=DEFAULT_VARS):
         raise ValueError(
             f"unknown symbol{'s' if len(unknown) > 1 else ''} {', '.join(unknown)} in "
             f"{e}: the variables are {names[0]} and {names[1]}{hint}")
-    e = e.xreplace(by_name)
+    e = _expand_harmonics(e.xreplace(by_name))
     if e.has(sp.re, sp.im, sp.arg, sp.conjugate, sp.I):
         # The variables are real. sympy, knowing nothing of them, writes
         # re(sqrt(x + I*y)) with re(x) and im(y), and im(log(x + I*y)) as arg(x + I*y),
@@ -533,6 +533,38 @@ def _check_orders(e):
             example = ("LambertW(x, -1)" if fn.func is sp.LambertW else f"{name}(2, x)")
             raise ValueError(f"cannot draw f = {_short(e)}: {name}'s {kind} must be "
                              f"{what}, e.g. {example}, got {_short(order)}")
+
+
+#: the largest degree of a spherical harmonic: its closed form is a polynomial in cos
+#: theta whose coefficients grow with the degree (about 1e5 at 20; their cancellation
+#: costs that many ulps)
+MAX_HARMONIC = 20
+
+
+def _expand_harmonics(e):
+    """e with sympy's spherical harmonics Ynm(n, m, theta, phi) and their real forms
+    Znm in closed form (sin, cos and exp(i m phi) of the angles: sympy's expand_func),
+    which the kernels compute; a ValueError where n and m are not whole numbers with
+    |m| <= n <= MAX_HARMONIC. Ynm is complex: draw its re, im or Abs."""
+    import sympy as sp
+    found = e.atoms(sp.Ynm, sp.Znm)
+    if not found:
+        return e
+    subs = {}
+    for fn in found:
+        n, m = fn.args[:2]
+        if not (n.is_Integer and m.is_Integer and abs(int(m)) <= int(n) <= MAX_HARMONIC):
+            name = type(fn).__name__
+            raise ValueError(f"cannot draw f = {_short(e)}: {name}(n, m, theta, phi) needs "
+                             f"whole numbers with |m| <= n <= {MAX_HARMONIC}, e.g. "
+                             f"{name}(3, 1, theta, phi), got n = {_short(n)}, m = {_short(m)}")
+        # expanded in real angles (a negative m's conjugate is then of sin and cos, not
+        # of re and im of a complex angle), its constants in doubles (sqrt(21)/(8
+        # sqrt(pi)); past int64 from n = 25)
+        th, ph = sp.Dummy(real=True), sp.Dummy(real=True)
+        closed = sp.expand_func(type(fn)(n, m, th, ph)).evalf(20)
+        subs[fn] = closed.xreplace({th: fn.args[2], ph: fn.args[3]})
+    return e.xreplace(subs)
 
 
 @functools.lru_cache(maxsize=256)

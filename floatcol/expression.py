@@ -54,7 +54,8 @@ def _functions():
     table.update({n: _bessel(getattr(sp, f), k) for n, (f, k) in _BESSEL_OF_ORDER.items()})
     table.update({n: getattr(sp, f) for n, f in _SPECIAL.items()})
     table.update(expn=sp.expint, ellipkinc=sp.elliptic_f, ellipeinc=sp.elliptic_e,
-                 spherical_jn=sp.jn, spherical_yn=sp.yn, sph_harm_y=sp.Ynm)
+                 spherical_jn=sp.jn, spherical_yn=sp.yn, sph_harm_y=sp.Ynm,
+                 hankel1=sp.hankel1, hankel2=sp.hankel2)
     return table
 
 
@@ -123,7 +124,8 @@ _ARITY = {"atan2": (2, 2), "arctan2": (2, 2), "log": (1, 2), "ln": (1, 2), "root
           "heaviside": (1, 2), "hypot": (2, 2), "where": (3, 3),
           **dict.fromkeys(_BESSEL, (2, 2)),
           **dict.fromkeys(("expint", "expn", "polygamma", "beta", "elliptic_f", "ellipkinc",
-                           "ellipeinc", "spherical_jn", "spherical_yn"), (2, 2)),
+                           "ellipeinc", "spherical_jn", "spherical_yn", "hankel1", "hankel2"),
+                          (2, 2)),
           **dict.fromkeys(("LambertW", "lambertw", "zeta", "elliptic_e"), (1, 2)),
           **dict.fromkeys(("Ynm", "Znm", "sph_harm_y"), (4, 4))}
 

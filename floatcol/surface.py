@@ -452,7 +452,7 @@ def parse_expression(expr, names=DEFAULT_VARS):
         raise ValueError(
             f"unknown symbol{'s' if len(unknown) > 1 else ''} {', '.join(unknown)} in "
             f"{e}: the variables are {names[0]} and {names[1]}{hint}")
-    e = _expand_harmonics(e.xreplace(by_name))
+    e = _closed_forms(e.xreplace(by_name))
     if e.has(sp.re, sp.im, sp.arg, sp.conjugate, sp.I):
         # The variables are real. sympy, knowing nothing of them, writes
         # re(sqrt(x + I*y)) with re(x) and im(y), and im(log(x + I*y)) as arg(x + I*y),
@@ -541,17 +541,19 @@ def _check_orders(e):
 MAX_HARMONIC = 20
 
 
-def _expand_harmonics(e):
-    """e with sympy's spherical harmonics Ynm(n, m, theta, phi) and their real forms
-    Znm in closed form (sin, cos and exp(i m phi) of the angles: sympy's expand_func),
-    which the kernels compute; a ValueError where n and m are not whole numbers with
-    |m| <= n <= MAX_HARMONIC. Ynm is complex: draw its re, im or Abs."""
+def _closed_forms(e):
+    """e with the Hankel functions as J +- i Y (hankel1, hankel2; the spherical hn1,
+    hn2 as jn +- i yn), and sympy's spherical harmonics Ynm(n, m, theta, phi) and their
+    real forms Znm in closed form (sin, cos and exp(i m phi) of the angles: sympy's
+    expand_func), which the kernels compute; a ValueError where n and m are not whole
+    numbers with |m| <= n <= MAX_HARMONIC. Both are complex: draw re, im or Abs."""
     import sympy as sp
-    found = e.atoms(sp.Ynm, sp.Znm)
-    if not found:
-        return e
     subs = {}
-    for fn in found:
+    for fn in e.atoms(sp.hankel1, sp.hankel2, sp.hn1, sp.hn2):
+        j, y = (sp.besselj, sp.bessely) if fn.func in (sp.hankel1, sp.hankel2) else (sp.jn, sp.yn)
+        sign = 1 if fn.func in (sp.hankel1, sp.hn1) else -1
+        subs[fn] = j(*fn.args) + sign * sp.I * y(*fn.args)          # A&S 9.1.3, 9.1.4
+    for fn in e.atoms(sp.Ynm, sp.Znm):
         n, m = fn.args[:2]
         if not (n.is_Integer and m.is_Integer and abs(int(m)) <= int(n) <= MAX_HARMONIC):
             name = type(fn).__name__
@@ -564,7 +566,7 @@ def _expand_harmonics(e):
         th, ph = sp.Dummy(real=True), sp.Dummy(real=True)
         closed = sp.expand_func(type(fn)(n, m, th, ph)).evalf(20)
         subs[fn] = closed.xreplace({th: fn.args[2], ph: fn.args[3]})
-    return e.xreplace(subs)
+    return e.xreplace(subs) if subs else e
 
 
 @functools.lru_cache(maxsize=256)
@@ -602,8 +604,12 @@ def _compiled_expression(e, names, time=None):
 
 
 def _is_complex(e):
+    """Does e need complex arithmetic: a complex constant, or a real or imaginary part,
+    argument or conjugate that sympy could not take away over the real variables
+    (re(besselj(1/2, u)): J of a fractional order is complex for u < 0)?"""
     import sympy as sp
-    return bool(e.has(sp.I)) or any(n.is_real is False for n in e.atoms(sp.Number))
+    return (bool(e.has(sp.I, sp.re, sp.im, sp.arg, sp.conjugate))
+            or any(n.is_real is False for n in e.atoms(sp.Number)))
 
 
 def _compile_error(e, exc):

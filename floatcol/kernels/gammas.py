@@ -34,7 +34,7 @@ import math
 import numpy as np
 
 from ._jit import ngjit
-from .special import MAX_ORDER
+from .special import _whole
 
 #: Bernoulli's numbers B_2, B_4, ..., B_30
 BERNOULLI = np.array([1 / 6, -1 / 30, 1 / 42, -1 / 30, 5 / 66, -691 / 2730, 7 / 6,
@@ -64,17 +64,12 @@ RD_TOL = 0.0015
 
 
 @ngjit
-def _is_whole(n):
-    return math.isfinite(n) and n == np.floor(n)
-
-
-@ngjit
 def polygamma(order, x):
     """psi^(n)(x), the n-th derivative of the digamma function, of a whole n from 0
     to MAX_ORDER: a hole at its poles (x = 0, -1, -2, ...) and where complex."""
-    if not _is_whole(order) or order < 0.0 or order > MAX_ORDER or math.isnan(x):
+    n, ok = _whole(order)
+    if not ok or n < 0 or math.isnan(x):
         return math.nan
-    n = int(order)
     if math.isinf(x):
         if x > 0.0:
             return math.inf if n == 0 else 0.0

@@ -29,7 +29,7 @@ poles (Ci(0), Chi(0), Ei(0), E_n(0) for n <= 1); NaN is NaN.
 import math
 
 from ._jit import ngjit
-from .special import EULER_GAMMA, MAX_ORDER
+from .special import EULER_GAMMA, _whole
 
 EPS = 1.0e-16
 FPMIN = 1.0e-300
@@ -163,10 +163,8 @@ def _expint(n, x):
 def expint(order, x):
     """E_n(x) = int_1^oo exp(-x t) t^-n dt of a whole order n (|n| <= MAX_ORDER):
     a hole for x < 0 (complex), and at 0 where n <= 1 (a pole)."""
-    if not math.isfinite(order) or abs(order) > MAX_ORDER or math.isnan(x) or x < 0.0:
-        return math.nan
-    n = int(order)
-    if n != order:
+    n, ok = _whole(order)
+    if not ok or math.isnan(x) or x < 0.0:
         return math.nan
     if math.isinf(x):
         return 0.0

@@ -107,43 +107,11 @@ def _upward(n, x, c0, c1):
 
 @ngjit
 def _hankel01(x):
-    """(J_0(x), J_1(x), Y_0(x), Y_1(x)) for x > MILLER_MAX: Hankel's expansion (A&S
-    9.2.5-6, 9.2.9-10), P and Q summed until a term is below 1e-17 of the sum or the
-    terms grow."""
-    out0 = 0.0
-    out1 = 0.0
-    y0 = 0.0
-    y1 = 0.0
-    for nu in range(2):
-        mu = 4.0 * nu * nu
-        p = 1.0
-        q = 0.0
-        term = 1.0
-        last = 1.0e300
-        for k in range(1, 200):
-            term *= (mu - (2.0 * k - 1.0) ** 2) / (k * 8.0 * x)
-            size = abs(term)
-            if size >= last:
-                break
-            last = size
-            # P = sum over even k of (-1)^(k/2) t_k; Q over odd k of (-1)^((k-1)/2) t_k
-            if k % 2 == 0:
-                p += term if k % 4 == 0 else -term
-            else:
-                q += term if k % 4 == 1 else -term
-            if size < 1.0e-17:
-                break
-        chi = x - (0.5 * nu + 0.25) * math.pi
-        amp = math.sqrt(2.0 / (math.pi * x))
-        value = amp * (p * math.cos(chi) - q * math.sin(chi))
-        other = amp * (p * math.sin(chi) + q * math.cos(chi))
-        if nu == 0:
-            out0 = value
-            y0 = other
-        else:
-            out1 = value
-            y1 = other
-    return out0, out1, y0, y1
+    """(J_0(x), J_1(x), Y_0(x), Y_1(x)) for x > MILLER_MAX: Hankel's expansion
+    (_hankel)."""
+    j0, y0 = _hankel(0.0, x)
+    j1, y1 = _hankel(1.0, x)
+    return j0, j1, y0, y1
 
 
 @ngjit
@@ -356,8 +324,9 @@ def _temme_gammas(mu):
 
 @ngjit
 def _hankel(nu, x):
-    """(J_nu(x), Y_nu(x)) by Hankel's asymptotic expansion (A&S 9.2.5-9.2.10), x >> nu^2,
-    summed while its terms fall."""
+    """(J_nu(x), Y_nu(x)) by Hankel's asymptotic expansion (A&S 9.2.5-6, 9.2.9-10),
+    x >> nu^2: P = sum over even k of (-1)^(k/2) t_k, Q over odd k of (-1)^((k-1)/2)
+    t_k, summed until a term is below 1e-17 or the terms grow."""
     m = 4.0 * nu * nu
     p = 1.0
     q = 0.0

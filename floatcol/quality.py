@@ -28,7 +28,7 @@ DETECTORS = {"ridge": L.DETECT_RIDGE, "intensity": L.DETECT_JUMP, "bump": L.DETE
              "wall": L.DETECT_WALL}
 DEFAULT_JUMP = 1.0 / 16.0       # the paper's threshold: 1/16 of the maximal intensity
 DEFAULT_RATE = 16               # the paper's supersampling rate
-SAMPLINGS = ("uniform", "adaptive", "lod")
+SAMPLINGS = ("uniform", "adaptive", "lod", "march")
 #: where the column pass runs: the CPU's cores, or an NVIDIA GPU (kernels/cuda.py)
 DEVICES = ("cpu", "cuda")
 
@@ -88,14 +88,14 @@ class Quality:
 
     def check_sampling(self):
         if self.sampling not in SAMPLINGS:
-            raise ValueError("sampling must be 'uniform', 'adaptive' or 'lod', got "
+            raise ValueError("sampling must be 'uniform', 'adaptive', 'lod' or 'march', got "
                              f"{self.sampling!r}")
-        if self.sampling == "lod" and self.device != "cpu":
-            raise ValueError("sampling='lod' runs on the CPU: use device='cpu' (or another "
-                             "sampling on the GPU)")
-        if self.sampling == "lod" and not isinstance(self.antialias, (bool, np.bool_, str,
-                                                                      type(None))):
-            raise ValueError("sampling='lod' antialiases by area along the columns: use "
+        if self.sampling in ("lod", "march") and self.device != "cpu":
+            raise ValueError(f"sampling={self.sampling!r} runs on the CPU: use device='cpu' "
+                             "(or another sampling on the GPU)")
+        if self.sampling in ("lod", "march") and not isinstance(
+                self.antialias, (bool, np.bool_, str, type(None))):
+            raise ValueError(f"sampling={self.sampling!r} antialiases along the columns: use "
                              "antialias=True, 'area' or False (not sub-columns)")
 
 

@@ -23,8 +23,8 @@ from dataclasses import dataclass
 from . import color
 from .camera import fit
 from .light import as_light
-from .passes import (antialias, area, colour, draft, finish, geometry, horizon, lod, overlays,
-                     shadow as shadows)
+from .passes import (antialias, area, colour, draft, finish, geometry, horizon, lod, march,
+                     overlays, shadow as shadows)
 from .passes.composite import composite as merge
 from .passes.translucency import render_translucent
 from .kernels.shade import INTERP_INTENSITY
@@ -248,10 +248,16 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     vp = geometry.view_params(view, method, quality.sampling, fixes, aa_cov, surface)
     buffers = geometry.allocate(W, H, n_lines, sub_columns)
     # sampling="lod": the fly-through's level-of-detail pass where it can draw the
-    # view (antialiased: by Cohen-Or's area weights along the columns)
-    by_lod = quality.sampling == "lod" and method == "column" and lod.supports(surface, view)
+    # view (antialiased: by Cohen-Or's area weights along the columns); "march": its
+    # ray march where that can draw it (point sampled), else as "lod"
+    by_march = quality.sampling == "march" and method == "column" \
+        and march.supports(surface, view, aa_cov or quality.area)
+    by_lod = not by_march and quality.sampling in ("lod", "march") and method == "column" \
+        and lod.supports(surface, view)
     by_area = quality.area or (by_lod and aa_cov)
-    if by_lod:
+    if by_march:
+        geom = march.march_pass(surface, view, vp, buffers)
+    elif by_lod:
         geom = lod.lod_pass(surface, view, vp, buffers, by_area)
     elif quality.area:
         geom = area.area_pass(surface, view, vp, buffers, device=quality.device)
@@ -317,8 +323,9 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
         "w_limits": w_limits,      # the colormap's height range (column method)
         "box": box,                # aspect's stretch of u, v and w (1, 1, 1: none)
         "engine": "kernels",       # (a fresh install's first pictures: "draft")
-        # the geometry pass that drew it: "column", "area" or "lod" (passes/)
-        "geometry": "lod" if by_lod else ("area" if quality.area else "column"),
+        # the geometry pass that drew it: "column", "area", "lod" or "march" (passes/)
+        "geometry": ("march" if by_march else "lod" if by_lod
+                     else "area" if quality.area else "column"),
     }
     if c_limits is not None:
         stats["c_limits"] = c_limits   # the colour field's range on the colormap

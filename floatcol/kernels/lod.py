@@ -441,16 +441,18 @@ ST_SIZE = 21
 
 
 @ngjit_inline
-def _start(vp, x0, s_lo, s_hi, planes, st):
-    """A lane's state before its first plane."""
+def column_t_span(vp, x0, s_lo, s_hi):
+    """(ta, tb): the planes t of column x0 that may show the surface (ta > tb: none),
+    the viewpoint's plane or later, less the first ones whose points all fall below
+    the picture (the ground under a fly camera) where the surface's heights relative
+    to the centre, [s_lo, s_hi], are known."""
     d3 = vp[VP_D3]
     lo, hi = _column_t_range(vp, x0)
     ta = max(lo, -d3 * vp[VP_CA], vp[VP_T0])
     tb = min(hi, vp[VP_T1])
     if ta <= tb and s_lo == s_lo and _below_picture(vp, ta, s_lo, s_hi):
-        # the planes whose points all fall below the picture (the ground under a fly
-        # camera) are skipped: bisect for the last of them (each end's row is monotone
-        # in t along a line of constant s)
+        # bisect for the last plane below the picture (each end's row is monotone in
+        # t along a line of constant s)
         if _below_picture(vp, tb, s_lo, s_hi):
             ta = tb + 1.0
         else:
@@ -463,6 +465,13 @@ def _start(vp, x0, s_lo, s_hi, planes, st):
                 else:
                     b = m
             ta = a
+    return ta, tb
+
+
+@ngjit_inline
+def _start(vp, x0, s_lo, s_hi, planes, st):
+    """A lane's state before its first plane."""
+    ta, tb = column_t_span(vp, x0, s_lo, s_hi)
     st[ST_TA] = ta
     st[ST_TB] = tb
     st[ST_I0] = _last_before(planes, ta)

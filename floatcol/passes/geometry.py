@@ -50,7 +50,7 @@ def view_params(view, method, sampling, fixes, aa_cov, surface):
     """The kernels' view parameters vp (kernels/layout.py VP_*) of a layer."""
     vp = view.params()
     if method == "column":
-        vp[L.VP_ADAPT] = 1.0 if sampling in ("adaptive", "lod") else 0.0
+        vp[L.VP_ADAPT] = 1.0 if sampling in ("adaptive", "lod", "march") else 0.0
         (vp[L.VP_FIX_RIDGE], vp[L.VP_FIX_SHADE], vp[L.VP_DETECT], vp[L.VP_JUMP], vp[L.VP_RATE],
          vp[L.VP_SPLINE_TOL]) = fixes
     vp[L.VP_AA] = 1.0 if aa_cov else 0.0

@@ -16,6 +16,7 @@ its help for what debug info changes).
     python benchmarks/profile_kernels.py --projection orthographic --seconds 5
     python benchmarks/profile_kernels.py --expr "u*v" --top 40
     python benchmarks/profile_kernels.py --fly            # bench_terrain.py's fly-through
+    python benchmarks/profile_kernels.py --fly --march    # ... by the ray march
     python benchmarks/profile_kernels.py --opacity 0.5    # translucent (kernels/layers.py)
 
 Needs perf (Debian's linux-perf) and readelf (binutils); on a machine whose perf
@@ -153,6 +154,8 @@ def main():
                     help="bench_terrain.py's fly-through instead: a 4097^2 fractal DEM at "
                          "1280x720, fc.fly's level-of-detail engine, point sampled")
     ap.add_argument("--area", action="store_true", help="with --fly: antialias='area'")
+    ap.add_argument("--march", action="store_true",
+                    help="with --fly: sampling='march' (the ray march, point sampled)")
     ap.add_argument("--mesh", type=int, default=0, metavar="N",
                     help="the expression on an N x N grid over [-5, 5]^2 instead, drawn as "
                          "a height field (matplotlib's call form, X, Y, Z)")
@@ -178,8 +181,11 @@ def main():
         kw = fc.fly(surface, (2000.0, 1000.0), heading=30, pitch=-10, fov=60,
                     size=(1280, 720), above=300)
         kw.update(antialias="area" if args.area else False)
+        if args.march:
+            kw["sampling"] = "march"
         w, h = kw["size"]
-        args.projection = "fly-through, " + ("area" if args.area else "point") + " sampled"
+        args.projection = ("fly-through, " + ("area" if args.area else "point") + " sampled"
+                           + (", sampling='march'" if args.march else ""))
     else:
         surface = args.expr
         w, h = (int(x) for x in args.size.split("x"))

@@ -193,9 +193,10 @@ def _surface_options(p, default_size="800x600", many=False, terrain=False):
     p.add_argument("--device", default=None, choices=["cpu", "cuda"],
                    help="where the column pass runs: cpu (default) or cuda, an NVIDIA GPU "
                         "(pip install 'floatcol[cuda]')")
-    p.add_argument("--sampling", default=None, choices=["uniform", "adaptive", "lod"],
+    p.add_argument("--sampling", default=None, choices=["uniform", "adaptive", "lod", "march"],
                    help="adaptive: planes grow with distance and where the normal turns slowly; "
-                        "lod: a fly-through's level of detail (fc.fly's default)")
+                        "lod: a fly-through's level of detail (fc.fly's default); march: its "
+                        "pixel rays marched through the same planes (faster; --antialias off)")
     p.add_argument("--lines", type=int, default=None, help="horizon: number of lines (default 160)")
     p.add_argument("--cmap", default=None, help="matplotlib colormap of the upper side (default viridis)")
     p.add_argument("--color", default=None, help="one colour for the upper side instead of a colormap")

@@ -185,7 +185,8 @@ def warm_all():
     picture's: small pictures with each engine and pass (antialiasing by sub-columns
     and by area, translucency, shadows of each kind, textures, colour fields,
     contours and wireframes, floating horizons, adaptive planes, height fields with
-    objects and their shadows, a fly-through's level-of-detail engine, Guedes's variants, composites),
+    objects and their shadows, a fly-through's level-of-detail engine and ray march,
+    Guedes's variants, composites),
     in both projections. ``python -m floatcol.warmup --all`` runs it: what a machine
     image or a CI job can do once, so that no later picture waits for a compile
     (about 140 s on 2 cores with an empty cache, a second or two with a full one)."""
@@ -229,6 +230,7 @@ def warm_all_steps():
         cam = fc.fly(hf, (16, 1), heading=0, size=(64, 36), above=4)
         for area in (False, True):
             fc.render(hf, **cam, antialias="area" if area else True).intensity
+        fc.render(hf, **dict(cam, sampling="march"), antialias=False).intensity
 
     def variants():
         for variant in GUEDES_VARIANTS:

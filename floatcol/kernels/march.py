@@ -185,24 +185,38 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
     i = _last_before(planes, ta)
     i0 = i
     j = 0                                        # the ray: row j's centre
-    rr, ar, br = _ray(vp, x0, 0.0)
-    # its ground point on plane t: (u0 + du t, v0 + dv t) (eq. 2)
-    u0 = cu + d3ca * rr * cb
-    du = rr * cb + sb
-    v0 = cv - d3ca * rr * sb
-    dv = cb - rr * sb
+    rr = ar = br = u0 = du = v0 = dv = 0.0
     d_prev = np.nan                              # its height above the surface on plane ip
     ip = -1
     fresh = True                                 # (not yet tested on a plane)
+    under = False                                # below the surface, come through a hole
+    i_under = 0                                  # ... since plane i_under
     kc = -1                                      # the level whose parameters are held
     kr = -1                                      # ... and whose slope bound gives rate
     rate = 0.0
     nu0 = nv0 = off0 = nu1 = nv1 = off1 = 0
     su0 = sv0 = su1 = sv1 = 0.0
-    while i < n:
+    while j < H:
+        if fresh:
+            rr, ar, br = _ray(vp, x0, float(j))
+            # its ground point on plane t: (u0 + du t, v0 + dv t) (eq. 2)
+            u0 = cu + d3ca * rr * cb
+            du = rr * cb + sb
+            v0 = cv - d3ca * rr * sb
+            dv = cb - rr * sb
+            kr = -1
+        if i >= n or planes[i, 0] > tb:
+            if under:
+                # it stayed under the surface to the end: nothing seen; the next ray
+                # from where it went under
+                j += 1
+                i = i_under
+                fresh = True
+                under = False
+                d_prev = np.nan
+                continue
+            break                                # it and every ray above it miss
         t = planes[i, 0]
-        if t > tb:
-            break
         k = int(planes[i, 1])
         a = planes[i, 2]
         if k != kc:
@@ -229,7 +243,26 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
                                                       (v - ov) * sv1)
             evals += 1
             d = sr - (w - cw)
-        if not d <= 0.0:                         # above the surface, a hole, outside
+        if under:
+            # it passes under the surface until it comes up through it (the lower side
+            # seen there) or through a hole
+            if not d > 0.0 or d_prev != d_prev:
+                if d > 0.0:
+                    under = False                # (up through a hole: above it again)
+                d_prev = d
+                ip = i
+                i += 1
+                continue
+        elif d <= 0.0 and not fresh and d_prev != d_prev:
+            # below the surface on its first plane after a hole (or the domain's
+            # outside): it came under the surface there
+            under = True
+            i_under = i
+            d_prev = d
+            ip = i
+            i += 1
+            continue
+        elif not d <= 0.0:                       # above the surface, a hole, outside
             if ar >= 0.0 and sr > s_hi:
                 break                            # it and every ray above it miss
             # the ray cannot meet the surface before it has come down to it at the
@@ -261,15 +294,26 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
             else:
                 i += 1
             continue
-        # the ray met the surface between planes ip and i: the secant of d
-        if fresh and i > i0:
-            # (met on its first plane: its height on the plane before)
+        # the ray met the surface between planes ip and i, from above (or from below
+        # where it was under it): the secant of d between the plane before and this
+        # one (where the ray met it on its first plane or after a step, its height
+        # on the plane before: the same bracket as without steps)
+        if (fresh or ip < i - 1) and i > i0:
             d_prev = _height_above(flat, lt, lk, hfp, planes, i - 1, u0, du, v0, dv, ar, br,
                                    cw, ua, ub, va, vb)
             ip = i - 1
             evals += 1
+            if fresh and d_prev != d_prev:
+                # (a hole before it: under the surface, as above)
+                fresh = False
+                under = True
+                i_under = i
+                d_prev = d
+                ip = i
+                i += 1
+                continue
         th = t
-        if d_prev > 0.0 and ip >= i0:
+        if d_prev == d_prev and ip >= i0 and (d_prev > 0.0 or under):
             tp = planes[ip, 0]
             th = tp + d_prev / (d_prev - d) * (t - tp)
         ok = _point(flat, lt, hfp, vp, k, a, rr, ar, br, th, p)
@@ -278,22 +322,17 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
         evals += 1
         if ok:
             _store(gcol[j], p, cu, cv, wo)
-            ecol[E_SEEN, j] = 1.0
+            ecol[E_SEEN, j] = -1.0 if under else 1.0
             w_lo = min(w_lo, p[P_W])
             w_hi = max(w_hi, p[P_W])
             jlo = min(jlo, j)
             jhi = j
         j += 1
-        if j >= H:
-            break
-        rr, ar, br = _ray(vp, x0, float(j))
-        u0 = cu + d3ca * rr * cb
-        du = rr * cb + sb
-        v0 = cv - d3ca * rr * sb
-        dv = cb - rr * sb
+        if under:
+            i = i_under                          # (the next ray from where it went under)
         d_prev = np.nan
         fresh = True
-        kr = -1
+        under = False
     out[0] = evals
     out[1] = w_lo
     out[2] = w_hi

@@ -16,16 +16,17 @@ Table 1 (1997), and the fly-through's speed.
    400 rows) sample; P the pixels that show terrain, NP the rays cast. Area sampling
    weighs every visible piece of the column (kernels/area.py), so its M is V.
 3. Guedes' Table 1: his variants (kernels/voxel.py) timed, and how far each puts
-   the terrain from where the exact ray finds it; floatcol's exact perspective and
-   its level-of-detail engine too.
+   the terrain from where the exact ray finds it; floatcol's exact perspective, its
+   level-of-detail engine and its ray march too.
 4. Szenberg's Table 1: the time of each step of a terrain with objects (640x360 fly
    view over matplotlib's Jacksboro DEM, 43 objects): the terrain, its window depth
    (eq. 7), the objects (z-buffer).
 5. Speed: a fly-through over a 4097^2 DEM at 1280x720 (the issue asks 30 fps point
    sampled, 10 fps area sampled): the level-of-detail engine fc.fly takes
-   (sampling="lod", passes/lod.py) and the exact column pass (sampling="adaptive").
+   (sampling="lod", passes/lod.py), its ray march (sampling="march", point sampled,
+   passes/march.py) and the exact column pass (sampling="adaptive").
 
-    python benchmarks/bench_terrain.py [--quick]
+    python benchmarks/bench_terrain.py [--quick] [--only=flicker,coverage,guedes,szenberg,speed]
 """
 import statistics
 import sys
@@ -178,9 +179,11 @@ def guedes_table():
         print(f"| {v} | {ms:.0f} | {1e3 / ms:.1f} | {np.median(d):.2f} | "
               f"{np.percentile(d, 90):.2f} | {100 * (d > 1).mean():.1f} % | {paper[v]} |",
               flush=True)
-    for name, sampling in (("floatcol (exact, bilinear)", "adaptive"),
-                           ("floatcol (sampling='lod', fc.fly's)", "lod")):
-        kw = dict(fc.fly(hf, pos, size=(640, 360), **cam), sampling=sampling)
+    for name, sampling, extra in (("floatcol (exact, bilinear)", "adaptive", {}),
+                                  ("floatcol (sampling='lod', fc.fly's)", "lod", {}),
+                                  ("floatcol (sampling='march', point sampled)", "march",
+                                   dict(antialias=False))):
+        kw = dict(fc.fly(hf, pos, size=(640, 360), **cam), sampling=sampling, **extra)
         fc.render(hf, **kw)
         ts = []
         for _ in range(3):
@@ -188,7 +191,7 @@ def guedes_table():
             fc.render(hf, **kw)
             ts.append(time.perf_counter() - t)
         ms = statistics.median(ts) * 1e3
-        kw = dict(fc.fly(hf, pos, size=small, **cam), sampling=sampling)
+        kw = dict(fc.fly(hf, pos, size=small, **cam), sampling=sampling, **extra)
         r = fc.render(hf, **kw)
         ref = raycast(bilinear_surface(hf.hf, (ua, ub), (va, vb)), (ua, ub), (va, vb), small,
                       kw["elev"], kw["azim"], "perspective", kw["d1"], kw["d2"], kw["scale"],
@@ -239,11 +242,14 @@ def speed():
     print(f"\n## Fly-through speed: {n}^2 DEM, {size[0]}x{size[1]}\n")
     print("| engine | sampling | ms/frame | fps | evaluations |\n|---|---|---|---|---|")
     for engine, sampling in (("level of detail (fc.fly's)", "lod"),
+                             ("ray march (sampling='march')", "march"),
                              ("exact column pass", "adaptive")):
         for name, extra in (("point (antialias=False)", dict(antialias=False)),
                             ("area (antialias='area')", dict(antialias="area"))):
+            if sampling == "march" and extra["antialias"]:
+                continue                        # (antialiased: the lod engine's)
             ts = []
-            frames = 8 if sampling == "lod" else (3 if QUICK else 5)
+            frames = 8 if sampling != "adaptive" else (3 if QUICK else 5)
             for k in range(frames):
                 kw = fc.fly(hf, (2000.0 + 40 * k, 1000.0), heading=30, pitch=-10, fov=60,
                             size=size, above=300)
@@ -256,9 +262,14 @@ def speed():
                   f"{r.stats['samples']} |", flush=True)
 
 
+TABLES = {"flicker": table6, "coverage": coverage_tables, "guedes": guedes_table,
+          "szenberg": szenberg, "speed": speed}
+
 if __name__ == "__main__":
-    table6()
-    coverage_tables()
-    guedes_table()
-    szenberg()
-    speed()
+    only = [a.split("=", 1)[1] for a in sys.argv[1:] if a.startswith("--only=")]
+    names = only[0].split(",") if only else list(TABLES)
+    unknown = [n for n in names if n not in TABLES]
+    if unknown:
+        sys.exit(f"--only takes {', '.join(TABLES)}; got {', '.join(unknown)}")
+    for name in names:
+        TABLES[name]()

@@ -96,6 +96,9 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         cannot draw the view (orthographic, looking down past the nadir, the eye
         below the ground) the adaptive planes. Antialiased by area weights along
         the columns (antialias=True or "area"), or at pixel centres (False).
+        "march": point-sampled fly-throughs of a height field (antialias=False) by
+        each pixel's ray marched through the lod engine's planes (passes/march.py):
+        faster, no Newton iteration; any other view as "lod".
     antialias : section 6.4. True: coverage-weighted blending along columns (the
         floating interval's float ends give each silhouette pixel its coverage, and
         where the surface reappears beyond an extremum the pixel blends both

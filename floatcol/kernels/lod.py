@@ -784,6 +784,28 @@ def _bilinear_at(flat, off, nu, nv2, gx, gy):
 
 
 @ngjit_inline
+def level_params(lt, lk, k):
+    """What a walk over the planes holds while their level k lasts: the offset, nodes
+    along u, nodes along v less 2 and nodes per unit of u and v of level k and of
+    level k + 1 (the last level's own at the last), for blended_at."""
+    k1 = min(k + 1, lk.shape[0] - 1)
+    return (lk[k, LK_OFF], lk[k, LK_NU], lk[k, LK_NV2], lt[k, LT_SU], lt[k, LT_SV],
+            lk[k1, LK_OFF], lk[k1, LK_NU], lk[k1, LK_NV2], lt[k1, LT_SU], lt[k1, LT_SV])
+
+
+@ngjit_inline
+def blended_at(flat, par, a, x, y):
+    """The height at (x, y) from the extent's corner (u - u_a, v - v_a) of level k
+    blended with level k + 1 by a (trilinear, as a mip-map's: no level boundary
+    pops); par level_params(k)'s."""
+    w = _bilinear_at(flat, par[0], par[1], par[2], x * par[3], y * par[4])
+    if a > 0.0:
+        w = (1.0 - a) * w + a * _bilinear_at(flat, par[5], par[6], par[7], x * par[8],
+                                             y * par[9])
+    return w
+
+
+@ngjit_inline
 def _scan_hidden(flat, lt, lk, hfp, vp, x0, planes, i, m_end, ymax):
     """The first plane m in i .. m_end - 1 whose surface point on column x0's plane
     Pi may rise above the floating horizon ymax (m_end where none does), one
@@ -817,8 +839,7 @@ def _scan_hidden(flat, lt, lk, hfp, vp, x0, planes, i, m_end, ymax):
     s_last = np.nan
     ev = 0
     kc = -1                                      # the level whose parameters are held
-    nu0 = nv0 = off0 = nu1 = nv1 = off1 = 0
-    su0 = sv0 = su1 = sv1 = 0.0
+    par = level_params(lt, lk, 0)
     ou = hfp[0]
     ov = hfp[2]
     while m < m_end:
@@ -832,21 +853,8 @@ def _scan_hidden(flat, lt, lk, hfp, vp, x0, planes, i, m_end, ymax):
         a = planes[m, 2]
         if k != kc:
             kc = k
-            k1 = min(k + 1, lk.shape[0] - 1)
-            nu0 = lk[k, LK_NU]
-            nv0 = lk[k, LK_NV2]
-            off0 = lk[k, LK_OFF]
-            su0 = lt[k, LT_SU]
-            sv0 = lt[k, LT_SV]
-            nu1 = lk[k1, LK_NU]
-            nv1 = lk[k1, LK_NV2]
-            off1 = lk[k1, LK_OFF]
-            su1 = lt[k1, LT_SU]
-            sv1 = lt[k1, LT_SV]
-        w = _bilinear_at(flat, off0, nu0, nv0, (u - ou) * su0, (v - ov) * sv0)
-        if a > 0.0:
-            w = (1.0 - a) * w + a * _bilinear_at(flat, off1, nu1, nv1, (u - ou) * su1,
-                                                  (v - ov) * sv1)
+            par = level_params(lt, lk, k)
+        w = blended_at(flat, par, a, u - ou, v - ov)
         ev += 1
         if not w - cw < a_r * t + b_r:           # (a hole: not surely hidden)
             break

@@ -23,8 +23,12 @@ come down to it at the surface's steepest slope (each pyramid level's bound,
 passes/march.py slopes): a ray that high above it steps 2, 4, 16 or 64 planes at
 once, with no picture changed. A ray above the surface's highest point and rising
 ends the column, since every ray above it misses.
+
 A hole (a NaN height) or the domain's outside lets a ray pass: a farther surface
-shows behind it.
+shows behind it. A ray below the surface on its first plane after a hole came under
+the surface through it: it sees the surface's lower side where it comes up through
+it, nothing where it stays under to the end, and the next ray starts where it went
+under.
 
 It draws pixel centres only; an antialiased view takes the lod engine's area weights
 (passes/march.py)."""
@@ -37,9 +41,8 @@ from ._jit import ngjit_inline, ngjit_nrt_free, ngjit_parallel
 from .layout import (E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W,
                      SURF_HEIGHTFIELD, VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3,
                      VP_H, VP_SA, VP_SB, VP_SCALE, VP_UA, VP_UB, VP_VA, VP_VB, VP_WORG)
-from .lod import (LK_NU, LK_NV2, LK_OFF, LT_SU, LT_SV, _bilinear, _bilinear_at,
-                  _last_before, _smooth_gradient, column_t_span, level_ints, level_table,
-                  plane_table)
+from .lod import (_bilinear, _last_before, _smooth_gradient, blended_at, column_t_span,
+                  level_ints, level_params, level_table, plane_table)
 from .sample import column_x0, lambert, unit_normal
 
 #: planes a footprint apart (as kernels/lod.py's KAPPA)
@@ -136,19 +139,12 @@ def _height_above(flat, lt, lk, hfp, planes, m, u0, du, v0, dv, ar, br, cw, ua, 
     """The height of the ray (ground line u0 + du t, v0 + dv t; s = ar t + br) above the
     surface on plane m (NaN outside the domain or in a hole)."""
     t = planes[m, 0]
-    k = int(planes[m, 1])
-    a = planes[m, 2]
     u = u0 + du * t
     v = v0 + dv * t
     if not (u >= ua and u <= ub and v >= va and v <= vb):
         return np.nan
-    w = _bilinear_at(flat, lk[k, LK_OFF], lk[k, LK_NU], lk[k, LK_NV2],
-                     (u - hfp[0]) * lt[k, LT_SU], (v - hfp[2]) * lt[k, LT_SV])
-    if a > 0.0:
-        k1 = min(k + 1, lt.shape[0] - 1)
-        w = (1.0 - a) * w + a * _bilinear_at(flat, lk[k1, LK_OFF], lk[k1, LK_NU],
-                                             lk[k1, LK_NV2], (u - hfp[0]) * lt[k1, LT_SU],
-                                             (v - hfp[2]) * lt[k1, LT_SV])
+    w = blended_at(flat, level_params(lt, lk, int(planes[m, 1])), planes[m, 2], u - hfp[0],
+                   v - hfp[2])
     return ar * t + br - (w - cw)
 
 
@@ -192,10 +188,9 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
     under = False                                # below the surface, come through a hole
     i_under = 0                                  # ... since plane i_under
     kc = -1                                      # the level whose parameters are held
+    par = level_params(lt, lk, 0)
     kr = -1                                      # ... and whose slope bound gives rate
     rate = 0.0
-    nu0 = nv0 = off0 = nu1 = nv1 = off1 = 0
-    su0 = sv0 = su1 = sv1 = 0.0
     while j < H:
         if fresh:
             rr, ar, br = _ray(vp, x0, float(j))
@@ -214,6 +209,7 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
                 fresh = True
                 under = False
                 d_prev = np.nan
+                ip = -1
                 continue
             break                                # it and every ray above it miss
         t = planes[i, 0]
@@ -221,28 +217,14 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
         a = planes[i, 2]
         if k != kc:
             kc = k
-            k1 = min(k + 1, lk.shape[0] - 1)
-            nu0 = lk[k, LK_NU]
-            nv0 = lk[k, LK_NV2]
-            off0 = lk[k, LK_OFF]
-            su0 = lt[k, LT_SU]
-            sv0 = lt[k, LT_SV]
-            nu1 = lk[k1, LK_NU]
-            nv1 = lk[k1, LK_NV2]
-            off1 = lk[k1, LK_OFF]
-            su1 = lt[k1, LT_SU]
-            sv1 = lt[k1, LT_SV]
+            par = level_params(lt, lk, k)
         u = u0 + du * t
         v = v0 + dv * t
         sr = ar * t + br
         d = np.nan
         if u >= ua and u <= ub and v >= va and v <= vb:
-            w = _bilinear_at(flat, off0, nu0, nv0, (u - ou) * su0, (v - ov) * sv0)
-            if a > 0.0:                          # (trilinear: no level boundary pops)
-                w = (1.0 - a) * w + a * _bilinear_at(flat, off1, nu1, nv1, (u - ou) * su1,
-                                                      (v - ov) * sv1)
             evals += 1
-            d = sr - (w - cw)
+            d = sr - (blended_at(flat, par, a, u - ou, v - ov) - cw)
         if under:
             # it passes under the surface until it comes up through it (the lower side
             # seen there) or through a hole
@@ -253,33 +235,25 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
                 ip = i
                 i += 1
                 continue
-        elif d <= 0.0 and not fresh and d_prev != d_prev:
-            # below the surface on its first plane after a hole (or the domain's
-            # outside): it came under the surface there
-            under = True
-            i_under = i
-            d_prev = d
-            ip = i
-            i += 1
-            continue
         elif not d <= 0.0:                       # above the surface, a hole, outside
             if ar >= 0.0 and sr > s_hi:
                 break                            # it and every ray above it miss
             # the ray cannot meet the surface before it has come down to it at the
-            # surface's steepest (the level's slope bound; the planes after hold
-            # coarser levels, no steeper): from its height on its plane before this
-            # one, steps of 64, 16, 4 or 2 planes where they stay short of that (the
-            # step does not wait for this plane's height: the loop's iterations
-            # overlap in the processor)
+            # surface's steepest (the slope bound of the level of its plane before
+            # this one; the planes after hold that level or coarser ones, no
+            # steeper): from its height there, steps of 64, 16, 4 or 2 planes where
+            # they stay short of that (the step does not wait for this plane's
+            # height: the loop's iterations overlap in the processor)
             behind = d_prev if not fresh else 0.0
             t_behind = planes[ip, 0] if not fresh else t
+            kb = int(planes[ip, 1]) if not fresh else k
             d_prev = d
             ip = i
             fresh = False
             if behind > 0.0 and i + 2 < n:
-                if k != kr:
-                    kr = k
-                    rate = slope[k, 0] * abs(du) + slope[k, 1] * abs(dv) - ar
+                if kb != kr:
+                    kr = kb
+                    rate = slope[kb, 0] * abs(du) + slope[kb, 1] * abs(dv) - ar
                 t_safe = t_behind + (behind / rate if rate > 0.0 else np.inf)
                 if i + 64 < n and planes[i + 64, 0] < t_safe:
                     i += 64
@@ -294,17 +268,18 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
             else:
                 i += 1
             continue
-        # the ray met the surface between planes ip and i, from above (or from below
-        # where it was under it): the secant of d between the plane before and this
-        # one (where the ray met it on its first plane or after a step, its height
-        # on the plane before: the same bracket as without steps)
-        if (fresh or ip < i - 1) and i > i0:
-            d_prev = _height_above(flat, lt, lk, hfp, planes, i - 1, u0, du, v0, dv, ar, br,
-                                   cw, ua, ub, va, vb)
-            ip = i - 1
-            evals += 1
-            if fresh and d_prev != d_prev:
-                # (a hole before it: under the surface, as above)
+        else:
+            # below the surface: met since the plane before (from above), where the
+            # ray was above it there, or stepped over it (its height there taken now:
+            # the secant's bracket is the same as without steps); under it where the
+            # surface there is a hole (or the domain's outside): it came under
+            # through the hole
+            if (fresh or ip < i - 1) and i > i0:
+                d_prev = _height_above(flat, lt, lk, hfp, planes, i - 1, u0, du, v0, dv, ar,
+                                       br, cw, ua, ub, va, vb)
+                ip = i - 1
+                evals += 1
+            if d_prev != d_prev and ip == i - 1 and ip >= i0:
                 fresh = False
                 under = True
                 i_under = i
@@ -312,6 +287,8 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
                 ip = i
                 i += 1
                 continue
+        # the ray met the surface between planes ip and i, from above (or from below
+        # where it was under it): the secant of d
         th = t
         if d_prev == d_prev and ip >= i0 and (d_prev > 0.0 or under):
             tp = planes[ip, 0]
@@ -331,6 +308,7 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
         if under:
             i = i_under                          # (the next ray from where it went under)
         d_prev = np.nan
+        ip = -1
         fresh = True
         under = False
     out[0] = evals

@@ -191,6 +191,7 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
     par = level_params(lt, lk, 0)
     kr = -1                                      # ... and whose slope bound gives rate
     rate = 0.0
+    inv_rate = 0.0
     while j < H:
         if fresh:
             rr, ar, br = _ray(vp, x0, float(j))
@@ -254,7 +255,8 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
                 if kb != kr:
                     kr = kb
                     rate = slope[kb, 0] * abs(du) + slope[kb, 1] * abs(dv) - ar
-                t_safe = t_behind + (behind / rate if rate > 0.0 else np.inf)
+                    inv_rate = 1.0 / rate if rate > 0.0 else np.inf
+                t_safe = t_behind + behind * inv_rate   # (a product: 5 % of a frame)
                 if i + 64 < n and planes[i + 64, 0] < t_safe:
                     i += 64
                 elif i + 16 < n and planes[i + 16, 0] < t_safe:

@@ -42,7 +42,7 @@ OPTIONS = {
     "interpolation": ["normal", "intensity"],
     "corrections": ["none", "spline", "supersample", "adaptive", "spline+supersample",
                     "spline+adaptive"],
-    "sampling": ["uniform", "adaptive", "lod"],
+    "sampling": ["uniform", "adaptive", "lod", "march"],
     "antialias": [True, False, 2, 3, "area"],
     # (mostly good values: a bad one now and then, so that most cases still draw)
     "opacity": [1.0, 0.5, 0.3, 0.0, 0.8, 0.5, 2.0],
@@ -141,7 +141,8 @@ def _odd(rng, good):
 def terrain_case(rng: random.Random) -> dict:
     """A random height-field render (JSON-able; the worker makes the heights from
     ``seed``): one of fc.render of a HeightField, fc.render with fc.fly's camera (the
-    lod engine), or fc.terrain, with area sampling, shadows and objects on it."""
+    lod engine, or its ray march), or fc.terrain, with area sampling, shadows and objects
+    on it."""
     sides = [2, 3, 9, 33, 64, 129] * 6 + [1]
     ny, nx = rng.choice(sides), rng.choice(sides)
     extent = [round(rng.uniform(-1e4, 1e4), 1)]
@@ -159,7 +160,7 @@ def terrain_case(rng: random.Random) -> dict:
     if rng.random() < 0.5:
         kw["antialias"] = rng.choice([True, False, "area", "area", 2])
     if rng.random() < 0.3:
-        kw["sampling"] = rng.choice(["uniform", "adaptive", "lod"])
+        kw["sampling"] = rng.choice(["uniform", "adaptive", "lod", "march", "march"])
     if rng.random() < 0.2:
         kw["shadows"] = rng.choice([True, "texture", "on-the-fly"])
     if rng.random() < 0.3:

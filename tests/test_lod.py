@@ -142,7 +142,8 @@ def test_a_function_surface_in_a_lod_view():
 
 
 def test_options_it_cannot_take():
-    with pytest.raises(ValueError, match="sampling must be 'uniform', 'adaptive', 'lod' or 'march'"):
+    with pytest.raises(ValueError,
+                       match="sampling must be 'uniform', 'adaptive', 'lod' or 'march'"):
         fc.render("u*v", sampling="footprint")
     with pytest.raises(ValueError, match="not sub-columns"):
         fc.render("u*v", sampling="lod", antialias=2)

@@ -113,17 +113,23 @@ def test_views_it_cannot_draw_take_the_column_pass():
     assert fc.render(hf, **down).stats["geometry"] == "column"
 
 
-def test_the_same_picture_for_any_thread_count():
-    _, _, hf, kw = _fly_scene(129)
+def _one_and_all_threads(render):
+    """(rgba, depth) of ``render()`` (a Render) with one thread and with all."""
     before = numba.get_num_threads()
     try:
         pics = []
         for n in (1, before):
             numba.set_num_threads(n)
-            r = fc.render(hf, antialias="area", **kw)
+            r = render()
             pics.append((r.rgba, r.depth))
     finally:
         numba.set_num_threads(before)
+    return pics
+
+
+def test_the_same_picture_for_any_thread_count():
+    _, _, hf, kw = _fly_scene(129)
+    pics = _one_and_all_threads(lambda: fc.render(hf, antialias="area", **kw))
     assert np.array_equal(pics[0][0], pics[1][0])
     assert np.array_equal(pics[0][1], pics[1][1])
 

@@ -2,7 +2,6 @@
 caster, with holes too; its steps by the slope bound change no picture; the same
 picture for any thread count; the views it hands to the lod engine or the column
 pass; its options through the CLI."""
-import numba
 import numpy as np
 import pytest
 
@@ -10,7 +9,7 @@ import floatcol as fc
 from floatcol.cli import main
 from floatcol.passes import march as march_pass
 from reference import bilinear_surface, fractal, raycast
-from test_lod import _against, _fly_scene
+from test_lod import _against, _fly_scene, _one_and_all_threads
 
 
 def _reference(z, ext, r):
@@ -109,15 +108,8 @@ def test_it_flickers_no_more_than_the_lod_engine():
 
 def test_the_same_picture_for_any_thread_count():
     _, _, hf, kw = _fly_scene(129)
-    before = numba.get_num_threads()
-    try:
-        pics = []
-        for n in (1, before):
-            numba.set_num_threads(n)
-            r = fc.render(hf, antialias=False, **dict(kw, sampling="march"))
-            pics.append((r.rgba, r.depth))
-    finally:
-        numba.set_num_threads(before)
+    pics = _one_and_all_threads(
+        lambda: fc.render(hf, antialias=False, **dict(kw, sampling="march")))
     assert np.array_equal(pics[0][0], pics[1][0])
     assert np.array_equal(pics[0][1], pics[1][1])
 

@@ -87,7 +87,10 @@ def _point(flat, lt, hfp, vp, k, a, rr, ar, br, t, p):
     v = min(max(vp[VP_CV] - r * sb + t * cb, vp[VP_VA]), vp[VP_VB])
     w, wu, wv = _bilinear(flat, lt, k, hfp, u, v)
     if k > 0:
-        # a smoothed level's partials interpolated between its nodes (lod._finish)
+        # a smoothed level's partials interpolated between its nodes (as lod._finish;
+        # where level 0 is blended with level 1 its own exact partials are, where
+        # lod._finish blends the blended surface's: a fifth to a third of a dense
+        # DEM's pixels would change)
         gu, gv = _smooth_gradient(flat, lt, k, hfp, u, v)
         if math.isfinite(gu) and math.isfinite(gv):
             wu = gu

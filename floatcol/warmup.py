@@ -33,16 +33,17 @@ _child = None       # the warm-up process this process started (subprocess.Popen
 
 def _dispatchers():
     """The kernels a default picture runs (what must be compiled or cached)."""
-    from .kernels.column import column_kernel
+    from .kernels.column import column_kernel, render_column
     from .kernels.shade import centre_kernel, finish_kernel
     from .kernels.silhouette import silhouette_kernel
-    return column_kernel, finish_kernel, silhouette_kernel, centre_kernel
+    return column_kernel, render_column, finish_kernel, silhouette_kernel, centre_kernel
 
 
 def every_kernel():
     """{name: dispatcher} of every CPU kernel in floatcol.kernels (a parallel kernel's
-    own dispatcher, not its launcher), each under the module that defines it: what
-    warm_all compiles."""
+    own dispatcher, not its launcher) and of every jitted function a kernel calls as a
+    value (_jit.kernel_calling: compiled on its own), each under the module that
+    defines it: what warm_all compiles."""
     import importlib
     import pkgutil
 
@@ -55,6 +56,8 @@ def every_kernel():
         mod = importlib.import_module("floatcol.kernels." + m.name)
         for name, obj in vars(mod).items():
             if isinstance(obj, _Exclusive):
+                for fn in obj.called:
+                    found[fn.py_func.__module__ + "." + fn.__name__] = fn
                 obj = obj._dispatcher
             elif not (name.endswith("_kernel") and hasattr(obj, "py_func")):
                 continue

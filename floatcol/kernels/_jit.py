@@ -115,17 +115,40 @@ class _Exclusive:
     without libgomp). With TBB or OpenMP the kernel is called as it is. Attributes are
     the dispatcher's (py_func, signatures, ...)."""
 
-    def __init__(self, dispatcher):
+    def __init__(self, dispatcher, functions=None, called=()):
         self._dispatcher = dispatcher
         self.__doc__ = dispatcher.__doc__
         self.__name__ = dispatcher.__name__
         self.__wrapped__ = dispatcher
+        self._functions = functions
+        #: the jitted functions it takes as values (kernel_calling), for warmup's list
+        self.called = called
+        self._entries = {}              # argument types -> the compiled kernel's entry
 
     def __call__(self, *args, **kwargs):
+        if self._functions is not None:
+            return self._call_with_functions(args)
         if _thread_safe_layer():
             return self._dispatcher(*args, **kwargs)
         with _LAUNCH:
             return self._dispatcher(*args, **kwargs)
+
+    def _call_with_functions(self, args):
+        """The kernel called with its arguments and, after them, the jitted functions
+        that functions(*args) gives as (function, first-class function type) pairs:
+        compiled (or loaded from the cache) for exactly those types, so that Numba
+        types each function as a value (its address) and not as a Dispatcher, which it
+        would compile and link into the kernel (kernel_calling)."""
+        pairs = self._functions(*args)
+        tys = tuple(numba.typeof(a) for a in args) + tuple(t for _, t in pairs)
+        entry = self._entries.get(tys)
+        if entry is None:
+            entry = self._entries[tys] = self._dispatcher.compile(tys)
+        values = tuple(fn for fn, _ in pairs)
+        if _thread_safe_layer():
+            return entry(*args, *values)
+        with _LAUNCH:
+            return entry(*args, *values)
 
     def __getattr__(self, name):
         return getattr(self._dispatcher, name)
@@ -139,6 +162,33 @@ def ngjit_parallel(fn):
 def ngjit_parallel_nrt_free(fn):
     """As ngjit_parallel, without reference counting (_parallel_nrt_free)."""
     return _Exclusive(_parallel_nrt_free(fn))
+
+
+def function_type(fn, *args):
+    """The first-class function type (types.FunctionType) of the jitted function fn
+    called with arguments of the Numba types ``args``, for which it is compiled here
+    (or loaded from its cache)."""
+    fn.compile(args)
+    return types.FunctionType(fn.overloads[tuple(args)].signature)
+
+
+def kernel_calling(functions, called):
+    """A parallel kernel (ngjit_parallel) whose last parameters are jitted functions
+    (``called``) that it calls as first-class function values, through their
+    addresses, where ``functions(*args)`` gives them for its other arguments as
+    (function, function_type(...)) pairs; it is launched with those other arguments
+    alone. Numba compiles a function that a kernel calls by name into the kernel's
+    code, and optimises and compiles that code again for each library that links it:
+    the callee's own, the kernel's parallel loop's, the loop's wrapper's and the
+    kernel's. The column pass's code so compiled five times over for column_kernel
+    and three more for subcolumn_kernel (their compiles 19.4 and 20.0 s of 237 s of
+    CPU for every kernel, render_column's 4.7 s); called through its address it is
+    compiled once, for both. A function's exceptions (the suite's bounds checks)
+    reach the kernel's caller as before: Numba calls a Dispatcher's function value
+    by its compiled function's own address, which reports them."""
+    def make(fn):
+        return _Exclusive(_parallel(fn), functions, called)
+    return make
 
 
 def compile_surface_fn(pyfunc):

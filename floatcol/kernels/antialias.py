@@ -9,16 +9,23 @@ colour to the pixel column's sum: the memory does not grow with the image's widt
 import numpy as np
 from numba import prange
 
-from ._jit import ngjit_parallel
-from .column import H_SIZE, guesses_for, render_column
+from ._jit import kernel_calling
+from .column import H_SIZE, guesses_for, render_column, render_column_type
 from .layout import E_SIZE, G_SIZE
 from .sample import column_x0
 from .shade import shade_pixel
 
 
-@ngjit_parallel
+def _subcolumn_functions(kind, f, fg, fb, hf, hfp, vp, *rest):
+    """subcolumn_kernel's jitted functions: render_column, of the types column_kernel
+    calls it with (one compile for both; _jit.kernel_calling)."""
+    return ((render_column, render_column_type(kind, f, fg, fb, hf, hfp, vp, np.float32,
+                                               np.float64)),)
+
+
+@kernel_calling(_subcolumn_functions, (render_column,))
 def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, mp, lut, background, lit, acc,
-                     evals):
+                     evals, render):
     """For every pixel column c and every offset o (in pixels), render the column at
     c + o with coverage antialiasing, colour it (shade_pixel) and add the colour,
     premultiplied by its alpha, and the alpha into acc (H, W, 4) float64, top row first.
@@ -42,7 +49,7 @@ def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, mp, lut, background,
             # (no horizon lines: an int64 0, as column_kernel's hstride, not the literal
             # 0, which Numba compiled render_column for again: 17 s of a first
             # picture with sub-columns)
-            ev += render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol[0, :, 0],
+            ev += render(kind, f, fg, fb, hf, hfp, vp, col, gcol[0, :, 0],
                                 ecol[0, :, :, 0], hrec, np.int64(0), sg, k)[0]
             x0 = column_x0(vp, col)
             for j in range(H):

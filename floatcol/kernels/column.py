@@ -19,11 +19,13 @@ from the viewpoint's t outward and, if the domain reaches behind it, a descendin
 """
 import math
 
+import numba
 import numpy as np
-from numba import prange
+from numba import prange, types
 
 from ._jit import (
-    array_as_tuple, array_ptr, ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel)
+    array_as_tuple, array_ptr, function_type, kernel_calling, ngjit, ngjit_inline,
+    ngjit_nrt_free)
 from .index import ceil_index, floor_index, trunc_index
 from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_SLOPE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
@@ -1272,7 +1274,9 @@ def _new_run(gcol, ecol, run, a, b, sigma, d3, H, aa):
     """End the run at perspective sample a and start a new one at b (where the curve
     from a does not reach b), and mark the column for the fold tracer."""
     run[RUN_OPEN] = 0.0
-    _fill_span(gcol, ecol, run, a, b, sigma, True, d3, H, aa)      # (opens it at b)
+    # (persp a bool, not the literal True: _fill_span and what it calls compile once
+    # for every caller, 3 s less of a first picture)
+    _fill_span(gcol, ecol, run, a, b, sigma, np.bool_(True), d3, H, aa)     # (opens it at b)
     run[RUN_FOLD] = 1.0
 
 
@@ -1283,16 +1287,17 @@ def _break_run(kind, f, fg, hf, hfp, vp, x0, a, b, tm, st_m, gcol, ecol, run, si
     lies outside the domain (status st_m): the run ends at its edge after a and a new
     one starts at its edge before b, both bisected as the column pass bisects a run's
     edges (_run_edge), and painted from a and to b. Returns the evaluations of f."""
+    persp = np.bool_(True)              # (as _new_run's)
     found, evals = _run_edge(kind, f, fg, hf, hfp, vp, x0, a[A_T], tm, st_m, tmp, edge, run)
     if found:
-        _fill_span(gcol, ecol, run, a, edge, sigma, True, d3, H, aa)
+        _fill_span(gcol, ecol, run, a, edge, sigma, persp, d3, H, aa)
     run[RUN_OPEN] = 0.0
     found, ev = _run_edge(kind, f, fg, hf, hfp, vp, x0, b[A_T], tm, st_m, tmp, edge, run)
     evals += ev
     start = edge if found else b
-    _fill_span(gcol, ecol, run, start, start, sigma, True, d3, H, aa)     # (opens the run)
+    _fill_span(gcol, ecol, run, start, start, sigma, persp, d3, H, aa)    # (opens the run)
     if found:
-        _fill_span(gcol, ecol, run, edge, b, sigma, True, d3, H, aa)
+        _fill_span(gcol, ecol, run, edge, b, sigma, persp, d3, H, aa)
     return evals
 
 
@@ -2049,8 +2054,36 @@ def render_column_into(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstr
     scr[SCR_RUN, RUN_CV] = vp[VP_CV]
     scr[SCR_RUN, RUN_WO] = vp[VP_WORG]
     sdepth[:] = 0
-    evals = _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr,
-                           sdepth, bat, sg, rot)
+    # The passes: ascending t in orthographic; in perspective from the viewpoint's t
+    # outward, both ways. (Here, not in a function of their own: Numba optimises and
+    # compiles a called function's code again in each caller, 5 s of a first picture)
+    prev = scr[SCR_PREV]
+    cur = scr[SCR_CUR]
+    edge = scr[SCR_EDGE]
+    tmp = scr[SCR_TMP]
+    run = scr[SCR_RUN, :RUN_SIZE]
+    left = scr[SCR_LEFT]
+    mid = scr[SCR_MID]
+    stk = scr[SCR_STK:]
+    evals = 0
+    if vp[VP_ORTHO] != 0.0:
+        lo, hi = _ortho_chord(vp, x0)
+        if lo <= hi:
+            evals += _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, lo, hi, 1.0,
+                                  gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
+                                  stk, sdepth, left, mid, bat, sg, rot)
+    else:
+        t_lo = vp[VP_T0]
+        t_hi = vp[VP_T1]
+        t_view = -vp[VP_D3] * vp[VP_CA]      # the viewpoint's t, eq. (1)
+        if t_hi > t_view:
+            evals += _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, max(t_lo, t_view), t_hi,
+                                  1.0, gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
+                                  stk, sdepth, left, mid, bat, sg, rot)
+        if t_lo < t_view:
+            evals += _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, min(t_hi, t_view), t_lo,
+                                  -1.0, gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
+                                  stk, sdepth, left, mid, bat, sg, rot)
     _settle_top(ecol, scr[SCR_RUN])
     _write_edge(ecol, scr[SCR_RUN])
     return evals
@@ -2091,41 +2124,6 @@ def _seen_ranges(gcol, ecol, run):
                 run[RUN_WHI] = max(run[RUN_WHI], gcol[j, G_W])
 
 
-@ngjit_nrt_free
-def _column_passes(kind, f, fg, fb, hf, hfp, vp, x0, gcol, ecol, hrec, hstride, scr, sdepth,
-                   bat, sg, rot):
-    """The passes of one column (render_column): ascending t in orthographic; in
-    perspective from the viewpoint's t outward, both ways."""
-    prev = scr[SCR_PREV]
-    cur = scr[SCR_CUR]
-    edge = scr[SCR_EDGE]
-    tmp = scr[SCR_TMP]
-    run = scr[SCR_RUN, :RUN_SIZE]
-    left = scr[SCR_LEFT]
-    mid = scr[SCR_MID]
-    stk = scr[SCR_STK:]
-    evals = 0
-    if vp[VP_ORTHO] != 0.0:
-        lo, hi = _ortho_chord(vp, x0)
-        if lo <= hi:
-            evals += _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, lo, hi, 1.0,
-                                  gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
-                                  stk, sdepth, left, mid, bat, sg, rot)
-        return evals
-    t_lo = vp[VP_T0]
-    t_hi = vp[VP_T1]
-    t_view = -vp[VP_D3] * vp[VP_CA]      # the viewpoint's t, eq. (1)
-    if t_hi > t_view:
-        evals += _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, max(t_lo, t_view), t_hi,
-                              1.0, gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
-                              stk, sdepth, left, mid, bat, sg, rot)
-    if t_lo < t_view:
-        evals += _column_pass(kind, f, fg, fb, hf, hfp, vp, x0, min(t_hi, t_view), t_lo,
-                              -1.0, gcol, ecol, hrec, hstride, prev, cur, edge, tmp, run,
-                              stk, sdepth, left, mid, bat, sg, rot)
-    return evals
-
-
 @ngjit
 def guesses_for(vp):
     """A tile's perspective Newton starts: the solutions s of its last three columns
@@ -2160,9 +2158,29 @@ def _keep_guess(sg, rot, k, s):
         sg[rot % 3, k] = s
 
 
-@ngjit_parallel
+def render_column_type(kind, f, fg, fb, hf, hfp, vp, buf_dtype, hrec_dtype):
+    """render_column's first-class function type for the surface's kernel arguments
+    (kind, f, fg, fb, hf, hfp), the view's vp and a G-buffer and edge buffer of dtype
+    buf_dtype whose column is a 2-D view (layout 'A'), horizon records of hrec_dtype
+    (a column's a C array): what column_kernel and subcolumn_kernel pass it
+    (_jit.kernel_calling)."""
+    buf = types.Array(numba.from_dtype(buf_dtype), 2, "A")
+    return function_type(render_column, *(numba.typeof(a) for a in (kind, f, fg, fb, hf, hfp,
+                                                                     vp)),
+                         types.float64, buf, buf,
+                         types.Array(numba.from_dtype(hrec_dtype), 2, "C"), types.int64,
+                         types.Array(types.float64, 2, "C"), types.int64)
+
+
+def _column_kernel_functions(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, *rest):
+    """column_kernel's jitted functions: render_column (_jit.kernel_calling)."""
+    return ((render_column, render_column_type(kind, f, fg, fb, hf, hfp, vp, gbuf.dtype,
+                                               hrec.dtype)),)
+
+
+@kernel_calling(_column_kernel_functions, (render_column,))
 def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals, wrange,
-                  rows):
+                  rows, render):
     """Render every column c into gbuf (n_tiles, H, TILE, G_SIZE) and ebuf (n_tiles,
     E_SIZE, H, TILE) (layout.py: tiles of TILE columns, rows from the bottom), the
     tiles in parallel. ebuf's E_SEEN plane says where the G-buffer is set (it is not
@@ -2189,7 +2207,7 @@ def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals
                     break
                 # (the column as a float, as subcolumn_kernel's sub-columns: one compile
                 # of render_column for both)
-                evals[c], wrange[c, 0], wrange[c, 1], j_lo, j_hi = render_column(
+                evals[c], wrange[c, 0], wrange[c, 1], j_lo, j_hi = render(
                     kind, f, fg, fb, hf, hfp, vp, float(c), gbuf[b, :, lane],
                     ebuf[b, :, :, lane], hrec[c], hstride, sg, (b - g * GROUP_TILES) * T + lane)
                 rows[b, 0] = min(rows[b, 0], j_lo)

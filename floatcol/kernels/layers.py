@@ -31,10 +31,12 @@ column's scratch its own (no shared scratch across the parallel columns).
 """
 import math
 
+import numba
 import numpy as np
-from numba import prange
+from numba import prange, types
 
-from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
+from ._jit import (function_type, kernel_calling, ngjit, ngjit_inline, ngjit_nrt_free,
+                   ngjit_parallel)
 from .column import (
     _column_t_range, _copy, _grid_range, _ortho_chord, CLIP_MARGIN_PLANES, CLIP_TOL,
     store_sample)
@@ -575,7 +577,7 @@ def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, sh, hmax, hmin,
 @ngjit_nrt_free
 def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf, slopes, occ,
                    lists, off, K, counts, trans, gfirst, hits, b, scr):
-    """Every crossing of one column (column.py's _column_passes: ascending t in
+    """Every crossing of one column (column.py's render_column_into: ascending t in
     orthographic; in perspective from the viewpoint's t outward, both ways, over the
     planes that may meet the surface)."""
     if vp[VP_ORTHO] != 0.0:
@@ -611,9 +613,22 @@ def layers_scratch(H):
     return np.ones(H), np.zeros((SCR_STACK + REFINE_DEPTH + 3, A_SIZE))
 
 
-@ngjit_parallel
+def _layers_functions(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf, slopes,
+                      occ, lists, off, K, counts, gfirst, hits, evals):
+    """layers_kernel's jitted functions: _column_layers, called with the kernel's
+    arguments, a column's x0 and number b and layers_scratch's arrays
+    (_jit.kernel_calling)."""
+    ty = numba.typeof
+    return ((_column_layers, function_type(
+        _column_layers, ty(kind), ty(f), ty(fg), ty(hf), ty(hfp), ty(vp), types.float64,
+        ty(mp), ty(lut), ty(sh), ty(hmax), ty(hmin), ty(hsurf), ty(slopes), ty(occ),
+        ty(lists), ty(off), ty(K), ty(counts), types.Array(types.float64, 1, "C"), ty(gfirst),
+        ty(hits), types.int64, types.Array(types.float64, 2, "C"))),)
+
+
+@kernel_calling(_layers_functions, (_column_layers,))
 def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf, slopes, occ,
-                  lists, off, K, counts, gfirst, hits, evals):
+                  lists, off, K, counts, gfirst, hits, evals, column):
     """One surface's crossings in the band of columns c0 .. c0 + B - 1 (B =
     lists.shape[0]; columns from vp's VP_W on are left alone): into lists[b, j, off:off
     + K] (records C_*, sorted by depth), counts[b, j] of them, gfirst[b, j] the G-buffer
@@ -633,9 +648,8 @@ def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf, 
             continue
         trans, scr = layers_scratch(H)
         x0 = column_x0(vp, c)
-        evals[b] += _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax,
-                                   hmin, hsurf, slopes, occ, lists, off, K, counts, trans,
-                                   gfirst, hits, b, scr)
+        evals[b] += column(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf,
+                           slopes, occ, lists, off, K, counts, trans, gfirst, hits, b, scr)
 
 
 # The composite's sums per pixel, acc (H, W, ACC_SIZE) float64

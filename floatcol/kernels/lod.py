@@ -38,10 +38,11 @@ one may show (the 1280x720 fly-through of benchmarks/bench_terrain.py 199 -> 138
 """
 import math
 
+import numba
 import numpy as np
-from numba import prange
+from numba import prange, types
 
-from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
+from ._jit import function_type, kernel_calling, ngjit, ngjit_inline, ngjit_nrt_free
 from .area import (AC_SIZE, LV_CELL, LV_NU, LV_NV, LV_OFF, _below_picture, add_piece,
                    clear_accumulators, resolve_pixel, seen_heights)
 from .column import _column_t_range
@@ -977,9 +978,24 @@ def lod_tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, c0, lanes, area, plan
         out[L, 4] = sl[ST_JHI]
 
 
-@ngjit_parallel
+def _lod_functions(kind, fg, hf0, flat, lv, mx, mt, hfp, vp, area, lod, kappa, s_lo, s_hi,
+                   gbuf, ebuf, evals, wrange, rows):
+    """lod_kernel's jitted functions: lod_tile, called with the kernel's arguments, its
+    tables and a tile's buffers and scratch (_jit.kernel_calling)."""
+    ty = numba.typeof
+    i64 = types.int64
+    grid = types.Array(types.float64, 2, "C")
+    block = types.Array(types.float64, 3, "C")
+    tiles = types.Array(numba.from_dtype(gbuf.dtype), 3, "C")
+    return ((lod_tile, function_type(
+        lod_tile, ty(kind), ty(fg), ty(hf0), ty(flat), grid, types.Array(i64, 2, "C"), ty(mx),
+        ty(mt), ty(hfp), ty(vp), i64, i64, ty(area), grid, ty(s_lo), ty(s_hi), tiles,
+        types.Array(numba.from_dtype(ebuf.dtype), 3, "C"), block, block, grid, grid)),)
+
+
+@kernel_calling(_lod_functions, (lod_tile,))
 def lod_kernel(kind, fg, hf0, flat, lv, mx, mt, hfp, vp, area, lod, kappa, s_lo, s_hi, gbuf,
-               ebuf, evals, wrange, rows):
+               ebuf, evals, wrange, rows, tile):
     """Every tile by lod_tile into the tiled gbuf and ebuf (layout.py), the tiles in
     parallel; each tile's scratch is its own, each column starts afresh (the picture
     is the same for any number of threads)."""
@@ -991,14 +1007,15 @@ def lod_kernel(kind, fg, hf0, flat, lv, mx, mt, hfp, vp, area, lod, kappa, s_lo,
     planes = plane_table(kind, lv, vp, lod, kappa, s_ref)
     lt = level_table(lv, hfp)
     lk = level_ints(lv)
-    for b in prange(n_tiles):
+    for b_ in prange(n_tiles):
+        b = np.int64(b_)  # (_jit.py: prange_index)
         acc = np.empty((T, H if area else 1, AC_SIZE))
         pts = np.empty((T, 3 + REFINE_DEPTH, Q_SIZE))
         st = np.empty((T, ST_SIZE))
         out = np.empty((T, 5))
         lanes = min(T, W - b * T)
-        lod_tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, b * T, lanes, area, planes,
-                 s_lo, s_hi, gbuf[b], ebuf[b], acc, pts, st, out)
+        tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, b * T, lanes, area, planes, s_lo,
+             s_hi, gbuf[b], ebuf[b], acc, pts, st, out)
         rows[b, 0] = H
         rows[b, 1] = -1
         for L in range(lanes):

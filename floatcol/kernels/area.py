@@ -30,10 +30,11 @@ counted as covered).
 """
 import math
 
+import numba
 import numpy as np
-from numba import prange
+from numba import prange, types
 
-from ._jit import ngjit, ngjit_inline, ngjit_nrt_free, ngjit_parallel
+from ._jit import function_type, kernel_calling, ngjit, ngjit_inline, ngjit_nrt_free
 from .column import _column_t_range, _domain_test, _may_meet_domain, _ortho_chord
 from .layout import (
     E_COV, E_COV0, E_DEPTH, E_FLAG, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_SIDE, E_U, E_V, E_W,
@@ -699,8 +700,21 @@ def area_scratch(H, n_lv):
             np.empty((4 + REFINE_DEPTH + 2, P_SIZE)))
 
 
-@ngjit_parallel
-def area_kernel(kind, f, fg, flat, lv, hfp, vp, slices, lod, gbuf, ebuf, evals, wrange, rows):
+def _area_functions(kind, f, fg, flat, lv, hfp, vp, slices, lod, gbuf, ebuf, *rest):
+    """area_kernel's jitted functions: area_column, called with the kernel's arguments, a
+    column's x0, its G-buffer and edge buffer columns and area_scratch's arrays
+    (_jit.kernel_calling)."""
+    ty = numba.typeof
+    scratch = function_type(area_scratch, types.int64, types.int64).signature.return_type
+    return ((area_column, function_type(
+        area_column, ty(kind), ty(f), ty(fg), ty(flat), ty(lv), ty(hfp), ty(vp), types.float64,
+        ty(slices), ty(lod), types.Array(numba.from_dtype(gbuf.dtype), 2, "A"),
+        types.Array(numba.from_dtype(ebuf.dtype), 2, "A"), *scratch.types)),)
+
+
+@kernel_calling(_area_functions, (area_column,))
+def area_kernel(kind, f, fg, flat, lv, hfp, vp, slices, lod, gbuf, ebuf, evals, wrange, rows,
+                column):
     """Every column by area sampling (area_column) into the tiled gbuf and ebuf
     (layout.py), the tiles in parallel, as column_kernel: ``flat`` and ``lv`` the
     height field's levels (passes/area.py; ignored for a function surface). Each
@@ -719,7 +733,7 @@ def area_kernel(kind, f, fg, flat, lv, hfp, vp, slices, lod, gbuf, ebuf, evals, 
             if c >= W:
                 break
             guess[:, :] = 0.0
-            ev, w_lo, w_hi, j_lo, j_hi = area_column(
+            ev, w_lo, w_hi, j_lo, j_hi = column(
                 kind, f, fg, flat, lv, hfp, vp, column_x0(vp, c), slices, lod, gbuf[b, :, lane],
                 ebuf[b, :, :, lane], acc, cov, gaps, guess, pts)
             evals[c] = ev

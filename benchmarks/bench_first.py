@@ -9,8 +9,18 @@ an empty Numba cache has its first 1920x1080 picture.
    in the process (what every fresh install did before).
 
     python benchmarks/bench_first.py
+    python benchmarks/bench_first.py --compile   # where the compile's time goes
+
+``--compile`` instead compiles with an empty cache, in a process of its own on one
+core, the default picture's kernels and then every kernel (warmup.warm_all), as the
+test suite compiles them (NUMBA_BOUNDSCHECK=1, NUMBA_OPT=1; ``--plain`` as users'
+installs do), and prints the seconds of each and the jitted functions whose own compile
+took longest: Numba's compile events, each one's time less the compiles nested in it
+(a function's own typing, and the optimisation and code generation of its library,
+which holds the code of everything it calls).
 """
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -42,6 +52,71 @@ def run(cache, drafts=True):
     wall = time.perf_counter() - t
     imp, first, e1, second, e2, pid = out[-6:]
     return float(imp), float(first), e1, float(second), e2, int(pid), wall
+
+
+COMPILE_SCRIPT = """
+import collections, sys, time
+from numba.core import event
+marks = []
+
+class Listener(event.Listener):
+    def on_start(self, e):
+        marks.append((0, e.data["dispatcher"], time.perf_counter()))
+
+    def on_end(self, e):
+        marks.append((1, e.data["dispatcher"], time.perf_counter()))
+
+event.register("numba:compile", Listener())
+import floatcol as fc
+from floatcol.warmup import warm_all_steps
+t0 = time.perf_counter()
+fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(64, 48)).intensity
+t1 = time.perf_counter()
+for step in warm_all_steps():
+    step()
+t2 = time.perf_counter()
+own = collections.Counter()
+count = collections.Counter()
+stack = []
+for end, d, t in marks:
+    name = d.py_func.__module__.replace("floatcol.kernels.", "") + "." + d.py_func.__name__
+    if not end:
+        stack.append([t, 0.0])
+        continue
+    start, nested = stack.pop()
+    own[name] += t - start - nested
+    count[name] += 1
+    if stack:
+        stack[-1][1] += t - start
+print(f"{t1 - t0:.1f} {t2 - t0:.1f}")
+for name, sec in own.most_common(int(sys.argv[1])):
+    print(f"{sec:.1f} {count[name]} {name}")
+"""
+
+
+def compile_times(plain, top=12):
+    """(default picture s, every kernel s, [(own s, signatures, function)]) of a process
+    with an empty cache."""
+    env = dict(os.environ, FLOATCOL_DRAFT="0", OMP_WAIT_POLICY="PASSIVE")
+    if not plain:
+        env.update(NUMBA_BOUNDSCHECK="1", NUMBA_OPT="1")
+    with tempfile.TemporaryDirectory() as cache:
+        env["NUMBA_CACHE_DIR"] = cache
+        pin = ["taskset", "-c", "0"] if shutil.which("taskset") else []
+        out = subprocess.run(pin + [sys.executable, "-c", COMPILE_SCRIPT, str(top)], env=env,
+                             check=True, capture_output=True, text=True).stdout.splitlines()
+    first, every = (float(x) for x in out[0].split())
+    return first, every, [line.split(maxsplit=2) for line in out[1:]]
+
+
+def compile_main(plain):
+    first, every, rows = compile_times(plain)
+    how = "plain" if plain else "bounds-checked, NUMBA_OPT=1 (the suite's)"
+    print(f"Empty cache, one core, {how}: the default picture's kernels {first:.1f} s, "
+          f"every kernel (warm_all) {every:.1f} s\n")
+    print("| own compile s | signatures | function |\n|---|---|---|")
+    for sec, n, name in rows:
+        print(f"| {float(sec):.1f} | {n} | {name} |")
 
 
 def alive(pid):
@@ -77,4 +152,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    if "--compile" in sys.argv[1:]:
+        compile_main("--plain" in sys.argv[1:])
+    else:
+        main()

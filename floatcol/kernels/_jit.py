@@ -180,12 +180,14 @@ def kernel_calling(functions, called):
     alone. Numba compiles a function that a kernel calls by name into the kernel's
     code, and optimises and compiles that code again for each library that links it:
     the callee's own, the kernel's parallel loop's, the loop's wrapper's and the
-    kernel's. The column pass's code so compiled five times over for column_kernel
-    and three more for subcolumn_kernel (their compiles 19.4 and 20.0 s of 237 s of
-    CPU for every kernel, render_column's 4.7 s); called through its address it is
-    compiled once, for both. A function's exceptions (the suite's bounds checks)
-    reach the kernel's caller as before: Numba calls a Dispatcher's function value
-    by its compiled function's own address, which reports them."""
+    kernel's. The column pass's code was so compiled again three times for
+    column_kernel and three for subcolumn_kernel (their own compiles 19.9 and 21.4 s,
+    render_column's 4.9 s); called through its address it is compiled once, for both,
+    and the kernels' own compiles take 1-2 s (every kernel, bounds-checked, one core:
+    246 -> 181 s; benchmarks/bench_first.py --compile). A function's exceptions reach
+    the kernel's loop as a direct call's do: Numba calls a Dispatcher's function value
+    by its compiled function's own address, which reports them (what a parallel loop
+    then does with an exception is Numba's: it drops it, numba#2811)."""
     def make(fn):
         return _Exclusive(_parallel(fn), functions, called)
     return make

@@ -2,8 +2,10 @@
 import threading
 
 import numba
+import numpy as np
 from numba import types
 from numba.core import cgutils
+from numba.core.ccallback import CFunc
 from numba.extending import intrinsic
 
 #: Signature of every user function the kernels call: w = f(u, v, t), t the surface's
@@ -123,7 +125,7 @@ class _Exclusive:
         self._functions = functions
         #: the jitted functions it takes as values (kernel_calling), for warmup's list
         self.called = called
-        self._entries = {}              # argument types -> the compiled kernel's entry
+        self._entries = {}              # _type_key's of the arguments -> (entry, functions)
 
     def __call__(self, *args, **kwargs):
         if self._functions is not None:
@@ -139,12 +141,14 @@ class _Exclusive:
         compiled (or loaded from the cache) for exactly those types, so that Numba
         types each function as a value (its address) and not as a Dispatcher, which it
         would compile and link into the kernel (kernel_calling)."""
-        pairs = self._functions(*args)
-        tys = tuple(numba.typeof(a) for a in args) + tuple(t for _, t in pairs)
-        entry = self._entries.get(tys)
-        if entry is None:
-            entry = self._entries[tys] = self._dispatcher.compile(tys)
-        values = tuple(fn for fn, _ in pairs)
+        key = tuple(_type_key(a) for a in args)
+        hit = self._entries.get(key)
+        if hit is None:
+            pairs = self._functions(*args)
+            tys = tuple(numba.typeof(a) for a in args) + tuple(t for _, t in pairs)
+            hit = self._entries[key] = (self._dispatcher.compile(tys),
+                                        tuple(fn for fn, _ in pairs))
+        entry, values = hit
         if _thread_safe_layer():
             return entry(*args, *values)
         with _LAUNCH:
@@ -152,6 +156,24 @@ class _Exclusive:
 
     def __getattr__(self, name):
         return getattr(self._dispatcher, name)
+
+
+def _type_key(a):
+    """What numba.typeof(a) of a kernel's argument depends on, found in a microsecond or
+    two (numba.typeof builds its types anew: 15 arguments took 0.2 ms, a launch's
+    Python): an array's class, dtype, dimensions and flags, a number's class, a tuple's
+    items'; anything else's type itself."""
+    if isinstance(a, np.ndarray):
+        f = a.flags
+        return (type(a), a.dtype, a.ndim, f.c_contiguous, f.f_contiguous, f.writeable,
+                f.aligned)
+    if isinstance(a, (int, float, bool, np.number, np.bool_)):
+        return type(a)
+    if isinstance(a, tuple):
+        return tuple(_type_key(x) for x in a)
+    if isinstance(a, CFunc):                    # (typed by its signature)
+        return CFunc, a._sig
+    return numba.typeof(a)
 
 
 def ngjit_parallel(fn):
@@ -167,9 +189,17 @@ def ngjit_parallel_nrt_free(fn):
 def function_type(fn, *args):
     """The first-class function type (types.FunctionType) of the jitted function fn
     called with arguments of the Numba types ``args``, for which it is compiled here
-    (or loaded from its cache)."""
-    fn.compile(args)
-    return types.FunctionType(fn.overloads[tuple(args)].signature)
+    (or loaded from its cache). Kept: a kernel's launch asks for it every time."""
+    key = (fn, tuple(args))
+    ft = _FUNCTION_TYPES.get(key)
+    if ft is None:
+        fn.compile(args)
+        ft = _FUNCTION_TYPES[key] = types.FunctionType(fn.overloads[tuple(args)].signature)
+    return ft
+
+
+#: function_type's answers, by (function, argument types)
+_FUNCTION_TYPES = {}
 
 
 def kernel_calling(functions, called):

@@ -32,7 +32,8 @@ def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, mp, lut, background,
     evals[c] receives the evaluations of f. Each thread has its own one-column scratch.
     ``lit`` (H, W): the part of the light reaching each pixel (its centre's point, for
     every sub-column; passes/shadow.py), or an empty array: all of it. mp: the
-    material vector (layout.py M_*), lut its colour table (Material.table)."""
+    material vector (layout.py M_*), lut its colour table (Material.table). ``render``:
+    column.render_column as a function value (_jit.kernel_calling)."""
     H = acc.shape[0]
     shadows = lit.shape[0] > 0
     W = acc.shape[1]
@@ -49,8 +50,8 @@ def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, mp, lut, background,
             # (no horizon lines: an int64 0, as column_kernel's hstride, not the literal
             # 0, which Numba compiled render_column for again: 17 s of a first
             # picture with sub-columns)
-            ev += render(kind, f, fg, fb, hf, hfp, vp, col, gcol[0, :, 0],
-                                ecol[0, :, :, 0], hrec, np.int64(0), sg, k)[0]
+            ev += render(kind, f, fg, fb, hf, hfp, vp, col, gcol[0, :, 0], ecol[0, :, :, 0],
+                         hrec, np.int64(0), sg, k)[0]
             x0 = column_x0(vp, col)
             for j in range(H):
                 i = H - 1 - j

@@ -718,7 +718,8 @@ def area_kernel(kind, f, fg, flat, lv, hfp, vp, slices, lod, gbuf, ebuf, evals, 
     """Every column by area sampling (area_column) into the tiled gbuf and ebuf
     (layout.py), the tiles in parallel, as column_kernel: ``flat`` and ``lv`` the
     height field's levels (passes/area.py; ignored for a function surface). Each
-    tile's scratch is its own."""
+    tile's scratch is its own. ``column``: area_column as a function value
+    (_jit.kernel_calling)."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]

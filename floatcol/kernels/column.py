@@ -2191,7 +2191,8 @@ def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals
     2) the lowest and highest row of each tile where E_SEEN may be set (H, -1: none),
     outside which its E_SEEN is 0 and the finishing pass does not read it. A group of
     GROUP_TILES tiles runs on one thread, its columns one after another, and writes
-    only its own tiles: no shared scratch."""
+    only its own tiles: no shared scratch. ``render``: render_column as a function value
+    (_jit.kernel_calling; the launch passes it)."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]

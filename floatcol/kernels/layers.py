@@ -637,7 +637,8 @@ def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf, 
     horizons' slopes where SH_RHO > 0 (passes/shadow.py Texture.slopes); occ the
     objects' occluders (frames, coef, start, items, grids), tested where sh's SH_OBJ
     says.
-    counts must be 0 on entry; the columns in parallel, each with its own scratch."""
+    counts must be 0 on entry; the columns in parallel, each with its own scratch.
+    ``column``: _column_layers as a function value (_jit.kernel_calling)."""
     B = lists.shape[0]
     H = lists.shape[1]
     W = int(vp[VP_W])

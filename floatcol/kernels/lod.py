@@ -998,7 +998,8 @@ def lod_kernel(kind, fg, hf0, flat, lv, mx, mt, hfp, vp, area, lod, kappa, s_lo,
                ebuf, evals, wrange, rows, tile):
     """Every tile by lod_tile into the tiled gbuf and ebuf (layout.py), the tiles in
     parallel; each tile's scratch is its own, each column starts afresh (the picture
-    is the same for any number of threads)."""
+    is the same for any number of threads). ``tile``: lod_tile as a function value
+    (_jit.kernel_calling)."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]

@@ -188,13 +188,14 @@ def ngjit_parallel_nrt_free(fn):
 
 def function_type(fn, *args):
     """The first-class function type (types.FunctionType) of the jitted function fn
-    called with arguments of the Numba types ``args``, for which it is compiled here
-    (or loaded from its cache). Kept: a kernel's launch asks for it every time."""
-    key = (fn, tuple(args))
+    called with ``args``, each a Numba type or a value of the type (numba.typeof), for
+    which it is compiled here (or loaded from its cache)."""
+    args = tuple(a if isinstance(a, types.Type) else numba.typeof(a) for a in args)
+    key = (fn, args)
     ft = _FUNCTION_TYPES.get(key)
     if ft is None:
         fn.compile(args)
-        ft = _FUNCTION_TYPES[key] = types.FunctionType(fn.overloads[tuple(args)].signature)
+        ft = _FUNCTION_TYPES[key] = types.FunctionType(fn.overloads[args].signature)
     return ft
 
 

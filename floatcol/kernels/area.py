@@ -704,11 +704,10 @@ def _area_functions(kind, f, fg, flat, lv, hfp, vp, slices, lod, gbuf, ebuf, *re
     """area_kernel's jitted functions: area_column, called with the kernel's arguments, a
     column's x0, its G-buffer and edge buffer columns and area_scratch's arrays
     (_jit.kernel_calling)."""
-    ty = numba.typeof
     scratch = function_type(area_scratch, types.int64, types.int64).signature.return_type
     return ((area_column, function_type(
-        area_column, ty(kind), ty(f), ty(fg), ty(flat), ty(lv), ty(hfp), ty(vp), types.float64,
-        ty(slices), ty(lod), types.Array(numba.from_dtype(gbuf.dtype), 2, "A"),
+        area_column, kind, f, fg, flat, lv, hfp, vp, types.float64, slices, lod,
+        types.Array(numba.from_dtype(gbuf.dtype), 2, "A"),
         types.Array(numba.from_dtype(ebuf.dtype), 2, "A"), *scratch.types)),)
 
 

@@ -2165,9 +2165,7 @@ def render_column_type(kind, f, fg, fb, hf, hfp, vp, buf_dtype, hrec_dtype):
     (a column's a C array): what column_kernel and subcolumn_kernel pass it
     (_jit.kernel_calling)."""
     buf = types.Array(numba.from_dtype(buf_dtype), 2, "A")
-    return function_type(render_column, *(numba.typeof(a) for a in (kind, f, fg, fb, hf, hfp,
-                                                                     vp)),
-                         types.float64, buf, buf,
+    return function_type(render_column, kind, f, fg, fb, hf, hfp, vp, types.float64, buf, buf,
                          types.Array(numba.from_dtype(hrec_dtype), 2, "C"), types.int64,
                          types.Array(types.float64, 2, "C"), types.int64)
 

@@ -31,7 +31,6 @@ column's scratch its own (no shared scratch across the parallel columns).
 """
 import math
 
-import numba
 import numpy as np
 from numba import prange, types
 
@@ -618,12 +617,10 @@ def _layers_functions(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsu
     """layers_kernel's jitted functions: _column_layers, called with the kernel's
     arguments, a column's x0 and number b and layers_scratch's arrays
     (_jit.kernel_calling)."""
-    ty = numba.typeof
+    trans, scr = function_type(layers_scratch, types.int64).signature.return_type.types
     return ((_column_layers, function_type(
-        _column_layers, ty(kind), ty(f), ty(fg), ty(hf), ty(hfp), ty(vp), types.float64,
-        ty(mp), ty(lut), ty(sh), ty(hmax), ty(hmin), ty(hsurf), ty(slopes), ty(occ),
-        ty(lists), ty(off), ty(K), ty(counts), types.Array(types.float64, 1, "C"), ty(gfirst),
-        ty(hits), types.int64, types.Array(types.float64, 2, "C"))),)
+        _column_layers, kind, f, fg, hf, hfp, vp, types.float64, mp, lut, sh, hmax, hmin,
+        hsurf, slopes, occ, lists, off, K, counts, trans, gfirst, hits, types.int64, scr)),)
 
 
 @kernel_calling(_layers_functions, (_column_layers,))

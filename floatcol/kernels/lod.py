@@ -982,14 +982,13 @@ def _lod_functions(kind, fg, hf0, flat, lv, mx, mt, hfp, vp, area, lod, kappa, s
                    gbuf, ebuf, evals, wrange, rows):
     """lod_kernel's jitted functions: lod_tile, called with the kernel's arguments, its
     tables and a tile's buffers and scratch (_jit.kernel_calling)."""
-    ty = numba.typeof
     i64 = types.int64
     grid = types.Array(types.float64, 2, "C")
     block = types.Array(types.float64, 3, "C")
     tiles = types.Array(numba.from_dtype(gbuf.dtype), 3, "C")
     return ((lod_tile, function_type(
-        lod_tile, ty(kind), ty(fg), ty(hf0), ty(flat), grid, types.Array(i64, 2, "C"), ty(mx),
-        ty(mt), ty(hfp), ty(vp), i64, i64, ty(area), grid, ty(s_lo), ty(s_hi), tiles,
+        lod_tile, kind, fg, hf0, flat, grid, types.Array(i64, 2, "C"), mx, mt, hfp, vp, i64,
+        i64, area, grid, s_lo, s_hi, tiles,
         types.Array(numba.from_dtype(ebuf.dtype), 3, "C"), block, block, grid, grid)),)
 
 

@@ -17,7 +17,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 #: The suite's kernels are compiled with Numba's bounds checks: an index out of range
 #: in any test's picture, in this process or in one it starts (the CLI's, the fuzz
 #: workers', a cluster's workers), is an IndexError, not a read or write past a
-#: buffer. The checks change the code but no value (the kernels use no fast-math),
+#: buffer (inside a kernel's parallel loop where its launch has one thread: the test
+#: processes' and the fuzz workers', THREADS below). The checks change the code but no value (the kernels use no fast-math),
 #: and they go into a kernel cache of the suite's own, so that a render outside the
 #: suite never loads a checked kernel (Numba's cache index does not tell them apart).
 #: LLVM optimises them at level 1: the same values, a tenth less compile. Before, the
@@ -62,6 +63,37 @@ if "numba" in sys.modules:                 # (read at its import: read again)
     _numba_config.reload_config()
 
 import floatcol as fc  # noqa: E402
+import numba  # noqa: E402
+
+#: One thread a kernel launch in the suite's processes, so that its bounds checks reach
+#: the test from inside the kernels' parallel loops too: Numba reports an exception
+#: raised in a parallel loop only where the launching thread ran into it; in another
+#: thread's share of the loop it is dropped and the rest of that share skipped
+#: (numba#2811: an index out of range in the last column of a picture returned as if
+#: nothing had happened). With one thread the launching thread runs the whole loop (the
+#: launcher turns Numba's SystemError back into the IndexError: kernels/_jit.py
+#: _Exclusive). The pool keeps every thread, for the tests of thread counts
+#: (all_threads), and the second test process, which loads this file, does the same;
+#: the two keep both cores busy. (Not NUMBA_NUM_THREADS for the processes the tests
+#: start: Numba reads the environment again as it compiles, and refuses a new count
+#: once its threads run. The bounds-checked fuzz job asks for one thread itself.)
+THREADS = numba.config.NUMBA_NUM_THREADS
+numba.set_num_threads(1)
+
+
+class all_threads:
+    """Kernels launched inside ``with all_threads():`` use every thread of Numba's pool
+    (the suite launches them with one, above)."""
+
+    def __enter__(self):
+        self.before = numba.get_num_threads()
+        numba.set_num_threads(THREADS)
+        return THREADS
+
+    def __exit__(self, *exc):
+        numba.set_num_threads(self.before)
+
+
 import kernel_claims  # noqa: E402
 import second_process  # noqa: E402
 from reference import numpy_surface, raycast  # noqa: E402

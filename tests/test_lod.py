@@ -2,11 +2,14 @@
 the ray caster where the pyramid's level is the grid itself, its samples set by the
 footprint and not by the grid, Cohen-Or's flicker measure in motion, where it hands
 a view to the column pass, and its option errors."""
+import os
+
 import numba
 import numpy as np
 import pytest
 
 import floatcol as fc
+from conftest import all_threads
 from reference import bilinear_surface, fractal, raycast
 
 
@@ -115,15 +118,13 @@ def test_views_it_cannot_draw_take_the_column_pass():
 
 def _one_and_all_threads(render):
     """(rgba, depth) of ``render()`` (a Render) with one thread and with all."""
-    before = numba.get_num_threads()
-    try:
-        pics = []
-        for n in (1, before):
-            numba.set_num_threads(n)
+    pics = []
+    with all_threads() as n:
+        assert n >= 2 or (os.cpu_count() or 1) == 1
+        for k in (1, n):
+            numba.set_num_threads(k)
             r = render()
             pics.append((r.rgba, r.depth))
-    finally:
-        numba.set_num_threads(before)
     return pics
 
 

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import floatcol as fc
+from conftest import THREADS, all_threads
 
 CASES = [dict(projection="orthographic", method="column"),
          dict(projection="perspective", method="column"),
@@ -81,7 +82,9 @@ def one_thread(tmp_path_factory):
 @pytest.mark.parametrize("k", range(len(CASES)))
 def test_one_thread_equals_default(one_thread, k):
     one = np.load(one_thread / f"{k}.npz")
-    r = render_case(k)
+    with all_threads() as n:
+        assert n >= 2 or (os.cpu_count() or 1) == 1
+        r = render_case(k)
     for name in ("rgba", "intensity", "side", "depth"):
         np.testing.assert_array_equal(one[name], getattr(r, name), err_msg=name)
     assert int(one["samples"]) == r.stats["samples"]
@@ -119,7 +122,37 @@ def test_renders_from_several_threads_with_numbas_workqueue_layer():
     parallel kernels at once made it abort the process ("Concurrent access has been
     detected"). Four threads render at once under it (its kernels' launches take one
     lock there, kernels/_jit.py _Exclusive): every picture as rendered alone."""
-    env = dict(os.environ, NUMBA_THREADING_LAYER="workqueue", FLOATCOL_DRAFT="0")
+    env = dict(os.environ, NUMBA_THREADING_LAYER="workqueue", FLOATCOL_DRAFT="0",
+               NUMBA_NUM_THREADS=str(THREADS))
     res = subprocess.run([sys.executable, "-c", CONCURRENT], env=env, capture_output=True,
                          text=True, timeout=900)
     assert res.returncode == 0 and res.stdout.strip().endswith("ok"), res.stderr[-2000:]
+
+
+def _short(allocate, part):
+    """geometry.allocate with one buffer too small: the horizon records of the last
+    column missing ("hrec", read in the column kernel's own loop), or the edge buffer's
+    top 8 rows ("ebuf", written inside render_column, which the kernel calls through
+    its address)."""
+    def short(W, H, n_lines, sub_columns):
+        gbuf, ebuf, hrec = allocate(W, H, n_lines, sub_columns)
+        if part == "hrec":
+            return gbuf, ebuf, np.empty((W - 1,) + hrec.shape[1:])
+        return gbuf, np.zeros(ebuf.shape[:2] + (H - 8, ebuf.shape[3]), ebuf.dtype), hrec
+    return short
+
+
+@pytest.mark.parametrize("part", ["hrec", "ebuf"])
+@pytest.mark.parametrize("projection", ["orthographic", "perspective"])
+def test_an_index_out_of_range_in_a_kernels_loop_is_an_index_error(monkeypatch, part,
+                                                                   projection):
+    """The suite's bounds checks (conftest.SUITE_ENV) reach the test from inside a
+    kernel's parallel loop, in the picture's last column too: the suite launches its
+    kernels with one thread (conftest.py; in another thread's share of the loop Numba
+    drops the exception and skips the rest of the share, numba#2811), and the
+    launcher raises Numba's SystemError's cause, the IndexError (_jit._Exclusive)."""
+    from floatcol.passes import geometry
+    monkeypatch.setattr(geometry, "allocate", _short(geometry.allocate, part))
+    with pytest.raises(IndexError):
+        fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(64, 48),
+                  projection=projection)

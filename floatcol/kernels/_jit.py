@@ -128,12 +128,22 @@ class _Exclusive:
         self._entries = {}              # _type_key's of the arguments -> (entry, functions)
 
     def __call__(self, *args, **kwargs):
-        if self._functions is not None:
-            return self._call_with_functions(args)
-        if _thread_safe_layer():
-            return self._dispatcher(*args, **kwargs)
-        with _LAUNCH:
-            return self._dispatcher(*args, **kwargs)
+        try:
+            if self._functions is not None:
+                return self._call_with_functions(args)
+            if _thread_safe_layer():
+                return self._dispatcher(*args, **kwargs)
+            with _LAUNCH:
+                return self._dispatcher(*args, **kwargs)
+        except SystemError as exc:
+            # Numba reports an exception raised inside a parallel loop (by the launching
+            # thread: in another thread's share of the loop Numba drops it, numba#2811)
+            # as a SystemError caused by it: the exception itself, an index out of range
+            # under NUMBA_BOUNDSCHECK (the test suite's kernels, tests/conftest.py)
+            if isinstance(exc.__cause__, Exception) and \
+                    not isinstance(exc.__cause__, SystemError):
+                raise exc.__cause__ from None
+            raise
 
     def _call_with_functions(self, args):
         """The kernel called with its arguments and, after them, the jitted functions

@@ -99,7 +99,6 @@ def test_a_size_beyond_the_machines_memory_is_a_bad_size(monkeypatch):
     """30000x30000 needs 74.6 GiB of buffers: a MemoryError halfway through the render
     before. Here the machine is said to have 1 GiB, and 4000x4000 needs 1.3."""
     import os
-    import sys
     real = os.sysconf
     monkeypatch.setattr(os, "sysconf", lambda name: 2**18 if name == "SC_PHYS_PAGES"
                         else 4096 if name == "SC_PAGE_SIZE" else real(name))

@@ -1,8 +1,6 @@
 """The scene and its parts (scene.py, material.py, light.py, camera.py, quality.py,
 renderer.py and the passes): several surfaces with their own materials, lights in
 their frames, the one camera fit."""
-import math
-
 import numpy as np
 import pytest
 

@@ -47,10 +47,9 @@ from .correct import (
     shading_problem, wall_between, wall_jump, wall_normal,
 )
 from .sample import (
-    DOMAIN_EPS, NEWTON_TOL_PX, _clip_line, _g_at, _line_uv, _r_interval, bracket_ends,
-    column_x0, in_domain,
+    DOMAIN_EPS, _clip_line, _g_at, _line_uv, _r_interval, bracket_ends, column_x0, in_domain,
     heightfield_eval, in_known_hole, into_domain, lambert, ortho_point, sample_point,
-    surface_eval, unit_normal,
+    surface_eval,
 )
 
 

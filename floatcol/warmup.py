@@ -33,10 +33,12 @@ _child = None       # the warm-up process this process started (subprocess.Popen
 
 def _dispatchers():
     """The kernels a default picture runs (what must be compiled or cached)."""
-    from .kernels.column import column_kernel, render_column
+    from .kernels.column import column_kernel
     from .kernels.shade import centre_kernel, finish_kernel
     from .kernels.silhouette import silhouette_kernel
-    return column_kernel, render_column, finish_kernel, silhouette_kernel, centre_kernel
+    # (with the functions they take as values: _jit.kernel_calling)
+    return (column_kernel, *column_kernel.called, finish_kernel, silhouette_kernel,
+            *silhouette_kernel.called, centre_kernel)
 
 
 def every_kernel():

@@ -10,22 +10,22 @@ import numpy as np
 from numba import prange
 
 from ._jit import kernel_calling
-from .column import H_SIZE, guesses_for, render_column, render_column_type
+from .column import H_SIZE, column_functions, guesses_for, render_column, render_column_into
+from .fold import trace_column
 from .layout import E_SIZE, G_SIZE
 from .sample import column_x0
 from .shade import shade_pixel
 
 
 def _subcolumn_functions(kind, f, fg, fb, hf, hfp, vp, *rest):
-    """subcolumn_kernel's jitted functions: render_column, of the types column_kernel
-    calls it with (one compile for both; _jit.kernel_calling)."""
-    return ((render_column, render_column_type(kind, f, fg, fb, hf, hfp, vp, np.float32,
-                                               np.float64)),)
+    """subcolumn_kernel's jitted functions: column_kernel's, of the types column_kernel
+    calls them with (one compile for both; _jit.kernel_calling)."""
+    return column_functions(kind, f, fg, fb, hf, hfp, vp, np.float32, np.float64)
 
 
-@kernel_calling(_subcolumn_functions, (render_column,))
+@kernel_calling(_subcolumn_functions, (render_column, render_column_into, trace_column))
 def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, mp, lut, background, lit, acc,
-                     evals, render):
+                     evals, render, into, trace):
     """For every pixel column c and every offset o (in pixels), render the column at
     c + o with coverage antialiasing, colour it (shade_pixel) and add the colour,
     premultiplied by its alpha, and the alpha into acc (H, W, 4) float64, top row first.
@@ -33,7 +33,8 @@ def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, mp, lut, background,
     ``lit`` (H, W): the part of the light reaching each pixel (its centre's point, for
     every sub-column; passes/shadow.py), or an empty array: all of it. mp: the
     material vector (layout.py M_*), lut its colour table (Material.table). ``render``:
-    column.render_column as a function value (_jit.kernel_calling)."""
+    column.render_column as a function value, ``into`` and ``trace`` the functions it
+    takes (column.column_functions; _jit.kernel_calling)."""
     H = acc.shape[0]
     shadows = lit.shape[0] > 0
     W = acc.shape[1]
@@ -51,7 +52,7 @@ def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, mp, lut, background,
             # 0, which Numba compiled render_column for again: 17 s of a first
             # picture with sub-columns)
             ev += render(kind, f, fg, fb, hf, hfp, vp, col, gcol[0, :, 0], ecol[0, :, :, 0],
-                         hrec, np.int64(0), sg, k)[0]
+                         hrec, np.int64(0), sg, k, into, trace)[0]
             x0 = column_x0(vp, col)
             for j in range(H):
                 i = H - 1 - j

@@ -2000,7 +2000,8 @@ SCR_WIDTH = -(-max(A_SIZE, RUN_SIZE) // 8) * 8    # (whole cache lines a row)
 
 
 @ngjit
-def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride, sg, rot):
+def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride, sg, rot, into,
+                  trace):
     """Render pixel column ``col`` into gcol (H, G_SIZE) and ecol (E_SIZE, H): gcol
     only where ecol's E_SEEN row, cleared here, is not 0 (coverage.py). Returns
     (evaluations of f, the lowest and highest w where the upper side is seen: inf,
@@ -2008,14 +2009,17 @@ def render_column(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride, 
     where none is). sg: the perspective solutions of the last columns by plane
     (guesses_for; row rot % 3 gets this column's), or empty; rot: the columns
     rendered into it before. The column's scratch is allocated here; the GPU's
-    kernel (kernels/cuda.py) runs the same steps on scratch of its own."""
+    kernel (kernels/cuda.py) runs the same steps on scratch of its own. ``into`` and
+    ``trace``: render_column_into and fold.trace_column as function values, called
+    through their addresses (column_functions: each compiled once, not again into
+    render_column's code)."""
     scr, sdepth, bat = column_scratch()
-    evals = render_column_into(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride,
-                               sg, rot, scr, sdepth, bat)
+    evals = into(kind, f, fg, fb, hf, hfp, vp, col, gcol, ecol, hrec, hstride, sg, rot, scr,
+                 sdepth, bat)
     if column_folds(scr, hstride):
         # the column's curve folds back in t: traced, and put in where the column
         # pass missed it (fold.py)
-        evals += trace_column(kind, f, fg, hf, hfp, vp, column_x0(vp, col), gcol, ecol)
+        evals += trace(kind, f, fg, hf, hfp, vp, column_x0(vp, col), gcol, ecol)
         _seen_ranges(gcol, ecol, scr[SCR_RUN])
     return column_result(scr, gcol.shape[0], evals)
 
@@ -2157,27 +2161,33 @@ def _keep_guess(sg, rot, k, s):
         sg[rot % 3, k] = s
 
 
-def render_column_type(kind, f, fg, fb, hf, hfp, vp, buf_dtype, hrec_dtype):
-    """render_column's first-class function type for the surface's kernel arguments
-    (kind, f, fg, fb, hf, hfp), the view's vp and a G-buffer and edge buffer of dtype
-    buf_dtype whose column is a 2-D view (layout 'A'), horizon records of hrec_dtype
-    (a column's a C array): what column_kernel and subcolumn_kernel pass it
-    (_jit.kernel_calling)."""
+def column_functions(kind, f, fg, fb, hf, hfp, vp, buf_dtype, hrec_dtype):
+    """The jitted functions column_kernel and subcolumn_kernel take as values
+    (_jit.kernel_calling), as (function, first-class function type) pairs:
+    render_column, and render_column_into and fold.trace_column, which render_column
+    takes, for the surface's kernel arguments (kind, f, fg, fb, hf, hfp), the view's
+    vp, a G-buffer and edge buffer of dtype buf_dtype whose column is a 2-D view
+    (layout 'A') and horizon records of hrec_dtype (a column's a C array)."""
     buf = types.Array(numba.from_dtype(buf_dtype), 2, "A")
-    return function_type(render_column, kind, f, fg, fb, hf, hfp, vp, types.float64, buf, buf,
-                         types.Array(numba.from_dtype(hrec_dtype), 2, "C"), types.int64,
-                         types.Array(types.float64, 2, "C"), types.int64)
+    hrec = types.Array(numba.from_dtype(hrec_dtype), 2, "C")
+    grid = types.Array(types.float64, 2, "C")
+    into = function_type(render_column_into, kind, f, fg, fb, hf, hfp, vp, types.float64, buf,
+                         buf, hrec, types.int64, grid, types.int64, grid,
+                         types.Array(types.int64, 1, "C"), types.Array(types.float64, 1, "C"))
+    trace = function_type(trace_column, kind, f, fg, hf, hfp, vp, types.float64, buf, buf)
+    render = function_type(render_column, kind, f, fg, fb, hf, hfp, vp, types.float64, buf, buf,
+                           hrec, types.int64, grid, types.int64, into, trace)
+    return ((render_column, render), (render_column_into, into), (trace_column, trace))
 
 
 def _column_kernel_functions(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, *rest):
-    """column_kernel's jitted functions: render_column (_jit.kernel_calling)."""
-    return ((render_column, render_column_type(kind, f, fg, fb, hf, hfp, vp, gbuf.dtype,
-                                               hrec.dtype)),)
+    """column_kernel's jitted functions (column_functions)."""
+    return column_functions(kind, f, fg, fb, hf, hfp, vp, gbuf.dtype, hrec.dtype)
 
 
-@kernel_calling(_column_kernel_functions, (render_column,))
+@kernel_calling(_column_kernel_functions, (render_column, render_column_into, trace_column))
 def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals, wrange,
-                  rows, render):
+                  rows, render, into, trace):
     """Render every column c into gbuf (n_tiles, H, TILE, G_SIZE) and ebuf (n_tiles,
     E_SIZE, H, TILE) (layout.py: tiles of TILE columns, rows from the bottom), the
     tiles in parallel. ebuf's E_SEEN plane says where the G-buffer is set (it is not
@@ -2188,8 +2198,9 @@ def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals
     2) the lowest and highest row of each tile where E_SEEN may be set (H, -1: none),
     outside which its E_SEEN is 0 and the finishing pass does not read it. A group of
     GROUP_TILES tiles runs on one thread, its columns one after another, and writes
-    only its own tiles: no shared scratch. ``render``: render_column as a function value
-    (_jit.kernel_calling; the launch passes it)."""
+    only its own tiles: no shared scratch. ``render``, ``into``, ``trace``: render_column
+    and the two functions it takes, as function values (column_functions; the launch
+    passes them: _jit.kernel_calling)."""
     n_tiles = gbuf.shape[0]
     H = gbuf.shape[1]
     T = gbuf.shape[2]
@@ -2207,6 +2218,7 @@ def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals
                 # of render_column for both)
                 evals[c], wrange[c, 0], wrange[c, 1], j_lo, j_hi = render(
                     kind, f, fg, fb, hf, hfp, vp, float(c), gbuf[b, :, lane],
-                    ebuf[b, :, :, lane], hrec[c], hstride, sg, (b - g * GROUP_TILES) * T + lane)
+                    ebuf[b, :, :, lane], hrec[c], hstride, sg, (b - g * GROUP_TILES) * T + lane,
+                    into, trace)
                 rows[b, 0] = min(rows[b, 0], j_lo)
                 rows[b, 1] = max(rows[b, 1], j_hi)

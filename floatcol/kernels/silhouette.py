@@ -42,7 +42,7 @@ threads.
 import numpy as np
 from numba import prange
 
-from ._jit import ngjit_inline, ngjit_parallel
+from ._jit import function_type, kernel_calling, ngjit, ngjit_inline
 from .coverage import coverages, flagged, seen_side
 from .layout import E_COV, E_COV0, E_FLAG, E_SEEN, G_DEPTH
 from .shade import LITTLE_ENDIAN, _rgba32
@@ -232,59 +232,74 @@ def _blend(here, wl, left, wr, right):
                    min(b / a, 1.0) * 255.0 + 0.5, min(a, 1.0) * 255.0 + 0.5)
 
 
-@ngjit_parallel
-def silhouette_kernel(ebuf, gbuf, side, words, rgba):
+@ngjit
+def silhouette_block(blk, ebuf, gbuf, side, words, rgba):
+    """silhouette_kernel's block number blk (rows blk SIL_ROWS to (blk + 1) SIL_ROWS - 1,
+    top row first), with its own scratch; the kernel calls it through its address
+    (_jit.kernel_calling: compiled once, not again in each of the kernel's libraries)."""
+    H, W = side.shape
+    n_words = words.shape[0]
+    # per pair of columns (p, p + 1): the rows, near column and line of the run
+    # found last in this block
+    n_pairs = max(W - 1, 1)
+    lo = np.full(n_pairs, H, dtype=np.int64)       # none yet: lo > hi
+    hi = np.zeros(n_pairs, dtype=np.int64)
+    near = np.zeros(n_pairs, dtype=np.int64)
+    la = np.zeros(n_pairs)
+    lb = np.zeros(n_pairs)
+    for i in range(blk * SIL_ROWS, min(H, (blk + 1) * SIL_ROWS)):
+        j = H - 1 - i
+        base = i * W
+        prev = rgba[i, 0]
+        prev_c = -1                           # the pixel whose original colour is prev
+        c = 0
+        while c < W:
+            k = base + c
+            if (k & 7) == 0 and c + 8 <= W and (k >> 3) < n_words:
+                w = words[k >> 3]
+                if w == (w & np.uint64(255)) * BYTES:         # 8 pixels of one side
+                    s0 = side[i, c]
+                    if (c == 0 or side[i, c - 1] == s0) and \
+                            (c + 8 == W or side[i, c + 8] == s0):
+                        c += 8
+                        continue
+            s_here = side[i, c]
+            left = c > 0 and side[i, c - 1] != s_here
+            right = c < W - 1 and side[i, c + 1] != s_here
+            if left or right:
+                if prev_c != c - 1:
+                    prev = rgba[i, max(c - 1, 0)]            # not blended: as it was
+                here = rgba[i, c]
+                wl = 0.0
+                wr = 0.0
+                if left:
+                    f, cs = _pair_crossing(ebuf, gbuf, H, j, c - 1, lo, hi, near, la, lb)
+                    wl = _weight(f, cs == c)
+                if right:
+                    f, cs = _pair_crossing(ebuf, gbuf, H, j, c, lo, hi, near, la, lb)
+                    wr = _weight(f, cs == c)
+                if wl > 0.0 or wr > 0.0:
+                    rgba[i, c] = _blend(here, wl, prev, wr, rgba[i, c + 1] if right else here)
+                prev = here
+                prev_c = c
+            c += 1
+
+
+def _silhouette_functions(ebuf, gbuf, side, words, rgba):
+    """silhouette_kernel's jitted function: silhouette_block (_jit.kernel_calling)."""
+    return ((silhouette_block, function_type(silhouette_block, np.int64(0), ebuf, gbuf, side,
+                                             words, rgba)),)
+
+
+@kernel_calling(_silhouette_functions, (silhouette_block,))
+def silhouette_kernel(ebuf, gbuf, side, words, rgba, block):
     """Blend the staircases of steep edges in rgba (an (H, W, 4) uint8 picture viewed
     as (H, W) uint32, finish_kernel's), from the tiled edge buffer ebuf, the tiled
     G-buffer gbuf (depths, to tell the near side) and finish_kernel's side plane
     (H, W), top row first; ``words`` is the side plane's bytes read 8 at a time (its
     first H W // 8: a run of 8 pixels of one side, with the same side on both ends,
-    is passed in one test). The module's docstring says how."""
-    H, W = side.shape
-    n_words = words.shape[0]
-    n_blocks = -(-H // SIL_ROWS)
-    for blk in prange(n_blocks):
-        # per pair of columns (p, p + 1): the rows, near column and line of the run
-        # found last in this block
-        n_pairs = max(W - 1, 1)
-        lo = np.full(n_pairs, H, dtype=np.int64)       # none yet: lo > hi
-        hi = np.zeros(n_pairs, dtype=np.int64)
-        near = np.zeros(n_pairs, dtype=np.int64)
-        la = np.zeros(n_pairs)
-        lb = np.zeros(n_pairs)
-        for i in range(blk * SIL_ROWS, min(H, (blk + 1) * SIL_ROWS)):
-            j = H - 1 - i
-            base = i * W
-            prev = rgba[i, 0]
-            prev_c = -1                           # the pixel whose original colour is prev
-            c = 0
-            while c < W:
-                k = base + c
-                if (k & 7) == 0 and c + 8 <= W and (k >> 3) < n_words:
-                    w = words[k >> 3]
-                    if w == (w & np.uint64(255)) * BYTES:         # 8 pixels of one side
-                        s0 = side[i, c]
-                        if (c == 0 or side[i, c - 1] == s0) and \
-                                (c + 8 == W or side[i, c + 8] == s0):
-                            c += 8
-                            continue
-                s_here = side[i, c]
-                left = c > 0 and side[i, c - 1] != s_here
-                right = c < W - 1 and side[i, c + 1] != s_here
-                if left or right:
-                    if prev_c != c - 1:
-                        prev = rgba[i, max(c - 1, 0)]            # not blended: as it was
-                    here = rgba[i, c]
-                    wl = 0.0
-                    wr = 0.0
-                    if left:
-                        f, cs = _pair_crossing(ebuf, gbuf, H, j, c - 1, lo, hi, near, la, lb)
-                        wl = _weight(f, cs == c)
-                    if right:
-                        f, cs = _pair_crossing(ebuf, gbuf, H, j, c, lo, hi, near, la, lb)
-                        wr = _weight(f, cs == c)
-                    if wl > 0.0 or wr > 0.0:
-                        rgba[i, c] = _blend(here, wl, prev, wr, rgba[i, c + 1] if right else here)
-                    prev = here
-                    prev_c = c
-                c += 1
+    is passed in one test). The module's docstring says how. ``block``:
+    silhouette_block as a function value (_jit.kernel_calling; the launch passes it)."""
+    n_blocks = -(-side.shape[0] // SIL_ROWS)
+    for blk_ in prange(n_blocks):
+        block(np.int64(blk_), ebuf, gbuf, side, words, rgba)  # (_jit.py: prange_index)

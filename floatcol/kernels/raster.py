@@ -6,7 +6,7 @@ import numpy as np
 
 from numba import prange
 
-from ._jit import ngjit, ngjit_inline, ngjit_parallel
+from ._jit import function_type, kernel_calling, ngjit, ngjit_inline, ngjit_parallel
 
 
 @ngjit
@@ -333,14 +333,126 @@ def object_shadow_edges_kernel(drawn, edge, cx, cy, e, tris, wp, ortho, grid_ind
             out[i, j] = hits / (S * S)
 
 
-@ngjit_parallel
-def object_edges_kernel(drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_under, before,
+@ngjit
+def object_edges_column(j, drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_under, before,
                         after, rgba):
+    """object_edges_kernel's column j, with its own scratch; the kernel calls it through
+    its address (_jit.kernel_calling: compiled once, not again in each of the kernel's
+    libraries)."""
+    H, W = drawn.shape
+    S = EDGE_SS
+    cand = np.empty(9 * (1 + TOUCH_SLOTS), np.int64)
+    pl = np.empty((9 * (1 + TOUCH_SLOTS), 9))
+    col = np.empty((9 * (1 + TOUCH_SLOTS), 4))
+    acc = np.empty(4)
+    for i in range(H):
+        d0 = drawn[i, j]
+        n = 0
+        edge = touched[i, j, 0] > 0
+        for di in range(-1, 2):
+            for dj in range(-1, 2):
+                ii = i + di
+                jj = j + dj
+                if ii < 0 or ii >= H or jj < 0 or jj >= W:
+                    continue
+                if drawn[ii, jj] != d0:
+                    edge = True
+                for slot in range(-1, TOUCH_SLOTS):
+                    d = drawn[ii, jj] if slot < 0 else touched[ii, jj, slot]
+                    if d > 0:
+                        new = True
+                        for p in range(n):
+                            if cand[p] == d:
+                                new = False
+                        if new:
+                            cand[n] = d
+                            n += 1
+        if not edge:
+            continue
+        # each candidate once: its barycentric planes l = a + bx x + by y, its
+        # vertices' e (1 / e in perspective) and its colour at this pixel
+        m = 0
+        for q in range(n):
+            k = cand[q] - 1
+            i0, i1, i2, x0, x1, x2, y0, y1, y2, det = _on_screen(tris, cx, cy, k)
+            if det == 0.0 or det != det:
+                continue
+            inv = 1.0 / det
+            pl[m, 1] = (y1 - y2) * inv
+            pl[m, 2] = (x2 - x1) * inv
+            pl[m, 0] = -(pl[m, 1] * x2 + pl[m, 2] * y2)
+            pl[m, 4] = (y2 - y0) * inv
+            pl[m, 5] = (x0 - x2) * inv
+            pl[m, 3] = -(pl[m, 4] * x2 + pl[m, 5] * y2)
+            for v in range(3):
+                ev = e[tris[k, v]]
+                pl[m, 6 + v] = ev if ortho else 1.0 / ev
+            # its colour: the nearest pixel of the neighbourhood where it won (the
+            # centre, the 4 neighbours, the corners), else its own lit colour
+            found = False
+            for step in range(3):
+                for di in range(-1, 2):
+                    for dj in range(-1, 2):
+                        if found or abs(di) + abs(dj) != step:
+                            continue
+                        ii = i + di
+                        jj = j + dj
+                        if 0 <= ii < H and 0 <= jj < W and drawn[ii, jj] == k + 1:
+                            for v in range(4):
+                                col[m, v] = after[ii, jj, v]
+                            found = True
+            if not found:
+                for v in range(3):
+                    col[m, v] = min(max(round(rgb[k, v] * 255.0), 0.0), 255.0)
+                col[m, 3] = 255.0
+            m += 1
+        for q in range(4):
+            acc[q] = 0.0
+        for a in range(S):
+            y = i + (a + 0.5) / S - 0.5
+            for b in range(S):
+                x = j + (b + 0.5) / S - 0.5
+                best = -1
+                best_z = z_under[i, j]
+                for q in range(m):
+                    l0 = pl[q, 0] + pl[q, 1] * x + pl[q, 2] * y
+                    l1 = pl[q, 3] + pl[q, 4] * x + pl[q, 5] * y
+                    l2 = 1.0 - l0 - l1
+                    if l0 < -1e-9 or l1 < -1e-9 or l2 < -1e-9:
+                        continue
+                    if ortho:
+                        depth = l0 * pl[q, 6] + l1 * pl[q, 7] + l2 * pl[q, 8]
+                    else:
+                        depth = 1.0 / (l0 * pl[q, 6] + l1 * pl[q, 7] + l2 * pl[q, 8])
+                    if depth - d3 < best_z:
+                        best_z = depth - d3
+                        best = q
+                if best < 0:
+                    for q in range(4):
+                        acc[q] += before[i, j, q]
+                else:
+                    for q in range(4):
+                        acc[q] += col[best, q]
+        for q in range(4):
+            rgba[i, j, q] = np.uint8(min(max(round(acc[q] / (S * S)), 0.0), 255.0))
+
+
+def _object_edges_functions(drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_under, before,
+                            after, rgba):
+    """object_edges_kernel's jitted function: object_edges_column (_jit.kernel_calling)."""
+    return ((object_edges_column,
+             function_type(object_edges_column, np.int64(0), drawn, touched, cx, cy, e, tris,
+                           rgb, ortho, d3, z_under, before, after, rgba)),)
+
+
+@kernel_calling(_object_edges_functions, (object_edges_column,))
+def object_edges_kernel(drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_under, before,
+                        after, rgba, column):
     """Antialias the objects' edges (floatcol/objects.py): a pixel whose 3 x 3
     neighbourhood shows more than one thing (drawn (H, W): raster_kernel's triangle + 1,
     0 where none), or that a triangle touches without winning its centre (``touched``
-    (H, W, TOUCH_SLOTS), raster_kernel's), takes the mean of EDGE_SS x EDGE_SS sub-samples spread evenly over
-    it. At each sub-sample the nearest of the triangles drawn or touching in the
+    (H, W, TOUCH_SLOTS), raster_kernel's), takes the mean of EDGE_SS x EDGE_SS
+    sub-samples spread evenly over it. At each sub-sample the nearest of the triangles drawn or touching in the
     neighbourhood that covers it (its depth as raster_kernel's) is seen, else what lies
     under the objects
     (z_under (H, W) its screen z, ``before`` (H, W, 4) its colour); a triangle's colour
@@ -348,102 +460,9 @@ def object_edges_kernel(drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_under
     it won (its light and shadow there), else its own ``rgb`` (m, 3; a sliver no pixel
     centre lies on: with shadows, lit and shadowed at its centroid, objects.py
     _sliver_colours). Writes rgba at the edge pixels only. In parallel
-    over the columns, each pixel alone (reads drawn, before, after)."""
-    H, W = drawn.shape
-    S = EDGE_SS
-    for jp in prange(W):
-        j = np.int64(jp)                # (a signed index: j + dj stays an integer)
-        cand = np.empty(9 * (1 + TOUCH_SLOTS), np.int64)
-        pl = np.empty((9 * (1 + TOUCH_SLOTS), 9))
-        col = np.empty((9 * (1 + TOUCH_SLOTS), 4))
-        acc = np.empty(4)
-        for i in range(H):
-            d0 = drawn[i, j]
-            n = 0
-            edge = touched[i, j, 0] > 0
-            for di in range(-1, 2):
-                for dj in range(-1, 2):
-                    ii = i + di
-                    jj = j + dj
-                    if ii < 0 or ii >= H or jj < 0 or jj >= W:
-                        continue
-                    if drawn[ii, jj] != d0:
-                        edge = True
-                    for slot in range(-1, TOUCH_SLOTS):
-                        d = drawn[ii, jj] if slot < 0 else touched[ii, jj, slot]
-                        if d > 0:
-                            new = True
-                            for p in range(n):
-                                if cand[p] == d:
-                                    new = False
-                            if new:
-                                cand[n] = d
-                                n += 1
-            if not edge:
-                continue
-            # each candidate once: its barycentric planes l = a + bx x + by y, its
-            # vertices' e (1 / e in perspective) and its colour at this pixel
-            m = 0
-            for q in range(n):
-                k = cand[q] - 1
-                i0, i1, i2, x0, x1, x2, y0, y1, y2, det = _on_screen(tris, cx, cy, k)
-                if det == 0.0 or det != det:
-                    continue
-                inv = 1.0 / det
-                pl[m, 1] = (y1 - y2) * inv
-                pl[m, 2] = (x2 - x1) * inv
-                pl[m, 0] = -(pl[m, 1] * x2 + pl[m, 2] * y2)
-                pl[m, 4] = (y2 - y0) * inv
-                pl[m, 5] = (x0 - x2) * inv
-                pl[m, 3] = -(pl[m, 4] * x2 + pl[m, 5] * y2)
-                for v in range(3):
-                    ev = e[tris[k, v]]
-                    pl[m, 6 + v] = ev if ortho else 1.0 / ev
-                # its colour: the nearest pixel of the neighbourhood where it won (the
-                # centre, the 4 neighbours, the corners), else its own lit colour
-                found = False
-                for step in range(3):
-                    for di in range(-1, 2):
-                        for dj in range(-1, 2):
-                            if found or abs(di) + abs(dj) != step:
-                                continue
-                            ii = i + di
-                            jj = j + dj
-                            if 0 <= ii < H and 0 <= jj < W and drawn[ii, jj] == k + 1:
-                                for v in range(4):
-                                    col[m, v] = after[ii, jj, v]
-                                found = True
-                if not found:
-                    for v in range(3):
-                        col[m, v] = min(max(round(rgb[k, v] * 255.0), 0.0), 255.0)
-                    col[m, 3] = 255.0
-                m += 1
-            for q in range(4):
-                acc[q] = 0.0
-            for a in range(S):
-                y = i + (a + 0.5) / S - 0.5
-                for b in range(S):
-                    x = j + (b + 0.5) / S - 0.5
-                    best = -1
-                    best_z = z_under[i, j]
-                    for q in range(m):
-                        l0 = pl[q, 0] + pl[q, 1] * x + pl[q, 2] * y
-                        l1 = pl[q, 3] + pl[q, 4] * x + pl[q, 5] * y
-                        l2 = 1.0 - l0 - l1
-                        if l0 < -1e-9 or l1 < -1e-9 or l2 < -1e-9:
-                            continue
-                        if ortho:
-                            depth = l0 * pl[q, 6] + l1 * pl[q, 7] + l2 * pl[q, 8]
-                        else:
-                            depth = 1.0 / (l0 * pl[q, 6] + l1 * pl[q, 7] + l2 * pl[q, 8])
-                        if depth - d3 < best_z:
-                            best_z = depth - d3
-                            best = q
-                    if best < 0:
-                        for q in range(4):
-                            acc[q] += before[i, j, q]
-                    else:
-                        for q in range(4):
-                            acc[q] += col[best, q]
-            for q in range(4):
-                rgba[i, j, q] = np.uint8(min(max(round(acc[q] / (S * S)), 0.0), 255.0))
+    over the columns, each pixel alone (reads drawn, before, after). ``column``:
+    object_edges_column as a function value (_jit.kernel_calling; the launch passes
+    it)."""
+    for jp in prange(drawn.shape[1]):
+        column(np.int64(jp), drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_under,
+               before, after, rgba)

@@ -18,9 +18,10 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 #: in any test's picture, in this process or in one it starts (the CLI's, the fuzz
 #: workers', a cluster's workers), is an IndexError, not a read or write past a
 #: buffer (inside a kernel's parallel loop where its launch has one thread: the test
-#: processes' and the fuzz workers', THREADS below). The checks change the code but no value (the kernels use no fast-math),
-#: and they go into a kernel cache of the suite's own, so that a render outside the
-#: suite never loads a checked kernel (Numba's cache index does not tell them apart).
+#: processes' and the fuzz workers', THREADS below). The checks change the code but no
+#: value (the kernels use no fast-math), and they go into a kernel cache of the suite's
+#: own, so that a render outside the suite never loads a checked kernel (Numba's cache
+#: index does not tell them apart).
 #: LLVM optimises them at level 1: the same values, a tenth less compile. Before, the
 #: suite ran the unchecked kernels and compiled them a second time with the checks for
 #: 19 pictures (test_fuzz's bounds-checked job: about 130 s of CPU in a clean clone).

@@ -17,11 +17,10 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 #: The suite's kernels are compiled with Numba's bounds checks: an index out of range
 #: in any test's picture, in this process or in one it starts (the CLI's, the fuzz
 #: workers', a cluster's workers), is an IndexError, not a read or write past a
-#: buffer (inside a kernel's parallel loop where its launch has one thread: the test
-#: processes' and the fuzz workers', THREADS below). The checks change the code but no
-#: value (the kernels use no fast-math), and they go into a kernel cache of the suite's
-#: own, so that a render outside the suite never loads a checked kernel (Numba's cache
-#: index does not tell them apart).
+#: buffer (inside a kernel's parallel loop too: one thread, below). The checks change
+#: the code but no value (the kernels use no fast-math), and they go into a kernel cache
+#: of the suite's own, so that a render outside the suite never loads a checked kernel
+#: (Numba's cache index does not tell them apart).
 #: LLVM optimises them at level 1: the same values, a tenth less compile. Before, the
 #: suite ran the unchecked kernels and compiled them a second time with the checks for
 #: 19 pictures (test_fuzz's bounds-checked job: about 130 s of CPU in a clean clone).
@@ -38,7 +37,17 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 #: times: a clean clone's suite 294 -> 244 s, its system time 100 -> 27 s.
 MALLOC_MMAP = 32 << 20
 MALLOC_TRIM = 512 << 20
-SUITE_ENV = {"NUMBA_BOUNDSCHECK": "1", "NUMBA_OPT": "1",
+#: And one thread for every kernel of the suite (NUMBA_NUM_THREADS=1, in this process and
+#: every process it starts), so that those bounds checks reach the test from inside the
+#: kernels' parallel loops too: Numba reports an exception raised in a parallel loop only
+#: where the launching thread ran into it; in another thread's share of the loop it is
+#: dropped and the rest of that share skipped (numba#2811: an index out of range in the
+#: last column of a picture returned as if nothing had happened, its columns left
+#: unrendered). With one thread the launching thread runs the whole loop (the launcher
+#: turns Numba's SystemError back into the IndexError: kernels/_jit.py _Exclusive). The
+#: two test processes keep both cores busy; the tests of thread counts start a process
+#: of their own with more (test_threads.py).
+SUITE_ENV = {"NUMBA_BOUNDSCHECK": "1", "NUMBA_OPT": "1", "NUMBA_NUM_THREADS": "1",
              "NUMBA_CACHE_DIR": os.path.join(ROOT, ".pytest_cache", "numba"),
              "OMP_WAIT_POLICY": "PASSIVE",
              "MALLOC_MMAP_THRESHOLD_": str(MALLOC_MMAP), "MALLOC_TRIM_THRESHOLD_": str(MALLOC_TRIM)}
@@ -64,37 +73,6 @@ if "numba" in sys.modules:                 # (read at its import: read again)
     _numba_config.reload_config()
 
 import floatcol as fc  # noqa: E402
-import numba  # noqa: E402
-
-#: One thread a kernel launch in the suite's processes, so that its bounds checks reach
-#: the test from inside the kernels' parallel loops too: Numba reports an exception
-#: raised in a parallel loop only where the launching thread ran into it; in another
-#: thread's share of the loop it is dropped and the rest of that share skipped
-#: (numba#2811: an index out of range in the last column of a picture returned as if
-#: nothing had happened). With one thread the launching thread runs the whole loop (the
-#: launcher turns Numba's SystemError back into the IndexError: kernels/_jit.py
-#: _Exclusive). The pool keeps every thread, for the tests of thread counts
-#: (all_threads), and the second test process, which loads this file, does the same;
-#: the two keep both cores busy. (Not NUMBA_NUM_THREADS for the processes the tests
-#: start: Numba reads the environment again as it compiles, and refuses a new count
-#: once its threads run. The bounds-checked fuzz job asks for one thread itself.)
-THREADS = numba.config.NUMBA_NUM_THREADS
-numba.set_num_threads(1)
-
-
-class all_threads:
-    """Kernels launched inside ``with all_threads():`` use every thread of Numba's pool
-    (the suite launches them with one, above)."""
-
-    def __enter__(self):
-        self.before = numba.get_num_threads()
-        numba.set_num_threads(THREADS)
-        return THREADS
-
-    def __exit__(self, *exc):
-        numba.set_num_threads(self.before)
-
-
 import kernel_claims  # noqa: E402
 import second_process  # noqa: E402
 from reference import numpy_surface, raycast  # noqa: E402

@@ -21,14 +21,9 @@ from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E
 N_CASES = 300
 
 
-#: the workers' kernels launched with one thread, as the suite's own (conftest.py): an
-#: index out of range in any column of a kernel's parallel loop is then an IndexError
-ONE_THREAD = {"NUMBA_NUM_THREADS": "1"}
-
-
 @pytest.fixture(scope="module")
 def worker():
-    w = fuzzing.Worker(timeout=120.0, env=ONE_THREAD)
+    w = fuzzing.Worker(timeout=120.0)
     yield w
     w.close()
 
@@ -135,7 +130,7 @@ def _bounds_checked_cases(job):
     these cases are a few more pictures that would be an IndexError, not a write past a
     buffer, where an index went out of range; a background job (conftest.py) after
     the kernels job (lane 1), whose cache it loads its kernels from."""
-    w = fuzzing.Worker(timeout=600.0, env=ONE_THREAD)
+    w = fuzzing.Worker(timeout=600.0)
     w.on_start = job.procs.append
     try:
         rnd = random.Random(7)

@@ -2,14 +2,10 @@
 the ray caster where the pyramid's level is the grid itself, its samples set by the
 footprint and not by the grid, Cohen-Or's flicker measure in motion, where it hands
 a view to the column pass, and its option errors."""
-import os
-
-import numba
 import numpy as np
 import pytest
 
 import floatcol as fc
-from conftest import all_threads
 from reference import bilinear_surface, fractal, raycast
 
 
@@ -114,25 +110,6 @@ def test_views_it_cannot_draw_take_the_column_pass():
     # looking down past the nadir
     down = fc.fly(hf, (0.5 * ext, 0.5 * ext), pitch=-80, fov=90, size=(80, 45))
     assert fc.render(hf, **down).stats["geometry"] == "column"
-
-
-def _one_and_all_threads(render):
-    """(rgba, depth) of ``render()`` (a Render) with one thread and with all."""
-    pics = []
-    with all_threads() as n:
-        assert n >= 2 or (os.cpu_count() or 1) == 1
-        for k in (1, n):
-            numba.set_num_threads(k)
-            r = render()
-            pics.append((r.rgba, r.depth))
-    return pics
-
-
-def test_the_same_picture_for_any_thread_count():
-    _, _, hf, kw = _fly_scene(129)
-    pics = _one_and_all_threads(lambda: fc.render(hf, antialias="area", **kw))
-    assert np.array_equal(pics[0][0], pics[1][0])
-    assert np.array_equal(pics[0][1], pics[1][1])
 
 
 def test_a_function_surface_in_a_lod_view():

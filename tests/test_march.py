@@ -9,7 +9,7 @@ import floatcol as fc
 from floatcol.cli import main
 from floatcol.passes import march as march_pass
 from reference import bilinear_surface, fractal, raycast
-from test_lod import _against, _fly_scene, _one_and_all_threads
+from test_lod import _against, _fly_scene
 
 
 def _reference(z, ext, r):
@@ -104,14 +104,6 @@ def test_it_flickers_no_more_than_the_lod_engine():
     march, lod = flicker("march"), flicker("lod")
     assert march <= lod
     assert march <= 3200
-
-
-def test_the_same_picture_for_any_thread_count():
-    _, _, hf, kw = _fly_scene(129)
-    pics = _one_and_all_threads(
-        lambda: fc.render(hf, antialias=False, **dict(kw, sampling="march")))
-    assert np.array_equal(pics[0][0], pics[1][0])
-    assert np.array_equal(pics[0][1], pics[1][1])
 
 
 def test_views_it_hands_on():

@@ -7,7 +7,10 @@ import numpy as np
 import pytest
 
 import floatcol as fc
-from conftest import THREADS, all_threads
+
+#: the threads of the process that renders every case with one thread and with these
+#: (the suite's own processes launch their kernels with one: conftest.SUITE_ENV)
+THREADS = max(2, os.cpu_count() or 1)
 
 CASES = [dict(projection="orthographic", method="column"),
          dict(projection="perspective", method="column"),
@@ -39,11 +42,23 @@ CASES = [dict(projection="orthographic", method="column"),
               shadows=True),
          # objects' shadows (kernels/raster.py occluded_kernel, a column per thread)
          dict(projection="perspective", lightsource=(300, 30), shadows=True,
-              objects=[fc.box(-1, 0, 1.5, 1.5, 2), fc.tree(2, -2, 3), fc.pole(0, 2, 3)])]
+              objects=[fc.box(-1, 0, 1.5, 1.5, 2), fc.tree(2, -2, 3), fc.pole(0, 2, 3)]),
+         # a fly-through over a fractal DEM (test_lod.py's): the level-of-detail engine
+         # with area weights, and the ray march
+         dict(fly="lod"), dict(fly="march")]
+
+
 def render_case(k):
-    """CASES[k] rendered at 160x120 ("batch": the SIMD batches at any size)."""
+    """CASES[k] rendered at 160x120 ("batch": the SIMD batches at any size; "fly":
+    test_lod.py's fly-through by that engine)."""
     from floatcol.passes import geometry
     kw = dict(CASES[k])
+    if "fly" in kw:
+        from test_lod import _fly_scene
+        _, _, hf, fly = _fly_scene(129)
+        if kw["fly"] == "march":
+            return fc.render(hf, antialias=False, **dict(fly, sampling="march"))
+        return fc.render(hf, antialias="area", **fly)
     batch_min = geometry.BATCH_MIN_SAMPLES
     if kw.pop("batch", False):
         geometry.BATCH_MIN_SAMPLES = 0
@@ -54,40 +69,40 @@ def render_case(k):
         geometry.BATCH_MIN_SAMPLES = batch_min
 
 
-#: every case rendered in one process with one thread (one process start and kernel
-#: load for all, instead of one a case: 16 s of the suite), each case's arrays saved to
-#: <folder>/<k>.npz
+#: every case rendered in one process (one process start and kernel load for all,
+#: instead of one a case: 16 s of the suite) with NUMBA_NUM_THREADS=THREADS, once with
+#: one thread and once with all, each case's arrays saved to <folder>/<k>-<threads>.npz
 SCRIPT = """
 import os, sys, numpy as np, numba
-assert numba.get_num_threads() == 1
 sys.path.insert(0, sys.argv[2])
-from test_threads import CASES, render_case
+from test_threads import CASES, THREADS, render_case
+assert numba.config.NUMBA_NUM_THREADS == THREADS
 for k in range(len(CASES)):
-    r = render_case(k)
-    np.savez(os.path.join(sys.argv[1], f"{k}.npz"), rgba=r.rgba, intensity=r.intensity,
-             side=r.side, depth=r.depth, samples=r.stats["samples"])
+    for n in (1, THREADS):
+        numba.set_num_threads(n)
+        r = render_case(k)
+        np.savez(os.path.join(sys.argv[1], f"{k}-{n}.npz"), rgba=r.rgba,
+                 intensity=r.intensity, side=r.side, depth=r.depth,
+                 samples=r.stats["samples"])
 """
 
 
 @pytest.fixture(scope="module")
-def one_thread(tmp_path_factory):
-    """The folder of SCRIPT's pictures, rendered with NUMBA_NUM_THREADS=1."""
-    folder = tmp_path_factory.mktemp("one-thread")
-    env = dict(os.environ, NUMBA_NUM_THREADS="1")
+def pictures(tmp_path_factory):
+    """The folder of SCRIPT's pictures."""
+    folder = tmp_path_factory.mktemp("threads")
+    env = dict(os.environ, NUMBA_NUM_THREADS=str(THREADS))
     subprocess.run([sys.executable, "-c", SCRIPT, str(folder), os.path.dirname(__file__)],
                    check=True, env=env)
     return folder
 
 
 @pytest.mark.parametrize("k", range(len(CASES)))
-def test_one_thread_equals_default(one_thread, k):
-    one = np.load(one_thread / f"{k}.npz")
-    with all_threads() as n:
-        assert n >= 2 or (os.cpu_count() or 1) == 1
-        r = render_case(k)
-    for name in ("rgba", "intensity", "side", "depth"):
-        np.testing.assert_array_equal(one[name], getattr(r, name), err_msg=name)
-    assert int(one["samples"]) == r.stats["samples"]
+def test_one_thread_equals_all(pictures, k):
+    one = np.load(pictures / f"{k}-1.npz")
+    every = np.load(pictures / f"{k}-{THREADS}.npz")
+    for name in ("rgba", "intensity", "side", "depth", "samples"):
+        np.testing.assert_array_equal(one[name], every[name], err_msg=name)
 
 
 CONCURRENT = """
@@ -148,9 +163,11 @@ def test_an_index_out_of_range_in_a_kernels_loop_is_an_index_error(monkeypatch, 
                                                                    projection):
     """The suite's bounds checks (conftest.SUITE_ENV) reach the test from inside a
     kernel's parallel loop, in the picture's last column too: the suite launches its
-    kernels with one thread (conftest.py; in another thread's share of the loop Numba
-    drops the exception and skips the rest of the share, numba#2811), and the
+    kernels with one thread (conftest.SUITE_ENV; in another thread's share of the loop
+    Numba drops the exception and skips the rest of the share, numba#2811), and the
     launcher raises Numba's SystemError's cause, the IndexError (_jit._Exclusive)."""
+    import numba
+    assert numba.get_num_threads() == 1
     from floatcol.passes import geometry
     monkeypatch.setattr(geometry, "allocate", _short(geometry.allocate, part))
     with pytest.raises(IndexError):

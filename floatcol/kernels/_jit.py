@@ -227,8 +227,9 @@ def kernel_calling(functions, called):
     and the kernels' own compiles take 1-2 s (every kernel, bounds-checked, one core:
     246 -> 181 s; benchmarks/bench_first.py --compile). A function's exceptions reach
     the kernel's loop as a direct call's do: Numba calls a Dispatcher's function value
-    by its compiled function's own address, which reports them (what a parallel loop
-    then does with an exception is Numba's: it drops it, numba#2811)."""
+    by its compiled function's own address, which reports them (a parallel loop
+    reports them where the launching thread runs into them and drops them in another
+    thread's share, numba#2811: _Exclusive.__call__)."""
     def make(fn):
         return _Exclusive(_parallel(fn), functions, called)
     return make

@@ -10,8 +10,7 @@ import numpy as np
 from numba import prange
 
 from ._jit import kernel_calling
-from .column import H_SIZE, column_functions, guesses_for, render_column, render_column_into
-from .fold import trace_column
+from .column import COLUMN_FUNCTIONS, H_SIZE, column_functions, guesses_for
 from .layout import E_SIZE, G_SIZE
 from .sample import column_x0
 from .shade import shade_pixel
@@ -23,7 +22,7 @@ def _subcolumn_functions(kind, f, fg, fb, hf, hfp, vp, *rest):
     return column_functions(kind, f, fg, fb, hf, hfp, vp, np.float32, np.float64)
 
 
-@kernel_calling(_subcolumn_functions, (render_column, render_column_into, trace_column))
+@kernel_calling(_subcolumn_functions, COLUMN_FUNCTIONS)
 def subcolumn_kernel(kind, f, fg, fb, hf, hfp, vp, offsets, mp, lut, background, lit, acc,
                      evals, render, into, trace):
     """For every pixel column c and every offset o (in pixels), render the column at

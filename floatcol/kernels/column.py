@@ -2177,7 +2177,11 @@ def column_functions(kind, f, fg, fb, hf, hfp, vp, buf_dtype, hrec_dtype):
     trace = function_type(trace_column, kind, f, fg, hf, hfp, vp, types.float64, buf, buf)
     render = function_type(render_column, kind, f, fg, fb, hf, hfp, vp, types.float64, buf, buf,
                            hrec, types.int64, grid, types.int64, into, trace)
-    return ((render_column, render), (render_column_into, into), (trace_column, trace))
+    return tuple(zip(COLUMN_FUNCTIONS, (render, into, trace)))
+
+
+#: column_functions' functions, in the order the kernels take them
+COLUMN_FUNCTIONS = (render_column, render_column_into, trace_column)
 
 
 def _column_kernel_functions(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, *rest):
@@ -2185,7 +2189,7 @@ def _column_kernel_functions(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, *re
     return column_functions(kind, f, fg, fb, hf, hfp, vp, gbuf.dtype, hrec.dtype)
 
 
-@kernel_calling(_column_kernel_functions, (render_column, render_column_into, trace_column))
+@kernel_calling(_column_kernel_functions, COLUMN_FUNCTIONS)
 def column_kernel(kind, f, fg, fb, hf, hfp, vp, gbuf, ebuf, hrec, hstride, evals, wrange,
                   rows, render, into, trace):
     """Render every column c into gbuf (n_tiles, H, TILE, G_SIZE) and ebuf (n_tiles,

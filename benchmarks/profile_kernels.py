@@ -156,6 +156,11 @@ def main():
     ap.add_argument("--area", action="store_true", help="with --fly: antialias='area'")
     ap.add_argument("--march", action="store_true",
                     help="with --fly: sampling='march' (the ray march, point sampled)")
+    ap.add_argument("--beta", type=float, default=2.4,
+                    help="with --fly: the fractal DEM's spectral exponent (2.4 the benchmark's "
+                         "needles; 3.4 a smoother, more landscape-like DEM)")
+    ap.add_argument("--amp", type=float, default=40.0,
+                    help="with --fly: the DEM's standard deviation (height units)")
     ap.add_argument("--mesh", type=int, default=0, metavar="N",
                     help="the expression on an N x N grid over [-5, 5]^2 instead, drawn as "
                          "a height field (matplotlib's call form, X, Y, Z)")
@@ -176,7 +181,7 @@ def main():
         sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
         from bench_terrain import fractal
         n = 4097
-        surface = fc.HeightField(fractal(n, seed=3) * 40, u=(0, 4 * (n - 1)),
+        surface = fc.HeightField(fractal(n, args.beta, seed=3) * args.amp, u=(0, 4 * (n - 1)),
                                  v=(0, 4 * (n - 1)))
         kw = fc.fly(surface, (2000.0, 1000.0), heading=30, pitch=-10, fov=60,
                     size=(1280, 720), above=300)
@@ -184,7 +189,8 @@ def main():
         if args.march:
             kw["sampling"] = "march"
         w, h = kw["size"]
-        args.projection = ("fly-through, " + ("area" if args.area else "point") + " sampled"
+        args.projection = (f"beta {args.beta:g}, std {args.amp:g}, fly-through, "
+                           + ("area" if args.area else "point") + " sampled"
                            + (", sampling='march'" if args.march else ""))
     else:
         surface = args.expr

@@ -218,13 +218,15 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
     ``pitch`` (degrees, negative down) with a horizontal field of view ``fov``; the
     view plane is tilted with the pitch (his non-vertical view plane). Returns the
     keywords of render() that place it: projection, elev, azim, center, d1, d2,
-    scale, size, step, and sampling="lod": the level-of-detail engine (passes/lod.py:
-    planes a pixel's footprint apart, each sampling the height field's pyramid level
-    of that footprint; a 1280x720 view over a 4097^2 DEM 0.14 s a frame where the
-    exact column pass with adaptive planes takes 3.2 s). Set sampling="adaptive" in
-    the dict for the exact surface everywhere, or sampling="march" for point-sampled
-    pictures (antialias=False) of a height field by each pixel's ray marched through
-    the same planes, about twice as fast (docs/terrain.md compares them).
+    scale, size, step, and sampling="march": a point-sampled view (antialias=False)
+    of a height field by each pixel's ray marched through planes a pixel's footprint
+    apart over the height field's pyramid (passes/march.py), an antialiased view or a
+    function surface by the level-of-detail engine over the same planes and levels
+    (passes/lod.py, its area weights); a 1280x720 view over a 4097^2 DEM takes about
+    0.1 s point sampled, 0.15 s area sampled, where the exact column pass with
+    adaptive planes takes 3.2 s. Set sampling="lod" in the dict for the
+    level-of-detail engine's point samples too, or sampling="adaptive" for the exact
+    surface everywhere (docs/terrain.md compares them).
 
     position: (u, v, w), or (u, v) with the eye ``above`` (default: 5 % of the
         domain's longer side) the surface there.
@@ -233,7 +235,7 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
     The sampling planes start a pixel's footprint apart where the lowest ray of the
     picture meets the ground under the eye (render's ``step``); with
     ``antialias="area"`` they grow with distance (kernels/area.py); with
-    ``sampling="lod"`` the planes and levels follow the footprint.
+    ``sampling="lod"`` or ``"march"`` the planes and levels follow the footprint.
     """
     from .surface import as_surface
     from .view import _number, check_size
@@ -275,4 +277,4 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
     reach = height / math.sin(down) if height > 0 and down > 0 else side
     step = max(min(reach, side), d1) / (d1 * scale)
     return dict(projection="perspective", elev=-pitch, azim=heading, center=center, d1=d1,
-                d2=d2, scale=scale, size=(W, H), step=step, sampling="lod")
+                d2=d2, scale=scale, size=(W, H), step=step, sampling="march")

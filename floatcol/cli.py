@@ -195,8 +195,9 @@ def _surface_options(p, default_size="800x600", many=False, terrain=False):
                         "(pip install 'floatcol[cuda]')")
     p.add_argument("--sampling", default=None, choices=["uniform", "adaptive", "lod", "march"],
                    help="adaptive: planes grow with distance and where the normal turns slowly; "
-                        "lod: a fly-through's level of detail (fc.fly's default); march: its "
-                        "pixel rays marched through the same planes (faster; --antialias off)")
+                        "lod: a fly-through's level of detail; march: its pixel rays marched "
+                        "through the same planes (faster; point sampled, --antialias off; else "
+                        "as lod: --fly's default)")
     p.add_argument("--lines", type=int, default=None, help="horizon: number of lines (default 160)")
     p.add_argument("--cmap", default=None, help="matplotlib colormap of the upper side (default viridis)")
     p.add_argument("--color", default=None, help="one colour for the upper side instead of a colormap")
@@ -288,7 +289,7 @@ def build_parser():
     t.add_argument("--fly", type=_eye, default=None, metavar="U:V[:W]",
                    help="fly: the eye inside the scene at (u, v), --above the ground there, "
                         "or at (u, v, w) (the DEM's units, heights exaggerated); replaces "
-                        "--elev, --azim and --proj (Guedes 1997; sampling lod)")
+                        "--elev, --azim and --proj (Guedes 1997; sampling march)")
     t.add_argument("--heading", type=_value("heading"), default=0.0,
                    help="fly: compass heading in degrees clockwise from north (default 0)")
     t.add_argument("--pitch", type=_value("pitch"), default=-10.0,

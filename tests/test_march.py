@@ -106,6 +106,24 @@ def test_it_flickers_no_more_than_the_lod_engine():
     assert march <= 3200
 
 
+def test_fly_draws_point_sampled_views_by_the_march_the_rest_by_the_lod_engine():
+    """fc.fly's camera: a point-sampled view of a height field by the ray march, an
+    antialiased one (its default) or a function surface by the lod engine."""
+    z, ext, hf, _ = _fly_scene()
+    kw = fc.fly(hf, (0.3 * ext, 0.1 * ext), heading=25, pitch=-12, fov=60, size=(80, 45),
+                above=60)
+    point = fc.render(hf, antialias=False, **kw)
+    assert point.stats["geometry"] == "march"
+    lod = fc.render(hf, antialias=False, **dict(kw, sampling="lod"))
+    assert lod.stats["geometry"] == "lod"
+    assert not np.array_equal(point.rgba, lod.rgba)        # (two engines, two pictures)
+    assert fc.render(hf, **kw).stats["geometry"] == "lod"
+    assert fc.render(hf, antialias="area", **kw).stats["geometry"] == "lod"
+    expr = "2*sin(u)*cos(v)"
+    f = fc.fly(expr, (-8, -8), heading=45, pitch=-10, size=(80, 45), above=2)
+    assert fc.render(expr, antialias=False, **f).stats["geometry"] == "lod"
+
+
 def test_views_it_hands_on():
     """Antialiased views and function surfaces take the lod engine (its area weights),
     an orthographic view the column pass: the pictures those draw."""
@@ -119,7 +137,7 @@ def test_views_it_hands_on():
     expr = "2*sin(u)*cos(v)"
     f = fc.fly(expr, (-8, -8), heading=45, pitch=-10, size=(80, 45), above=2)
     a = fc.render(expr, antialias=False, **dict(f, sampling="march"))
-    b = fc.render(expr, antialias=False, **f)
+    b = fc.render(expr, antialias=False, **dict(f, sampling="lod"))
     assert a.stats["geometry"] == b.stats["geometry"] == "lod"
     assert np.array_equal(a.rgba, b.rgba)
     ortho = fc.render(hf, antialias=False, size=(80, 45), sampling="march")

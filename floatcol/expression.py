@@ -445,7 +445,7 @@ class _Builder:
         numeric = all(self.numeric(x) for x in args)
         try:
             if numeric:         # its value in doubles, never an exact gamma(10**60)
-                return _collapse(fn(*args, evaluate=False))
+                return _numeric_call(fn(*args, evaluate=False))
             return fn(*args)
         except _Reject:
             raise
@@ -594,13 +594,94 @@ def _tame(x, depth=0):
     return False
 
 
+#: the parts of a special function's complex arguments that mpmath evaluates it within
+#: (past them a hole: its time grows without bound with them)
+COMPLEX_SPECIAL = 64.0
+#: ... the functions so called (the kernels compute them for real arguments:
+#: kernels/special.py, airy.py, integrals.py, gammas.py)
+_SPECIAL_NAMES = ("besselj", "bessely", "besseli", "besselk", "jn", "yn", "hankel1",
+                  "hankel2", "airyai", "airybi", "airyaiprime", "airybiprime", "Si", "Ci",
+                  "Shi", "Chi", "Ei", "expint", "li", "Li", "fresnels", "fresnelc", "erfi",
+                  "erfinv", "erfcinv", "polygamma", "digamma", "trigamma", "LambertW",
+                  "zeta", "dirichlet_eta", "elliptic_k", "elliptic_e", "elliptic_f", "Ynm",
+                  "Znm")
+#: what mpmath (sympy's evalf) may raise for a constant it cannot evaluate (its
+#: NoConvergence is an Exception of its own; NotImplementedError and RecursionError
+#: are RuntimeErrors)
+_EVALF_FAILURES = (TypeError, ValueError, ArithmeticError, AttributeError, RuntimeError)
+
+
+def _evalf_failures():
+    try:
+        from mpmath.libmp.libhyper import NoConvergence
+    except ImportError:                          # pragma: no cover - another mpmath
+        return _EVALF_FAILURES
+    return _EVALF_FAILURES + (NoConvergence,)
+
+
+def _numeric_call(node):
+    """A function called with numbers (a sympy node built unevaluated), as a bounded
+    sympy number.
+
+    sympy's evalf (mpmath, 17 digits) takes a time that grows without bound with a
+    special function's arguments: zeta(-1e300, 2.5), digamma(10**6) and besseli(1e15,
+    1e15) did not end, expint(1000, 1000) took 4 s, others raised mpmath's
+    NoConvergence after seconds (gamma, loggamma, factorial and beta stay quick). So a
+    special function whose arguments are real takes the kernels' double value (what a
+    picture of it computes, in bounded time) under their rules (a Bessel function's
+    order up to 1000 and a spherical harmonic's degree up to 20: ValueError past
+    them); with complex arguments mpmath's, where each part of them lies within
+    COMPLEX_SPECIAL, else NaN (a hole). Elementary functions take mpmath's
+    (_collapse)."""
+    import sympy as sp
+    if not isinstance(node, sp.Function) or type(node).__name__ not in _SPECIAL_NAMES:
+        return _collapse(node)
+    from . import surface
+    name = type(node).__name__
+    if name in ("hankel1", "hankel2"):           # J +- i Y (A&S 9.1.3, 9.1.4)
+        try:
+            j, y = (_numeric_call(f(*node.args, evaluate=False))
+                    for f in (sp.besselj, sp.bessely))
+        except ValueError as exc:
+            raise ValueError(str(exc).replace("besselj", name)) from None
+        try:
+            return _number(complex(j) + (1j if name == "hankel1" else -1j) * complex(y))
+        except TypeError:                        # (oo, zoo, nan)
+            return sp.nan
+    if name in ("digamma", "trigamma"):          # (as sympy writes them)
+        node = sp.polygamma(int(name == "trigamma"), *node.args, evaluate=False)
+    try:
+        e = surface._closed_forms(node)          # (Ynm, Znm: sin, cos and exp of the angles)
+        surface._check_orders(e)
+    except ValueError as exc:
+        raise ValueError(str(exc).split(": ", 1)[-1]) from None
+    if name in ("Ynm", "Znm"):
+        return _collapse(e)
+    parts = []
+    for a in node.args:
+        try:
+            c = complex(a)
+        except TypeError:                        # (oo, zoo, nan)
+            c = complex(float(a)) if a in (sp.oo, -sp.oo, sp.nan) else complex(math.nan)
+        parts.append(c)
+    if all(c.imag == 0.0 for c in parts) and not e.has(sp.I):
+        try:
+            value = float(surface._lambdify_real((), e)())
+        except (OverflowError, ZeroDivisionError, ValueError, TypeError):
+            value = math.nan                     # (a NaN or an infinity in the kernels)
+        return _number(value)
+    if all(abs(c.real) <= COMPLEX_SPECIAL and abs(c.imag) <= COMPLEX_SPECIAL for c in parts):
+        return _collapse(e)
+    return sp.nan
+
+
 def _collapse(x):
     """The double (or complex double) value of a constant sympy node whose parts are
     bounded, as a sympy number (oo, -oo, nan, zoo where it is not finite)."""
     import sympy as sp
     try:
         c = complex(sp.N(x, 17))
-    except (TypeError, ValueError, ArithmeticError, AttributeError):
+    except _evalf_failures():
         return sp.nan
     if c.imag != 0.0 and not math.isnan(c.imag) and abs(c.imag) <= 1e-15 * abs(c.real):
         c = complex(c.real, 0.0)

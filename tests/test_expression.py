@@ -289,3 +289,42 @@ def test_a_power_whose_exponent_is_whole_numbers_is_a_hole_at_a_pole(capfd):
     assert (r.side != 0).mean() > 0.04                  # (measured 0.081: a tall surface)
     out, err = capfd.readouterr()
     assert "Exception ignored" not in err and "ZeroDivisionError" not in err
+
+
+def test_a_special_function_of_numbers_takes_the_kernels_double():
+    """A special function called with numbers is folded to the double the kernels
+    compute (expression._numeric_call), under their rules; sympy's evalf (mpmath) had
+    run without end for digamma(10**6), zeta(-1e300, 2.5) and dirichlet_eta(1e15) and
+    raised mpmath's NoConvergence (not a ValueError) for zeta(1e300, -oo) (their
+    renders: test_fuzz.py's REPRODUCERS, in a worker that detects a hang)."""
+    # digamma(n) = ln n - 1/(2n) - 1/(12 n^2) + O(n^-4) (A&S 6.3.18)
+    n = 10**6
+    assert float(parse("digamma(10**6)")) == pytest.approx(
+        math.log(n) - 1 / (2 * n) - 1 / (12 * n * n), rel=1e-14)
+    # J_1/2(2) = sqrt(2 / (2 pi)) sin 2 (A&S 10.1.11), and the constant is folded
+    assert float(parse("besselj(0.5, 2)")) == pytest.approx(
+        math.sqrt(1 / math.pi) * math.sin(2), rel=1e-13)
+    assert parse("besselj(0.5, 2)*u").free_symbols == {u}
+    # sympy's evalf cannot evaluate erfcinv at all (it was a hole): erfc(x) = 1/2 at x
+    assert math.erfc(float(parse("erfcinv(0.5)"))) == pytest.approx(0.5, rel=1e-14)
+    for text in ("zeta(-1e300, 2.5)", "zeta(1e300, -oo)", "zeta(I, nan)",
+                 "zeta(2 + 300*I)"):                       # (complex, past COMPLEX_SPECIAL)
+        assert parse(text) is sp.nan, text
+    assert float(parse("dirichlet_eta(1e15)")) == 1.0       # 1 - 2^-s + ... in doubles
+    # complex arguments within COMPLEX_SPECIAL: mpmath's value (zeta(2 + 3i), DLMF 25.2.1
+    # summed here)
+    k = np.arange(1, 200001, dtype=float)
+    tail = (k[-1] + 0.5) ** (-1 - 3j) / (1 + 3j)           # (Euler-Maclaurin's remainder)
+    assert float(parse("re(zeta(2 + 3*I))")) == pytest.approx(
+        (np.sum(k ** (-2 - 3j)) + tail).real, rel=1e-9)
+    # the kernels' rules: a Bessel order up to 1000, a spherical harmonic's degree to 20
+    with pytest.raises(ValueError, match="besseli's order must be a number from -1000 to "
+                                         "1000.*got 1.0e\\+300.*at character 1"):
+        parse("besseli(1e300, 1e300)")
+    with pytest.raises(ValueError, match="n <= 20.*got n = 1000000"):
+        parse("Ynm(10**6, 2, 2, 2)")
+    with pytest.raises(ValueError, match="hankel1's order must be"):
+        parse("hankel1(1e15, -1e15)")                      # (J + iY: it had not ended)
+    h = complex(parse("hankel2(0.5, 2)"))                  # J - iY, Y_1/2 = -J_-1/2
+    assert h == pytest.approx(math.sqrt(1 / math.pi) * (math.sin(2) + 1j * math.cos(2)),
+                              rel=1e-13)

@@ -111,6 +111,20 @@ REPRODUCERS = [
     # sympy's None where no condition of a Piecewise holds
     ("u**floor(v)", dict(u=[-3, 3], v=[-3, 3], size=[40, 30])),
     ("Piecewise((u, u > 0))", dict(u=[-2, 2], v=[-2, 2], size=[40, 30])),
+    # constants of special functions that sympy's evalf (mpmath) evaluated without end
+    # (the first and third) or raised mpmath's NoConvergence for (2026-12-07,
+    # benchmarks/fuzz.py 3000 1207): now the kernels' doubles (expression._numeric_call)
+    ("(((zeta(I, nan))^(zeta(2.5, 0)))**(((-1e300)+(1/2))%((-oo)*(0))))*"
+     "(cot(im(Mod(2.5, 0))))", dict(u=[1e-09, 1.0], size=[160, 3], elev=-22.83, azim=-213.1,
+                                    corrections="spline+supersample", sampling="lod")),
+    ("zeta((Abs(conjugate(-1e300)))-(im(dirichlet_eta(-1))), -oo)",
+     dict(u=[-1.427, 6.849], v=[7.368, 8.988], size=[33, 3], elev=-90.0, azim=-290.4,
+          sampling="march", pixel_step=2.0)),
+    ("ceiling(((dirichlet_eta(pi))**(zeta(-1e300, 2.5)))%(tan(I)))",
+     dict(u=[8.111, 17.255], v=[3.799, 15.525], size=[101, 1], elev=-47.7, azim=-8.74,
+          corrections="none", color="u - v", focal_length=1.0)),
+    ("u + digamma(10**6) + expint(1000, 1000)*v + dirichlet_eta(1e15)",
+     dict(u=[-1, 1], v=[-1, 1], size=[40, 30])),
 ]
 
 

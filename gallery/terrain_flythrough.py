@@ -6,8 +6,8 @@ for an orthophoto), a sun from the north-west casting shadows, trees, a mast and
 house standing on the ground (a z-buffer against the terrain's depth, Szenberg 1997),
 and a camera flying north over the valley (Guedes 1997's tilted view plane). The
 terrain is area-sampled (Cohen-Or 1997): dense ridges in the distance do not flicker.
-A point-sampled preview of the first frame is drawn by the ray march (sampling="march":
-each pixel's ray marched through the same planes, about twice as fast).
+A point-sampled preview of the first frame (antialias=False) is drawn by fc.fly's ray
+march (each pixel's ray marched through the same planes, 1.5 to 3 times as fast).
 """
 import numpy as np
 from matplotlib import colormaps
@@ -41,9 +41,9 @@ fc.render(dem, **fc.fly(dem, (15000.0, 2500.0), heading=15, pitch=-10, fov=55,
                         size=(480, 270), above=900),
           texture=relief, antialias="area", lightsource=(315, 35), shadows=True,
           objects=objects, background="lightskyblue", ambient=0.4).save("terrain_fly.png")
-# a point-sampled preview by the ray march (antialias=False; docs/terrain.md)
-preview = dict(fc.fly(dem, (15000.0, 2500.0), heading=15, pitch=-10, fov=55, size=(480, 270),
-                      above=900), sampling="march")
+# a point-sampled preview (antialias=False): fc.fly's ray march (docs/terrain.md)
+preview = fc.fly(dem, (15000.0, 2500.0), heading=15, pitch=-10, fov=55, size=(480, 270),
+                 above=900)
 fc.render(dem, **preview, texture=relief, antialias=False, lightsource=(315, 35), shadows=True,
           objects=objects, background="lightskyblue",
           ambient=0.4).save("terrain_fly_preview.png")

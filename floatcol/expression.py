@@ -636,7 +636,7 @@ def _numeric_call(node):
     import sympy as sp
     if not isinstance(node, sp.Function) or type(node).__name__ not in _SPECIAL_NAMES:
         return _collapse(node)
-    from . import surface
+    from .surface import kernel_closed_form, kernel_double
     name = type(node).__name__
     if name in ("hankel1", "hankel2"):           # J +- i Y (A&S 9.1.3, 9.1.4)
         try:
@@ -650,13 +650,9 @@ def _numeric_call(node):
             return sp.nan
     if name in ("digamma", "trigamma"):          # (as sympy writes them)
         node = sp.polygamma(int(name == "trigamma"), *node.args, evaluate=False)
-    try:
-        e = surface._closed_forms(node)          # (Ynm, Znm: sin, cos and exp of the angles)
-        surface._check_orders(e)
-    except ValueError as exc:
-        raise ValueError(str(exc).split(": ", 1)[-1]) from None
+    e = kernel_closed_form(node)
     if name in ("Ynm", "Znm"):
-        return _collapse(e)
+        return _collapse(e)                      # (sin, cos and exp of the angles)
     parts = []
     for a in node.args:
         try:
@@ -665,11 +661,7 @@ def _numeric_call(node):
             c = complex(float(a)) if a in (sp.oo, -sp.oo, sp.nan) else complex(math.nan)
         parts.append(c)
     if all(c.imag == 0.0 for c in parts) and not e.has(sp.I):
-        try:
-            value = float(surface._lambdify_real((), e)())
-        except (OverflowError, ZeroDivisionError, ValueError, TypeError):
-            value = math.nan                     # (a NaN or an infinity in the kernels)
-        return _number(value)
+        return _number(kernel_double(e))
     if all(abs(c.real) <= COMPLEX_SPECIAL and abs(c.imag) <= COMPLEX_SPECIAL for c in parts):
         return _collapse(e)
     return sp.nan

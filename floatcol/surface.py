@@ -569,6 +569,29 @@ def _closed_forms(e):
     return e.xreplace(subs) if subs else e
 
 
+def kernel_closed_form(call):
+    """A special function called with numbers (a sympy node built unevaluated) as the
+    kernels compute it: _closed_forms' (Ynm, Znm, the Hankel functions), under their
+    rules (_check_orders: a Bessel function's order from -MAX_ORDER to MAX_ORDER, ...).
+    ValueError naming the function where they refuse its arguments."""
+    try:
+        e = _closed_forms(call)
+        _check_orders(e)
+    except ValueError as exc:
+        raise ValueError(str(exc).split(": ", 1)[-1]) from None      # (not "cannot draw f")
+    return e
+
+
+def kernel_double(e):
+    """The double the kernels compute for a constant real expression e
+    (kernel_closed_form's, of real numbers): NaN where it is not finite in Python's
+    math and Numba gives an infinity or NaN (gamma(1e300), a pole)."""
+    try:
+        return float(_lambdify_real((), e)())
+    except (OverflowError, ZeroDivisionError, ValueError, TypeError):
+        return math.nan
+
+
 @functools.lru_cache(maxsize=256)
 def _compiled_expression(e, names, time=None):
     """Surface for expression e (memoized on the expression and variable names)."""

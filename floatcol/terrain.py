@@ -96,10 +96,10 @@ def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=No
     faster than the column pass's corrections on its every cell). vert_exag="auto"
     picks the exaggeration that makes the relief 8 % of the longer side (at least 1);
     the one used is the plot's ``vert_exag``. ``fly``: a fly camera instead of the view
-    from outside (camera.fly: its ray march point sampled, its lod engine antialiased): the eye's position (u, v) or (u, v, w)
-    in the DEM's units (heights exaggerated), or a dict of fly()'s keywords (position,
-    heading, pitch, fov, above, near); its elev, azim and projection replace those
-    given. Returns plot_surface's SurfacePlot (``.save(path)``, ``.render``)."""
+    from outside (camera.fly: its ray march point sampled, its lod engine
+    antialiased): the eye's position (u, v) or (u, v, w) in the DEM's units (heights
+    exaggerated), or a dict of fly()'s keywords (position, heading, pitch, fov, above,
+    near); its elev, azim and projection replace those given. Returns plot_surface's SurfacePlot (``.save(path)``, ``.render``)."""
     from .plot import plot_surface
     if isinstance(source, HeightField):
         hf = source

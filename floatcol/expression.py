@@ -597,20 +597,18 @@ def _tame(x, depth=0):
 #: the parts of a special function's complex arguments that mpmath evaluates it within
 #: (past them a hole: its time grows without bound with them)
 COMPLEX_SPECIAL = 64.0
-#: ... the functions so called (the kernels compute them for real arguments:
-#: kernels/special.py, airy.py, integrals.py, gammas.py)
-_SPECIAL_NAMES = ("besselj", "bessely", "besseli", "besselk", "jn", "yn", "hankel1",
-                  "hankel2", "airyai", "airybi", "airyaiprime", "airybiprime", "Si", "Ci",
-                  "Shi", "Chi", "Ei", "expint", "li", "Li", "fresnels", "fresnelc", "erfi",
-                  "erfinv", "erfcinv", "polygamma", "digamma", "trigamma", "LambertW",
-                  "zeta", "dirichlet_eta", "elliptic_k", "elliptic_e", "elliptic_f", "Ynm",
-                  "Znm")
+#: ... the functions so called, by their sympy names (the kernels compute them for real
+#: arguments: kernels/special.py, airy.py, integrals.py, gammas.py); gamma's kin stay
+#: mpmath's
+_SPECIAL_NAMES = (frozenset(_BESSEL.values()) | frozenset(_SPECIAL.values())
+                  | {"jn", "yn", "hankel1", "hankel2"}) - {"factorial", "loggamma", "beta"}
 #: what mpmath (sympy's evalf) may raise for a constant it cannot evaluate (its
 #: NoConvergence is an Exception of its own; NotImplementedError and RecursionError
 #: are RuntimeErrors)
 _EVALF_FAILURES = (TypeError, ValueError, ArithmeticError, AttributeError, RuntimeError)
 
 
+@functools.lru_cache(maxsize=1)
 def _evalf_failures():
     try:
         from mpmath.libmp.libhyper import NoConvergence
@@ -653,13 +651,10 @@ def _numeric_call(node):
     e = kernel_closed_form(node)
     if name in ("Ynm", "Znm"):
         return _collapse(e)                      # (sin, cos and exp of the angles)
-    parts = []
-    for a in node.args:
-        try:
-            c = complex(a)
-        except TypeError:                        # (oo, zoo, nan)
-            c = complex(float(a)) if a in (sp.oo, -sp.oo, sp.nan) else complex(math.nan)
-        parts.append(c)
+    try:
+        parts = [complex(a) for a in node.args]  # (nan and zoo: nan + nan i)
+    except TypeError:
+        return sp.nan
     if all(c.imag == 0.0 for c in parts) and not e.has(sp.I):
         return _number(kernel_double(e))
     if all(abs(c.real) <= COMPLEX_SPECIAL and abs(c.imag) <= COMPLEX_SPECIAL for c in parts):

@@ -90,9 +90,6 @@ class Quality:
         if self.sampling not in SAMPLINGS:
             raise ValueError("sampling must be 'uniform', 'adaptive', 'lod' or 'march', got "
                              f"{self.sampling!r}")
-        if self.sampling in ("lod", "march") and self.device != "cpu":
-            raise ValueError(f"sampling={self.sampling!r} runs on the CPU: use device='cpu' "
-                             "(or another sampling on the GPU)")
         if self.sampling in ("lod", "march") and not isinstance(
                 self.antialias, (bool, np.bool_, str, type(None))):
             raise ValueError(f"sampling={self.sampling!r} antialiases along the columns: use "

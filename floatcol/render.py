@@ -185,7 +185,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         or as tasks on ``client`` (a dask.distributed Client; ``pip install
         'floatcol[dask]'``), assembled into the same picture, array for array, as
         without (floatcol/cluster.py). A client alone: two bands a worker.
-    device : where the column pass (area sampling's, the translucent layers') runs:
+    device : where the column pass (area sampling's, the translucent layers', the
+        fly-through's ray march and level-of-detail engine) runs:
         "cpu" (default) or "cuda", an NVIDIA GPU, a thread a pixel column, the same
         column code compiled for the GPU (the same picture; ``pip install
         'floatcol[cuda]'``; kernels/cuda.py, docs/cuda.md). A ValueError says so on a

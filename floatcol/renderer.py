@@ -256,9 +256,9 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
         and lod.supports(surface, view)
     by_area = quality.area or (by_lod and aa_cov)
     if by_march:
-        geom = march.march_pass(surface, view, vp, buffers)
+        geom = march.march_pass(surface, view, vp, buffers, device=quality.device)
     elif by_lod:
-        geom = lod.lod_pass(surface, view, vp, buffers, by_area)
+        geom = lod.lod_pass(surface, view, vp, buffers, by_area, device=quality.device)
     elif quality.area:
         geom = area.area_pass(surface, view, vp, buffers, device=quality.device)
     elif quality.device == "cuda":

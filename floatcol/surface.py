@@ -344,8 +344,11 @@ def fit_grid(surface, domain, n):
         a.flags.writeable = False
     fit = {"u": gu, "v": gv, "w": gw}
     if keep:
-        while len(surface._fits) >= FITS_KEPT:
-            surface._fits.pop(next(iter(surface._fits)))
+        # (only grids are let go: the dict holds the surface's GPU kernels and device
+        # copies too, kernels/cuda.py, under string keys)
+        grids = [k for k in surface._fits if isinstance(k, tuple)]
+        for old in grids[:max(len(grids) - FITS_KEPT + 1, 0)]:
+            del surface._fits[old]
         surface._fits[key] = fit
     return fit
 

@@ -4,7 +4,8 @@ CUDA simulator, which must be chosen before numba.cuda is first imported).
 
     NUMBA_ENABLE_CUDASIM=1 python tests/cuda_scenes.py SCENES.json OUT.npz
 
-SCENES.json: a list of [name, expression or {"heightfield": seed}, render keywords];
+SCENES.json: a list of [name, expression, {"heightfield": seed} or {"fractal": seed},
+render keywords];
 the keyword "objects" as a list of [kind, arguments...] (fc.box, fc.pole, fc.tree).
 OUT.npz gets NAME/DEVICE/ARRAY for rgba, side, intensity, depth, u, v and samples.
 """
@@ -20,6 +21,11 @@ import floatcol as fc  # noqa: E402
 
 
 def surface(spec):
+    if isinstance(spec, dict) and "fractal" in spec:
+        # (test_lod.py's fly-through DEM: 65^2 fractal heights on cells of 40 units)
+        from reference import fractal
+        return fc.HeightField(fractal(65, seed=spec["fractal"]) * 30, u=(0, 2560),
+                              v=(0, 2560))
     if isinstance(spec, dict):
         rng = np.random.default_rng(spec["heightfield"])
         z = np.cumsum(np.cumsum(rng.normal(size=(33, 33)), 0), 1) / 12.0
@@ -39,6 +45,7 @@ def main(scenes_path, out_path):
             for key in ("rgba", "side", "intensity", "depth", "u", "v"):
                 out[f"{name}/{device}/{key}"] = np.asarray(getattr(r, key))
             out[f"{name}/{device}/samples"] = np.array(r.stats["samples"])
+            out[f"{name}/{device}/geometry"] = np.array(r.stats.get("geometry", ""))
     np.savez(out_path, **out)
 
 

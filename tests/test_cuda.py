@@ -24,7 +24,7 @@ import pytest
 
 import floatcol as fc
 from conftest import background_job, background_result, behind_the_tests, reference_for
-from reference import numpy_surface, psnr, raycast
+from reference import fractal, numpy_surface, psnr, raycast
 from test_fold import ANNULUS, KW as FOLD_KW
 from test_reference import CASES
 
@@ -69,7 +69,28 @@ def _scenes():
     scenes.append(["area-heightfield", {"heightfield": 5},
                    dict(size=(120, 90), projection="perspective", elev=25, azim=40,
                         antialias="area")])
+    # fly-throughs (fc.fly): the ray march (point sampled) and the level-of-detail
+    # engine (antialiased, area weights; point sampled; a function surface), a thread
+    # a column
+    fly = _fly_keywords(fc.HeightField(fractal(65, seed=5) * 30, u=(0, 2560), v=(0, 2560)))
+    for name, extra in (("fly-march", dict(antialias=False)), ("fly-lod", {}),
+                        ("fly-lod-area", dict(antialias="area")),
+                        ("fly-lod-point", dict(antialias=False, sampling="lod"))):
+        scenes.append([name, {"fractal": 5}, dict(fly, **extra)])
+    scenes.append(["fly-lod-function", GORDON, dict(
+        _fly_keywords(fc.as_surface(GORDON), (-4.0, -4.5), 1.0), u=DOM, v=DOM)])
     return scenes
+
+
+#: the engine that draws each fly scene (the view is one it draws, not handed on)
+FLY_ENGINES = {"fly-march": "march", "fly-lod": "lod", "fly-lod-area": "lod",
+               "fly-lod-point": "lod", "fly-lod-function": "lod"}
+
+
+def _fly_keywords(surface, position=(768.0, 256.0), above=60.0):
+    """fc.fly's render keywords (test_lod.py's camera), as JSON takes them."""
+    kw = fc.fly(surface, position, heading=25, pitch=-12, fov=60, size=(120, 68), above=above)
+    return {k: list(x) if isinstance(x, tuple) else x for k, x in kw.items()}
 
 
 @pytest.fixture(scope="module")
@@ -106,6 +127,9 @@ def test_the_gpu_kernel_draws_the_cpu_kernels_pictures(simulated):
         for key in ("intensity", "depth", "u", "v"):
             np.testing.assert_array_equal(gpu[key], cpu[key], err_msg=f"{name} {key}")
         assert int(gpu["samples"]) == int(cpu["samples"]), name
+        assert str(gpu["geometry"]) == str(cpu["geometry"]), name
+        if name in FLY_ENGINES:
+            assert str(gpu["geometry"]) == FLY_ENGINES[name], name
         assert psnr(np.nan_to_num(gpu["intensity"]), np.nan_to_num(cpu["intensity"])) >= 50.0
 
 
@@ -176,7 +200,7 @@ except Exception as exc:
     sys.exit(77)
 import floatcol as fc
 from floatcol.kernels.cuda import ptx
-for which in ("column", "area", "layers"):
+for which in ("column", "area", "layers", "march", "lod"):
     text, seconds = ptx(fc.as_surface(sys.argv[1]), cc=(9, 0), opt=False, which=which)
     print(len(text), round(seconds, 1))
     assert ".entry" in text and "sm_90" in text
@@ -233,10 +257,11 @@ def _compile_ptx(job):
 
 
 def test_the_column_kernel_compiles_for_a_gpu():
-    """The column kernel, the area-sampling kernel and the translucent layers' kernel,
-    all the code they call and the surface's fused function as a device function,
-    compiled to PTX for sm_90 by NVVM, without its optimisation (measured 21-49 s, 11 s
-    and 17 s on 2 cores; the column kernel
+    """The column kernel, the area-sampling kernel, the translucent layers' kernel and
+    the fly-through's two (the ray march, the level-of-detail engine), all the code
+    they call and the surface's fused function as a device function, compiled to PTX
+    for sm_90 by NVVM, without its optimisation (measured 21-49 s, 11 s, 17 s, 4 s and
+    5 s on 2 cores; the column kernel
     optimised, as a GPU render compiles it, 123 s: the cost of a new expression's
     first GPU picture). Height fields and complex expressions compile too (checked by
     hand: 23 s each without optimisation).
@@ -251,7 +276,7 @@ def test_the_column_kernel_compiles_for_a_gpu():
     if run is None:
         with open(marker) as fh:
             lines = fh.read().split()
-        assert len(lines) == 6, lines           # (three kernels: length, seconds)
+        assert len(lines) == 10, lines          # (five kernels: length, seconds)
         return
     if run.returncode == 77:
         pytest.skip("no CUDA toolkit NVVM here (pip install 'floatcol[cuda]'): " + run.stdout)

@@ -204,6 +204,58 @@ def _layers_source(f, fg, column_layers, x0_of):
     return kernel
 
 
+def _march_source(march, x0_of):
+    """The ray march's kernel (march.march_column a thread, sampling="march"), as
+    _kernel_source; the planes and the pyramid's tables made on the host (a frame's
+    plane_table, level_table, level_ints)."""
+    _cuda()
+
+    def kernel(flat, lt, lk, slope, hfp, vp, planes, s_lo, s_hi, first, gbuf, ebuf, hrec, p,
+               o, evals, wrange, jrange):
+        i = cuda.grid(1)
+        if i >= evals.shape[0]:
+            return
+        c = first + i
+        T = gbuf.shape[2]
+        b = c // T
+        lane = c - b * T
+        out = o[i]
+        march(flat, lt, lk, slope, hfp, vp, planes, x0_of(vp, c), s_lo, s_hi,
+              gbuf[b, :, lane], ebuf[b, :, :, lane], p[i], out)
+        evals[i] = int(out[0])
+        wrange[i, 0] = out[1]
+        wrange[i, 1] = out[2]
+        jrange[i, 0] = int(out[3])
+        jrange[i, 1] = int(out[4])
+    return kernel
+
+
+def _lod_source(fg, tile):
+    """The level-of-detail engine's kernel (lod.lod_tile a thread, its one lane the
+    thread's column: sampling="lod"), as _kernel_source; the planes and the pyramid's
+    tables made on the host."""
+    _cuda()
+
+    def kernel(kind, hf0, flat, lt, lk, mx, mt, hfp, vp, area, planes, s_lo, s_hi, first,
+               gbuf, ebuf, hrec, acc, pts, st, o, evals, wrange, jrange):
+        i = cuda.grid(1)
+        if i >= evals.shape[0]:
+            return
+        c = first + i
+        T = gbuf.shape[2]
+        b = c // T
+        lane = c - b * T
+        out = o[i]
+        tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, b * T, lane, 1, area, planes, s_lo,
+             s_hi, gbuf[b], ebuf[b], acc[i], pts[i], st[i], out)
+        evals[i] = int(out[0, 0])
+        wrange[i, 0] = out[0, 1]
+        wrange[i, 1] = out[0, 2]
+        jrange[i, 0] = int(out[0, 3])
+        jrange[i, 1] = int(out[0, 4])
+    return kernel
+
+
 def _on_device(*fns):
     """The column's functions as the kernel calls them: themselves on a GPU; under the
     simulator, wrappers that unwrap its arrays."""
@@ -230,6 +282,19 @@ def _layers_functions():
     from .layers import _column_layers
     from .sample import column_x0
     return _on_device(_column_layers, column_x0)
+
+
+def _march_functions():
+    """(march, x0_of): the ray march's column."""
+    from .march import march_column
+    from .sample import column_x0
+    return _on_device(march_column, column_x0)
+
+
+def _lod_functions():
+    """(tile,): the lod engine's tile, one lane of it a thread."""
+    from .lod import lod_tile
+    return _on_device(lod_tile)
 
 
 def _unwrapped(fn):
@@ -261,6 +326,10 @@ def kernel(surface, which="column"):
 def _source(surface, which):
     """The Python function of ``surface``'s kernel ``which`` (kernel's)."""
     f, fg, fb = device_functions(surface)
+    if which == "march":
+        return _march_source(*_march_functions())
+    if which == "lod":
+        return _lod_source(fg, *_lod_functions())
     if which == "area":
         return _area_source(f, fg, *_area_functions())
     if which == "layers":
@@ -301,7 +370,7 @@ def area_kernel_cuda(surface, flat, lv, vp, slices, lod, gbuf, ebuf, evals, wran
     _cuda()
     kind, _, _, _, _, hfp = surface.kernel_args()
     d = cuda.to_device
-    head = (kind, d(np.ascontiguousarray(flat, dtype=np.float64)),
+    head = (kind, _resident(surface, "flat", flat),
             d(np.ascontiguousarray(lv, dtype=np.float64)), d(hfp), d(vp), int(slices),
             float(lod))
     H = gbuf.shape[1]
@@ -309,6 +378,63 @@ def area_kernel_cuda(surface, flat, lv, vp, slices, lod, gbuf, ebuf, evals, wran
     _launch(kernel(surface, "area"), head,
             lambda n: _rows(n, area_scratch(H, lv.shape[0])), gbuf, ebuf, hrec, evals, wrange,
             rows)
+
+
+def _resident(surface, name, array, dtype=np.float64):
+    """``array`` (a surface's heights, its pyramid or block maxima) on the device, copied
+    once and kept with the surface while the array is the one it holds: a fly-through's
+    frames share the copy (a 4097^2 DEM's pyramid is 180 MB)."""
+    key = "_cuda_resident_" + name
+    held = surface._fits.get(key)
+    if held is None or held[0] is not array:
+        held = (array, cuda.to_device(np.ascontiguousarray(array, dtype=dtype)))
+        surface._fits[key] = held
+    return held[1]
+
+
+def _frame_tables(kind, lv, hfp, vp, lod, kappa, s_ref):
+    """A frame's planes and its pyramid's tables (kernels/lod.py's plane_table,
+    level_table, level_ints), made on the host for the fly-through kernels."""
+    from .lod import level_ints, level_table, plane_table
+    return (plane_table(kind, lv, vp, lod, kappa, s_ref), level_table(lv, hfp),
+            level_ints(lv))
+
+
+def march_kernel_cuda(surface, flat, lv, slope, hfp, vp, lod, kappa, s_lo, s_hi, gbuf, ebuf,
+                      evals, wrange, rows):
+    """march.march_kernel's work on the GPU (the same arguments and surface)."""
+    from .layout import SURF_HEIGHTFIELD
+    from .march import P_SIZE
+    _cuda()
+    planes, lt, lk = _frame_tables(SURF_HEIGHTFIELD, lv, hfp, vp, lod, kappa, 0.5 * (s_lo + s_hi))
+    d = cuda.to_device
+    head = (_resident(surface, "flat", flat), d(lt), d(lk),
+            d(np.ascontiguousarray(slope, dtype=np.float64)), d(hfp), d(vp), d(planes),
+            float(s_lo), float(s_hi))
+    hrec = np.empty((evals.shape[0], 1, 1))
+    _launch(kernel(surface, "march"), head,
+            lambda n: (np.empty((n, P_SIZE)), np.empty((n, 5))), gbuf, ebuf, hrec, evals,
+            wrange, rows)
+
+
+def lod_kernel_cuda(surface, kind, hf0, flat, lv, mx, mt, hfp, vp, area, lod, kappa, s_lo, s_hi,
+                    gbuf, ebuf, evals, wrange, rows):
+    """lod.lod_kernel's work on the GPU (its arguments but the surface's functions), a
+    thread a column."""
+    from .lod import AC_SIZE, Q_SIZE, REFINE_DEPTH, ST_SIZE
+    _cuda()
+    s_ref = 0.5 * (s_lo + s_hi) if s_lo == s_lo else 0.0
+    planes, lt, lk = _frame_tables(kind, lv, hfp, vp, lod, kappa, s_ref)
+    d = cuda.to_device
+    head = (kind, _resident(surface, "hf", hf0, hf0.dtype), _resident(surface, "flat", flat),
+            d(lt), d(lk), _resident(surface, "mx", mx), d(np.ascontiguousarray(mt, np.float64)),
+            d(hfp), d(vp), bool(area), d(planes), float(s_lo), float(s_hi))
+    H = gbuf.shape[1]
+    hrec = np.empty((evals.shape[0], 1, 1))
+    _launch(kernel(surface, "lod"), head,
+            lambda n: (np.empty((n, 1, H if area else 1, AC_SIZE)),
+                       np.empty((n, 1, 3 + REFINE_DEPTH, Q_SIZE)), np.empty((n, 1, ST_SIZE)),
+                       np.empty((n, 1, 5))), gbuf, ebuf, hrec, evals, wrange, rows)
 
 
 def layers_kernel_cuda(surface, vp, c0, mp, colours, sh, hmax, hmin, hsurf, slopes, occ, lists,
@@ -368,7 +494,8 @@ def _launch(k, head, scratch_of, gbuf, ebuf, hrec, evals, wrange, rows):
 
 
 def ptx(surface, cc=(9, 0), opt=True, which="column"):
-    """``surface``'s kernel ``which`` ("column", "area" or "layers": kernel's) compiled
+    """``surface``'s kernel ``which`` ("column", "area", "layers", "march" or "lod":
+    kernel's) compiled
     to PTX for compute capability ``cc``, on a machine with or without a GPU (the CUDA
     toolkit's NVVM, which numba-cuda's extra brings, is enough): (PTX text, seconds).
     ``opt=False``: without NVVM's optimisation (the same check that everything
@@ -390,6 +517,13 @@ def ptx(surface, cc=(9, 0), opt=True, which="column"):
     if which == "area":
         sig = (i64, arr(f64, 1), arr(f64, 2), arr(f64, 1), arr(f64, 1), i64, f64) + bufs + \
             (arr(f64, 3),) * 5 + outs
+    elif which == "march":
+        sig = (arr(f64, 1), arr(f64, 2), arr(i64, 2), arr(f64, 2), arr(f64, 1), arr(f64, 1),
+               arr(f64, 2), f64, f64) + bufs + (arr(f64, 2), arr(f64, 2)) + outs
+    elif which == "lod":
+        sig = (i64, arr(f64, 2), arr(f64, 1), arr(f64, 2), arr(i64, 2), arr(f64, 1),
+               arr(f64, 2), arr(f64, 1), arr(f64, 1), types.boolean, arr(f64, 2), f64,
+               f64) + bufs + (arr(f64, 4), arr(f64, 4), arr(f64, 3), arr(f64, 3)) + outs
     elif which == "layers":
         sig = (i64, arr(f64, 2), arr(f64, 1), arr(f64, 1), i64, arr(f64, 1),
                arr(f64, 2), arr(f32, 1), arr(i64, 1), arr(i64, 2), arr(f64, 1),

@@ -939,25 +939,28 @@ def _step_lane(kind, fg, hf0, flat, lt, lk, mx, mt, n_m, hfp, vp, area, planes, 
 
 
 @ngjit_nrt_free
-def lod_tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, c0, lanes, area, planes, s_lo,
+def lod_tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, c0, l0, lanes, area, planes, s_lo,
              s_hi, gtile, etile, acc, pts, st, out):
-    """Render columns c0 .. c0 + lanes - 1 (one tile: gtile (H, TILE, G_SIZE), etile
-    (E_SIZE, H, TILE)) one after another. ``area``: Cohen-Or's weights (acc: lanes x
-    H x AC_SIZE) instead of pixel centres; ``planes`` plane_table's, [s_lo, s_hi] the
-    surface's heights relative to the centre; mx, mt a height field's block maxima
-    (passes/lod.py), which let a column skip the planes where the surface is surely
-    hidden. Writes each lane's evaluations, lowest and highest w seen, lowest and
-    highest row set to out[lane]."""
+    """Render the columns c0 + l0 .. c0 + l0 + lanes - 1 of one tile (gtile (H, TILE,
+    G_SIZE), etile (E_SIZE, H, TILE); lanes l0 .. l0 + lanes - 1) one after another: the
+    CPU's tile all its lanes, a GPU thread one (kernels/cuda.py). ``area``: Cohen-Or's
+    weights (acc: lanes x H x AC_SIZE) instead of pixel centres; ``planes``
+    plane_table's, [s_lo, s_hi] the surface's heights relative to the centre; mx, mt a
+    height field's block maxima (passes/lod.py), which let a column skip the planes
+    where the surface is surely hidden. Writes each lane's evaluations, lowest and
+    highest w seen, lowest and highest row set to out[lane - l0] (acc, pts and st
+    indexed so too)."""
     H = gtile.shape[0]
     top = H - 0.5
     n_m = mt.shape[0] // max(lt.shape[0], 1)
     skips = kind == SURF_HEIGHTFIELD and mt.shape[0] > 0 and s_lo == s_lo
-    for L in range(lanes):
+    for L in range(l0, l0 + lanes):
+        k = L - l0
         etile[E_SEEN, :, L] = 0.0
         if area:
-            clear_accumulators(acc[L])
+            clear_accumulators(acc[k])
         x0 = column_x0(vp, c0 + L)
-        sl = st[L]
+        sl = st[k]
         _start(vp, x0, s_lo, s_hi, planes, sl)
         sl[ST_JLO] = H
         sl[ST_JHI] = -1
@@ -969,13 +972,13 @@ def lod_tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, c0, lanes, area, plan
         sl[ST_SKIP] = 0.0
         while sl[ST_DONE] == 0.0:
             _step_lane(kind, fg, hf0, flat, lt, lk, mx, mt, n_m, hfp, vp, area, planes, skips,
-                       s_lo, s_hi, top, sl, pts[L], gtile[:, L], etile[:, :, L], acc[L])
-        w_lo, w_hi = _resolve(area, gtile[:, L], etile[:, :, L], acc[L], sl)
-        out[L, 0] = sl[ST_EVALS]
-        out[L, 1] = w_lo
-        out[L, 2] = w_hi
-        out[L, 3] = sl[ST_JLO]
-        out[L, 4] = sl[ST_JHI]
+                       s_lo, s_hi, top, sl, pts[k], gtile[:, L], etile[:, :, L], acc[k])
+        w_lo, w_hi = _resolve(area, gtile[:, L], etile[:, :, L], acc[k], sl)
+        out[k, 0] = sl[ST_EVALS]
+        out[k, 1] = w_lo
+        out[k, 2] = w_hi
+        out[k, 3] = sl[ST_JLO]
+        out[k, 4] = sl[ST_JHI]
 
 
 def _lod_functions(kind, fg, hf0, flat, lv, mx, mt, hfp, vp, area, lod, kappa, s_lo, s_hi,
@@ -988,7 +991,7 @@ def _lod_functions(kind, fg, hf0, flat, lv, mx, mt, hfp, vp, area, lod, kappa, s
     tiles = types.Array(numba.from_dtype(gbuf.dtype), 3, "C")
     return ((lod_tile, function_type(
         lod_tile, kind, fg, hf0, flat, grid, types.Array(i64, 2, "C"), mx, mt, hfp, vp, i64,
-        i64, area, grid, s_lo, s_hi, tiles,
+        i64, i64, area, grid, s_lo, s_hi, tiles,
         types.Array(numba.from_dtype(ebuf.dtype), 3, "C"), block, block, grid, grid)),)
 
 
@@ -1014,7 +1017,7 @@ def lod_kernel(kind, fg, hf0, flat, lv, mx, mt, hfp, vp, area, lod, kappa, s_lo,
         st = np.empty((T, ST_SIZE))
         out = np.empty((T, 5))
         lanes = min(T, W - b * T)
-        tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, b * T, lanes, area, planes, s_lo,
+        tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, b * T, 0, lanes, area, planes, s_lo,
              s_hi, gbuf[b], ebuf[b], acc, pts, st, out)
         rows[b, 0] = H
         rows[b, 1] = -1

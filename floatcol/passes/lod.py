@@ -50,9 +50,11 @@ def supports(surface, view):
     return True
 
 
-def lod_pass(surface, view, vp, buffers, area):
+def lod_pass(surface, view, vp, buffers, area, device="cpu"):
     """Run the lod kernel of one layer into ``buffers`` (geometry.allocate's);
-    ``area``: Cohen-Or's area weights along the columns, else pixel centres."""
+    ``area``: Cohen-Or's area weights along the columns, else pixel centres; on the
+    CPU's cores or (``device="cuda"``) an NVIDIA GPU's, a thread a column
+    (kernels/cuda.py: the same column code)."""
     gbuf, ebuf, hrec = buffers
     evals, wrange, rows = pass_outputs(view.width, gbuf.shape[0])
     flat, lv = levels(surface)
@@ -63,8 +65,13 @@ def lod_pass(surface, view, vp, buffers, area):
     else:
         s_lo = s_hi = np.nan
     mx, mt = block_maxima(surface)
-    lod_kernel(kind, fg, hf, flat, lv, mx, mt, hfp, vp, bool(area), 2.0 ** LOD_BIAS, KAPPA, s_lo,
-               s_hi, gbuf, ebuf, evals, wrange, rows)
+    if device == "cuda":
+        from ..kernels.cuda import lod_kernel_cuda
+        lod_kernel_cuda(surface, kind, hf, flat, lv, mx, mt, hfp, vp, bool(area),
+                        2.0 ** LOD_BIAS, KAPPA, s_lo, s_hi, gbuf, ebuf, evals, wrange, rows)
+    else:
+        lod_kernel(kind, fg, hf, flat, lv, mx, mt, hfp, vp, bool(area), 2.0 ** LOD_BIAS, KAPPA,
+                   s_lo, s_hi, gbuf, ebuf, evals, wrange, rows)
     return Geometry(gbuf, ebuf, hrec, rows, wrange, evals, vp, None, 0)
 
 

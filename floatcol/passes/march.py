@@ -30,15 +30,23 @@ def supports(surface, view, antialiased):
     return lod.supports(surface, view)
 
 
-def march_pass(surface, view, vp, buffers):
-    """Run the ray march of one layer into ``buffers`` (geometry.allocate's)."""
+def march_pass(surface, view, vp, buffers, device="cpu"):
+    """Run the ray march of one layer into ``buffers`` (geometry.allocate's), on the
+    CPU's cores or (``device="cuda"``) an NVIDIA GPU's, a thread a column
+    (kernels/cuda.py: the same column code)."""
     gbuf, ebuf, hrec = buffers
     evals, wrange, rows = pass_outputs(view.width, gbuf.shape[0])
     flat, lv = levels(surface)
     s_lo = lv[0, LV_ZMIN] - vp[L.VP_CW]
     s_hi = lv[0, LV_ZMAX] - vp[L.VP_CW]
-    M.march_kernel(flat, lv, slopes(surface), surface.hfp, vp, 2.0 ** LOD_BIAS, M.KAPPA, s_lo,
-                   s_hi, gbuf, ebuf, evals, wrange, rows)
+    run = M.march_kernel
+    if device == "cuda":
+        from ..kernels.cuda import march_kernel_cuda
+
+        def run(*args):
+            march_kernel_cuda(surface, *args)
+    run(flat, lv, slopes(surface), surface.hfp, vp, 2.0 ** LOD_BIAS, M.KAPPA, s_lo, s_hi, gbuf,
+        ebuf, evals, wrange, rows)
     return Geometry(gbuf, ebuf, hrec, rows, wrange, evals, vp, None, 0)
 
 

@@ -39,14 +39,13 @@ def march_pass(surface, view, vp, buffers, device="cpu"):
     flat, lv = levels(surface)
     s_lo = lv[0, LV_ZMIN] - vp[L.VP_CW]
     s_hi = lv[0, LV_ZMAX] - vp[L.VP_CW]
-    run = M.march_kernel
+    args = (flat, lv, slopes(surface), surface.hfp, vp, 2.0 ** LOD_BIAS, M.KAPPA, s_lo, s_hi,
+            gbuf, ebuf, evals, wrange, rows)
     if device == "cuda":
         from ..kernels.cuda import march_kernel_cuda
-
-        def run(*args):
-            march_kernel_cuda(surface, *args)
-    run(flat, lv, slopes(surface), surface.hfp, vp, 2.0 ** LOD_BIAS, M.KAPPA, s_lo, s_hi, gbuf,
-        ebuf, evals, wrange, rows)
+        march_kernel_cuda(surface, *args)
+    else:
+        M.march_kernel(*args)
     return Geometry(gbuf, ebuf, hrec, rows, wrange, evals, vp, None, 0)
 
 

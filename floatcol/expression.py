@@ -599,9 +599,9 @@ def _tame(x, depth=0):
 COMPLEX_SPECIAL = 64.0
 #: ... the functions so called, by their sympy names (the kernels compute them for real
 #: arguments: kernels/special.py, airy.py, integrals.py, gammas.py); gamma's kin stay
-#: mpmath's
+#: mpmath's (but beta, whose mpmath gave beta(1e300, 2) = 1.0 for 1e-600)
 _SPECIAL_NAMES = (frozenset(_BESSEL.values()) | frozenset(_SPECIAL.values())
-                  | {"jn", "yn", "hankel1", "hankel2"}) - {"factorial", "loggamma", "beta"}
+                  | {"jn", "yn", "hankel1", "hankel2"}) - {"factorial", "loggamma"}
 #: what mpmath (sympy's evalf) may raise for a constant it cannot evaluate (its
 #: NoConvergence is an Exception of its own; NotImplementedError and RecursionError
 #: are RuntimeErrors)

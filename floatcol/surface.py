@@ -493,7 +493,8 @@ def _numba_namespace():
                           (airy, ("airyai", "airybi", "airyaiprime", "airybiprime")),
                           (integrals, ("Si", "Ci", "Shi", "Chi", "Ei", "expint", "li", "Li",
                                        "fresnels", "fresnelc", "erfi")),
-                          (gammas, ("polygamma", "erfinv", "erfcinv", "LambertW", "zeta",
+                          (gammas, ("beta", "polygamma", "erfinv", "erfcinv", "LambertW",
+                                    "zeta",
                                     "dirichlet_eta", "elliptic_k", "elliptic_e",
                                     "elliptic_e1", "elliptic_f"))):
         space.update({n: getattr(module, n) for n in names})
@@ -748,6 +749,12 @@ def _lambdify_real(args, e, cse=False, functions=None, modules="math"):
         # the special functions' compiled forms (kernels/gammas.py) take every argument
         def _print_factorial(self, expr):
             return "gamma(%s + 1)" % self._print(expr.args[0])
+
+        def _print_beta(self, expr):
+            # (sympy prints a quotient of gammas: inf/inf, a hole, past a + b = 171)
+            a = self._print(expr.args[0])
+            b = self._print(expr.args[1]) if len(expr.args) > 1 else a
+            return "beta(%s, %s)" % (a, b)
 
         def _print_zeta(self, expr):
             a = self._print(expr.args[1]) if len(expr.args) > 1 else "1.0"

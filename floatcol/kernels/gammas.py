@@ -1,8 +1,8 @@
 """More special functions for compiled surfaces: the polygamma functions (sympy's
 polygamma, digamma, trigamma; scipy's psi), the inverse error functions (erfinv,
 erfcinv), Lambert's W (both real branches), Riemann's and Hurwitz's zeta and
-Dirichlet's eta, and the elliptic integrals (elliptic_k, elliptic_e, elliptic_f),
-which Numba's math module lacks.
+Dirichlet's eta, the elliptic integrals (elliptic_k, elliptic_e, elliptic_f), which
+Numba's math module lacks, and Euler's beta past where its quotient of Gammas overflows.
 
 - polygamma(n, x), a whole n >= 0: the recurrence psi^(n)(x) = psi^(n)(x+1) -
   (-1)^n n! / x^(n+1) (A&S 6.4.6) up to x >= max(POLYGAMMA_X0, n), then the
@@ -61,6 +61,47 @@ RF_TOL = 0.0025
 #: -log(1 - y^2) up to which Giles' fit starts erfinv's iteration
 GILES_MAX = 36.0
 RD_TOL = 0.0015
+#: a + b (both positive) from which beta(a, b) is taken in logarithms: Gamma overflows
+#: past 171.6, and every Gamma of the quotient is finite below this
+BETA_LOG = 171.0
+LN_SQRT_2PI = 0.91893853320467274178
+
+
+@ngjit
+def _stirling_rest(x):
+    """lgamma(x) less its Stirling terms (x - 1/2) ln x - x + ln(2 pi)/2, x >= 85
+    (A&S 6.1.41: 1/12x - 1/360x^3 + 1/1260x^5, the next term under 1e-17 there)."""
+    r = 1.0 / (x * x)
+    return (1.0 / 12.0 - r * (1.0 / 360.0 - r / 1260.0)) / x
+
+
+@ngjit
+def beta(a, b):
+    """Euler's beta function B(a, b) = Gamma(a) Gamma(b) / Gamma(a + b) (A&S 6.2.2), the
+    quotient as it reads where its Gammas are finite (a + b < BETA_LOG) or an argument
+    is not positive. For positive a >= b past that (a > 85), by logarithms: ln B =
+    lgamma(b) + lgamma(a) - lgamma(a + b), the difference of the two large ones from
+    Stirling's series (A&S 6.1.41) as -(a - 1/2) log1p(b/a) - b ln(a + b) + b + the
+    series' rests, which loses no digits to their size (lgamma(1e10) - lgamma(1e10 + 2)
+    subtracted directly keeps 6 of 16); where b >= 85 too, all three from the series,
+    -(a - 1/2) log1p(b/a) - (b - 1/2) log1p(a/b) - ln(a + b)/2 + ln(2 pi)/2 + the rests
+    (lgamma(b) of a few thousand against ln B of a few hundred lost a digit). The
+    quotient of Gammas had been a hole for a + b > 171 (inf/inf): beta(1e10, 2) =
+    1e-20."""
+    if not (a > 0.0 and b > 0.0) or a + b < BETA_LOG:
+        return math.gamma(a) * math.gamma(b) / math.gamma(a + b)
+    if a < b:
+        a, b = b, a
+    c = a + b
+    if b >= 85.0:
+        # both large: Stirling's series for all three, whose terms (a - 1/2) ln a ...
+        # are gathered into ratios (terms of B's own size, not Gamma's)
+        return math.exp(-(a - 0.5) * math.log1p(b / a) - (b - 0.5) * math.log1p(a / b)
+                        - 0.5 * math.log(c) + LN_SQRT_2PI + _stirling_rest(a)
+                        + _stirling_rest(b) - _stirling_rest(c))
+    d = -(a - 0.5) * math.log1p(b / a) - b * math.log(c) + b + _stirling_rest(a) \
+        - _stirling_rest(c)
+    return math.exp(math.lgamma(b) + d)
 
 
 @ngjit

@@ -32,6 +32,7 @@ import numpy as np
 from .column import (
     column_folds, column_result, column_scratch, render_column_into, _seen_ranges, SCR_RUN,
 )
+from ._jit import ngjit_inline
 from .fold import fold_scratch, trace_column_into
 from .layout import SURF_FUNCTION, VP_BATCH
 
@@ -113,13 +114,34 @@ def device_functions(surface):
     return fns
 
 
+@ngjit_inline
+def _column_of(first, i, gbuf):
+    """Thread i's column c of a launch from column ``first``: (c, its tile b, its lane
+    in the tile) of the tiled buffers (layout.py)."""
+    c = first + i
+    b = c // gbuf.shape[2]
+    return c, b, c - b * gbuf.shape[2]
+
+
+@ngjit_inline
+def _report(evals, wrange, jrange, i, n, w_lo, w_hi, j_lo, j_hi):
+    """Thread i's column's evaluations, lowest and highest w seen and lowest and highest
+    row set, into the launch's outputs (reduced on the host: _launch)."""
+    evals[i] = n
+    wrange[i, 0] = w_lo
+    wrange[i, 1] = w_hi
+    jrange[i, 0] = j_lo
+    jrange[i, 1] = j_hi
+
+
 def _no_batch(u, v, t, out, n):
     """The batch evaluator's stand-in (never called: VP_BATCH is 0)."""
     for i in range(3 * n):
         out[i] = math.nan
 
 
-def _kernel_source(f, fg, fb, column, folds, fold_trace, seen_ranges, result, x0_of):
+def _kernel_source(f, fg, fb, column, folds, fold_trace, seen_ranges, result, x0_of, at,
+                   report):
     """The column kernel's Python function, closing over the surface's functions and
     the column's (the CPU's compiled ones, which the CUDA target compiles for the GPU;
     or, under the simulator, wrappers that hand them the simulator's arrays
@@ -131,10 +153,7 @@ def _kernel_source(f, fg, fb, column, folds, fold_trace, seen_ranges, result, x0
         i = cuda.grid(1)
         if i >= evals.shape[0]:
             return
-        c = first + i                      # the picture's column
-        T = gbuf.shape[2]
-        b = c // T
-        lane = c - b * T
+        c, b, lane = at(first, i, gbuf)      # (c: the picture's column)
         gcol = gbuf[b, :, lane]
         ecol = ebuf[b, :, :, lane]
         s = scr[i]
@@ -145,15 +164,11 @@ def _kernel_source(f, fg, fb, column, folds, fold_trace, seen_ranges, result, x0
                              cross[i], n_cross[i], pa[i], pb[i])
             seen_ranges(gcol, ecol, s[SCR_RUN])
         n, wlo, whi, jlo, jhi = result(s, gcol.shape[0], ev)
-        evals[i] = n
-        wrange[i, 0] = wlo
-        wrange[i, 1] = whi
-        jrange[i, 0] = jlo
-        jrange[i, 1] = jhi
+        report(evals, wrange, jrange, i, n, wlo, whi, jlo, jhi)
     return kernel
 
 
-def _area_source(f, fg, area, x0_of):
+def _area_source(f, fg, area, x0_of, at, report):
     """The area-sampling kernel's Python function (area.area_column a thread), as
     _kernel_source."""
     _cuda()
@@ -163,20 +178,13 @@ def _area_source(f, fg, area, x0_of):
         i = cuda.grid(1)
         if i >= evals.shape[0]:
             return
-        c = first + i
-        T = gbuf.shape[2]
-        b = c // T
-        lane = c - b * T
+        c, b, lane = at(first, i, gbuf)
         g = guess[i]
         g[:, :] = 0.0
         n, wlo, whi, jlo, jhi = area(kind, f, fg, flat, lv, hfp, vp, x0_of(vp, c), slices,
                                      lod, gbuf[b, :, lane], ebuf[b, :, :, lane], acc[i], cov[i],
                                      gaps[i], g, pts[i])
-        evals[i] = n
-        wrange[i, 0] = wlo
-        wrange[i, 1] = whi
-        jrange[i, 0] = jlo
-        jrange[i, 1] = jhi
+        report(evals, wrange, jrange, i, n, wlo, whi, jlo, jhi)
     return kernel
 
 
@@ -204,7 +212,7 @@ def _layers_source(f, fg, column_layers, x0_of):
     return kernel
 
 
-def _march_source(march, x0_of):
+def _march_source(march, x0_of, at, report):
     """The ray march's kernel (march.march_column a thread, sampling="march"), as
     _kernel_source; the planes and the pyramid's tables made on the host (a frame's
     plane_table, level_table, level_ints)."""
@@ -215,22 +223,16 @@ def _march_source(march, x0_of):
         i = cuda.grid(1)
         if i >= evals.shape[0]:
             return
-        c = first + i
-        T = gbuf.shape[2]
-        b = c // T
-        lane = c - b * T
+        c, b, lane = at(first, i, gbuf)
         out = o[i]
         march(flat, lt, lk, slope, hfp, vp, planes, x0_of(vp, c), s_lo, s_hi,
               gbuf[b, :, lane], ebuf[b, :, :, lane], p[i], out)
-        evals[i] = int(out[0])
-        wrange[i, 0] = out[1]
-        wrange[i, 1] = out[2]
-        jrange[i, 0] = int(out[3])
-        jrange[i, 1] = int(out[4])
+        report(evals, wrange, jrange, i, int(out[0]), out[1], out[2], int(out[3]),
+               int(out[4]))
     return kernel
 
 
-def _lod_source(fg, tile):
+def _lod_source(fg, tile, at, report):
     """The level-of-detail engine's kernel (lod.lod_tile a thread, its one lane the
     thread's column: sampling="lod"), as _kernel_source; the planes and the pyramid's
     tables made on the host."""
@@ -241,18 +243,12 @@ def _lod_source(fg, tile):
         i = cuda.grid(1)
         if i >= evals.shape[0]:
             return
-        c = first + i
-        T = gbuf.shape[2]
-        b = c // T
-        lane = c - b * T
+        c, b, lane = at(first, i, gbuf)
         out = o[i]
-        tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, b * T, lane, 1, area, planes, s_lo,
-             s_hi, gbuf[b], ebuf[b], acc[i], pts[i], st[i], out)
-        evals[i] = int(out[0, 0])
-        wrange[i, 0] = out[0, 1]
-        wrange[i, 1] = out[0, 2]
-        jrange[i, 0] = int(out[0, 3])
-        jrange[i, 1] = int(out[0, 4])
+        tile(kind, fg, hf0, flat, lt, lk, mx, mt, hfp, vp, c - lane, lane, 1, area, planes,
+             s_lo, s_hi, gbuf[b], ebuf[b], acc[i], pts[i], st[i], out)
+        report(evals, wrange, jrange, i, int(out[0, 0]), out[0, 1], out[0, 2],
+               int(out[0, 3]), int(out[0, 4]))
     return kernel
 
 
@@ -263,18 +259,18 @@ def _on_device(*fns):
 
 
 def _column_functions():
-    """(column, folds, fold_trace, seen_ranges, result, x0_of): the steps of
-    column.render_column the kernel runs."""
+    """(column, folds, fold_trace, seen_ranges, result, x0_of, at, report): the steps
+    of column.render_column the kernel runs, and the thread's column and outputs."""
     from .sample import column_x0
     return _on_device(render_column_into, column_folds, trace_column_into, _seen_ranges,
-                      column_result, column_x0)
+                      column_result, column_x0, _column_of, _report)
 
 
 def _area_functions():
-    """(area, x0_of): the area-sampling kernel's column."""
+    """(area, x0_of, at, report): the area-sampling kernel's column."""
     from .area import area_column
     from .sample import column_x0
-    return _on_device(area_column, column_x0)
+    return _on_device(area_column, column_x0, _column_of, _report)
 
 
 def _layers_functions():
@@ -285,16 +281,16 @@ def _layers_functions():
 
 
 def _march_functions():
-    """(march, x0_of): the ray march's column."""
+    """(march, x0_of, at, report): the ray march's column."""
     from .march import march_column
     from .sample import column_x0
-    return _on_device(march_column, column_x0)
+    return _on_device(march_column, column_x0, _column_of, _report)
 
 
 def _lod_functions():
-    """(tile,): the lod engine's tile, one lane of it a thread."""
+    """(tile, at, report): the lod engine's tile, one lane of it a thread."""
     from .lod import lod_tile
-    return _on_device(lod_tile)
+    return _on_device(lod_tile, _column_of, _report)
 
 
 def _unwrapped(fn):

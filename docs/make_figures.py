@@ -119,8 +119,24 @@ def textures():
     Image.fromarray(np.concatenate(three, axis=1)).save(IMG / "textures.png", optimize=True)
 
 
+def smooth_shading():
+    """matplotlib's Jacksboro DEM flown over: its cells' own normals, and smooth
+    shading (the normals interpolated between the nodes)."""
+    from matplotlib.cbook import get_sample_data
+    from PIL import Image
+    dem = fc.read_dem(get_sample_data("jacksboro_fault_dem.npz", asfileobj=False),
+                      vert_exag=2.0)
+    cam = fc.fly(dem, (15000.0, 2500.0), heading=15, pitch=-10, fov=55, size=(400, 225),
+                 above=900)
+    pair = [fc.render(dem, **cam, antialias="area", cmap="gist_earth", lightsource=(315, 35),
+                      background="lightskyblue", smooth_shading=s).rgba[..., :3]
+            for s in (False, True)]
+    Image.fromarray(np.concatenate(pair, axis=1)).save(IMG / "smooth_shading.jpg", quality=85)
+
+
 if __name__ == "__main__":
     IMG.mkdir(exist_ok=True)
+    smooth_shading()
     camera()
     examples()
     shadows()

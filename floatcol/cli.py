@@ -211,6 +211,10 @@ def _surface_options(p, default_size="800x600", many=False, terrain=False):
                    help="the colormap's scale of the heights, as matplotlib's norm=\"log\" "
                         "(default linear; with --vmin/--vmax its ends)")
     p.add_argument("--no-shade", action="store_true", help="flat colours, no lighting")
+    p.add_argument("--smooth-shading", action=argparse.BooleanOptionalAction, default=None,
+                   help="a height field lit by normals interpolated between its nodes, as a "
+                        "hillshade, not its cells' own: no facets on a coarse DEM seen up "
+                        "close (default: off; on for terrain)")
     p.add_argument("--ambient", type=_value("ambient"), default=None, metavar="A",
                    help="the ambient share of the light, 0 to 1 (default 0.25)")
     p.add_argument("--specular", type=_value("specular"), default=None, metavar="S",
@@ -383,6 +387,7 @@ def _main(argv):
 #: options of its own (_options)
 _API_TO_CLI = {
     "fill=False": "--lines-only", "shade=False": "--no-shade", "shadows=True": "--shadows",
+    "smooth_shading": "--smooth-shading",
     "alpha": "--opacity", "lightsource": "--light", "color_field": "--color-by",
     "proj_type": "--proj", "projection": "--proj", "focal_length": "--focal-length",
     "lower_color": "--lower-color", "light_radius": "--light-radius",
@@ -483,6 +488,8 @@ def _options(args):
         opts["lower_color"] = args.lower_color
     if args.no_shade:
         opts["shade"] = False
+    if args.smooth_shading is not None:
+        opts["smooth_shading"] = args.smooth_shading
     if args.light is not None:
         opts["lightsource"] = args.light
     if args.shadows:

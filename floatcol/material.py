@@ -48,6 +48,10 @@ class Material:
         height (cmap or color), both sides alike as mplot3d colours them.
     ambient, specular, shininess : the light's terms (None: the shading's defaults).
     interpolation : "normal" (nis, per-pixel lighting) or "intensity" (iis, Gouraud).
+    smooth_shading : a height field lit by normals interpolated between its nodes
+        (central differences) instead of its bilinear cells' own, where a pixel is
+        narrower than a cell: no facets on a coarse DEM seen up close (passes/normals.py).
+        The geometry is the same; a function surface is smooth already.
     opacity : in [0, 1]; below 1 every layer of the surface along a ray shows,
         composited front to back (Gordon 6.5-6.6, passes/translucency.py).
     texture : an image over the domain (Gordon 6.7, passes/colour.py): an array
@@ -85,6 +89,7 @@ class Material:
     specular: float | None = None
     shininess: float | None = None
     interpolation: str = "normal"
+    smooth_shading: bool = False
     opacity: float = 1.0
     texture: Any = None
     texture_extent: Any = None
@@ -106,6 +111,8 @@ class Material:
         if not isinstance(self.interpolation, str) or self.interpolation not in INTERPOLATIONS:
             raise ValueError("interpolation must be 'normal' (nis) or 'intensity' (iis), "
                              f"got {self.interpolation!r}")
+        if not isinstance(self.smooth_shading, (bool, np.bool_)):
+            raise ValueError(f"smooth_shading must be True or False, got {self.smooth_shading!r}")
         if isinstance(self.opacity, bool):
             raise ValueError(f"opacity must be a number in [0, 1], got {self.opacity!r}")
         self.opacity = fraction("opacity", self.opacity)

@@ -26,7 +26,8 @@ def save_png(rgba, path):
 
 def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
            projection="orthographic", d1=None, d2=None, scale=None, method="column",
-           shading="default", *, interpolation="normal", step=None, lines=DEFAULT_LINES,
+           shading="default", *, interpolation="normal", smooth_shading=False, step=None,
+           lines=DEFAULT_LINES,
            vars=None, center=None, cmap="viridis", upper_color=None,
            lower_color=color.DEFAULT_LOWER, vmin=None, vmax=None, norm=None, background=None,
            light=None, ambient=None, focal_length=None, pixel_step=1.0,
@@ -57,6 +58,12 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
     shading : "default" (ambient + diffuse key light, height colormap, two-coloured
         sides) or "lambert" (I = |L.N|/(|L||N|), light at the viewpoint, no ambient).
     interpolation : "normal" (nis, per-pixel lighting) or "intensity" (iis, Gouraud).
+    smooth_shading : a height field lit by normals interpolated between its nodes
+        (central differences), as a hillshade, instead of its bilinear cells' own:
+        no lit facets on a coarse DEM seen up close (where a pixel is at most half a
+        cell wide; fading out up to a cell, where the pixels are wider than the facets).
+        The geometry is the same. Opaque, shaded pictures (not sub-columns); a function
+        surface is smooth already (passes/normals.py).
     cmap, vmin, vmax : the upper side's colormap (a matplotlib name or Colormap) and the
         heights at its ends (default: the range of w where the upper side is seen).
     norm : instead of vmin/vmax, a matplotlib norm (LogNorm, PowerNorm, ...; any
@@ -214,7 +221,8 @@ def render(expr, u=None, v=None, size=(400, 300), elev=30.0, azim=30.0,
         [Layer(expr, (u, v), Material(
             shading=shading, cmap=cmap, norm=norm, vmin=vmin, vmax=vmax, upper_color=upper_color,
             lower_color=lower_color, ambient=ambient, specular=specular, shininess=shininess,
-            interpolation=interpolation, opacity=opacity, texture=texture,
+            interpolation=interpolation, smooth_shading=smooth_shading, opacity=opacity,
+            texture=texture,
             texture_extent=texture_extent, texture_filter=texture_filter, color=color,
             contours=contours, contour_color=contour_color, contour_width=contour_width,
             wireframe=wireframe, edgecolor=edgecolor, linewidth=linewidth, fill=fill,

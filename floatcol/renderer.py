@@ -24,7 +24,7 @@ from . import color
 from .camera import fit
 from .light import as_light
 from .passes import (antialias, area, colour, draft, finish, geometry, horizon, lod, march,
-                     overlays, shadow as shadows)
+                     normals, overlays, shadow as shadows)
 from .passes.composite import composite as merge
 from .passes.translucency import render_translucent
 from .kernels.shade import INTERP_INTENSITY
@@ -106,6 +106,9 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     if texture is not None and objects:
         texture.occluders = _occluders(texture, objects, layers[0].surface, box)
     if any(p.material.opacity < 1.0 for p in layers):
+        if any(p.material.smooth_shading for p in layers):
+            raise ValueError("smooth_shading lights opaque surfaces: use opacity=1 (translucent "
+                             "layers are lit by their cells' own normals)")
         if quality.method != "column":
             raise ValueError("opacity below 1 needs shaded pictures: method='column' (a line "
                              "drawing has no layers to blend)")
@@ -129,7 +132,8 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     if not many and texture is None and draft.supports(quality, views[0]) \
             and quality.device == "cpu" \
             and scene.camera.columns is None \
-            and not first.colored and not first.overlaid and _drafting():
+            and not first.colored and not first.overlaid and not first.smooth_shading \
+            and _drafting():
         return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
                             stacklevel + 1), texture
     if not many:
@@ -232,6 +236,11 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     method = quality.method
     hstride = 0
     n_lines = 1
+    if material.smooth_shading and (method == "horizon" or
+                                    quality.antialiasing(material.shading)[1] > 1):
+        raise ValueError("smooth_shading lights shaded pictures antialiased along the columns: "
+                         "use method='column' and antialias=True, 'area' or False (not "
+                         "sub-columns)")
     if method == "horizon":
         if material.colored or material.overlaid:
             raise ValueError("a texture, color field, contours or wireframe need shaded "
@@ -266,6 +275,8 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     else:
         fb = geometry.batch_evaluator(surface, view, method, quality.sampling)
         geom = geometry.column_pass(surface, view, vp, buffers, hstride, fb)
+    if material.smooth_shading:
+        normals.smooth_pass(surface, view, geom)
     evals = geom.evals
     t_kernel = time.perf_counter()
     shadow = None

@@ -18,6 +18,7 @@ LightSource and a view from the south.
 from __future__ import annotations
 
 import math
+import numbers
 import os
 
 import numpy as np
@@ -86,6 +87,17 @@ def read_dem(path, *, extent=None, nodata=None, vert_exag=1.0, geographic=None):
     return hf
 
 
+def _smooth_allowed(kw):
+    """smooth_shading's landscape default: on where the picture takes it (shaded, not
+    sub-columns, opaque: passes/normals.py), so that those options given need not
+    turn it off."""
+    aa = kw.get("antialias")
+    sub = isinstance(aa, numbers.Integral) and not isinstance(aa, (bool, np.bool_)) and aa > 1
+    alpha = kw.get("alpha", kw.get("opacity"))
+    opaque = alpha is None or (isinstance(alpha, numbers.Real) and alpha >= 1.0)
+    return kw.get("method", "column") == "column" and not sub and opaque
+
+
 def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=None, fly=None,
             **kw):
     """Draw a DEM (a file, a HeightField or a 2-D array north-up) with landscape
@@ -93,7 +105,9 @@ def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=No
     colormap, a sun at azimuth 315 and altitude 35 degrees, elev 35, azim -100 (from
     the south), 1000x600 pixels, antialias="area" (Cohen-Or's area sampling and a level
     of detail: a DEM denser than the pixels neither aliases nor flickers, and renders
-    faster than the column pass's corrections on its every cell). vert_exag="auto"
+    faster than the column pass's corrections on its every cell), smooth_shading=True
+    (no lit facets where a coarse DEM's cells are wider than the pixels; off where the
+    options given exclude it: sub-columns, opacity, line drawings). vert_exag="auto"
     picks the exaggeration that makes the relief 8 % of the longer side (at least 1);
     the one used is the plot's ``vert_exag``. ``fly``: a fly camera instead of the view
     from outside (camera.fly: its ray march point sampled, its lod engine
@@ -115,7 +129,8 @@ def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=No
         # (a file's or an array's heights too: a number given was once ignored there)
         hf = hf.scaled(1.0, 1.0, exag)
     defaults = dict(aspect="equal", cmap="gist_earth", lightsource=(315, 35), elev=35,
-                    azim=-100, size=(1000, 600), antialias="area")
+                    azim=-100, size=(1000, 600), antialias="area",
+                    smooth_shading=_smooth_allowed(kw))
     defaults.update(kw)
     if fly is not None:
         from .camera import fly as fly_camera

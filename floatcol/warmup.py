@@ -236,6 +236,7 @@ def warm_all_steps():
         for area in (False, True):
             fc.render(hf, **cam, antialias="area" if area else True).intensity
         fc.render(hf, **dict(cam, sampling="march"), antialias=False).intensity
+        fc.render(hf, **cam, smooth_shading=True).intensity      # (passes/normals.py)
 
     def variants():
         for variant in GUEDES_VARIANTS:

@@ -221,6 +221,30 @@ def bilinear_surface(z, u_rng, v_rng):
     return Funcs((f, fu, fv), lambda u_rng, v_rng: (lo, hi))
 
 
+def smooth_bilinear_surface(z, u_rng, v_rng):
+    """bilinear_surface's heights with its partials smoothed (floatcol's
+    smooth_shading): the nodes' central differences (numpy's gradient: one-sided at
+    the grid's edges) interpolated bilinearly across each cell."""
+    z = np.asarray(z, float)
+    nv, nu = z.shape
+    du = (u_rng[1] - u_rng[0]) / (nu - 1)
+    dv = (v_rng[1] - v_rng[0]) / (nv - 1)
+    gv, gu = np.gradient(z, dv, du)
+    f = bilinear_surface(z, u_rng, v_rng)
+
+    def lerp(g):
+        def at(u, v):
+            gx = (u - u_rng[0]) / du
+            gy = (v - v_rng[0]) / dv
+            i = np.clip(np.floor(gx).astype(int), 0, nu - 2)
+            j = np.clip(np.floor(gy).astype(int), 0, nv - 2)
+            fx, fy = np.clip(gx - i, 0, 1), np.clip(gy - j, 0, 1)
+            return ((g[j, i] * (1 - fx) + g[j, i + 1] * fx) * (1 - fy)
+                    + (g[j + 1, i] * (1 - fx) + g[j + 1, i + 1] * fx) * fy)
+        return at
+    return Funcs((f[0], lerp(gu), lerp(gv)), f.bounds)
+
+
 def _rays(u_rng, v_rng, size, elev, azim, projection, d1, d2, scale, w_bound, center,
           yscale=None):
     """Each pixel's ray (origin, direction; lam in [lam_lo, lam_hi] inside the domain's

@@ -45,7 +45,9 @@ CASES = [dict(projection="orthographic", method="column"),
               objects=[fc.box(-1, 0, 1.5, 1.5, 2), fc.tree(2, -2, 3), fc.pole(0, 2, 3)]),
          # a fly-through over a fractal DEM (test_lod.py's): the level-of-detail engine
          # with area weights, and the ray march
-         dict(fly="lod"), dict(fly="march")]
+         dict(fly="lod"), dict(fly="march"),
+         # ... lit smooth (kernels/normals.py, a tile per thread)
+         dict(fly="smooth")]
 
 
 def render_case(k):
@@ -58,6 +60,8 @@ def render_case(k):
         _, _, hf, fly = _fly_scene(129)
         if kw["fly"] == "march":
             return fc.render(hf, antialias=False, **dict(fly, sampling="march"))
+        if kw["fly"] == "smooth":
+            return fc.render(hf, smooth_shading=True, **fly)
         return fc.render(hf, antialias="area", **fly)
     batch_min = geometry.BATCH_MIN_SAMPLES
     if kw.pop("batch", False):

@@ -45,15 +45,11 @@ def smooth_weight(vp, z, cell):
 
 
 @ngjit_inline
-def _smoothed(flat, lt, hfp, vp, cell, x0, j, u, v, z, nx, ny, nz, lam):
-    """(nx, ny, nz, intensity) of the point (u, v) at screen depth z seen at pixel row
-    j of column x0: the smooth normal blended with the point's own (nx, ny, nz) by
-    smooth_weight, and its Lambert intensity (eq. 12, toward the viewpoint along the
-    pixel's ray); the point's own where the weight is 0 or the nodes' gradient is not
-    finite."""
-    a = smooth_weight(vp, z, cell)
-    if not a > 0.0:
-        return nx, ny, nz, lam
+def _smoothed(flat, lt, hfp, vp, a, x0, j, u, v, nx, ny, nz, lam):
+    """(nx, ny, nz, intensity) of the point (u, v) seen at pixel row j of column x0:
+    the smooth normal blended with the point's own (nx, ny, nz) by a (smooth_weight's,
+    > 0), and its Lambert intensity (eq. 12, toward the viewpoint along the pixel's
+    ray); the point's own where the nodes' gradient is not finite."""
     gu, gv = _smooth_gradient(flat, lt, 0, hfp, u, v)
     if not (math.isfinite(gu) and math.isfinite(gv)):
         return nx, ny, nz, lam
@@ -98,21 +94,27 @@ def smooth_normals_kernel(flat, lt, hfp, vp, cell, width, gbuf, ebuf, rows):
                 x = ebuf[b, E_SEEN, j, lane]
                 if x == 0.0:
                     continue
+                # (the weight first: a pixel wider than a cell is neither read further
+                # nor written, most of a dense DEM's)
                 if seen_side(x) != 0.0:
-                    g = gbuf[b, j, lane]
-                    nx, ny, nz, lam = _smoothed(flat, lt, hfp, vp, cell, x0, j, g[G_U] + cu,
-                                                g[G_V] + cv, g[G_DEPTH], g[G_NX], g[G_NY],
-                                                g[G_NZ], g[G_I])
-                    g[G_NX] = nx
-                    g[G_NY] = ny
-                    g[G_NZ] = nz
-                    g[G_I] = lam
+                    a = smooth_weight(vp, gbuf[b, j, lane, G_DEPTH], cell)
+                    if a > 0.0:
+                        g = gbuf[b, j, lane]
+                        nx, ny, nz, lam = _smoothed(flat, lt, hfp, vp, a, x0, j, g[G_U] + cu,
+                                                    g[G_V] + cv, g[G_NX], g[G_NY], g[G_NZ],
+                                                    g[G_I])
+                        g[G_NX] = nx
+                        g[G_NY] = ny
+                        g[G_NZ] = nz
+                        g[G_I] = lam
                 if flagged(x) and ebuf[b, E_COV, j, lane] > 0.0:
-                    e = ebuf[b, :, j, lane]
-                    nx, ny, nz, lam = _smoothed(flat, lt, hfp, vp, cell, x0, j, e[E_U] + cu,
-                                                e[E_V] + cv, e[E_DEPTH], e[E_NX], e[E_NY],
-                                                e[E_NZ], e[E_I])
-                    e[E_NX] = nx
-                    e[E_NY] = ny
-                    e[E_NZ] = nz
-                    e[E_I] = lam
+                    a = smooth_weight(vp, ebuf[b, E_DEPTH, j, lane], cell)
+                    if a > 0.0:
+                        e = ebuf[b, :, j, lane]
+                        nx, ny, nz, lam = _smoothed(flat, lt, hfp, vp, a, x0, j, e[E_U] + cu,
+                                                    e[E_V] + cv, e[E_NX], e[E_NY], e[E_NZ],
+                                                    e[E_I])
+                        e[E_NX] = nx
+                        e[E_NY] = ny
+                        e[E_NZ] = nz
+                        e[E_I] = lam

@@ -40,6 +40,7 @@ OPTIONS = {
     "shading": ["default", "lambert"],
     "method": ["column", "column", "column", "horizon"],
     "interpolation": ["normal", "intensity"],
+    "smooth_shading": [False, False, True, "yes"],
     "corrections": ["none", "spline", "supersample", "adaptive", "spline+supersample",
                     "spline+adaptive"],
     "sampling": ["uniform", "adaptive", "lod", "march"],
@@ -163,6 +164,8 @@ def terrain_case(rng: random.Random) -> dict:
         kw["sampling"] = rng.choice(["uniform", "adaptive", "lod", "march", "march"])
     if rng.random() < 0.2:
         kw["shadows"] = rng.choice([True, "texture", "on-the-fly"])
+    if rng.random() < 0.2:
+        kw["smooth_shading"] = rng.choice([True, False])
     if rng.random() < 0.3:
         kw["lightsource"] = [_odd(rng, lambda: rng.uniform(0, 360)),
                              _odd(rng, lambda: rng.uniform(-10, 90))]

@@ -25,9 +25,8 @@ from numba import prange
 
 from ._jit import ngjit_inline, ngjit_parallel
 from .coverage import flagged, seen_side
-from .layout import (E_COV, E_DEPTH, E_I, E_NX, E_NY, E_NZ, E_SEEN, E_U, E_V, G_DEPTH, G_I,
-                     G_NX, G_NY, G_NZ, G_U, G_V, VP_CU, VP_CV, VP_D1, VP_D3, VP_H, VP_ORTHO,
-                     VP_SCALE)
+from .layout import (E_COV, E_DEPTH, E_I, E_NX, E_SEEN, E_U, E_V, G_DEPTH, G_I, G_NX, G_U,
+                     G_V, VP_CU, VP_CV, VP_D1, VP_D3, VP_H, VP_ORTHO, VP_SCALE)
 from .lod import _smooth_gradient
 from .sample import column_x0, lambert, unit_normal
 
@@ -73,6 +72,22 @@ def _smoothed(flat, lt, hfp, vp, a, x0, j, u, v, nx, ny, nz, lam):
     return sx, sy, sz, lambert(vp, vx, vy, vz, sx, sy, sz)
 
 
+@ngjit_inline
+def _smooth_entry(flat, lt, hfp, vp, cell, x0, j, cu, cv, p, c_depth, c_u, c_v, c_n, c_i):
+    """One surface's entry p of a pixel (a G-buffer's or an edge buffer's: its channels
+    c_depth, c_u, c_v, the normal's three from c_n, c_i) smoothed in place by
+    _smoothed. Its weight first, from its depth alone: a pixel wider than a cell (most
+    of a dense DEM's) is neither read further nor written."""
+    a = smooth_weight(vp, p[c_depth], cell)
+    if a > 0.0:
+        nx, ny, nz, lam = _smoothed(flat, lt, hfp, vp, a, x0, j, p[c_u] + cu, p[c_v] + cv,
+                                    p[c_n], p[c_n + 1], p[c_n + 2], p[c_i])
+        p[c_n] = nx
+        p[c_n + 1] = ny
+        p[c_n + 2] = nz
+        p[c_i] = lam
+
+
 @ngjit_parallel
 def smooth_normals_kernel(flat, lt, hfp, vp, cell, width, gbuf, ebuf, rows):
     """Every seen pixel's normal and intensity in the tiled gbuf and ebuf (layout.py)
@@ -94,27 +109,9 @@ def smooth_normals_kernel(flat, lt, hfp, vp, cell, width, gbuf, ebuf, rows):
                 x = ebuf[b, E_SEEN, j, lane]
                 if x == 0.0:
                     continue
-                # (the weight first: a pixel wider than a cell is neither read further
-                # nor written, most of a dense DEM's)
                 if seen_side(x) != 0.0:
-                    a = smooth_weight(vp, gbuf[b, j, lane, G_DEPTH], cell)
-                    if a > 0.0:
-                        g = gbuf[b, j, lane]
-                        nx, ny, nz, lam = _smoothed(flat, lt, hfp, vp, a, x0, j, g[G_U] + cu,
-                                                    g[G_V] + cv, g[G_NX], g[G_NY], g[G_NZ],
-                                                    g[G_I])
-                        g[G_NX] = nx
-                        g[G_NY] = ny
-                        g[G_NZ] = nz
-                        g[G_I] = lam
+                    _smooth_entry(flat, lt, hfp, vp, cell, x0, j, cu, cv, gbuf[b, j, lane],
+                                  G_DEPTH, G_U, G_V, G_NX, G_I)
                 if flagged(x) and ebuf[b, E_COV, j, lane] > 0.0:
-                    a = smooth_weight(vp, ebuf[b, E_DEPTH, j, lane], cell)
-                    if a > 0.0:
-                        e = ebuf[b, :, j, lane]
-                        nx, ny, nz, lam = _smoothed(flat, lt, hfp, vp, a, x0, j, e[E_U] + cu,
-                                                    e[E_V] + cv, e[E_NX], e[E_NY], e[E_NZ],
-                                                    e[E_I])
-                        e[E_NX] = nx
-                        e[E_NY] = ny
-                        e[E_NZ] = nz
-                        e[E_I] = lam
+                    _smooth_entry(flat, lt, hfp, vp, cell, x0, j, cu, cv, ebuf[b, :, j, lane],
+                                  E_DEPTH, E_U, E_V, E_NX, E_I)

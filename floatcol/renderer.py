@@ -236,11 +236,6 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     method = quality.method
     hstride = 0
     n_lines = 1
-    if material.smooth_shading and (method == "horizon" or
-                                    quality.antialiasing(material.shading)[1] > 1):
-        raise ValueError("smooth_shading lights shaded pictures antialiased along the columns: "
-                         "use method='column' and antialias=True, 'area' or False (not "
-                         "sub-columns)")
     if method == "horizon":
         if material.colored or material.overlaid:
             raise ValueError("a texture, color field, contours or wireframe need shaded "
@@ -250,6 +245,10 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     material.check_limits()
     fixes = quality.fixes(material.interpolation)
     aa_cov, sub_columns = quality.antialiasing(material.shading)
+    if material.smooth_shading and (method == "horizon" or sub_columns > 1):
+        raise ValueError("smooth_shading lights shaded pictures antialiased along the columns: "
+                         "use method='column' and antialias=True, 'area' or False (not "
+                         "sub-columns)")
     t_setup = time.perf_counter()
 
     W, H = view.width, view.height

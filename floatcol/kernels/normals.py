@@ -8,8 +8,8 @@ wide, a coarse DEM is a quilt of lit facets. This pass, run over the G-buffer an
 edge buffer after the geometry pass, replaces each seen point's normal (and its
 intensity, which area sampling and iis light with) by the one of the gradient
 interpolated bilinearly between the central differences at the cell's four nodes
-(kernels/lod.py's _smooth_gradient of level 0, the pyramid's finer levels' own
-normals): continuous across the cells, the geometry unchanged.
+(kernels/lod.py's _smooth_gradient of level 0, as the lod engine lights its coarser
+levels): continuous across the cells, the geometry unchanged.
 
 Where a pixel is wider than a cell the facets are smaller than the pixels and the
 engines light them already: the level-of-detail engines (lod, march, area sampling)

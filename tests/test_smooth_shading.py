@@ -103,6 +103,25 @@ def test_pixels_wider_than_a_cell_are_unchanged():
         assert np.array_equal(a.intensity, b.intensity, equal_nan=True)
 
 
+def test_its_gradient_is_the_lod_engines_smooth_gradient_of_level_0():
+    """kernels/normals.py's _gradient0 (the cell's indices found once) against
+    kernels/lod.py's _smooth_gradient at level 0 (each node on its own), bit for bit,
+    at random points and on the grid's edges and corners (one-sided differences)."""
+    from floatcol.kernels.lod import _smooth_gradient, level_table
+    from floatcol.kernels.normals import _gradient0
+    from floatcol.passes.area import levels
+    for z in (Z, fractal(5, 3.0, seed=1)[:, :4], np.arange(6.0).reshape(2, 3)):
+        hf = fc.HeightField(z, u=(-3.0, 9.0), v=(2.0, 5.0))
+        flat, lv = levels(hf)
+        lt = level_table(lv, hf.hfp)
+        rng = np.random.default_rng(0)
+        pts = list(zip(rng.uniform(-3, 9, 200), rng.uniform(2, 5, 200)))
+        pts += [(u, v) for u in (-3.0, 9.0, 3.0) for v in (2.0, 5.0, 3.5)]
+        for u, v in pts:
+            assert _gradient0(flat, lt, hf.hfp, u, v) == _smooth_gradient(flat, lt, 0, hf.hfp,
+                                                                          u, v)
+
+
 def test_the_fade_between_half_a_cell_and_a_cell():
     from floatcol.kernels.layout import VP_D1, VP_D3, VP_ORTHO, VP_SCALE, VP_SIZE
     from floatcol.kernels.normals import smooth_weight

@@ -113,7 +113,8 @@ def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=No
     from outside (camera.fly: its ray march point sampled, its lod engine
     antialiased): the eye's position (u, v) or (u, v, w) in the DEM's units (heights
     exaggerated), or a dict of fly()'s keywords (position, heading, pitch, fov, above,
-    near); its elev, azim and projection replace those given. Returns plot_surface's SurfacePlot (``.save(path)``, ``.render``)."""
+    near); its elev, azim and projection replace those given. Returns plot_surface's
+    SurfacePlot (``.save(path)``, ``.render``)."""
     from .plot import plot_surface
     if isinstance(source, HeightField):
         hf = source

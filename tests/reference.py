@@ -474,6 +474,15 @@ def psnr(a, b):
     return np.inf if mse == 0 else 10 * np.log10(1.0 / mse)
 
 
+def table6(frames):
+    """Cohen-Or's Table 6 measure of flicker: the pixels whose grey level (ITU-R 601
+    luma of the rgba frames, rounded) changes by 6 to 60 from one frame to the next,
+    summed over the frames."""
+    lum = [np.asarray(f)[..., :3] @ np.array([0.299, 0.587, 0.114]) for f in frames]
+    d = np.round(np.abs(np.diff(lum, axis=0)))
+    return int(((d >= 6) & (d <= 60)).sum())
+
+
 def raycast_box(funcs, u_rng, v_rng, size, elev, azim, projection="orthographic", d1=None,
                 d2=None, scale=None, k=4, **kw):
     """The pixel-area (box-filtered) picture: ray-cast k x k sub-pixels per pixel and

@@ -9,7 +9,7 @@ import floatcol as fc
 from floatcol.cli import main
 from floatcol.passes import march as march_pass
 from reference import bilinear_surface, fractal, raycast
-from test_lod import _against, _fly_scene
+from test_lod import _against, _fly_scene, dense_dem, turn_flicker
 
 
 def _reference(z, ext, r):
@@ -84,21 +84,12 @@ def test_steps_by_the_slope_bound_change_no_picture(monkeypatch):
 
 
 def test_it_flickers_no_more_than_the_lod_engine():
-    """Cohen-Or's Table 6 measure (pixels changing 6 to 60 grey levels a frame) over a
-    slow turn of a fly camera (0.02 deg a frame) above a dense 1025^2 fractal DEM,
-    point sampled, as test_lod.py's."""
-    hf = fc.HeightField(fractal(1025, seed=9) * 20, u=(0, 2000), v=(0, 2000))
+    """Cohen-Or's Table 6 measure over test_lod.py's slow turn above a dense DEM
+    (turn_flicker), point sampled."""
+    hf = dense_dem()
 
     def flicker(sampling):
-        lum = []
-        for k in range(8):
-            kw = fc.fly(hf, (600, 200), heading=20 + 0.02 * k, pitch=-12, fov=60,
-                        size=(160, 90), above=60)
-            r = fc.render(hf, antialias=False, **dict(kw, sampling=sampling))
-            assert r.stats["geometry"] == sampling
-            lum.append(r.rgba[..., :3] @ np.array([0.299, 0.587, 0.114]))
-        d = np.round(np.abs(np.diff(lum, axis=0)))
-        return int(((d >= 6) & (d <= 60)).sum())
+        return turn_flicker(hf, geometry=sampling, antialias=False, sampling=sampling)
 
     # measured: 2 734 pixels (the lod engine 3 492; the exact pass 15 467, test_lod.py)
     march, lod = flicker("march"), flicker("lod")

@@ -7,6 +7,7 @@ import pytest
 
 import floatcol as fc
 from reference import bilinear_surface, fractal, raycast, smooth_bilinear_surface
+from test_lod import dense_dem, turn_flicker
 
 N = 17
 Z = fractal(N, 3.0, seed=4) * 120
@@ -73,19 +74,8 @@ def test_it_flickers_less_than_the_cells_own_normals():
     test_lod.py's slow turn above a dense 1025^2 DEM, fc.fly's area-sampled view:
     measured 2 501 pixels smooth against 2 998 with the cells' own normals (point
     sampled: the lod engine 2 638 against 3 492, the march 2 565 against 2 734)."""
-    hf = fc.HeightField(fractal(1025, seed=9) * 20, u=(0, 2000), v=(0, 2000))
-
-    def flicker(smooth):
-        lum = []
-        for k in range(8):
-            kw = fc.fly(hf, (600, 200), heading=20 + 0.02 * k, pitch=-12, fov=60,
-                        size=(160, 90), above=60)
-            r = fc.render(hf, antialias="area", smooth_shading=smooth, **kw)
-            lum.append(r.rgba[..., :3] @ np.array([0.299, 0.587, 0.114]))
-        d = np.round(np.abs(np.diff(lum, axis=0)))
-        return int(((d >= 6) & (d <= 60)).sum())
-
-    smooth, own = flicker(True), flicker(False)
+    hf = dense_dem()
+    smooth, own = (turn_flicker(hf, antialias="area", smooth_shading=s) for s in (True, False))
     assert smooth <= 0.9 * own
     assert smooth <= 2700
 
@@ -103,12 +93,34 @@ def test_pixels_wider_than_a_cell_are_unchanged():
         assert np.array_equal(a.intensity, b.intensity, equal_nan=True)
 
 
-def test_its_gradient_is_the_lod_engines_smooth_gradient_of_level_0():
-    """kernels/normals.py's _gradient0 (the cell's indices found once) against
-    kernels/lod.py's _smooth_gradient at level 0 (each node on its own), bit for bit,
-    at random points and on the grid's edges and corners (one-sided differences)."""
-    from floatcol.kernels.lod import _smooth_gradient, level_table
-    from floatcol.kernels.normals import _gradient0
+def _node_by_node(z, su, sv, gx, gy):
+    """The smooth gradient as it was computed before (each node's central difference
+    on its own, one-sided at the edges; interpolated bilinearly), in Python's doubles:
+    the kernel's must be the same, bit for bit (its pictures unchanged)."""
+    nv, nu = z.shape
+    i = min(max(int(gx), 0), nu - 2)
+    j = min(max(int(gy), 0), nv - 2)
+    fx = min(max(gx - i, 0.0), 1.0)
+    fy = min(max(gy - j, 0.0), 1.0)
+
+    def node(i, j):
+        i0, i1, j0, j1 = max(i - 1, 0), min(i + 1, nu - 1), max(j - 1, 0), min(j + 1, nv - 1)
+        hu = su if i1 - i0 == 1 else 0.5 * su
+        hv = sv if j1 - j0 == 1 else 0.5 * sv
+        return (z[j, i1] - z[j, i0]) * hu, (z[j1, i] - z[j0, i]) * hv
+    (a_u, a_v), (b_u, b_v) = node(i, j), node(i + 1, j)
+    (c_u, c_v), (d_u, d_v) = node(i, j + 1), node(i + 1, j + 1)
+    return ((a_u * (1 - fx) + b_u * fx) * (1 - fy) + (c_u * (1 - fx) + d_u * fx) * fy,
+            (a_v * (1 - fx) + b_v * fx) * (1 - fy) + (c_v * (1 - fx) + d_v * fx) * fy)
+
+
+def test_the_smooth_gradient_is_the_node_by_node_one():
+    """kernels/lod.py's _smooth_gradient (the cell's indices found once; the smooth
+    pass's, the lod engine's and the march's) against _node_by_node, bit for bit, at
+    every level of the pyramid, at random points and on the grid's edges and corners,
+    on tiny grids too."""
+    from floatcol.kernels.area import LV_NU, LV_NV, LV_OFF
+    from floatcol.kernels.lod import LT_SU, LT_SV, _smooth_gradient, level_table
     from floatcol.passes.area import levels
     for z in (Z, fractal(5, 3.0, seed=1)[:, :4], np.arange(6.0).reshape(2, 3)):
         hf = fc.HeightField(z, u=(-3.0, 9.0), v=(2.0, 5.0))
@@ -117,9 +129,13 @@ def test_its_gradient_is_the_lod_engines_smooth_gradient_of_level_0():
         rng = np.random.default_rng(0)
         pts = list(zip(rng.uniform(-3, 9, 200), rng.uniform(2, 5, 200)))
         pts += [(u, v) for u in (-3.0, 9.0, 3.0) for v in (2.0, 5.0, 3.5)]
-        for u, v in pts:
-            assert _gradient0(flat, lt, hf.hfp, u, v) == _smooth_gradient(flat, lt, 0, hf.hfp,
-                                                                          u, v)
+        for k in range(lv.shape[0]):
+            o, nv, nu = int(lv[k, LV_OFF]), int(lv[k, LV_NV]), int(lv[k, LV_NU])
+            zk = flat[o:o + nv * nu].reshape(nv, nu)
+            su, sv = lt[k, LT_SU], lt[k, LT_SV]
+            for u, v in pts:
+                want = _node_by_node(zk, su, sv, (u - hf.hfp[0]) * su, (v - hf.hfp[2]) * sv)
+                assert _smooth_gradient(flat, lt, k, hf.hfp, u, v) == want, (k, u, v)
 
 
 def test_the_fade_between_half_a_cell_and_a_cell():

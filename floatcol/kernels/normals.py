@@ -27,7 +27,7 @@ from ._jit import ngjit_inline, ngjit_parallel
 from .coverage import flagged, seen_side
 from .layout import (E_COV, E_DEPTH, E_I, E_NX, E_SEEN, E_U, E_V, G_DEPTH, G_I, G_NX, G_U,
                      G_V, VP_CU, VP_CV, VP_D1, VP_D3, VP_H, VP_ORTHO, VP_SCALE)
-from .lod import LT_NU, LT_NV, LT_OFF, LT_SU, LT_SV
+from .lod import _smooth_gradient
 from .sample import column_x0, lambert, unit_normal
 
 
@@ -44,53 +44,12 @@ def smooth_weight(vp, z, cell):
 
 
 @ngjit_inline
-def _gradient0(flat, lt, hfp, u, v):
-    """kernels/lod.py's _smooth_gradient of level 0, the same value bit for bit, with
-    the cell's indices found once: its four nodes' central differences (one-sided at
-    the grid's edges) from the twelve heights about the cell, interpolated
-    bilinearly."""
-    nu = int(lt[0, LT_NU])
-    nv = int(lt[0, LT_NV])
-    su = lt[0, LT_SU]
-    sv = lt[0, LT_SV]
-    off = int(lt[0, LT_OFF])
-    gx = (u - hfp[0]) * su
-    gy = (v - hfp[2]) * sv
-    i = min(max(int(gx), 0), nu - 2)
-    j = min(max(int(gy), 0), nv - 2)
-    fx = min(max(gx - i, 0.0), 1.0)
-    fy = min(max(gy - j, 0.0), 1.0)
-    # the columns i - 1 .. i + 2 and rows j - 1 .. j + 2, clamped; the step of each
-    # node's difference halved where it spans two cells
-    im = max(i - 1, 0)
-    ip = min(i + 2, nu - 1)
-    jm = max(j - 1, 0)
-    jp = min(j + 2, nv - 1)
-    hu0 = su if i - im == 0 else 0.5 * su          # node i: (i + 1) - max(i - 1, 0)
-    hu1 = su if ip - i == 1 else 0.5 * su          # node i + 1: min(i + 2, nu - 1) - i
-    hv0 = sv if j - jm == 0 else 0.5 * sv
-    hv1 = sv if jp - j == 1 else 0.5 * sv
-    r0 = off + j * nu
-    r1 = r0 + nu
-    a_u = (flat[r0 + i + 1] - flat[r0 + im]) * hu0
-    b_u = (flat[r0 + ip] - flat[r0 + i]) * hu1
-    c_u = (flat[r1 + i + 1] - flat[r1 + im]) * hu0
-    d_u = (flat[r1 + ip] - flat[r1 + i]) * hu1
-    a_v = (flat[r1 + i] - flat[off + jm * nu + i]) * hv0
-    b_v = (flat[r1 + i + 1] - flat[off + jm * nu + i + 1]) * hv0
-    c_v = (flat[off + jp * nu + i] - flat[r0 + i]) * hv1
-    d_v = (flat[off + jp * nu + i + 1] - flat[r0 + i + 1]) * hv1
-    return ((a_u * (1 - fx) + b_u * fx) * (1 - fy) + (c_u * (1 - fx) + d_u * fx) * fy,
-            (a_v * (1 - fx) + b_v * fx) * (1 - fy) + (c_v * (1 - fx) + d_v * fx) * fy)
-
-
-@ngjit_inline
 def _smoothed(flat, lt, hfp, vp, a, x0, j, u, v, nx, ny, nz, lam):
     """(nx, ny, nz, intensity) of the point (u, v) seen at pixel row j of column x0:
     the smooth normal blended with the point's own (nx, ny, nz) by a (smooth_weight's,
     > 0), and its Lambert intensity (eq. 12, toward the viewpoint along the pixel's
     ray); the point's own where the nodes' gradient is not finite."""
-    gu, gv = _gradient0(flat, lt, hfp, u, v)
+    gu, gv = _smooth_gradient(flat, lt, 0, hfp, u, v)
     if not (math.isfinite(gu) and math.isfinite(gv)):
         return nx, ny, nz, lam
     sx, sy, sz = unit_normal(vp, gu, gv)                  # eq. (11)

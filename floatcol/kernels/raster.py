@@ -452,10 +452,10 @@ def object_edges_kernel(drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_under
     neighbourhood shows more than one thing (drawn (H, W): raster_kernel's triangle + 1,
     0 where none), or that a triangle touches without winning its centre (``touched``
     (H, W, TOUCH_SLOTS), raster_kernel's), takes the mean of EDGE_SS x EDGE_SS
-    sub-samples spread evenly over it. At each sub-sample the nearest of the triangles drawn or touching in the
-    neighbourhood that covers it (its depth as raster_kernel's) is seen, else what lies
-    under the objects
-    (z_under (H, W) its screen z, ``before`` (H, W, 4) its colour); a triangle's colour
+    sub-samples spread evenly over it. At each sub-sample the nearest of the triangles
+    drawn or touching in the neighbourhood that covers it (its depth as raster_kernel's)
+    is seen, else what lies under the objects (z_under (H, W) its screen z, ``before``
+    (H, W, 4) its colour); a triangle's colour
     is the one ``after`` (H, W, 4) holds at the nearest pixel of the neighbourhood where
     it won (its light and shadow there), else its own ``rgb`` (m, 3; a sliver no pixel
     centre lies on: with shadows, lit and shadowed at its centroid, objects.py

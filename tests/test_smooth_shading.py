@@ -72,8 +72,9 @@ def test_every_engine_lights_the_nodes_normals(name):
 def test_it_flickers_less_than_the_cells_own_normals():
     """Cohen-Or's Table 6 measure (pixels changing 6 to 60 grey levels a frame) over
     test_lod.py's slow turn above a dense 1025^2 DEM, fc.fly's area-sampled view:
-    measured 2 501 pixels smooth against 2 998 with the cells' own normals (point
-    sampled: the lod engine 2 638 against 3 492, the march 2 565 against 2 734)."""
+    measured 2 642 pixels smooth against 3 134 with the cells' own normals (point
+    sampled: the lod engine 2 673 against 3 601, the march 2 452 against 2 655; with
+    trilinear levels, before lod.BLEND_BAND, 2 501 against 2 998)."""
     hf = dense_dem()
     smooth, own = (turn_flicker(hf, antialias="area", smooth_shading=s) for s in (True, False))
     assert smooth <= 0.9 * own

@@ -72,9 +72,9 @@ def test_every_engine_lights_the_nodes_normals(name):
 def test_it_flickers_less_than_the_cells_own_normals():
     """Cohen-Or's Table 6 measure (pixels changing 6 to 60 grey levels a frame) over
     test_lod.py's slow turn above a dense 1025^2 DEM, fc.fly's area-sampled view:
-    measured 2 642 pixels smooth against 3 134 with the cells' own normals (point
-    sampled: the lod engine 2 673 against 3 601, the march 2 452 against 2 655; with
-    trilinear levels, before lod.BLEND_BAND, 2 501 against 2 998)."""
+    measured 2 625 pixels smooth against 3 112 with the cells' own normals (point
+    sampled: the lod engine 2 737 against 3 661, the march 2 452 against 2 655; with
+    trilinear levels and lod.CROSS_ROWS 0.05, 2 501 against 2 998)."""
     hf = dense_dem()
     smooth, own = (turn_flicker(hf, antialias="area", smooth_shading=s) for s in (True, False))
     assert smooth <= 0.9 * own

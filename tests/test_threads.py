@@ -179,3 +179,18 @@ def test_an_index_out_of_range_in_a_kernels_loop_is_an_index_error(monkeypatch, 
     with pytest.raises(IndexError):
         fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(64, 48),
                   projection=projection)
+
+
+def test_row_blocks_are_spread_over_the_threads():
+    """kernels/shade.py spread: iteration p of a loop over n blocks of rows takes block
+    p s mod n, a permutation of the blocks (each written once: the same picture, as
+    test_one_thread_equals_all checks), whose first half takes blocks from both halves
+    of the picture (a fly-through's nearly empty sky is not one thread's share)."""
+    from floatcol.kernels.shade import spread, spread_stride
+    for n in range(1, 400):
+        s = spread_stride(n)
+        order = [spread(p, n, s) for p in range(n)]
+        assert sorted(order) == list(range(n)), n
+        if n >= 8:
+            low = sum(b < n // 2 for b in order[:n // 2])
+            assert 0.3 * (n // 2) <= low <= 0.7 * (n // 2), (n, low)

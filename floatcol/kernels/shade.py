@@ -270,6 +270,32 @@ def _picture_blocks(gbuf, side):
 
 
 @ngjit_inline
+def spread_stride(n):
+    """A stride coprime with n near n / phi, for spread."""
+    s = max(int(n * 0.6180339887498949), 1)
+    while True:
+        a = n
+        b = s
+        while b:                                 # (Euclid's gcd)
+            a, b = b, a % b
+        if a == 1:
+            return s
+        s += 1
+
+
+@ngjit_inline
+def spread(p, n, stride):
+    """The block that iteration p of a parallel loop over n blocks of rows takes
+    (stride: spread_stride(n)'s): p stride mod n, a permutation. Numba gives each
+    thread a run of a loop's iterations; in order, one thread would take the bottom
+    of the picture and the other its top, and a fly-through's sky at the top is
+    nearly empty (its finishing pass on 2 threads 1.48x as fast as on one); spread,
+    each takes blocks from all over (1.88x: 1280x720 10.0 -> 8.1 ms). Each block
+    writes its own rows: the same picture."""
+    return (p * stride) % n
+
+
+@ngjit_inline
 def _block_rows(blk, H):
     """Rows j_lo to j_hi - 1 (from the bottom) of block blk."""
     j_lo = blk * FINISH_ROWS
@@ -288,8 +314,9 @@ def finish_kernel(gbuf, ebuf, rows, vp, mp, lut, background, lit, base, side, rg
     centres are centre_kernel's, when they are asked for (Render's lazy arrays): the
     picture alone stores 5 bytes per pixel instead of 13 (1920x1080: 14.2 -> 9.9 ms).
 
-    The picture goes in blocks of FINISH_ROWS rows, in parallel: a block's rows are
-    first filled with the background in runs (most pixels are background), then the
+    The picture goes in blocks of FINISH_ROWS rows, in parallel (spread over the
+    threads): a block's rows are first filled with the background in runs (most
+    pixels are background), then the
     tiles are read, each a run of FINISH_ROWS rows, and only the pixels that show a
     surface are written again. Every store so lands in the few cache lines of the
     block's rows; going down the tiles' columns instead (their own order) missed the
@@ -307,8 +334,9 @@ def finish_kernel(gbuf, ebuf, rows, vp, mp, lut, background, lit, base, side, rg
     textured = base.shape[0] > 0
     mt = held(mp)
     wo = vp[VP_WORG]                    # the G-buffer's w from there (layout.py G_W)
+    stride = spread_stride(n_blocks)
     for blk_ in prange(n_blocks):
-        blk = np.int64(blk_)  # (_jit.py: prange_index)
+        blk = spread(np.int64(blk_), n_blocks, stride)  # (_jit.py: prange_index)
         j_lo, j_hi = _block_rows(blk, H)
         bg = _rgba32(background[0], background[1], background[2], background[3])
         for j in range(j_lo, j_hi):
@@ -369,8 +397,9 @@ def centre_kernel(gbuf, vp, mp, lit, side, intensity, depth):
     order: blocks of FINISH_ROWS rows filled in runs, then tile by tile."""
     n_tiles, H, T, W, n_blocks = _picture_blocks(gbuf, side)
     shadows = lit.shape[0] > 0
+    stride = spread_stride(n_blocks)
     for blk_ in prange(n_blocks):
-        blk = np.int64(blk_)  # (_jit.py: prange_index)
+        blk = spread(np.int64(blk_), n_blocks, stride)  # (_jit.py: prange_index)
         j_lo, j_hi = _block_rows(blk, H)
         for j in range(j_lo, j_hi):
             i = H - 1 - j

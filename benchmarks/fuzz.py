@@ -10,8 +10,8 @@ shadows, objects on the terrain).
 collinear, collapsed grids with NaN, infinite and huge values, in 2-D and 3-D Axes).
 
 Each case runs in a worker process (tests/fuzzing.py): a segfault or a hang is
-counted, the worker restarted. Prints the counts of each outcome and the first few
-findings of each kind other than "ok" and "value". Exit status 1 if any case
+counted, the worker restarted. Prints the counts of each outcome, the first few
+findings of each kind other than "ok" and "value", and the five slowest cases. Exit status 1 if any case
 crashed, hung, raised anything but ValueError, leaked an internal name, or raised an
 exception inside compiled code (printed there as "Exception ignored").
 """
@@ -35,11 +35,15 @@ def main():
     worker = fuzzing.Worker(timeout=60.0)
     counts = collections.Counter()
     findings = collections.defaultdict(list)
+    slowest = []                        # (seconds, case number, case): the 5 slowest
     t0 = time.perf_counter()
     try:
         for i in range(n):
             c = make(rng)
+            tc = time.perf_counter()
             res = worker.run(c)
+            slowest = sorted(slowest + [(time.perf_counter() - tc, i, c)],
+                             key=lambda x: -x[0])[:5]
             counts[res["outcome"]] += 1
             if res["outcome"] not in ("ok", "value") and len(findings[res["outcome"]]) < 5:
                 findings[res["outcome"]].append((c, res["message"]))
@@ -53,6 +57,10 @@ def main():
     print(f"{'outcome':<10}{'cases':>8}")
     for k in ("ok", "value", "other", "leak", "raised", "crash", "hang"):
         print(f"{k:<10}{counts[k]:>8}")
+    # (a case's pictures are at most 160 x 120: seconds here are a near-hang to look at)
+    print("\nslowest cases (s, a worker's start and compiles included):")
+    for sec, i, c in slowest:
+        print(f"  {sec:6.2f}  case {i}: {str(c)[:300]}")
     bad = sum(counts[k] for k in ("other", "leak", "raised", "crash", "hang"))
     return 1 if bad else 0
 

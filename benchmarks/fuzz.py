@@ -11,9 +11,10 @@ collinear, collapsed grids with NaN, infinite and huge values, in 2-D and 3-D Ax
 
 Each case runs in a worker process (tests/fuzzing.py): a segfault or a hang is
 counted, the worker restarted. Prints the counts of each outcome, the first few
-findings of each kind other than "ok" and "value", and the five slowest cases. Exit status 1 if any case
-crashed, hung, raised anything but ValueError, leaked an internal name, or raised an
-exception inside compiled code (printed there as "Exception ignored").
+findings of each kind other than "ok" and "value", and the five slowest cases. Exit
+status 1 if any case crashed, hung, raised anything but ValueError, leaked an internal
+name, or raised an exception inside compiled code (printed there as "Exception
+ignored").
 """
 import collections
 import os

@@ -56,8 +56,8 @@ from .sample import column_x0, in_domain, into_domain, lambert, surface_eval, un
 KAPPA = 1.0
 #: the middle part of each pyramid level's span of footprints over which it is blended
 #: with the next (level_blend; 1: trilinear). 0.5, brilinear: the 4097^2 DEM's
-#: 1280x720 fly-through (benchmarks/bench_terrain.py) 65 -> 58 ms a frame by the ray
-#: march, 125 -> 111 ms area sampled; on test_lod.py's dense DEM its intensities
+#: 1280x720 fly-through (benchmarks/bench_terrain.py), its kernel 65 -> 58 ms a frame
+#: by the ray march, 125 -> 111 ms area sampled; on test_lod.py's dense DEM its intensities
 #: nearer the exact ray caster's (36-37 % within 0.02 instead of 31-32 %; the
 #: pyramid's smoothing keeps the rest off), its sides as near (98.63-98.65 % against
 #: 98.65-98.67 %), Cohen-Or's flicker measure over a slow turn 2 734 -> 2 655 pixels by

@@ -290,7 +290,7 @@ def spread(p, n, stride):
     thread a run of a loop's iterations; in order, one thread would take the bottom
     of the picture and the other its top, and a fly-through's sky at the top is
     nearly empty (its finishing pass on 2 threads 1.48x as fast as on one); spread,
-    each takes blocks from all over (1.88x: 1280x720 10.0 -> 8.1 ms). Each block
+    each takes blocks from all over (1.9x: 1280x720 10.0 -> 7.9 ms). Each block
     writes its own rows: the same picture."""
     return (p * stride) % n
 
@@ -316,13 +316,12 @@ def finish_kernel(gbuf, ebuf, rows, vp, mp, lut, background, lit, base, side, rg
 
     The picture goes in blocks of FINISH_ROWS rows, in parallel (spread over the
     threads): a block's rows are first filled with the background in runs (most
-    pixels are background), then the
-    tiles are read, each a run of FINISH_ROWS rows, and only the pixels that show a
-    surface are written again. Every store so lands in the few cache lines of the
-    block's rows; going down the tiles' columns instead (their own order) missed the
-    cache on every store (1920x1080: 5-17 % slower). A tile whose rows (column_kernel's
-    ``rows``: where its E_SEEN may be set) miss the block is background there: not
-    read at all. ``lit`` (H, W): the part of the light reaching each pixel's point
+    pixels are background), then the tiles are read, each a run of FINISH_ROWS rows,
+    and only the pixels that show a surface are written again. Every store so lands
+    in the few cache lines of the block's rows; going down the tiles' columns instead
+    (their own order) missed the cache on every store (1920x1080: 5-17 % slower). A
+    tile whose rows (column_kernel's ``rows``: where its E_SEEN may be set) miss the
+    block is background there: not read at all. ``lit`` (H, W): the part of the light reaching each pixel's point
     (passes/shadow.py), or an empty array: all of it. mp: the material vector
     (layout.py M_*), lut its colour table (Material.table). ``base`` (H, W, 6)
     float32: the colour of the surface seen at each pixel's centre, both sides, and of

@@ -321,12 +321,13 @@ def finish_kernel(gbuf, ebuf, rows, vp, mp, lut, background, lit, base, side, rg
     in the few cache lines of the block's rows; going down the tiles' columns instead
     (their own order) missed the cache on every store (1920x1080: 5-17 % slower). A
     tile whose rows (column_kernel's ``rows``: where its E_SEEN may be set) miss the
-    block is background there: not read at all. ``lit`` (H, W): the part of the light reaching each pixel's point
-    (passes/shadow.py), or an empty array: all of it. mp: the material vector
-    (layout.py M_*), lut its colour table (Material.table). ``base`` (H, W, 6)
-    float32: the colour of the surface seen at each pixel's centre, both sides, and of
-    its edge surface (a texture or a colour field's, passes/colour.py), or an empty
-    array: their sides' colours (lut by w, or the lower side's)."""
+    block is background there: not read at all. ``lit`` (H, W): the part of the light
+    reaching each pixel's point (passes/shadow.py), or an empty array: all of it. mp:
+    the material vector (layout.py M_*), lut its colour table (Material.table).
+    ``base`` (H, W, 6) float32: the colour of the surface seen at each pixel's centre,
+    both sides, and of its edge surface (a texture or a colour field's,
+    passes/colour.py), or an empty array: their sides' colours (lut by w, or the lower
+    side's)."""
     n_tiles, H, T, W, n_blocks = _picture_blocks(gbuf, side)
     aa = vp[VP_AA] != 0.0
     shadows = lit.shape[0] > 0

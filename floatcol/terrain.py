@@ -24,6 +24,7 @@ import os
 import numpy as np
 
 from ._memory import fits
+from .quality import antialias
 from .surface import HeightField
 
 #: DEM files read_dem takes (suffix -> kind)
@@ -91,11 +92,14 @@ def _smooth_allowed(kw):
     """smooth_shading's landscape default: on where the picture takes it (shaded, not
     sub-columns, opaque: passes/normals.py), so that those options given need not
     turn it off."""
-    aa = kw.get("antialias")
-    sub = isinstance(aa, numbers.Integral) and not isinstance(aa, (bool, np.bool_)) and aa > 1
+    method = kw.get("method", "column")
+    try:
+        _, sub = antialias(kw.get("antialias", "area"), method, "default")
+    except ValueError:
+        return False                             # (render says what to fix)
     alpha = kw.get("alpha", kw.get("opacity"))
     opaque = alpha is None or (isinstance(alpha, numbers.Real) and alpha >= 1.0)
-    return kw.get("method", "column") == "column" and not sub and opaque
+    return method == "column" and sub == 1 and opaque
 
 
 def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=None, fly=None,

@@ -49,7 +49,7 @@ from .area import (AC_SIZE, LV_CELL, LV_NU, LV_NV, LV_OFF, _below_picture, add_p
 from .column import _column_t_range
 from .layout import (E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U,
                      G_V, G_W, SURF_HEIGHTFIELD, VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1,
-                     VP_D3, VP_H, VP_SA, VP_SB, VP_SCALE, VP_T0, VP_T1, VP_WORG)
+                     VP_D3, VP_H, VP_ORTHO, VP_SA, VP_SB, VP_SCALE, VP_T0, VP_T1, VP_WORG)
 from .sample import column_x0, in_domain, into_domain, lambert, surface_eval, unit_normal
 
 #: planes a footprint apart (1: a plane per pixel's width at its distance)
@@ -345,8 +345,16 @@ PIECE_FIELDS = (Q_U, Q_V, Q_W, Q_NX, Q_NY, Q_NZ, Q_I, Q_T, Q_Z)
 @ngjit_inline
 def _footprint(vp, t, s):
     """The width of a pixel, in world units, at height s on plane t."""
-    q = s * vp[VP_SA] + t * vp[VP_CA] + vp[VP_D3]
-    return max(q, vp[VP_D1]) / (vp[VP_D1] * vp[VP_SCALE])
+    return footprint_at_depth(vp, s * vp[VP_SA] + t * vp[VP_CA])
+
+
+@ngjit_inline
+def footprint_at_depth(vp, z):
+    """The width of a pixel, in world units, at screen depth z (layout.py G_DEPTH: z +
+    d3 from the eye, at least d1): 1 / scale in an orthographic view."""
+    if vp[VP_ORTHO] != 0.0:
+        return 1.0 / vp[VP_SCALE]
+    return max(z + vp[VP_D3], vp[VP_D1]) / (vp[VP_D1] * vp[VP_SCALE])
 
 
 @ngjit_inline

@@ -26,21 +26,17 @@ from numba import prange
 from ._jit import ngjit_inline, ngjit_parallel
 from .coverage import flagged, seen_side
 from .layout import (E_COV, E_DEPTH, E_I, E_NX, E_SEEN, E_U, E_V, G_DEPTH, G_I, G_NX, G_U,
-                     G_V, VP_CU, VP_CV, VP_D1, VP_D3, VP_H, VP_ORTHO, VP_SCALE)
-from .lod import _smooth_gradient
+                     G_V, VP_CU, VP_CV, VP_D1, VP_H, VP_ORTHO, VP_SCALE)
+from .lod import _smooth_gradient, footprint_at_depth
 from .sample import column_x0, lambert, unit_normal
 
 
 @ngjit_inline
 def smooth_weight(vp, z, cell):
     """How much of the smooth normal a point at screen depth z takes: 1 where a
-    pixel's footprint there (world units; kernels/lod.py's _footprint) is at most half
-    of ``cell``, 0 from a whole cell on, linear between."""
-    if vp[VP_ORTHO] != 0.0:
-        fw = 1.0 / vp[VP_SCALE]
-    else:
-        fw = max(z + vp[VP_D3], vp[VP_D1]) / (vp[VP_D1] * vp[VP_SCALE])
-    return min(max(2.0 - 2.0 * fw / cell, 0.0), 1.0)
+    pixel's footprint there (world units: kernels/lod.py's footprint_at_depth) is at
+    most half of ``cell``, 0 from a whole cell on, linear between."""
+    return min(max(2.0 - 2.0 * footprint_at_depth(vp, z) / cell, 0.0), 1.0)
 
 
 @ngjit_inline

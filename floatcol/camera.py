@@ -228,8 +228,8 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
     level-of-detail engine's point samples too, or sampling="adaptive" for the exact
     surface everywhere (docs/terrain.md compares them).
 
-    position: (u, v, w), or (u, v) with the eye ``above`` (default: 5 % of the
-        domain's longer side) the surface there.
+    position: (u, v, w), or (u, v) inside the domain with the eye ``above``
+        (default: 5 % of the domain's longer side) the surface there.
     near: the near clipping distance (the screen plane, d1; default 1/1000 of the
         domain's longer side): nearer points are not drawn.
     The sampling planes start a pixel's footprint apart where the lowest ray of the
@@ -260,6 +260,12 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
     import numpy as np
     ground = float(s.evaluate(np.array([pos[0]]), np.array([pos[1]]))[0])
     if len(pos) == 2:
+        if not (ua <= pos[0] <= ub and va <= pos[1] <= vb):
+            # (no ground there to be above: the eye would be placed at w = 0 + above,
+            # under a DEM at 3000 m, or looking at nothing)
+            raise ValueError(f"position ({pos[0]:g}, {pos[1]:g}) lies outside the surface "
+                             f"(u {ua:g} to {ub:g}, v {va:g} to {vb:g}): give a point "
+                             f"inside it, or the eye's height too, (u, v, w)")
         rise = 0.05 * side if above is None else _number("above", above, positive=True)
         pos.append((ground if np.isfinite(ground) else 0.0) + rise)
     d1 = 1e-3 * side if near is None else _number("near", near, positive=True)

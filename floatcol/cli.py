@@ -549,6 +549,11 @@ def _terrain(args):
     s = plot.render.stats
     print(f"wrote {args.output} ({args.size[0]}x{args.size[1]}, heights x{plot.vert_exag:g}, "
           f"{s['seconds'] * 1e3:.0f} ms)")
+    if not (plot.render.side != 0).any():
+        (ua, ub), (va, vb) = plot.surface.default_domain
+        print(f"floatcol: note: nothing of the DEM is in view; it spans u {ua:.6g} to "
+              f"{ub:.6g}, v {va:.6g} to {vb:.6g} (metres where its coordinates were "
+              "degrees)", file=sys.stderr)
     return 0
 
 

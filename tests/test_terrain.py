@@ -293,7 +293,7 @@ def test_a_dem_flown_over_in_one_call_and_one_command(tmp_path, capsys):
     assert np.array_equal(np.asarray(Image.open(out).convert("RGBA")), p.render.rgba)
     capsys.readouterr()
     for argv in (["--fly", "1:2:3:4"], ["--fly", "15000:2500", "--pitch", "95"],
-                 ["--fly", "x:2"]):
+                 ["--fly", "x:2"], ["--fly", "99999:3000"]):     # (no ground there)
         bad = tmp_path / "bad.png"
         assert main(["terrain", JACKSBORO] + argv + ["-o", str(bad)]) == 2
         err = capsys.readouterr().err.strip().splitlines()
@@ -301,6 +301,16 @@ def test_a_dem_flown_over_in_one_call_and_one_command(tmp_path, capsys):
         assert not os.path.exists(bad)
     with pytest.raises(ValueError, match="position"):
         fc.terrain(JACKSBORO, fly=dict(heading=3))
+    with pytest.raises(ValueError, match=r"outside the surface \(u 0 to 29978.4, v 0 to 31718.9"):
+        fc.terrain(JACKSBORO, fly=(-10, 2500))
+    # an eye outside the DEM given its height is taken; looking away from the DEM, the
+    # command says nothing of it is in view, and where it lies
+    assert main(["terrain", JACKSBORO, "--fly=15000:-5000:2000", "--heading", "180",
+                 "--size", "64x36", "-o", str(out)]) == 0
+    assert "nothing of the DEM is in view; it spans u 0 to 29978.4" in capsys.readouterr().err
+    assert main(["terrain", JACKSBORO, "--fly=15000:-5000:2000", "--heading", "0",
+                 "--size", "64x36", "-o", str(out)]) == 0
+    assert "nothing" not in capsys.readouterr().err
 
 
 def test_fly_camera_looks_where_it_says():

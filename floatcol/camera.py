@@ -228,8 +228,9 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
     level-of-detail engine's point samples too, or sampling="adaptive" for the exact
     surface everywhere (docs/terrain.md compares them).
 
-    position: (u, v, w), or (u, v) inside the domain with the eye ``above``
-        (default: 5 % of the domain's longer side) the surface there.
+    position: (u, v, w), or (u, v) with the eye ``above`` (default: 5 % of the
+        domain's longer side) the surface there (outside the domain: at its nearest
+        point, so an eye may come in from beyond the edge of a DEM; in a hole: 0).
     near: the near clipping distance (the screen plane, d1; default 1/1000 of the
         domain's longer side): nearer points are not drawn.
     The sampling planes start a pixel's footprint apart where the lowest ray of the
@@ -258,14 +259,8 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
         raise ValueError(f"fov must be between 1 and 170 degrees, got {fov}")
     W, H = check_size(size)
     import numpy as np
-    ground = float(s.evaluate(np.array([pos[0]]), np.array([pos[1]]))[0])
+    ground = float(_ground(s, domain, pos[0], pos[1]))
     if len(pos) == 2:
-        if not (ua <= pos[0] <= ub and va <= pos[1] <= vb):
-            # (no ground there to be above: the eye would be placed at w = 0 + above,
-            # under a DEM at 3000 m, or looking at nothing)
-            raise ValueError(f"position ({pos[0]:g}, {pos[1]:g}) lies outside the surface "
-                             f"(u {ua:g} to {ub:g}, v {va:g} to {vb:g}): give a point "
-                             f"inside it, or the eye's height too, (u, v, w)")
         rise = 0.05 * side if above is None else _number("above", above, positive=True)
         pos.append((ground if np.isfinite(ground) else 0.0) + rise)
     d1 = 1e-3 * side if near is None else _number("near", near, positive=True)
@@ -284,3 +279,119 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
     step = max(min(reach, side), d1) / (d1 * scale)
     return dict(projection="perspective", elev=-pitch, azim=heading, center=center, d1=d1,
                 d2=d2, scale=scale, size=(W, H), step=step, sampling="march")
+
+
+#: a flight's waypoints at most (each makes 256 points of its curve), and its frames
+MAX_WAYPOINTS = 100_000
+MAX_FRAMES = 100_000
+
+
+def _ground(s, domain, u, v):
+    """The surface's height under (u, v): at the domain's nearest point where (u, v)
+    lies outside it (a DEM's ground continued beyond its edge); NaN in a hole."""
+    import numpy as np
+    (ua, ub), (va, vb) = domain
+    u = np.clip(np.asarray(u, dtype=float), ua, ub)
+    v = np.clip(np.asarray(v, dtype=float), va, vb)
+    return s.evaluate(np.atleast_1d(u), np.atleast_1d(v)).reshape(u.shape)
+
+
+def flight(surface, path, frames, heading=None, above=None):
+    """Where the eye of a flight through the waypoints ``path`` is at each of
+    ``frames`` frames, and where it looks: the points at equal distances along a
+    centripetal Catmull-Rom curve through the waypoints (it passes through each, turns
+    smoothly, and makes no loop or cusp between close ones), the first frame at the
+    first waypoint, the last at the last.
+
+    path: waypoints all (u, v), the eye ``above`` (as fly's: default 5 % of the
+        domain's longer side) the ground at each (beyond the domain's edge its nearest
+        point's), and never nearer the ground than half that between them (over a
+        ridge), or all (u, v, w), followed exactly.
+    heading: None, along the curve (compass degrees, clockwise from +v), or a number.
+    Returns (positions (frames, 3), headings (frames,), distances (frames,): how far
+    along the curve each frame is, in the surface's units)."""
+    import numpy as np
+
+    from .surface import as_surface
+    from .view import _number
+    s = as_surface(surface)
+    domain = s.default_domain or ((-10.0, 10.0), (-10.0, 10.0))
+    (ua, ub), (va, vb) = domain
+    side = max(ub - ua, vb - va)
+    if isinstance(frames, bool) or not isinstance(frames, (int, np.integer)) or frames < 1:
+        raise ValueError(f"frames must be a positive whole number, got {frames!r}")
+    if frames > MAX_FRAMES:
+        raise ValueError(f"frames must be at most {MAX_FRAMES} (83 minutes at 20 fps), got "
+                         f"{frames}")
+    try:
+        points = [[_number("path", x) for x in p] for p in path]
+    except TypeError:
+        raise ValueError("path must be waypoints (u, v) or (u, v, w), at least two, e.g. "
+                         f"[(0, 0), (100, 50)]; got {path!r}") from None
+    if len(points) > MAX_WAYPOINTS:
+        raise ValueError(f"path has {len(points)} waypoints; at most {MAX_WAYPOINTS}")
+    dims = {len(p) for p in points}
+    if len(points) < 2 or len(dims) != 1 or dims - {2, 3}:
+        raise ValueError("path must be waypoints all (u, v) or all (u, v, w), at least two, "
+                         f"e.g. [(0, 0), (100, 50)]; got {path!r}")
+    if heading is not None:
+        heading = _number("heading", heading)
+    P = np.array(points, dtype=float)
+    rise = None
+    if P.shape[1] == 2:
+        rise = 0.05 * side if above is None else _number("above", above, positive=True)
+        ground = _ground(s, domain, P[:, 0], P[:, 1])
+        P = np.column_stack([P, np.where(np.isfinite(ground), ground, 0.0) + rise])
+    # the waypoints less repeats (a repeat would make a knot interval of 0)
+    keep = np.concatenate([[True], np.any(np.diff(P, axis=0) != 0.0, axis=1)])
+    P = P[keep]
+    if len(P) == 1:
+        if heading is None:
+            raise ValueError("the path's waypoints are all one point: give a heading")
+        return (np.repeat(P, frames, axis=0), np.full(frames, heading), np.zeros(frames))
+    dense = _catmull_rom(P, 256)
+    seg = np.linalg.norm(np.diff(dense, axis=0), axis=1)
+    along = np.concatenate([[0.0], np.cumsum(seg)])
+    at = np.linspace(0.0, along[-1], frames) if frames > 1 else np.zeros(1)
+    pos = np.column_stack([np.interp(at, along, dense[:, k]) for k in range(3)])
+    if rise is not None:
+        # over a ridge between two waypoints the curve may pass under the ground
+        g = _ground(s, domain, pos[:, 0], pos[:, 1])
+        low = np.isfinite(g) & (pos[:, 2] < g + 0.5 * rise)
+        pos[low, 2] = g[low] + 0.5 * rise
+    if heading is not None:
+        heads = np.full(frames, heading)
+    else:
+        # the curve's direction over the ground at each frame (a dense point's
+        # neighbours); where it climbs straight up, the heading before
+        i = np.clip(np.searchsorted(along, at), 1, len(dense) - 1)
+        d = dense[i] - dense[i - 1]
+        heads = np.degrees(np.arctan2(d[:, 0], d[:, 1]))
+        flat = np.hypot(d[:, 0], d[:, 1]) <= 1e-12 * side
+        for k in range(frames):
+            if flat[k]:
+                heads[k] = heads[k - 1] if k > 0 else 0.0
+    return pos, heads, at
+
+
+def _catmull_rom(P, n):
+    """n points a segment (and the last waypoint) of the centripetal Catmull-Rom curve
+    through the rows of P (Barry and Goldman's pyramid, knots sqrt of the chords), its
+    ends continued by reflection."""
+    import numpy as np
+    Q = np.vstack([2.0 * P[0] - P[1], P, 2.0 * P[-1] - P[-2]])
+    out = []
+    for i in range(1, len(Q) - 2):
+        p0, p1, p2, p3 = Q[i - 1], Q[i], Q[i + 1], Q[i + 2]
+        t1 = np.linalg.norm(p1 - p0) ** 0.5
+        t2 = t1 + np.linalg.norm(p2 - p1) ** 0.5
+        t3 = t2 + np.linalg.norm(p3 - p2) ** 0.5
+        t = np.linspace(t1, t2, n, endpoint=False)[:, None]
+        a1 = ((t1 - t) * p0 + t * p1) / t1
+        a2 = ((t2 - t) * p1 + (t - t1) * p2) / (t2 - t1)
+        a3 = ((t3 - t) * p2 + (t - t2) * p3) / (t3 - t2)
+        b1 = ((t2 - t) * a1 + t * a2) / t2
+        b2 = ((t3 - t) * a2 + (t - t1) * a3) / (t3 - t1)
+        out.append(((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1))
+    out.append(P[-1:])
+    return np.vstack(out)

@@ -28,6 +28,7 @@ TERRAIN_EXAMPLES = """examples:
   floatcol terrain heights.png --extent 0:30000:0:20000 --vert-exag 3 --shadows -o relief.png
   floatcol terrain dem.npz --antialias area --elev 20 --azim -80 -o low.png
   floatcol terrain dem.tif --fly 15000:2500 --heading 15 --pitch -10 --above 900 -o fly.png
+  floatcol terrain dem.tif --fly 15000:2500 --fly 15500:9000 --frames 90 -o flight.gif
 """
 
 RENDER_OUTPUTS = (".png", ".jpg", ".jpeg", ".tif", ".tiff", ".webp", ".pdf", ".svg", ".eps", ".ps")
@@ -290,12 +291,19 @@ def build_parser():
                         "(default: the file's, else the indices)")
     t.add_argument("--nodata", type=_value("nodata"), default=None,
                    help="a height that means no data (a hole), besides the file's own")
-    t.add_argument("--fly", type=_eye, default=None, metavar="U:V[:W]",
+    t.add_argument("--fly", type=_eye, default=None, action="append", metavar="U:V[:W]",
                    help="fly: the eye inside the scene at (u, v), --above the ground there, "
                         "or at (u, v, w) (the DEM's units, heights exaggerated); replaces "
-                        "--elev, --azim and --proj (Guedes 1997; sampling march)")
-    t.add_argument("--heading", type=_value("heading"), default=0.0,
-                   help="fly: compass heading in degrees clockwise from north (default 0)")
+                        "--elev, --azim and --proj (Guedes 1997; sampling march). Given "
+                        "again: waypoints of a flight, written as a .gif or .mp4 clip of "
+                        "--frames frames along a smooth curve through them")
+    t.add_argument("--heading", type=_value("heading"), default=None,
+                   help="fly: compass heading in degrees clockwise from north (default 0; "
+                        "a flight's: along its curve)")
+    t.add_argument("--frames", type=int, default=60,
+                   help="a flight's number of frames (default 60)")
+    t.add_argument("--fps", type=float, default=20.0,
+                   help="a flight's frames per second, 0.01 to 120 (default 20)")
     t.add_argument("--pitch", type=_value("pitch"), default=-10.0,
                    help="fly: degrees up (negative: down; default -10)")
     t.add_argument("--fov", type=_value("fov"), default=60.0,
@@ -537,12 +545,14 @@ def _animate(args):
 
 
 def _terrain(args):
+    if args.fly is not None and len(args.fly) > 1:
+        return _flight(args)
     _check_output(args.output, RENDER_OUTPUTS)
     import floatcol as fc
     fly = None
     if args.fly is not None:
-        fly = dict(position=args.fly, heading=args.heading, pitch=args.pitch, fov=args.fov,
-                   above=args.above)
+        fly = dict(position=args.fly[0], heading=args.heading or 0.0, pitch=args.pitch,
+                   fov=args.fov, above=args.above)
     plot = fc.terrain(args.file, vert_exag=args.vert_exag, extent=args.extent,
                       nodata=args.nodata, fly=fly, **_options(args))
     plot.save(args.output)
@@ -554,6 +564,30 @@ def _terrain(args):
         print(f"floatcol: note: nothing of the DEM is in view; it spans u {ua:.6g} to "
               f"{ub:.6g}, v {va:.6g} to {vb:.6g} (metres where its coordinates were "
               "degrees)", file=sys.stderr)
+    return 0
+
+
+def _flight(args):
+    """floatcol terrain with --fly given more than once: a flight's clip."""
+    if os.path.splitext(args.output)[1].lower() not in ANIMATION_OUTPUTS:
+        raise UsageError(f"several --fly waypoints make a flight: write it as .gif or .mp4, "
+                         f"not {args.output!r}")
+    if len({len(p) for p in args.fly}) != 1:
+        raise UsageError("a flight's --fly waypoints must be all U:V (the eye --above the "
+                         "ground) or all U:V:W")
+    _check_output(args.output, ANIMATION_OUTPUTS)
+    import floatcol as fc
+    opts = _options(args)
+    for key in ("elev", "azim", "proj_type", "focal_length"):
+        opts.pop(key, None)
+    size = opts.pop("size")
+    anim = fc.fly_through(args.file, args.fly, frames=args.frames, heading=args.heading,
+                          pitch=args.pitch, fov=args.fov, size=size, above=args.above,
+                          output=args.output, fps=args.fps, progress=False,
+                          vert_exag=args.vert_exag, extent=args.extent, nodata=args.nodata,
+                          **opts)
+    print(f"wrote {args.output} ({len(anim)} frames, {size[0]}x{size[1]}, heights "
+          f"x{anim.stats['vert_exag']:g}, {anim.stats['seconds']:.1f} s)")
     return 0
 
 

@@ -120,19 +120,7 @@ def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=No
     near); its elev, azim and projection replace those given. Returns plot_surface's
     SurfacePlot (``.save(path)``, ``.render``)."""
     from .plot import plot_surface
-    if isinstance(source, HeightField):
-        hf = source
-    else:
-        hf = read_dem(source, extent=extent, nodata=nodata, geographic=geographic)
-    if isinstance(vert_exag, str):
-        if vert_exag != "auto":
-            raise ValueError(f"vert_exag must be a positive number or 'auto', got {vert_exag!r}")
-        exag = auto_exaggeration(hf)
-    else:
-        exag = _positive("vert_exag", vert_exag)
-    if exag != 1.0:
-        # (a file's or an array's heights too: a number given was once ignored there)
-        hf = hf.scaled(1.0, 1.0, exag)
+    hf, exag = _landscape(source, vert_exag, extent, nodata, geographic)
     defaults = dict(aspect="equal", cmap="gist_earth", lightsource=(315, 35), elev=35,
                     azim=-100, size=(1000, 600), antialias="area",
                     smooth_shading=_smooth_allowed(kw))
@@ -157,6 +145,73 @@ def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=No
     plot = plot_surface(hf, **defaults)
     plot.vert_exag = exag
     return plot
+
+
+def _landscape(source, vert_exag, extent, nodata, geographic):
+    """(the height field with its heights exaggerated, the exaggeration) of terrain's
+    source and options."""
+    if isinstance(source, HeightField):
+        hf = source
+    else:
+        hf = read_dem(source, extent=extent, nodata=nodata, geographic=geographic)
+    if isinstance(vert_exag, str):
+        if vert_exag != "auto":
+            raise ValueError(f"vert_exag must be a positive number or 'auto', got {vert_exag!r}")
+        exag = auto_exaggeration(hf)
+    else:
+        exag = _positive("vert_exag", vert_exag)
+    if exag != 1.0:
+        # (a file's or an array's heights too: a number given was once ignored there)
+        hf = hf.scaled(1.0, 1.0, exag)
+    return hf, exag
+
+
+def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
+                size=(640, 360), above=None, near=None, output=None, fps=20, progress=True,
+                vert_exag="auto", extent=None, nodata=None, geographic=None, **options):
+    """A flight over a DEM as a clip: ``frames`` pictures of fc.terrain's fly camera
+    (its landscape defaults, area-sampled by the level-of-detail engine) moving at a
+    steady speed along a smooth curve through the waypoints ``path`` (camera.flight:
+    all (u, v), the eye ``above`` the ground there and never nearer it than half that
+    in between, or all (u, v, w)), in the DEM's units with its heights exaggerated
+    (``vert_exag``, once for the clip), looking along the curve (``heading`` None) or
+    toward one compass heading, ``pitch`` degrees up with a horizontal field of view
+    ``fov``. ``output``: a .gif or .mp4 file to write, ``fps`` frames a second; other
+    options as fc.terrain's (texture=, shadows=, objects=, antialias=False for the
+    ray march's point samples, ...). Returns an Animation whose ``times`` are the
+    frames' distances along the curve and whose ``stats`` hold the eye's
+    ``positions`` and ``headings``, ``vert_exag``, ``samples`` and ``seconds``."""
+    import time
+
+    from tqdm.auto import tqdm
+
+    from .animate import ANIMATION_FORMATS, Animation, _check_fps, _check_memory
+    from .camera import flight
+    from .output import check_output
+    from .view import check_size
+    start = time.perf_counter()
+    size = check_size(size)
+    _check_fps(fps)
+    if output is not None:
+        output, _ = check_output(output, ANIMATION_FORMATS)
+    hf, exag = _landscape(source, vert_exag, extent, nodata, geographic)
+    positions, headings, along = flight(hf, path, frames, heading=heading, above=above)
+    _check_memory(frames, size)
+    out = []
+    samples = 0
+    for pos, head in tqdm(list(zip(positions, headings)), desc="floatcol fly_through",
+                          unit="frame", delay=1.0, disable=not progress, leave=False):
+        camera = dict(position=tuple(pos), heading=float(head), pitch=pitch, fov=fov,
+                      near=near, size=size)
+        r = terrain(hf, vert_exag=1.0, fly=camera, **options).draw()
+        samples += r.stats["samples"]
+        out.append(r.rgba)
+    anim = Animation(out, along, fps, {"samples": samples, "positions": positions,
+                                       "headings": headings, "vert_exag": exag,
+                                       "seconds": time.perf_counter() - start})
+    if output is not None:
+        anim.save(output)
+    return anim
 
 
 def auto_exaggeration(hf):

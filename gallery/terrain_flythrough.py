@@ -4,9 +4,10 @@ matplotlib's Jacksboro fault DEM (3 arc-seconds, rows north to south) read with
 read_dem (degrees become metres), its colour relief draped as the texture (a stand-in
 for an orthophoto), a sun from the north-west casting shadows, trees, a mast and a
 house standing on the ground (a z-buffer against the terrain's depth, Szenberg 1997),
-and a camera flying north over the valley (Guedes 1997's tilted view plane). The
-terrain is area-sampled (Cohen-Or 1997): dense ridges in the distance do not flicker;
-lit smooth (smooth_shading=True): the DEM's 90 m cells near the camera are not facets.
+and a camera flying north over the valley along a smooth curve through three waypoints
+(fc.fly_through; Guedes 1997's tilted view plane). The terrain is area-sampled
+(Cohen-Or 1997): dense ridges in the distance do not flicker; lit smooth
+(smooth_shading=True): the DEM's 90 m cells near the camera are not facets.
 A point-sampled preview of the first frame (antialias=False) is drawn by fc.fly's ray
 march (each pixel's ray marched through the same planes, 1.5 to 3 times as fast).
 """
@@ -16,7 +17,6 @@ from matplotlib.cbook import get_sample_data
 from matplotlib.colors import LightSource
 
 import floatcol as fc
-from floatcol.animate import write_gif
 
 path = get_sample_data("jacksboro_fault_dem.npz", asfileobj=False)
 dem = fc.read_dem(path, vert_exag=2.0)          # heights x2: the relief shows from the air
@@ -30,15 +30,12 @@ objects = [fc.tree(u, v, 120.0) for u, v in rng.uniform((13000, 6000), (17000, 1
 objects += [fc.pole(15200, 9000, 700.0, color="white"),
             fc.box(14600, 7200, 300, 200, 150, color="firebrick", heading=25)]
 
-frames = []
-for k in range(4):
-    cam = fc.fly(dem, (15000.0 + 80 * k, 2500.0 + 450 * k), heading=15, pitch=-10, fov=55,
-                 size=(320, 180), above=900)
-    r = fc.render(dem, **cam, texture=relief, antialias="area", lightsource=(315, 35),
-                  shadows=True, objects=objects, background="lightskyblue", ambient=0.4,
-                  smooth_shading=True)
-    frames.append(r.rgba)
-write_gif(frames, "terrain_flythrough.gif", fps=4)
+# the flight: a smooth curve through three waypoints, 900 m above the ground at each
+# (never nearer it than half that between them), looking along the curve
+fc.fly_through(dem, [(15000, 2500), (15400, 6000), (17000, 9500)], frames=12,
+               size=(320, 180), above=900, pitch=-10, fov=55, vert_exag=1,
+               texture=relief, shadows=True, objects=objects, background="lightskyblue",
+               ambient=0.4, fps=6, output="terrain_flythrough.gif", progress=False)
 fc.render(dem, **fc.fly(dem, (15000.0, 2500.0), heading=15, pitch=-10, fov=55,
                         size=(480, 270), above=900),
           texture=relief, antialias="area", lightsource=(315, 35), shadows=True,

@@ -156,7 +156,7 @@ def terrain_case(rng: random.Random) -> dict:
         extent[rng.randrange(4)] = rng.choice(TERRAIN_NUMBERS)
     c = {"seed": rng.randrange(2 ** 31), "shape": [ny, nx],
          "heights": rng.choice(TERRAIN_HEIGHTS), "extent": extent,
-         "call": rng.choice(["render", "fly", "fly", "terrain"])}
+         "call": rng.choice(["render", "fly", "fly", "terrain", "flight"])}
     kw = {"size": [rng.choice([1, 2, 17, 64, 120]), rng.choice([1, 3, 33, 90])]}
     if rng.random() < 0.5:
         kw["antialias"] = rng.choice([True, False, "area", "area", 2])
@@ -171,7 +171,7 @@ def terrain_case(rng: random.Random) -> dict:
                              _odd(rng, lambda: rng.uniform(-10, 90))]
     if rng.random() < 0.2:
         kw["vert_exag"] = rng.choice([1.0, 10.0, 0.0, -2.0, 1e300, math.nan])
-    if c["call"] != "fly" and rng.random() < 0.5:
+    if c["call"] not in ("fly", "flight") and rng.random() < 0.5:
         kw["elev"] = _odd(rng, lambda: rng.uniform(-90, 90))
         kw["azim"] = _odd(rng, lambda: rng.uniform(-360, 360))
         kw["projection"] = rng.choice(["orthographic", "perspective"])
@@ -192,6 +192,25 @@ def terrain_case(rng: random.Random) -> dict:
             c["fly"]["above"] = _odd(rng, lambda: rng.uniform(0, 2000))
         if rng.random() < 0.2:
             c["fly"]["near"] = _odd(rng, lambda: rng.choice([1e-6, 1.0, 1e5]))
+    if c["call"] == "flight":
+        # fc.fly_through: 1 to 4 waypoints on the map or beside it (now and then all
+        # (u, v, w), one repeated, or odd numbers), 1 to 3 frames
+        u0, u1, v0, v1 = (x if math.isfinite(x) else 0.0 for x in extent)
+        dim = 3 if rng.random() < 0.3 else 2
+        path = [[_odd(rng, lambda: rng.uniform(min(u0, u1) - 100, max(u0, u1) + 100)),
+                 _odd(rng, lambda: rng.uniform(min(v0, v1) - 100, max(v0, v1) + 100))]
+                + ([_odd(rng, lambda: rng.uniform(-100, 3000))] if dim == 3 else [])
+                for _ in range(rng.choice([1, 2, 2, 3, 4]))]
+        if len(path) > 1 and rng.random() < 0.2:
+            path[1] = list(path[0])
+        if rng.random() < 0.05:
+            path[0] = path[0][:2] if dim == 3 else path[0] + [1.0]     # mixed
+        c["flight"] = {"path": path, "frames": rng.choice([1, 2, 3, 3, 0]),
+                       "heading": rng.choice([None, None, _odd(rng, lambda: rng.uniform(
+                           -360, 360))]),
+                       "size": kw.pop("size")}
+        if rng.random() < 0.3:
+            c["flight"]["above"] = _odd(rng, lambda: rng.uniform(0, 2000))
     if rng.random() < 0.3:
         u0, u1, v0, v1 = (x if math.isfinite(x) else 0.0 for x in extent)
         c["objects"] = [[rng.choice(["tree", "pole", "box", "marker"]),
@@ -243,6 +262,17 @@ def _terrain_call(c):
             kw["vert_exag"] = exag
         return fc.terrain(z, extent=(w, e, s, n), **kw).draw()
     hf = fc.HeightField(z, u=(w, e), v=(n, s))          # rows north-up
+    if c["call"] == "flight":
+        fl = dict(c["flight"])
+        fl["size"] = tuple(fl["size"])
+        if exag is not None:
+            kw["vert_exag"] = exag
+        anim = fc.fly_through(hf, fl.pop("path"), progress=False, **fl, **kw)
+        assert len(anim.frames) == len(anim.times) == c["flight"]["frames"]
+
+        class _Last:                    # (the worker reads a picture's rgba)
+            rgba = anim.frames[-1]
+        return _Last
     if c["call"] == "fly":
         fly = dict(c["fly"])
         fly["size"] = tuple(fly["size"])

@@ -32,7 +32,7 @@ def test_every_plot_surface_and_animate_option_is_documented():
 def test_every_cli_option_is_documented():
     parser = build_parser()
     sub = parser._subparsers._group_actions[0].choices
-    flags = {f for name in ("render", "animate") for a in sub[name]._actions
+    flags = {f for name in ("render", "animate", "terrain") for a in sub[name]._actions
              for f in a.option_strings if f.startswith("--") and f != "--help"}
     assert sorted(f for f in flags if f not in OPTIONS) == []
 

@@ -293,7 +293,7 @@ def test_a_dem_flown_over_in_one_call_and_one_command(tmp_path, capsys):
     assert np.array_equal(np.asarray(Image.open(out).convert("RGBA")), p.render.rgba)
     capsys.readouterr()
     for argv in (["--fly", "1:2:3:4"], ["--fly", "15000:2500", "--pitch", "95"],
-                 ["--fly", "x:2"], ["--fly", "99999:3000"]):     # (no ground there)
+                 ["--fly", "x:2"]):
         bad = tmp_path / "bad.png"
         assert main(["terrain", JACKSBORO] + argv + ["-o", str(bad)]) == 2
         err = capsys.readouterr().err.strip().splitlines()
@@ -301,16 +301,118 @@ def test_a_dem_flown_over_in_one_call_and_one_command(tmp_path, capsys):
         assert not os.path.exists(bad)
     with pytest.raises(ValueError, match="position"):
         fc.terrain(JACKSBORO, fly=dict(heading=3))
-    with pytest.raises(ValueError, match=r"outside the surface \(u 0 to 29978.4, v 0 to 31718.9"):
-        fc.terrain(JACKSBORO, fly=(-10, 2500))
-    # an eye outside the DEM given its height is taken; looking away from the DEM, the
-    # command says nothing of it is in view, and where it lies
+    # an eye outside the DEM: above its nearest point's ground (its edge continued)
+    hf2 = fc.read_dem(JACKSBORO, vert_exag=2)
+    edge = float(hf2.evaluate(np.array([0.0]), np.array([2500.0]))[0])
+    assert np.allclose(fc.fly(hf2, (-3000, 2500), above=900)["center"],
+                       fc.fly(hf2, (-3000, 2500, edge + 900))["center"], rtol=0, atol=1e-9)
+    # looking away from the DEM, the command says nothing of it is in view, and where
+    # it lies
     assert main(["terrain", JACKSBORO, "--fly=15000:-5000:2000", "--heading", "180",
                  "--size", "64x36", "-o", str(out)]) == 0
     assert "nothing of the DEM is in view; it spans u 0 to 29978.4" in capsys.readouterr().err
     assert main(["terrain", JACKSBORO, "--fly=15000:-5000:2000", "--heading", "0",
                  "--size", "64x36", "-o", str(out)]) == 0
     assert "nothing" not in capsys.readouterr().err
+
+
+def test_a_flight_goes_at_a_steady_speed_through_its_waypoints():
+    from floatcol.camera import _catmull_rom, flight
+    flat = fc.HeightField(np.zeros((101, 101)), u=(0, 1000), v=(0, 1000))
+    # two waypoints: a straight line, frames equally spaced, the eye above the ground,
+    # heading north-east along it
+    pos, heads, along = flight(flat, [(100, 100), (900, 900)], 5, above=50)
+    assert np.allclose(pos[:, :2], np.linspace((100, 100), (900, 900), 5), atol=1e-9)
+    assert np.allclose(pos[:, 2], 50.0) and np.allclose(heads, 45.0)
+    assert np.allclose(along, np.linspace(0, 800 * np.sqrt(2), 5))
+    # the curve passes through every waypoint; a clip along it goes at a steady speed
+    # and turns smoothly (60 frames: the frames' steps within 1 % of each other; the
+    # heading turns at most 14.8 degrees from one frame to the next, at the third
+    # waypoint's sharp turn, where a polyline would turn by 101 degrees at once)
+    way = np.array([(100, 100, 40), (500, 300, 80), (600, 800, 60), (200, 900, 40)], float)
+    dense = _catmull_rom(way, 64)
+    assert np.allclose(dense[::64], way)
+    pos, heads, along = flight(flat, way, 60)
+    steps = np.linalg.norm(np.diff(pos, axis=0), axis=1)
+    assert steps.max() < 1.01 * steps.min()
+    assert np.allclose(pos[[0, -1]], way[[0, -1]])
+    turn = (np.diff(heads) + 180) % 360 - 180
+    assert np.abs(turn).max() < 20
+    # the first heading points toward the second waypoint (within 30 degrees: the
+    # curve bends toward the third); a heading given is kept
+    toward = np.degrees(np.arctan2(400, 200))
+    assert abs(heads[0] - toward) < 30
+    assert np.allclose(flight(flat, way, 7, heading=-30)[1], -30)
+
+
+def test_a_flight_over_a_ridge_keeps_above_it():
+    """Between two waypoints (u, v) the eye is never nearer the ground than half
+    ``above``: a straight flight at 50 over a ridge 200 high goes over it."""
+    from floatcol.camera import flight
+    u = np.linspace(0, 1000, 201)
+    ridge = 200.0 * np.exp(-((u - 500) / 60) ** 2)
+    hf = fc.HeightField(np.tile(ridge, (201, 1)), u=(0, 1000), v=(0, 1000))
+    pos, _, _ = flight(hf, [(100, 500), (900, 500)], 81, above=50)
+    ground = hf.evaluate(pos[:, 0], pos[:, 1])
+    assert np.all(pos[:, 2] >= ground + 25 - 1e-9)
+    assert pos[40, 2] == pytest.approx(225.0, abs=1e-6)      # over the crest
+    assert pos[0, 2] == pytest.approx(ground[0] + 50) and pos[-1, 2] == pytest.approx(
+        ground[-1] + 50)
+    # (u, v, w) waypoints are followed exactly, even under the ground
+    pos, _, _ = flight(hf, [(100, 500, 10), (900, 500, 10)], 5)
+    assert np.allclose(pos[:, 2], 10.0)
+
+
+def test_a_flight_over_a_dem_in_one_call_and_one_command(tmp_path, capsys):
+    from PIL import Image
+    way = [(15000, 2500), (15500, 9000), (20000, 14000)]
+    anim = fc.fly_through(JACKSBORO, way, frames=3, size=(96, 54), above=900, vert_exag=2,
+                          output=tmp_path / "f.gif", progress=False)
+    assert len(anim) == 3 and anim.stats["vert_exag"] == 2
+    # each frame is fc.terrain's picture from that frame's eye (heights exaggerated once)
+    for k in (0, 2):
+        p = fc.terrain(JACKSBORO, vert_exag=2, fly=dict(
+            position=tuple(anim.stats["positions"][k]), heading=anim.stats["headings"][k],
+            size=(96, 54)))
+        assert np.array_equal(anim.frames[k], p.rgba)
+    assert np.allclose(anim.stats["positions"][0, :2], way[0])
+    with Image.open(tmp_path / "f.gif") as im:
+        assert im.n_frames == 3
+    out = tmp_path / "cli.gif"
+    argv = ["terrain", JACKSBORO, "--vert-exag", "2", "--above", "900", "--size", "96x54",
+            "--frames", "3"] + [a for u, v in way for a in ("--fly", f"{u}:{v}")]
+    assert main(argv + ["-o", str(out)]) == 0
+    assert "3 frames, 96x54" in capsys.readouterr().out
+    with Image.open(out) as im, Image.open(tmp_path / "f.gif") as ref:
+        assert im.n_frames == 3                  # the same clip as the call's
+        im.seek(2)
+        ref.seek(2)
+        assert np.array_equal(np.asarray(im.convert("RGB")), np.asarray(ref.convert("RGB")))
+    for bad_argv in (["--fly", "15000:2500", "--fly", "15500:9000", "-o", "x.png"],
+                     ["--fly", "15000:2500", "--fly", "15500:9000:3000", "-o", "x.gif"],
+                     ["--fly", "15000:2500", "--fly", "15000:2500", "-o", "x.gif"],
+                     ["--fly", "15000:2500", "--fly", "15500:9000", "--frames", "0", "-o",
+                      "x.gif"]):
+        bad_argv[-1] = str(tmp_path / bad_argv[-1])
+        assert main(["terrain", JACKSBORO] + bad_argv) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith("floatcol: error:"), err
+        assert not os.path.exists(bad_argv[-1])
+
+
+@pytest.mark.parametrize("path, frames, words", [
+    ([(15000, 2500)], 3, "at least two"),
+    ([(15000, 2500), (15500, 9000, 2000)], 3, "all \\(u, v\\) or all"),
+    ([(15000, 2500), (15000, 2500)], 3, "give a heading"),
+    (None, 3, "waypoints"),
+    ([(15000, 2500), ("x", 3)], 3, "path must be a number"),
+    ([(15000, 2500), (15500, 9000)], 0, "frames must be a positive whole number"),
+    ([(15000, 2500), (15500, 9000)], 10 ** 9, "frames must be at most 100000"),
+    ([(15000, 2500)] * 100_001, 3, "at most 100000"),
+])
+def test_a_flight_that_cannot_be_flown_is_a_value_error(path, frames, words):
+    with pytest.raises(ValueError, match=words):
+        fc.fly_through(JACKSBORO, path, frames=frames, size=(32, 18), progress=False)
 
 
 def test_fly_camera_looks_where_it_says():

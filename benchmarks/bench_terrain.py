@@ -269,6 +269,16 @@ def speed():
                 ms = statistics.median(ts[1:]) * 1e3
                 print(f"| {dem} | {engine} | {name} | {ms:.0f} | {1e3 / ms:.1f} | "
                       f"{r.stats['samples']} |", flush=True)
+        # the same flight as one clip (fc.fly_through, its landscape defaults: area
+        # sampled, smooth shading): a frame's time, the plot around each render included
+        path = [(2000.0, 1000.0), (2000.0 + 40 * 7, 1000.0)]
+        clip = dict(heading=30, pitch=-10, fov=60, size=size, above=300, vert_exag=1,
+                    progress=False)
+        fc.fly_through(hf, path, frames=2, **clip)
+        anim = fc.fly_through(hf, path, frames=8, **clip)
+        ms = anim.stats["seconds"] / 8 * 1e3
+        print(f"| {dem} | a flight's clip (fc.fly_through) | area, smooth shading | {ms:.0f} | "
+              f"{1e3 / ms:.1f} | {anim.stats['samples'] // 8} |", flush=True)
 
 
 TABLES = {"flicker": table6, "coverage": coverage_tables, "guedes": guedes_table,

@@ -527,3 +527,17 @@ def test_a_dem_far_from_the_origin_draws_as_at_the_origin():
     assert np.abs(far.v[seen] - 4.1e6 - near.v[seen]).max() < 1e-3
     assert np.mean(np.abs(far.shadow[seen] - near.shadow[seen]) > 0.5) <= 0.001
     assert far.u.dtype == np.float64
+
+
+def test_a_height_fields_extremes_are_kept_for_its_last_domain():
+    """A flight's frames are plots of one DEM: its extremes are found once (kept with
+    it), and found again for another domain."""
+    z = np.add.outer(np.arange(11.0), np.arange(11.0))      # w = row + column
+    hf = fc.HeightField(z, u=(0, 10), v=(0, 10))
+    first = hf.extremes(((0, 10), (0, 10)), n=1)
+    assert hf.extremes(((0, 10), (0, 10)), n=1) is first
+    assert [a.tolist() for a in first] == [[10.0, 0.0], [10.0, 0.0], [20.0, 0.0]]
+    part = hf.extremes(((2, 5), (1, 3)), n=1)                # the nodes inside only
+    assert [a.tolist() for a in part] == [[5.0, 2.0], [3.0, 1.0], [8.0, 3.0]]
+    with pytest.raises(ValueError):
+        first[2][0] = 0.0                                     # (shared: read-only)

@@ -583,7 +583,7 @@ def _flight(args):
     size = opts.pop("size")
     anim = fc.fly_through(args.file, args.fly, frames=args.frames, heading=args.heading,
                           pitch=args.pitch, fov=args.fov, size=size, above=args.above,
-                          output=args.output, fps=args.fps, progress=False,
+                          output=args.output, fps=args.fps, progress=True,
                           vert_exag=args.vert_exag, extent=args.extent, nodata=args.nodata,
                           **opts)
     print(f"wrote {args.output} ({len(anim)} frames, {size[0]}x{size[1]}, heights "

@@ -296,12 +296,14 @@ def _ground(s, domain, u, v):
     return s.evaluate(np.atleast_1d(u), np.atleast_1d(v)).reshape(u.shape)
 
 
-def flight(surface, path, frames, heading=None, above=None):
+def flight(surface, path, frames, heading=None, above=None, closed=False):
     """Where the eye of a flight through the waypoints ``path`` is at each of
     ``frames`` frames, and where it looks: the points at equal distances along a
     centripetal Catmull-Rom curve through the waypoints (it passes through each, turns
     smoothly, and makes no loop or cusp between close ones), the first frame at the
-    first waypoint, the last at the last.
+    first waypoint, the last at the last; ``closed``: the curve goes on from the last
+    waypoint back to the first, as smoothly, and the frames go round it once, the last
+    a step short of the first (a clip that loops without a seam).
 
     path: waypoints all (u, v), the eye ``above`` (as fly's: default 5 % of the
         domain's longer side) the ground at each (beyond the domain's edge its nearest
@@ -345,14 +347,21 @@ def flight(surface, path, frames, heading=None, above=None):
     # the waypoints less repeats (a repeat would make a knot interval of 0)
     keep = np.concatenate([[True], np.any(np.diff(P, axis=0) != 0.0, axis=1)])
     P = P[keep]
+    if closed:
+        if len(P) > 1 and np.array_equal(P[0], P[-1]):
+            P = P[:-1]                          # (the start repeated to close it)
+        if len(P) < 3:
+            raise ValueError("a closed flight needs three different waypoints or more, got "
+                             f"{len(P)}")
     if len(P) == 1:
         if heading is None:
             raise ValueError("the path's waypoints are all one point: give a heading")
         return (np.repeat(P, frames, axis=0), np.full(frames, heading), np.zeros(frames))
-    dense = _catmull_rom(P, 256)
+    dense = _catmull_rom(P, 256, closed)
     seg = np.linalg.norm(np.diff(dense, axis=0), axis=1)
     along = np.concatenate([[0.0], np.cumsum(seg)])
-    at = np.linspace(0.0, along[-1], frames) if frames > 1 else np.zeros(1)
+    at = np.linspace(0.0, along[-1], frames, endpoint=closed is False) if frames > 1 \
+        else np.zeros(1)
     pos = np.column_stack([np.interp(at, along, dense[:, k]) for k in range(3)])
     if rise is not None:
         # over a ridge between two waypoints the curve may pass under the ground
@@ -374,12 +383,17 @@ def flight(surface, path, frames, heading=None, above=None):
     return pos, heads, at
 
 
-def _catmull_rom(P, n):
+def _catmull_rom(P, n, closed=False):
     """n points a segment (and the last waypoint) of the centripetal Catmull-Rom curve
     through the rows of P (Barry and Goldman's pyramid, knots sqrt of the chords), its
-    ends continued by reflection."""
+    ends continued by reflection; ``closed``: round through P[0] again (its last
+    point), the curve's tangent there the same both ways."""
     import numpy as np
-    Q = np.vstack([2.0 * P[0] - P[1], P, 2.0 * P[-1] - P[-2]])
+    if closed:
+        Q = np.vstack([P[-1:], P, P[:2]])
+        P = np.vstack([P, P[:1]])
+    else:
+        Q = np.vstack([2.0 * P[0] - P[1], P, 2.0 * P[-1] - P[-2]])
     out = []
     for i in range(1, len(Q) - 2):
         p0, p1, p2, p3 = Q[i - 1], Q[i], Q[i + 1], Q[i + 2]

@@ -304,6 +304,9 @@ def build_parser():
                    help="a flight's number of frames (default 60)")
     t.add_argument("--fps", type=float, default=20.0,
                    help="a flight's frames per second, 0.01 to 120 (default 20)")
+    t.add_argument("--closed", action="store_true",
+                   help="a flight goes on from its last waypoint back to its first: a clip "
+                        "that loops without a seam")
     t.add_argument("--pitch", type=_value("pitch"), default=-10.0,
                    help="fly: degrees up (negative: down; default -10)")
     t.add_argument("--fov", type=_value("fov"), default=60.0,
@@ -583,7 +586,8 @@ def _flight(args):
     size = opts.pop("size")
     anim = fc.fly_through(args.file, args.fly, frames=args.frames, heading=args.heading,
                           pitch=args.pitch, fov=args.fov, size=size, above=args.above,
-                          output=args.output, fps=args.fps, progress=True,
+                          closed=args.closed, output=args.output, fps=args.fps,
+                          progress=True,
                           vert_exag=args.vert_exag, extent=args.extent, nodata=args.nodata,
                           **opts)
     print(f"wrote {args.output} ({len(anim)} frames, {size[0]}x{size[1]}, heights "

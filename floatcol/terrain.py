@@ -167,13 +167,15 @@ def _landscape(source, vert_exag, extent, nodata, geographic):
 
 
 def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
-                size=(640, 360), above=None, near=None, output=None, fps=20, progress=True,
-                vert_exag="auto", extent=None, nodata=None, geographic=None, **options):
+                size=(640, 360), above=None, near=None, closed=False, output=None, fps=20,
+                progress=True, vert_exag="auto", extent=None, nodata=None, geographic=None,
+                **options):
     """A flight over a DEM as a clip: ``frames`` pictures of fc.terrain's fly camera
     (its landscape defaults, area-sampled by the level-of-detail engine) moving at a
     steady speed along a smooth curve through the waypoints ``path`` (camera.flight:
     all (u, v), the eye ``above`` the ground there and never nearer it than half that
-    in between, or all (u, v, w)), in the DEM's units with its heights exaggerated
+    in between, or all (u, v, w); ``closed``: round from the last back to the first,
+    a clip that loops without a seam), in the DEM's units with its heights exaggerated
     (``vert_exag``, once for the clip), looking along the curve (``heading`` None) or
     toward one compass heading, ``pitch`` degrees up with a horizontal field of view
     ``fov``. ``output``: a .gif or .mp4 file to write, ``fps`` frames a second; other
@@ -195,7 +197,8 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
     if output is not None:
         output, _ = check_output(output, ANIMATION_FORMATS)
     hf, exag = _landscape(source, vert_exag, extent, nodata, geographic)
-    positions, headings, along = flight(hf, path, frames, heading=heading, above=above)
+    positions, headings, along = flight(hf, path, frames, heading=heading, above=above,
+                                        closed=closed)
     _check_memory(frames, size)
     out = []
     samples = 0

@@ -345,6 +345,29 @@ def test_a_flight_goes_at_a_steady_speed_through_its_waypoints():
     assert np.allclose(flight(flat, way, 7, heading=-30)[1], -30)
 
 
+def test_a_closed_flight_loops_without_a_seam():
+    """closed=True: round the waypoints and back to the first, as smoothly; the frames
+    equally spaced all the way round, the last one step short of the first."""
+    from floatcol.camera import flight
+    flat = fc.HeightField(np.zeros((101, 101)), u=(0, 1000), v=(0, 1000))
+    square = [(200, 200), (800, 200), (800, 800), (200, 800)]
+    pos, heads, along = flight(flat, square, 40, closed=True, above=50)
+    ring = np.vstack([pos, pos[:1]])                         # the seam: last -> first
+    steps = np.linalg.norm(np.diff(ring, axis=0), axis=1)
+    assert steps.max() < 1.01 * steps.min()
+    assert np.allclose(pos[0], (200, 200, 50))
+    # it turns once round (by 21.7 degrees a frame at most, at the corners), and no
+    # more across the seam than at the other corners
+    turn = (np.diff(np.append(heads, heads[0])) + 180) % 360 - 180
+    assert abs(turn.sum()) == pytest.approx(360) and np.abs(turn).max() < 25
+    assert abs(turn[-1]) <= 1.01 * np.abs(turn[:-1]).max()
+    # the start repeated at the end is the same loop; fewer than 3 waypoints is no loop
+    again = flight(flat, square + [(200, 200)], 40, closed=True, above=50)[0]
+    assert np.allclose(again, pos)
+    with pytest.raises(ValueError, match="three different waypoints"):
+        flight(flat, [(200, 200), (800, 200), (200, 200)], 5, closed=True)
+
+
 def test_a_flight_over_a_ridge_keeps_above_it():
     """Between two waypoints (u, v) the eye is never nearer the ground than half
     ``above``: a straight flight at 50 over a ridge 200 high goes over it."""

@@ -28,5 +28,5 @@ def __getattr__(name):
 __all__ = ["Animation", "Camera", "HeightField", "Layer", "Light", "Material", "Mesh", "Quality",
            "Render", "Scene", "Surface", "SurfacePlot", "SympyBackend", "View", "__version__",
            "animate", "as_surface", "box", "composite", "fly", "fly_through", "marker", "pole",
-           "tree", "plot_surface", "plot_trisurf", "plot_wireframe", "read_dem", "render", "render_many",
-           "render_scene", "terrain"]
+           "tree", "plot_surface", "plot_trisurf", "plot_wireframe", "read_dem", "render",
+           "render_many", "render_scene", "terrain"]

@@ -550,6 +550,9 @@ def _animate(args):
 def _terrain(args):
     if args.fly is not None and len(args.fly) > 1:
         return _flight(args)
+    if os.path.splitext(args.output)[1].lower() in ANIMATION_OUTPUTS:
+        raise UsageError(f"{args.output!r} would be a flight's clip: give --fly two or more "
+                         "times, its waypoints (one --fly is a picture: .png, .jpg, ...)")
     _check_output(args.output, RENDER_OUTPUTS)
     import floatcol as fc
     fly = None

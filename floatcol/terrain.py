@@ -192,6 +192,9 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
     from .output import check_output
     from .view import check_size
     start = time.perf_counter()
+    if "fly" in options:
+        raise ValueError("fly_through places the fly camera itself along path: give its "
+                         "heading=, pitch=, fov=, above= and near=, not fly=")
     size = check_size(size)
     _check_fps(fps)
     if output is not None:

@@ -415,7 +415,8 @@ def test_a_flight_over_a_dem_in_one_call_and_one_command(tmp_path, capsys):
                      ["--fly", "15000:2500", "--fly", "15500:9000:3000", "-o", "x.gif"],
                      ["--fly", "15000:2500", "--fly", "15000:2500", "-o", "x.gif"],
                      ["--fly", "15000:2500", "--fly", "15500:9000", "--frames", "0", "-o",
-                      "x.gif"]):
+                      "x.gif"],
+                     ["--fly", "15000:2500", "-o", "x.gif"], ["-o", "x.mp4"]):
         bad_argv[-1] = str(tmp_path / bad_argv[-1])
         assert main(["terrain", JACKSBORO] + bad_argv) == 2
         err = capsys.readouterr().err.strip().splitlines()
@@ -431,11 +432,14 @@ def test_a_flight_over_a_dem_in_one_call_and_one_command(tmp_path, capsys):
     ([(15000, 2500), ("x", 3)], 3, "path must be a number"),
     ([(15000, 2500), (15500, 9000)], 0, "frames must be a positive whole number"),
     ([(15000, 2500), (15500, 9000)], 10 ** 9, "frames must be at most 100000"),
+    ([(15000, 2500), (15500, 9000)], dict(fly=(1, 2)), "not fly="),
     ([(15000, 2500)] * 100_001, 3, "at most 100000"),
 ])
 def test_a_flight_that_cannot_be_flown_is_a_value_error(path, frames, words):
+    extra = frames if isinstance(frames, dict) else {}
+    frames = 3 if extra else frames
     with pytest.raises(ValueError, match=words):
-        fc.fly_through(JACKSBORO, path, frames=frames, size=(32, 18), progress=False)
+        fc.fly_through(JACKSBORO, path, frames=frames, size=(32, 18), progress=False, **extra)
 
 
 def test_fly_camera_looks_where_it_says():

@@ -5,7 +5,9 @@
 Prints (1) the cost of shadows at 1920x1080 and 1024x768: render time without
 shadows and with each method (the texture of 6.2.1, the sweep on the fly of 6.2.2;
 hard and soft), best and median of N after a warm-up, the shadow pass's own time and
-the memory it keeps; (1b) the cost of objects' shadows (202 objects on a surface,
+the memory it keeps, each texture made afresh (as for a new light or view), and the
+texture kept from the render before (the same light and texels: a view turned at one
+scale, a fly-through's frames); (1b) the cost of objects' shadows (202 objects on a surface,
 1920x1080: shadows, objects, both); (2) the agreement of the lit/shadow state
 with the reference ray caster's shadow rays (tests/reference.py) on surfaces, views and
 lights that are not in tests/test_shadow.py, both projections.
@@ -20,6 +22,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 os.environ.setdefault("FLOATCOL_DRAFT", "0")  # time the kernels, never drafts
 import floatcol as fc  # noqa: E402
 from conftest import reference_for  # noqa: E402
+from floatcol.passes import shadow  # noqa: E402
 from reference import numpy_surface, shadow_rays  # noqa: E402
 
 EXPR = "3*sin(u*cos(v))"
@@ -30,7 +33,11 @@ N = 11
 VARIANTS = [("none", dict()),
             ("texture (6.2.1)", dict(shadows=True)),
             ("on the fly (6.2.2)", dict(shadows="on-the-fly")),
-            ("texture, soft 0.27 deg", dict(shadows=True, light_radius=0.27))]
+            ("texture, soft 0.27 deg", dict(shadows=True, light_radius=0.27)),
+            ("texture kept (the same light and texels again)", dict(shadows=True))]
+#: the variant drawn again with the texture the render before it made (passes/shadow.py
+#: keeps a surface's last one); every other variant's texture is made afresh
+KEPT = VARIANTS[-1][0]
 
 
 def timed(**kw):
@@ -40,6 +47,9 @@ def timed(**kw):
     last = {}
     for _ in range(N):
         for name, extra in VARIANTS:
+            shadow.forget()
+            if name == KEPT:
+                fc.render(EXPR, **DOM, **kw, **extra)           # (makes the texture)
             t = time.perf_counter()
             last[name] = fc.render(EXPR, **DOM, **kw, **extra)
             ts[name].append(time.perf_counter() - t)
@@ -129,6 +139,7 @@ def objects_cost():
         ts = {n: [] for n, _ in variants}
         for k in range(N + 1):
             for n, extra in variants:
+                shadow.forget()                 # (each its own texture, as at a new light)
                 t = time.perf_counter()
                 r = fc.render("0.2*sin(u)*cos(v)", **kw, **extra)
                 if k:

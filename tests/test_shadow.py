@@ -288,3 +288,38 @@ def test_on_the_fly_shadows_say_what_to_fix(tmp_path):
     assert main(["render", "u*v", "--shadows", "--shadow-method", "on-the-fly", "--size",
                  "40x30", "-o", str(out)]) == 0
     assert out.exists()
+
+
+def test_a_shadow_texture_is_kept_with_its_surface(monkeypatch):
+    """A surface keeps its shadow texture for the last light and texel grid: a view
+    turned at the same scale, or a flight's frames (the grid capped at
+    passes/shadow.py MAX_TEXELS), sweep once; the pictures are those of a fresh
+    surface's own texture, and another light sweeps again."""
+    from matplotlib.cbook import get_sample_data
+
+    from floatcol.passes import shadow as S
+    calls = []
+    sweeps = S.horizon_sweeps
+    monkeypatch.setattr(S, "horizon_sweeps", lambda *a: (calls.append(1), sweeps(*a))[1])
+    z = np.add.outer(np.sin(np.linspace(0, 6, 60)), np.cos(np.linspace(0, 5, 50))).T
+    hf = fc.HeightField(z, u=(-5, 5), v=(-4, 4))
+    kw = dict(size=(120, 90), elev=40, scale=10.0, lightsource=(315, 25), shadows=True)
+    first = fc.render(hf, azim=20, **kw)
+    turned = fc.render(hf, azim=35, **kw)
+    assert len(calls) == 1
+    fresh = fc.render(fc.HeightField(z, u=(-5, 5), v=(-4, 4)), azim=35, **kw)
+    assert len(calls) == 2
+    assert np.array_equal(turned.shadow, fresh.shadow, equal_nan=True)
+    assert np.array_equal(turned.rgba, fresh.rgba)
+    other = fc.render(hf, azim=20, **dict(kw, lightsource=(120, 25)))
+    assert len(calls) == 3 and not np.array_equal(other.shadow, first.shadow, equal_nan=True)
+    # a flight's three frames: one sweep; its last frame as a fresh DEM's picture
+    dem = get_sample_data("jacksboro_fault_dem.npz", asfileobj=False)
+    calls.clear()
+    clip = fc.fly_through(dem, [(15000, 2500), (15500, 9000)], frames=3, size=(96, 54),
+                          above=900, vert_exag=2, shadows=True, progress=False)
+    assert len(calls) == 1
+    last = fc.terrain(dem, vert_exag=2, shadows=True, fly=dict(
+        position=tuple(clip.stats["positions"][2]), heading=clip.stats["headings"][2],
+        size=(96, 54)))
+    assert np.array_equal(clip.frames[2], last.rgba) and len(calls) == 2

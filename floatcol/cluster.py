@@ -257,6 +257,25 @@ def render_frames(tasks, client):
     return client.gather(futures)
 
 
+def flight_frames(hf, cameras, options, client):
+    """A flight's frames (fc.fly_through) on ``client``: the height field sent to
+    every worker once (scattered: a worker keeps its pyramid and its shadow texture
+    from one frame to the next, as here), each frame a task; (rgba, samples) gathered
+    in order."""
+    held = client.scatter(hf, broadcast=True)
+    futures = [client.submit(flight_task, held, camera, options, pure=False)
+               for camera in cameras]
+    return client.gather(futures)
+
+
+def flight_task(hf, camera, options):
+    """One frame of fc.fly_through: fc.terrain's fly picture (the heights already
+    exaggerated). Returns (rgba, samples)."""
+    from .terrain import terrain
+    r = terrain(hf, vert_exag=1.0, fly=camera, **options).draw()
+    return r.rgba, int(r.stats["samples"])
+
+
 _SURFACES = {}
 
 

@@ -168,8 +168,8 @@ def _landscape(source, vert_exag, extent, nodata, geographic):
 
 def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
                 size=(640, 360), above=None, near=None, closed=False, output=None, fps=20,
-                progress=True, vert_exag="auto", extent=None, nodata=None, geographic=None,
-                **options):
+                progress=True, client=None, vert_exag="auto", extent=None, nodata=None,
+                geographic=None, **options):
     """A flight over a DEM as a clip: ``frames`` pictures of fc.terrain's fly camera
     (its landscape defaults, area-sampled by the level-of-detail engine) moving at a
     steady speed along a smooth curve through the waypoints ``path`` (camera.flight:
@@ -180,7 +180,9 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
     toward one compass heading, ``pitch`` degrees up with a horizontal field of view
     ``fov``. ``output``: a .gif or .mp4 file to write, ``fps`` frames a second; other
     options as fc.terrain's (texture=, shadows=, objects=, antialias=False for the
-    ray march's point samples, ...). Returns an Animation whose ``times`` are the
+    ray march's point samples, ...). ``client``: a dask.distributed Client, the frames
+    its tasks (the height field sent to each worker once: floatcol/cluster.py), the
+    same pictures in the same order. Returns an Animation whose ``times`` are the
     frames' distances along the curve and whose ``stats`` hold the eye's
     ``positions`` and ``headings``, ``vert_exag``, ``samples`` and ``seconds``."""
     import time
@@ -203,12 +205,18 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
     positions, headings, along = flight(hf, path, frames, heading=heading, above=above,
                                         closed=closed)
     _check_memory(frames, size)
+    cameras = [dict(position=tuple(float(x) for x in pos), heading=float(head), pitch=pitch,
+                    fov=fov, near=near, size=size) for pos, head in zip(positions, headings)]
     out = []
     samples = 0
-    for pos, head in tqdm(list(zip(positions, headings)), desc="floatcol fly_through",
-                          unit="frame", delay=1.0, disable=not progress, leave=False):
-        camera = dict(position=tuple(pos), heading=float(head), pitch=pitch, fov=fov,
-                      near=near, size=size)
+    if client is not None:
+        from .cluster import _check_client, flight_frames
+        _check_client(client)
+        for rgba, n in flight_frames(hf, cameras, options, client):
+            out.append(rgba)
+            samples += n
+    for camera in tqdm(cameras if client is None else (), desc="floatcol fly_through",
+                       unit="frame", delay=1.0, disable=not progress, leave=False):
         r = terrain(hf, vert_exag=1.0, fly=camera, **options).draw()
         samples += r.stats["samples"]
         out.append(r.rgba)

@@ -256,3 +256,18 @@ def test_sixty_frames_on_two_workers(client):
     for a, b in zip(here.frames, there.frames):
         assert np.array_equal(np.asarray(a), np.asarray(b))
     assert here.stats["samples"] == there.stats["samples"]
+
+
+def test_a_flight_on_two_workers(client):
+    """fc.fly_through(client=): the height field scattered to the workers once, a frame
+    a task; the same frames as here, shadows and all."""
+    from matplotlib.cbook import get_sample_data
+    dem = get_sample_data("jacksboro_fault_dem.npz", asfileobj=False)
+    kw = dict(frames=4, size=(64, 36), above=900, vert_exag=2, shadows=True, progress=False)
+    way = [(15000, 2500), (15500, 9000), (17000, 12000)]
+    here = fc.fly_through(dem, way, **kw)
+    there = fc.fly_through(dem, way, client=client, **kw)
+    assert len(there.frames) == 4
+    for a, b in zip(here.frames, there.frames):
+        assert np.array_equal(a, b)
+    assert here.stats["samples"] == there.stats["samples"]

@@ -279,6 +279,25 @@ def speed():
         ms = anim.stats["seconds"] / 8 * 1e3
         print(f"| {dem} | a flight's clip (fc.fly_through) | area, smooth shading | {ms:.0f} | "
               f"{1e3 / ms:.1f} | {anim.stats['samples'] // 8} |", flush=True)
+        if beta != 2.4:
+            continue
+        # with shadows: the clip keeps its shadow texture from frame to frame (the
+        # texels capped, the same grid each frame); the same frames each with a texture
+        # made afresh (passes/shadow.py forget), as without that
+        from floatcol.passes import shadow
+        anim = fc.fly_through(hf, path, frames=8, shadows=True, **clip)
+        ms = anim.stats["seconds"] / 8 * 1e3
+        ts = []
+        for pos, head in zip(anim.stats["positions"], anim.stats["headings"]):
+            shadow.forget()
+            t = time.perf_counter()
+            fc.terrain(hf, vert_exag=1, shadows=True, fly=dict(
+                position=tuple(pos), heading=head, pitch=-10, fov=60, size=size)).draw()
+            ts.append(time.perf_counter() - t)
+        fresh = statistics.mean(ts) * 1e3
+        print(f"| {dem} | a flight's clip, shadows (texture kept; made afresh: {fresh:.0f} ms) "
+              f"| area, smooth shading | {ms:.0f} | {1e3 / ms:.1f} | "
+              f"{anim.stats['samples'] // 8} |", flush=True)
 
 
 TABLES = {"flicker": table6, "coverage": coverage_tables, "guedes": guedes_table,

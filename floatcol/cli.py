@@ -300,9 +300,9 @@ def build_parser():
     t.add_argument("--heading", type=_value("heading"), default=None,
                    help="fly: compass heading in degrees clockwise from north (default 0; "
                         "a flight's: along its curve)")
-    t.add_argument("--frames", type=int, default=60,
+    t.add_argument("--frames", type=int, default=None,
                    help="a flight's number of frames (default 60)")
-    t.add_argument("--fps", type=float, default=20.0,
+    t.add_argument("--fps", type=float, default=None,
                    help="a flight's frames per second, 0.01 to 120 (default 20)")
     t.add_argument("--closed", action="store_true",
                    help="a flight goes on from its last waypoint back to its first: a clip "
@@ -553,6 +553,11 @@ def _terrain(args):
     if os.path.splitext(args.output)[1].lower() in ANIMATION_OUTPUTS:
         raise UsageError(f"{args.output!r} would be a flight's clip: give --fly two or more "
                          "times, its waypoints (one --fly is a picture: .png, .jpg, ...)")
+    given = [f for f, v in (("--frames", args.frames), ("--fps", args.fps),
+                            ("--closed", args.closed)) if v not in (None, False)]
+    if given:
+        raise UsageError(f"{given[0]} is a flight's: give --fly two or more times, its "
+                         "waypoints, and write a .gif or .mp4")
     _check_output(args.output, RENDER_OUTPUTS)
     import floatcol as fc
     fly = None
@@ -587,10 +592,11 @@ def _flight(args):
     for key in ("elev", "azim", "proj_type", "focal_length"):
         opts.pop(key, None)
     size = opts.pop("size")
-    anim = fc.fly_through(args.file, args.fly, frames=args.frames, heading=args.heading,
-                          pitch=args.pitch, fov=args.fov, size=size, above=args.above,
-                          closed=args.closed, output=args.output, fps=args.fps,
-                          progress=True,
+    anim = fc.fly_through(args.file, args.fly,
+                          frames=60 if args.frames is None else args.frames,
+                          heading=args.heading, pitch=args.pitch, fov=args.fov, size=size,
+                          above=args.above, closed=args.closed, output=args.output,
+                          fps=20.0 if args.fps is None else args.fps, progress=True,
                           vert_exag=args.vert_exag, extent=args.extent, nodata=args.nodata,
                           **opts)
     print(f"wrote {args.output} ({len(anim)} frames, {size[0]}x{size[1]}, heights "

@@ -416,7 +416,8 @@ def test_a_flight_over_a_dem_in_one_call_and_one_command(tmp_path, capsys):
                      ["--fly", "15000:2500", "--fly", "15000:2500", "-o", "x.gif"],
                      ["--fly", "15000:2500", "--fly", "15500:9000", "--frames", "0", "-o",
                       "x.gif"],
-                     ["--fly", "15000:2500", "-o", "x.gif"], ["-o", "x.mp4"]):
+                     ["--fly", "15000:2500", "-o", "x.gif"], ["-o", "x.mp4"],
+                     ["--fly", "15000:2500", "--frames", "30", "-o", "x.png"]):
         bad_argv[-1] = str(tmp_path / bad_argv[-1])
         assert main(["terrain", JACKSBORO] + bad_argv) == 2
         err = capsys.readouterr().err.strip().splitlines()

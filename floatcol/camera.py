@@ -281,9 +281,11 @@ def fly(surface, position, heading=0.0, pitch=-10.0, fov=60.0, size=(1280, 720),
                 d2=d2, scale=scale, size=(W, H), step=step, sampling="march")
 
 
-#: a flight's waypoints at most (each makes 256 points of its curve), and its frames
-MAX_WAYPOINTS = 100_000
+#: a flight's waypoints at most (each makes DENSE points of its curve), and its frames
+MAX_WAYPOINTS = 10_000
 MAX_FRAMES = 100_000
+#: points a segment of a flight's curve that measure its length
+DENSE = 256
 
 
 def _ground(s, domain, u, v):
@@ -357,12 +359,25 @@ def flight(surface, path, frames, heading=None, above=None, closed=False):
         if heading is None:
             raise ValueError("the path's waypoints are all one point: give a heading")
         return (np.repeat(P, frames, axis=0), np.full(frames, heading), np.zeros(frames))
-    dense = _catmull_rom(P, 256, closed)
-    seg = np.linalg.norm(np.diff(dense, axis=0), axis=1)
-    along = np.concatenate([[0.0], np.cumsum(seg)])
+    ctrl, knots = _curve(P, closed)
+    # the curve's length along it from 256 points a segment; a frame's point is the
+    # curve's own at the parameter its distance falls on (between two of those points),
+    # its heading the curve's own direction there: smooth however many frames there are
+    m = len(ctrl)
+    seg = np.append(np.repeat(np.arange(m), DENSE), m - 1)
+    frac = np.append(np.tile(np.arange(DENSE) / DENSE, m), 1.0)
+    par = knots[seg, 0] + frac * (knots[seg, 1] - knots[seg, 0])
+    dense = _curve_at(ctrl, knots, seg, par)
+    along = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))])
     at = np.linspace(0.0, along[-1], frames, endpoint=closed is False) if frames > 1 \
         else np.zeros(1)
-    pos = np.column_stack([np.interp(at, along, dense[:, k]) for k in range(3)])
+    idx = np.clip(np.searchsorted(along, at, "right") - 1, 0, len(dense) - 2)
+    span = along[idx + 1] - along[idx]
+    w = np.where(span > 0.0, (at - along[idx]) / np.where(span > 0.0, span, 1.0), 0.0)
+    s_k = seg[idx]
+    p_next = np.where(seg[idx + 1] == s_k, par[idx + 1], knots[s_k, 1])
+    fp = par[idx] + np.clip(w, 0.0, 1.0) * (p_next - par[idx])
+    pos = _curve_at(ctrl, knots, s_k, fp)
     if rise is not None:
         # over a ridge between two waypoints the curve may pass under the ground
         g = _ground(s, domain, pos[:, 0], pos[:, 1])
@@ -371,10 +386,11 @@ def flight(surface, path, frames, heading=None, above=None, closed=False):
     if heading is not None:
         heads = np.full(frames, heading)
     else:
-        # the curve's direction over the ground at each frame (a dense point's
-        # neighbours); where it climbs straight up, the heading before
-        i = np.clip(np.searchsorted(along, at), 1, len(dense) - 1)
-        d = dense[i] - dense[i - 1]
+        # the curve's direction over the ground at each frame; where it climbs
+        # straight up, the heading before
+        h = 1e-6 * (knots[s_k, 1] - knots[s_k, 0])
+        d = (_curve_at(ctrl, knots, s_k, np.minimum(fp + h, knots[s_k, 1]))
+             - _curve_at(ctrl, knots, s_k, np.maximum(fp - h, knots[s_k, 0])))
         heads = np.degrees(np.arctan2(d[:, 0], d[:, 1]))
         flat = np.hypot(d[:, 0], d[:, 1]) <= 1e-12 * side
         for k in range(frames):
@@ -383,29 +399,40 @@ def flight(surface, path, frames, heading=None, above=None, closed=False):
     return pos, heads, at
 
 
-def _catmull_rom(P, n, closed=False):
-    """n points a segment (and the last waypoint) of the centripetal Catmull-Rom curve
-    through the rows of P (Barry and Goldman's pyramid, knots sqrt of the chords), its
-    ends continued by reflection; ``closed``: round through P[0] again (its last
-    point), the curve's tangent there the same both ways."""
+def _curve(P, closed=False):
+    """The centripetal Catmull-Rom curve through the rows of P, a segment between each
+    two (Barry and Goldman's pyramid, knots the square roots of the chords; its ends
+    continued by reflection, or, ``closed``, round through P[0] again): (control
+    points (segments, 4, 3), knots (segments, 3): t1, t2, t3 after t0 = 0; a segment
+    runs from t1 to t2)."""
     import numpy as np
     if closed:
         Q = np.vstack([P[-1:], P, P[:2]])
-        P = np.vstack([P, P[:1]])
     else:
         Q = np.vstack([2.0 * P[0] - P[1], P, 2.0 * P[-1] - P[-2]])
-    out = []
-    for i in range(1, len(Q) - 2):
-        p0, p1, p2, p3 = Q[i - 1], Q[i], Q[i + 1], Q[i + 2]
-        t1 = np.linalg.norm(p1 - p0) ** 0.5
-        t2 = t1 + np.linalg.norm(p2 - p1) ** 0.5
-        t3 = t2 + np.linalg.norm(p3 - p2) ** 0.5
-        t = np.linspace(t1, t2, n, endpoint=False)[:, None]
-        a1 = ((t1 - t) * p0 + t * p1) / t1
-        a2 = ((t2 - t) * p1 + (t - t1) * p2) / (t2 - t1)
-        a3 = ((t3 - t) * p2 + (t - t2) * p3) / (t3 - t2)
-        b1 = ((t2 - t) * a1 + t * a2) / t2
-        b2 = ((t3 - t) * a2 + (t - t1) * a3) / (t3 - t1)
-        out.append(((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1))
-    out.append(P[-1:])
-    return np.vstack(out)
+    ctrl = np.stack([Q[i - 1:i + 3] for i in range(1, len(Q) - 2)])
+    chords = np.linalg.norm(np.diff(ctrl, axis=1), axis=2) ** 0.5
+    return ctrl, np.cumsum(chords, axis=1)
+
+
+def _curve_at(ctrl, knots, seg, t):
+    """The points of segments ``seg`` at parameters ``t`` (arrays of one length)."""
+    p0, p1, p2, p3 = (ctrl[seg, k] for k in range(4))
+    t1, t2, t3 = (knots[seg, k][:, None] for k in range(3))
+    t = t[:, None]
+    a1 = ((t1 - t) * p0 + t * p1) / t1
+    a2 = ((t2 - t) * p1 + (t - t1) * p2) / (t2 - t1)
+    a3 = ((t3 - t) * p2 + (t - t2) * p3) / (t3 - t2)
+    b1 = ((t2 - t) * a1 + t * a2) / t2
+    b2 = ((t3 - t) * a2 + (t - t1) * a3) / (t3 - t1)
+    return ((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1)
+
+
+def _catmull_rom(P, n, closed=False):
+    """n points a segment (and the last) of _curve's curve through the rows of P."""
+    import numpy as np
+    ctrl, knots = _curve(P, closed)
+    m = len(ctrl)
+    seg = np.append(np.repeat(np.arange(m), n), m - 1)
+    frac = np.append(np.tile(np.arange(n) / n, m), 1.0)
+    return _curve_at(ctrl, knots, seg, knots[seg, 0] + frac * (knots[seg, 1] - knots[seg, 0]))

@@ -154,8 +154,22 @@ def terrain_fly():
             os.chdir(here)
 
 
+def flight_strip():
+    """Four frames of a flight along a curve through three waypoints over the Jacksboro
+    DEM (fc.fly_through), side by side."""
+    from matplotlib.cbook import get_sample_data
+    from PIL import Image
+    dem = get_sample_data("jacksboro_fault_dem.npz", asfileobj=False)
+    clip = fc.fly_through(dem, [(15000, 2500), (15400, 6000), (17000, 9500)], frames=4,
+                          size=(240, 135), above=900, vert_exag=2, pitch=-10, fov=55,
+                          background="lightskyblue", shadows=True, progress=False)
+    strip = np.concatenate([f[..., :3] for f in clip.frames], axis=1)
+    Image.fromarray(strip).save(IMG / "flight_strip.jpg", quality=85)
+
+
 if __name__ == "__main__":
     IMG.mkdir(exist_ok=True)
+    flight_strip()
     terrain_fly()
     smooth_shading()
     camera()

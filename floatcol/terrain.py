@@ -231,11 +231,16 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
 def auto_exaggeration(hf):
     """The vertical exaggeration that makes a height field's relief (its 1st to 99th
     percentile) AUTO_RELIEF of the longer side of its extent; 1 where it already is
-    at least that, or flat. Rounded to two significant digits."""
-    z = hf.hf[np.isfinite(hf.hf)]
-    if z.size == 0:
+    at least that, or flat. Rounded to two significant digits. The percentiles are
+    kept with the height field (a 4097^2 DEM's took 0.24 s of each fc.terrain call)."""
+    held = hf.__dict__.get("_relief")
+    if held is None:
+        z = hf.hf[np.isfinite(hf.hf)]
+        held = hf.__dict__["_relief"] = (tuple(np.percentile(z, [1, 99])) if z.size
+                                          else None)
+    if held is None:
         return 1.0
-    lo, hi = np.percentile(z, [1, 99])
+    lo, hi = held
     (ua, ub), (va, vb) = hf.default_domain
     side = max(ub - ua, vb - va)
     if not hi > lo:

@@ -323,3 +323,9 @@ def test_a_shadow_texture_is_kept_with_its_surface(monkeypatch):
         position=tuple(clip.stats["positions"][2]), heading=clip.stats["headings"][2],
         size=(96, 54)))
     assert np.array_equal(clip.frames[2], last.rgba) and len(calls) == 2
+    # the texture goes with its surface
+    import gc
+    assert S._held[0] is not None
+    del clip, last
+    gc.collect()
+    assert S._held[0] is None

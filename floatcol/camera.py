@@ -298,7 +298,7 @@ def _ground(s, domain, u, v):
     return s.evaluate(np.atleast_1d(u), np.atleast_1d(v)).reshape(u.shape)
 
 
-def flight(surface, path, frames, heading=None, above=None, closed=False):
+def flight(surface, path, frames, heading=None, above=None, closed=False, look_ahead=0.0):
     """Where the eye of a flight through the waypoints ``path`` is at each of
     ``frames`` frames, and where it looks: the points at equal distances along a
     centripetal Catmull-Rom curve through the waypoints (it passes through each, turns
@@ -312,6 +312,10 @@ def flight(surface, path, frames, heading=None, above=None, closed=False):
         point's), and never nearer the ground than half that between them (over a
         ridge), or all (u, v, w), followed exactly.
     heading: None, along the curve (compass degrees, clockwise from +v), or a number.
+    look_ahead: with heading None, look from each frame's point toward the curve's
+        point this far ahead along it (the surface's units; 0: along its tangent), so
+        the camera turns into a sharp corner before it and out of it after, as a driver
+        looks (near an open curve's end, where less of it is left, toward its end).
     Returns (positions (frames, 3), headings (frames,), distances (frames,): how far
     along the curve each frame is, in the surface's units)."""
     import numpy as np
@@ -340,6 +344,9 @@ def flight(surface, path, frames, heading=None, above=None, closed=False):
                          f"e.g. [(0, 0), (100, 50)]; got {path!r}")
     if heading is not None:
         heading = _number("heading", heading)
+    look_ahead = _number("look_ahead", look_ahead)
+    if look_ahead < 0.0:
+        raise ValueError(f"look_ahead must be a distance of 0 or more, got {look_ahead:g}")
     P = np.array(points, dtype=float)
     rise = None
     if P.shape[1] == 2:
@@ -371,12 +378,16 @@ def flight(surface, path, frames, heading=None, above=None, closed=False):
     along = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))])
     at = np.linspace(0.0, along[-1], frames, endpoint=closed is False) if frames > 1 \
         else np.zeros(1)
-    idx = np.clip(np.searchsorted(along, at, "right") - 1, 0, len(dense) - 2)
-    span = along[idx + 1] - along[idx]
-    w = np.where(span > 0.0, (at - along[idx]) / np.where(span > 0.0, span, 1.0), 0.0)
-    s_k = seg[idx]
-    p_next = np.where(seg[idx + 1] == s_k, par[idx + 1], knots[s_k, 1])
-    fp = par[idx] + np.clip(w, 0.0, 1.0) * (p_next - par[idx])
+
+    def parameter(dist):
+        # (segment, parameter) where the curve is ``dist`` along
+        idx = np.clip(np.searchsorted(along, dist, "right") - 1, 0, len(dense) - 2)
+        span = along[idx + 1] - along[idx]
+        w = np.where(span > 0.0, (dist - along[idx]) / np.where(span > 0.0, span, 1.0), 0.0)
+        sk = seg[idx]
+        p_next = np.where(seg[idx + 1] == sk, par[idx + 1], knots[sk, 1])
+        return sk, par[idx] + np.clip(w, 0.0, 1.0) * (p_next - par[idx])
+    s_k, fp = parameter(at)
     pos = _curve_at(ctrl, knots, s_k, fp)
     if rise is not None:
         # over a ridge between two waypoints the curve may pass under the ground
@@ -396,6 +407,13 @@ def flight(surface, path, frames, heading=None, above=None, closed=False):
         for k in range(frames):
             if flat[k]:
                 heads[k] = heads[k - 1] if k > 0 else 0.0
+        if look_ahead > 0.0:
+            ahead = at + look_ahead
+            ahead = np.mod(ahead, along[-1]) if closed else np.minimum(ahead, along[-1])
+            target = _curve_at(ctrl, knots, *parameter(ahead))
+            d = target - _curve_at(ctrl, knots, s_k, fp)
+            far = np.hypot(d[:, 0], d[:, 1]) > 1e-9 * side   # (else the tangent's)
+            heads = np.where(far, np.degrees(np.arctan2(d[:, 0], d[:, 1])), heads)
     return pos, heads, at
 
 

@@ -307,6 +307,9 @@ def build_parser():
     t.add_argument("--closed", action="store_true",
                    help="a flight goes on from its last waypoint back to its first: a clip "
                         "that loops without a seam")
+    t.add_argument("--look-ahead", type=_value("look-ahead"), default=None, metavar="D",
+                   help="a flight looks toward its curve's point D ahead (the DEM's units) "
+                        "instead of along it: it turns into sharp corners early")
     t.add_argument("--pitch", type=_value("pitch"), default=-10.0,
                    help="fly: degrees up (negative: down; default -10)")
     t.add_argument("--fov", type=_value("fov"), default=60.0,
@@ -403,6 +406,7 @@ _API_TO_CLI = {
     "proj_type": "--proj", "projection": "--proj", "focal_length": "--focal-length",
     "lower_color": "--lower-color", "light_radius": "--light-radius",
     "vert_exag": "--vert-exag", "pixel_step": "--pixel-step", "texture_filter": "--texture-filter",
+    "look_ahead": "--look-ahead",
 }
 #: keywords spelled the same way, --NAME
 _SAME = ("opacity", "wireframe", "contours", "shading", "shadows", "antialias", "sampling",
@@ -554,7 +558,8 @@ def _terrain(args):
         raise UsageError(f"{args.output!r} would be a flight's clip: give --fly two or more "
                          "times, its waypoints (one --fly is a picture: .png, .jpg, ...)")
     given = [f for f, v in (("--frames", args.frames), ("--fps", args.fps),
-                            ("--closed", args.closed)) if v not in (None, False)]
+                            ("--closed", args.closed), ("--look-ahead", args.look_ahead))
+             if v not in (None, False)]
     if given:
         raise UsageError(f"{given[0]} is a flight's: give --fly two or more times, its "
                          "waypoints, and write a .gif or .mp4")
@@ -596,6 +601,7 @@ def _flight(args):
                           frames=60 if args.frames is None else args.frames,
                           heading=args.heading, pitch=args.pitch, fov=args.fov, size=size,
                           above=args.above, closed=args.closed, output=args.output,
+                          look_ahead=args.look_ahead or 0.0,
                           fps=20.0 if args.fps is None else args.fps, progress=True,
                           vert_exag=args.vert_exag, extent=args.extent, nodata=args.nodata,
                           **opts)

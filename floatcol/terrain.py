@@ -187,17 +187,18 @@ def _landscape(source, vert_exag, extent, nodata, geographic):
 
 
 def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
-                size=(640, 360), above=None, near=None, closed=False, output=None, fps=20,
-                progress=True, client=None, vert_exag="auto", extent=None, nodata=None,
-                geographic=None, **options):
+                size=(640, 360), above=None, near=None, closed=False, look_ahead=0.0,
+                output=None, fps=20, progress=True, client=None, vert_exag="auto",
+                extent=None, nodata=None, geographic=None, **options):
     """A flight over a DEM as a clip: ``frames`` pictures of fc.terrain's fly camera
     (its landscape defaults, area-sampled by the level-of-detail engine) moving at a
     steady speed along a smooth curve through the waypoints ``path`` (camera.flight:
     all (u, v), the eye ``above`` the ground there and never nearer it than half that
     in between, or all (u, v, w); ``closed``: round from the last back to the first,
     a clip that loops without a seam), in the DEM's units with its heights exaggerated
-    (``vert_exag``, once for the clip), looking along the curve (``heading`` None) or
-    toward one compass heading, ``pitch`` degrees up with a horizontal field of view
+    (``vert_exag``, once for the clip), looking along the curve (``heading`` None;
+    ``look_ahead``: toward its point that far ahead, turning into sharp corners
+    early) or toward one compass heading, ``pitch`` degrees up with a horizontal field of view
     ``fov``. ``output``: a .gif or .mp4 file to write, ``fps`` frames a second; other
     options as fc.terrain's (texture=, shadows=, objects=, antialias=False for the
     ray march's point samples, ...). ``client``: a dask.distributed Client, the frames
@@ -223,7 +224,7 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
         output, _ = check_output(output, ANIMATION_FORMATS)
     hf, exag = _landscape(source, vert_exag, extent, nodata, geographic)
     positions, headings, along = flight(hf, path, frames, heading=heading, above=above,
-                                        closed=closed)
+                                        closed=closed, look_ahead=look_ahead)
     _check_memory(frames, size)
     cameras = [dict(position=tuple(float(x) for x in pos), heading=float(head), pitch=pitch,
                     fov=fov, near=near, size=size) for pos, head in zip(positions, headings)]

@@ -374,6 +374,36 @@ def test_a_closed_flight_loops_without_a_seam():
         flight(flat, [(200, 200), (800, 200), (200, 200)], 5, closed=True)
 
 
+def test_a_flight_looking_ahead_turns_into_its_corners_early():
+    """look_ahead: the camera looks toward the curve's point that far ahead: on a
+    straight stretch that is the tangent; round a square's corners (48 frames, an
+    eighth of the loop ahead) its largest turn from one frame to the next is 11.8
+    degrees against the tangent's 18.9 (at one frame's distance ahead, 21.6: a look
+    ahead smooths the turns from a few frames' distance on); before an L's corner it
+    already looks past it, and at an open curve's end it looks along the end."""
+    from floatcol.camera import flight
+    flat = fc.HeightField(np.zeros((101, 101)), u=(0, 1000), v=(0, 1000))
+    line = [(100, 100), (900, 900)]
+    assert np.allclose(flight(flat, line, 9, above=10, look_ahead=200)[1], 45.0)
+    square = [(200, 200), (800, 200), (800, 800), (200, 800)]
+    turns = []
+    for ahead in (0.0, 300.0):
+        _, heads, _ = flight(flat, square, 48, above=10, closed=True, look_ahead=ahead)
+        t = (np.diff(np.append(heads, heads[0])) + 180) % 360 - 180
+        assert abs(t.sum()) == pytest.approx(360)
+        turns.append(np.abs(t).max())
+    assert turns[1] <= 0.7 * turns[0]
+    # an open L: before the corner it already looks past it; at the end along the end
+    pos, heads, _ = flight(flat, [(100, 100), (500, 100), (500, 900)], 41, above=10,
+                           look_ahead=300)
+    k = int(np.argmin(np.abs(pos[:, 0] - 400)))            # 100 before the corner
+    assert 0.0 < heads[k] < 90.0                            # (the leg's own is 90)
+    assert heads[-1] == pytest.approx(flight(flat, [(100, 100), (500, 100), (500, 900)],
+                                             41, above=10)[1][-1], abs=1e-6)
+    with pytest.raises(ValueError, match="look_ahead must be a distance of 0 or more"):
+        flight(flat, line, 3, look_ahead=-1)
+
+
 def test_a_flight_over_a_ridge_keeps_above_it():
     """Between two waypoints (u, v) the eye is never nearer the ground than half
     ``above``: a straight flight at 50 over a ridge 200 high goes over it."""
@@ -412,6 +442,18 @@ def test_a_flight_over_a_dem_in_one_call_and_one_command(tmp_path, capsys):
             "--frames", "3"] + [a for u, v in way for a in ("--fly", f"{u}:{v}")]
     assert main(argv + ["-o", str(out)]) == 0
     assert "3 frames, 96x54" in capsys.readouterr().out
+    ahead = fc.fly_through(JACKSBORO, way, frames=3, size=(96, 54), above=900, vert_exag=2,
+                           look_ahead=3000, progress=False)
+    assert main(argv + ["--look-ahead", "3000", "-o", str(tmp_path / "ahead.gif")]) == 0
+    assert not np.allclose(ahead.stats["headings"], anim.stats["headings"])
+    with Image.open(tmp_path / "ahead.gif") as im:
+        im.seek(1)
+        mid = np.asarray(im.convert("RGB"))
+    # the CLI's middle frame is the call's (its GIF colours 1.2 levels off on average),
+    # not the one looking along the tangent (22 levels off)
+    assert np.abs(mid.astype(int) - ahead.frames[1][..., :3]).mean() < 4
+    assert np.abs(mid.astype(int) - anim.frames[1][..., :3]).mean() > 10
+    capsys.readouterr()
     with Image.open(out) as im, Image.open(tmp_path / "f.gif") as ref:
         assert im.n_frames == 3                  # the same clip as the call's
         im.seek(2)
@@ -423,7 +465,10 @@ def test_a_flight_over_a_dem_in_one_call_and_one_command(tmp_path, capsys):
                      ["--fly", "15000:2500", "--fly", "15500:9000", "--frames", "0", "-o",
                       "x.gif"],
                      ["--fly", "15000:2500", "-o", "x.gif"], ["-o", "x.mp4"],
-                     ["--fly", "15000:2500", "--frames", "30", "-o", "x.png"]):
+                     ["--fly", "15000:2500", "--frames", "30", "-o", "x.png"],
+                     ["--fly", "15000:2500", "--look-ahead", "500", "-o", "x.png"],
+                     ["--fly", "15000:2500", "--fly", "15500:9000", "--look-ahead", "-5",
+                      "-o", "x.gif"]):
         bad_argv[-1] = str(tmp_path / bad_argv[-1])
         assert main(["terrain", JACKSBORO] + bad_argv) == 2
         err = capsys.readouterr().err.strip().splitlines()

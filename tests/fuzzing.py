@@ -211,6 +211,10 @@ def terrain_case(rng: random.Random) -> dict:
                        "size": kw.pop("size")}
         if rng.random() < 0.3:
             c["flight"]["above"] = _odd(rng, lambda: rng.uniform(0, 2000))
+        if rng.random() < 0.3:
+            c["flight"]["look_ahead"] = _odd(rng, lambda: rng.uniform(0, 5000))
+        if rng.random() < 0.2:
+            c["flight"]["closed"] = True
     if rng.random() < 0.3:
         u0, u1, v0, v1 = (x if math.isfinite(x) else 0.0 for x in extent)
         c["objects"] = [[rng.choice(["tree", "pole", "box", "marker"]),

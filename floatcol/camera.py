@@ -370,10 +370,7 @@ def flight(surface, path, frames, heading=None, above=None, closed=False, look_a
     # the curve's length along it from 256 points a segment; a frame's point is the
     # curve's own at the parameter its distance falls on (between two of those points),
     # its heading the curve's own direction there: smooth however many frames there are
-    m = len(ctrl)
-    seg = np.append(np.repeat(np.arange(m), DENSE), m - 1)
-    frac = np.append(np.tile(np.arange(DENSE) / DENSE, m), 1.0)
-    par = knots[seg, 0] + frac * (knots[seg, 1] - knots[seg, 0])
+    seg, par = _samples(knots, DENSE)
     dense = _curve_at(ctrl, knots, seg, par)
     along = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))])
     at = np.linspace(0.0, along[-1], frames, endpoint=closed is False) if frames > 1 \
@@ -446,11 +443,17 @@ def _curve_at(ctrl, knots, seg, t):
     return ((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1)
 
 
-def _catmull_rom(P, n, closed=False):
-    """n points a segment (and the last) of _curve's curve through the rows of P."""
+def _samples(knots, n):
+    """(segments, parameters) of n points a segment evenly in its parameter, and the
+    last segment's end."""
     import numpy as np
-    ctrl, knots = _curve(P, closed)
-    m = len(ctrl)
+    m = len(knots)
     seg = np.append(np.repeat(np.arange(m), n), m - 1)
     frac = np.append(np.tile(np.arange(n) / n, m), 1.0)
-    return _curve_at(ctrl, knots, seg, knots[seg, 0] + frac * (knots[seg, 1] - knots[seg, 0]))
+    return seg, knots[seg, 0] + frac * (knots[seg, 1] - knots[seg, 0])
+
+
+def _catmull_rom(P, n, closed=False):
+    """n points a segment (and the last) of _curve's curve through the rows of P."""
+    ctrl, knots = _curve(P, closed)
+    return _curve_at(ctrl, knots, *_samples(knots, n))

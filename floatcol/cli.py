@@ -593,9 +593,7 @@ def _flight(args):
                          "ground) or all U:V:W")
     _check_output(args.output, ANIMATION_OUTPUTS)
     import floatcol as fc
-    opts = _options(args)
-    for key in ("elev", "azim", "proj_type", "focal_length"):
-        opts.pop(key, None)
+    opts = _options(args)                   # (fc.terrain's fly drops elev, azim, proj)
     size = opts.pop("size")
     anim = fc.fly_through(args.file, args.fly,
                           frames=60 if args.frames is None else args.frames,

@@ -62,9 +62,7 @@ def levels(surface):
     if c not in cache:
         base = cache.get(1.0)
         if base is None:
-            base, flat = _pyramid(source.hf)
-            cache[1.0] = base
-            source.__dict__["_flat"] = (("flat", 1.0), flat)
+            base = cache[1.0] = _pyramid(source.hf)
             # the heights kept once: the source's are the pyramid's level 0 (the same
             # values; a 4097^2 DEM's 134 MB not twice)
             source.hf = base[0]
@@ -72,12 +70,7 @@ def levels(surface):
             cache.clear()
             cache[1.0] = base
             # (the stretched pyramid in one array too, its levels views into it)
-            flat = base[0].base * c if base[0].base is not None else None
-            if flat is None:
-                cache[c] = [z * c for z in base]
-            else:
-                cache[c] = _views(flat, [z.shape for z in base])
-                source.__dict__["_flat"] = (("flat", c), flat)
+            cache[c] = _views(base[0].base * c, [z.shape for z in base])
     grids = cache[c]
     if surface is not source and surface.hf.shape == grids[0].shape \
             and surface.hf.base is not grids[0].base:
@@ -98,10 +91,8 @@ def levels(surface):
     key = ("flat", c)
     held = source.__dict__.get("_flat")
     if held is None or held[0] != key:
-        whole = grids[0].base                   # (the levels are views into it)
-        if whole is None or whole.size != off:
-            whole = np.concatenate([z.ravel() for z in grids])
-        held = source.__dict__["_flat"] = (key, whole)
+        # the one array the levels are views into (_pyramid, _views)
+        held = source.__dict__["_flat"] = (key, grids[0].base)
     return held[1], lv
 
 
@@ -120,7 +111,7 @@ def _height_range(source, c, k, z):
 
 
 def _pyramid(z):
-    """(the levels, the one flat float64 array they are views into): level 0 the
+    """The levels, views into one flat float64 array (their ``base``): level 0 the
     heights z, each next one _halve's of the one before. One array from the start:
     no second copy of every level to concatenate (a 4097^2 DEM's 180 MB)."""
     shapes = [tuple(z.shape)]
@@ -131,7 +122,7 @@ def _pyramid(z):
     grids[0][...] = z
     for k in range(1, len(grids)):
         grids[k][...] = _halve(grids[k - 1])
-    return grids, flat
+    return grids
 
 
 def _views(flat, shapes):

@@ -8,8 +8,13 @@ to the envelope of all frames, so nothing jumps) and writes a GIF (Pillow) or an
 from __future__ import annotations
 
 import base64
+import contextlib
+import html
+import itertools
 import math
+import operator
 import os
+import shutil
 
 import numpy as np
 
@@ -20,15 +25,23 @@ from .render import box_factors
 from .surface import as_surface, check_range, sympy_expression
 
 ANIMATION_FORMATS = {".gif": "GIF", ".mp4": "MP4"}
+#: a clip written to an MP4 keeps its frames' pictures as well where they take at most
+#: this many bytes (130 frames of 1920x1080); a longer one's are read back from the
+#: file when asked (_FileFrames), so that its length is bounded by the disk, not memory
+KEEP_BYTES = 2**30
+#: a notebook shows a clip read back from its MP4 inline up to this size (matplotlib's
+#: animation.embed_limit), else names the file
+EMBED_BYTES = 20 * 2**20
 
 
 class Animation:
-    """Frames of a time-varying surface: ``frames`` (list of (H, W, 4) uint8),
-    ``times``, ``fps``; ``save(path)`` writes .gif or .mp4. ``stats["camera"]`` holds
-    the plot_surface options the whole clip was drawn with (scale, center, vmin, ...)."""
+    """Frames of a time-varying surface: ``frames`` (list of (H, W, 4) uint8; a long
+    clip written to an MP4, a sequence read back from it: KEEP_BYTES), ``times``,
+    ``fps``; ``save(path)`` writes .gif or .mp4. ``stats["camera"]`` holds the
+    plot_surface options the whole clip was drawn with (scale, center, vmin, ...)."""
 
     def __init__(self, frames, times, fps, stats=None):
-        self.frames = _check_frames(frames)
+        self.frames = frames if isinstance(frames, _FileFrames) else _check_frames(frames)
         self.times = times
         self.fps = _check_fps(fps)
         self.stats = stats or {}
@@ -38,14 +51,32 @@ class Animation:
 
     def save(self, path):
         path, ext = check_output(path, ANIMATION_FORMATS)
+        held = self.frames
+        if isinstance(held, _FileFrames):
+            if ext == ".mp4":                   # (its own file: a copy, not re-encoded)
+                if not (os.path.exists(path) and os.path.samefile(path, held.path)):
+                    with atomic_file(path) as tmp:
+                        shutil.copyfile(held.path, tmp)
+                return path
+            _check_memory(len(held), held.shape[::-1])
+            held = list(held)
         if ext == ".gif":
-            write_gif(self.frames, path, self.fps)
+            write_gif(held, path, self.fps)
         else:
-            write_mp4(self.frames, path, self.fps)
+            write_mp4(held, path, self.fps)
         return path
 
     def _repr_html_(self):
         import io
+        if isinstance(self.frames, _FileFrames):
+            path = self.frames.path
+            if os.path.getsize(path) > EMBED_BYTES:
+                return (f"<p>{len(self.frames)} frames in {html.escape(path)} "
+                        f"({os.path.getsize(path) / 2**20:.0f} MB)</p>")
+            with open(path, "rb") as fh:
+                data = base64.b64encode(fh.read()).decode("ascii")
+            return f'<video controls autoplay loop muted src="data:video/mp4;base64,{data}"/>'
+
         buf = io.BytesIO()
         _save_gif(self.frames, buf, self.fps)
         data = base64.b64encode(buf.getvalue()).decode("ascii")
@@ -133,13 +164,31 @@ def _save_gif(frames, target, fps):
 
 
 def write_mp4(frames, path, fps):
+    """The frames as an H.264 MP4 (imageio-ffmpeg), over white, 1 / fps s each."""
+    with _mp4_writer(path, np.asarray(frames[0]).shape[:2], fps) as send:
+        for f in frames:
+            send(f)
+
+
+@contextlib.contextmanager
+def _mp4_writer(path, shape, fps):
+    """Yield send(frame): each (h, w, 4) uint8 frame of ``shape`` (h, w), over white,
+    into an MP4 at ``path`` as it comes (ffmpeg encodes it in its own process). The
+    file appears at the end, whole; a failure leaves none."""
     try:
         import imageio_ffmpeg
     except ImportError:
         raise ValueError("writing MP4 needs imageio-ffmpeg: pip install 'floatcol[video]' "
                          "(or write a .gif)") from None
-    h, w = frames[0].shape[:2]
+    h, w = shape
     H, W = h + h % 2, w + w % 2                 # yuv420p wants even sides
+    rgb = np.full((H, W, 3), 255, dtype=np.uint8)
+
+    def send(f):
+        a = f[..., 3:4].astype(np.float32) / 255.0
+        rgb[:h, :w] = np.round(f[..., :3] * a + 255.0 * (1.0 - a)).astype(np.uint8)
+        writer.send(rgb)
+
     with atomic_file(path) as tmp:
         writer = imageio_ffmpeg.write_frames(tmp, (W, H), fps=fps, codec="libx264",
                                              pix_fmt_in="rgb24", pix_fmt_out="yuv420p",
@@ -147,13 +196,65 @@ def write_mp4(frames, path, fps):
                                              output_params=["-f", "mp4"])
         writer.send(None)
         try:
-            for f in frames:
-                rgb = np.full((H, W, 3), 255, dtype=np.uint8)
-                a = f[..., 3:4].astype(np.float32) / 255.0
-                rgb[:h, :w] = np.round(f[..., :3] * a + 255.0 * (1.0 - a)).astype(np.uint8)
-                writer.send(np.ascontiguousarray(rgb))
+            yield send
         finally:
             writer.close()
+
+
+class _FileFrames:
+    """The frames of a clip written to an MP4 and not held (longer than KEEP_BYTES),
+    decoded from the file when asked: (h, w, 4) uint8, opaque (over white), as
+    encoded (H.264 is lossy: within a few levels of the rendered pictures). Iterating
+    decodes the file once; ``frames[k]`` decodes it up to frame k."""
+
+    def __init__(self, path, n, shape):
+        self.path = os.path.abspath(path)
+        self.n = n
+        self.shape = shape
+
+    def __len__(self):
+        return self.n
+
+    def __iter__(self):
+        import imageio_ffmpeg
+        h, w = self.shape
+        opaque = np.full((h, w, 1), 255, dtype=np.uint8)
+        frames = imageio_ffmpeg.read_frames(self.path)
+        try:
+            W, H = next(frames)["size"]
+            for k, raw in zip(range(self.n), frames):
+                rgb = np.frombuffer(raw, dtype=np.uint8).reshape(H, W, 3)[:h, :w]
+                yield np.concatenate([rgb, opaque], axis=2)
+        finally:
+            frames.close()
+
+    def __getitem__(self, k):
+        if isinstance(k, slice):
+            return [self[i] for i in range(*k.indices(self.n))]
+        k = operator.index(k)
+        if k < 0:
+            k += self.n
+        if not 0 <= k < self.n:
+            raise IndexError(f"frame {k} of {self.n}")
+        return next(itertools.islice(iter(self), k, None))
+
+
+def _collect(made, n, size, output, fps):
+    """A clip's n frames of ``size`` (W, H) from the iterable ``made``, as they come:
+    held in a list or, where ``output`` is an .mp4, written to it one by one (and held
+    as well where they take at most KEEP_BYTES, else read back from the file:
+    _FileFrames), so that a long clip is never held. Returns (frames, written)."""
+    W, H = size
+    if output is None or os.path.splitext(output)[1].lower() != ".mp4":
+        return list(made), False
+    keep = n * W * H * 4 <= KEEP_BYTES
+    kept = []
+    with _mp4_writer(output, (H, W), fps) as send:
+        for f in made:
+            send(f)
+            if keep:
+                kept.append(f)
+    return (kept if keep else _FileFrames(output, n, (H, W))), True
 
 
 class _Lazy:
@@ -203,10 +304,13 @@ class _Envelope:
         return np.where(np.isfinite(out), out, np.nan)
 
 
-def _check_memory(frames, size):
+def _check_memory(frames, size, output=None):
     """A clip holds every frame's picture (Animation.frames): refuse one that cannot
     fit in the machine's memory (_memory.fits) rather than be killed for memory while
-    it renders."""
+    it renders. One written to an MP4 (``output``) holds none beyond KEEP_BYTES
+    (_collect)."""
+    if output is not None and os.path.splitext(output)[1].lower() == ".mp4":
+        return
     need = frames * int(size[0]) * int(size[1]) * 4
     if not fits(need):
         raise ValueError(f"{frames} frames of {size[0]}x{size[1]} take {need / 2**30:.1f} GiB, "
@@ -235,13 +339,14 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     """Render w = f(u, v, t) at ``frames`` times in ``t`` = (low, high) or
     (symbol, low, high) (the symbol defaults to t). ``endpoint=False`` leaves out
     t = high, so a periodic clip loops without a repeated frame. ``output``: a .gif or
-    .mp4 file to write, ``fps`` frames a second (0.01 to 120). Other options as
+    .mp4 file to write (an .mp4 as the frames come: a long clip is never held,
+    _collect), ``fps`` frames a second (0.01 to 120). Other options as
     :func:`floatcol.plot_surface`; ``lightsource`` may be a function of t giving
     (azdeg, altdeg) (a moving sun, with ``shadows=True`` its shadows move).
     ``client``: a dask.distributed Client: the frames are rendered as its tasks (each
     worker compiles the expression once; floatcol/cluster.py), the same pictures in
     the same order. A clip whose pictures would not fit in the machine's memory is a
-    ValueError before its first frame. Returns an :class:`Animation`.
+    ValueError before its first frame, unless it is written to an .mp4. Returns an :class:`Animation`.
     """
     import time as _time
 
@@ -274,7 +379,7 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     # One camera for the clip: fitted to the envelope of all frames.
     vmin, vmax = options.pop("vmin", None), options.pop("vmax", None)
     first = plot_surface(surfaces[0], *ranges_, vmin=0.0, vmax=1.0, **options)
-    _check_memory(frames, first.size)
+    _check_memory(frames, first.size, output)
     kw = first.render_kwargs(first.size)
     upper, lower = _Envelope(surfaces, True), _Envelope(surfaces, False)
     (ua, ub), (va, vb) = domain
@@ -295,29 +400,34 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     if "norm" not in options:
         fixed["vmin"] = w_lo if vmin is None else vmin
         fixed["vmax"] = (w_hi if w_hi > w_lo else w_lo + 1.0) if vmax is None else vmax
-    out = []
     samples = 0
     if client is not None:
-        from .cluster import _check_client, render_frames
+        from .cluster import _check_client
         _check_client(client)
-        tasks = [(sym, names, t_name, float(tk), ranges_,
-                  dict(options, **fixed, **({} if sun_k is None else {"lightsource": sun_k})))
-                 for tk, sun_k in zip(times, suns)]
-        for rgba, n in render_frames(tasks, client):
-            out.append(rgba)
-            samples += n
-    here = () if client is not None else zip(surfaces, suns)
-    for s, sun_k in tqdm(here, total=0 if client is not None else len(times),
-                         desc="floatcol animate", unit="frame", delay=1.0,
-                         disable=not progress, leave=False):
-        if sun_k is not None:
-            options["lightsource"] = sun_k
-        r = plot_surface(s, *ranges_, **options, **fixed).draw()
-        samples += r.stats["samples"]
-        out.append(r.rgba)
+
+    def made():
+        nonlocal samples
+        if client is not None:
+            from .cluster import render_frames
+            tasks = [(sym, names, t_name, float(tk), ranges_,
+                      dict(options, **fixed, **({} if sun_k is None else {"lightsource": sun_k})))
+                     for tk, sun_k in zip(times, suns)]
+            for rgba, n in render_frames(tasks, client):
+                samples += n
+                yield rgba
+            return
+        for s, sun_k in tqdm(zip(surfaces, suns), total=len(times), desc="floatcol animate",
+                             unit="frame", delay=1.0, disable=not progress, leave=False):
+            if sun_k is not None:
+                options["lightsource"] = sun_k
+            r = plot_surface(s, *ranges_, **options, **fixed).draw()
+            samples += r.stats["samples"]
+            yield r.rgba
+    # (to an .mp4 the frames are written as they come, a long clip never held)
+    out, written = _collect(made(), frames, first.size, output, fps)
     anim = Animation(out, times, fps, {"samples": samples,
                                        "seconds": _time.perf_counter() - start,
                                        "camera": fixed})
-    if output is not None:
+    if output is not None and not written:
         anim.save(output)
     return anim

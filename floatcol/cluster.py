@@ -252,20 +252,28 @@ def _assemble(got, W, H, t0, n_bands):
 
 def render_frames(tasks, client):
     """Animation frames on ``client``: each task (frame_task's arguments) a future, the
-    pictures gathered in order."""
-    futures = [client.submit(frame_task, *task, pure=False) for task in tasks]
-    return client.gather(futures)
+    pictures fetched in order (_in_order)."""
+    return _in_order([client.submit(frame_task, *task, pure=False) for task in tasks])
 
 
 def flight_frames(hf, cameras, options, client):
     """A flight's frames (fc.fly_through) on ``client``: the height field sent to
     every worker once (scattered: a worker keeps its pyramid and its shadow texture
-    from one frame to the next, as here), each frame a task; (rgba, samples) gathered
-    in order."""
+    from one frame to the next, as here), each frame a task; (rgba, samples) fetched
+    in order (_in_order)."""
     held = client.scatter(hf, broadcast=True)
-    futures = [client.submit(flight_task, held, camera, options, pure=False)
-               for camera in cameras]
-    return client.gather(futures)
+    return _in_order([client.submit(flight_task, held, camera, options, pure=False)
+                      for camera in cameras])
+
+
+def _in_order(futures):
+    """The futures' results in order, each fetched when its turn comes and then let go
+    (the cluster forgets it), so that a long clip written as it comes is not held whole
+    here or on the workers."""
+    for k in range(len(futures)):
+        future, futures[k] = futures[k], None
+        yield future.result()
+        future.release()
 
 
 def flight_task(hf, camera, options):

@@ -199,7 +199,8 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
     (``vert_exag``, once for the clip), looking along the curve (``heading`` None;
     ``look_ahead``: toward its point that far ahead, turning into sharp corners
     early) or toward one compass heading, ``pitch`` degrees up with a horizontal field of view
-    ``fov``. ``output``: a .gif or .mp4 file to write, ``fps`` frames a second; other
+    ``fov``. ``output``: a .gif or .mp4 file to write (an .mp4 as the frames come: a
+    long flight is never held, animate._collect), ``fps`` frames a second; other
     options as fc.terrain's (texture=, shadows=, objects=, antialias=False for the
     ray march's point samples, ...). ``client``: a dask.distributed Client, the frames
     its tasks (the height field sent to each worker once: floatcol/cluster.py), the
@@ -210,7 +211,7 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
 
     from tqdm.auto import tqdm
 
-    from .animate import ANIMATION_FORMATS, Animation, _check_fps, _check_memory
+    from .animate import ANIMATION_FORMATS, Animation, _check_fps, _check_memory, _collect
     from .camera import flight
     from .output import check_output
     from .view import check_size
@@ -225,26 +226,33 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
     hf, exag = _landscape(source, vert_exag, extent, nodata, geographic)
     positions, headings, along = flight(hf, path, frames, heading=heading, above=above,
                                         closed=closed, look_ahead=look_ahead)
-    _check_memory(frames, size)
+    _check_memory(frames, size, output)
     cameras = [dict(position=tuple(float(x) for x in pos), heading=float(head), pitch=pitch,
                     fov=fov, near=near, size=size) for pos, head in zip(positions, headings)]
-    out = []
     samples = 0
     if client is not None:
-        from .cluster import _check_client, flight_frames
+        from .cluster import _check_client
         _check_client(client)
-        for rgba, n in flight_frames(hf, cameras, options, client):
-            out.append(rgba)
-            samples += n
-    for camera in tqdm(cameras if client is None else (), desc="floatcol fly_through",
-                       unit="frame", delay=1.0, disable=not progress, leave=False):
-        r = terrain(hf, vert_exag=1.0, fly=camera, **options).draw()
-        samples += r.stats["samples"]
-        out.append(r.rgba)
+
+    def made():
+        nonlocal samples
+        if client is not None:
+            from .cluster import flight_frames
+            for rgba, n in flight_frames(hf, cameras, options, client):
+                samples += n
+                yield rgba
+            return
+        for camera in tqdm(cameras, desc="floatcol fly_through", unit="frame", delay=1.0,
+                           disable=not progress, leave=False):
+            r = terrain(hf, vert_exag=1.0, fly=camera, **options).draw()
+            samples += r.stats["samples"]
+            yield r.rgba
+    # (to an .mp4 the frames are written as they come, a long flight never held)
+    out, written = _collect(made(), frames, size, output, fps)
     anim = Animation(out, along, fps, {"samples": samples, "positions": positions,
                                        "headings": headings, "vert_exag": exag,
                                        "seconds": time.perf_counter() - start})
-    if output is not None:
+    if output is not None and not written:
         anim.save(output)
     return anim
 

@@ -1,5 +1,6 @@
 """Time-varying surfaces: one compilation, one camera, the right frames."""
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -109,6 +110,77 @@ def test_a_clip_too_big_to_hold_is_refused_before_it_renders(tmp_path, monkeypat
         fc.animate("sin(x - t)", ("x", -1, 1), ("y", -1, 1), size=(20, 16), frames=10,
                    output=tmp_path / "big.gif", progress=False)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_clip_too_big_to_hold_is_written_to_an_mp4_as_it_comes(tmp_path, monkeypatch):
+    """To an MP4 a clip's frames go to the encoder as they are rendered, so one too big
+    to hold is not refused: its frames are read back from the file when asked, within
+    a few levels of the pictures (H.264), at their own odd size (the video's even one
+    cropped). Kept frames and copies of the file are the same frames; a GIF of it is
+    refused as the clip would have been."""
+    anim_mod = sys.modules["floatcol.animate"]
+    kw = dict(t=(0, 1), size=(21, 15), frames=6, progress=False)
+    held = fc.animate("sin(3*x - t)*y", ("x", -1, 1), ("y", -1, 1), **kw)
+    monkeypatch.setattr(anim_mod, "fits", lambda need: need < 6 * 21 * 15 * 4)
+    with pytest.raises(ValueError, match="6 frames of 21x15 take"):
+        fc.animate("sin(3*x - t)*y", ("x", -1, 1), ("y", -1, 1), output=tmp_path / "a.gif",
+                   **kw)
+    monkeypatch.setattr(anim_mod, "KEEP_BYTES", 0)
+    anim = fc.animate("sin(3*x - t)*y", ("x", -1, 1), ("y", -1, 1),
+                      output=tmp_path / "a.mp4", **kw)
+    assert not isinstance(anim.frames, list) and len(anim) == 6
+    back = list(anim.frames)
+    assert len(back) == 6 and all(f.shape == (15, 21, 4) and f.dtype == np.uint8 for f in back)
+    assert all((f[..., 3] == 255).all() for f in back)
+    for f, g in zip(back, held.frames):
+        a = g[..., 3:4] / 255.0
+        over_white = g[..., :3] * a + 255 * (1 - a)
+        # measured: 2.8-3.4 levels on average (a tiny picture; H.264 at quality 8, its
+        # colour at half the resolution)
+        assert np.abs(f[..., :3] - over_white).mean() < 5
+    assert not np.array_equal(back[0], back[3])
+    assert np.array_equal(anim.frames[-1], back[5]) and np.array_equal(anim.frames[2], back[2])
+    assert [f.shape for f in anim.frames[1:3]] == [(15, 21, 4)] * 2
+    with pytest.raises(IndexError):
+        anim.frames[6]
+    anim.save(tmp_path / "copy.mp4")              # the file itself, not encoded again
+    assert (tmp_path / "copy.mp4").read_bytes() == (tmp_path / "a.mp4").read_bytes()
+    assert anim.save(tmp_path / "a.mp4") == str(tmp_path / "a.mp4")
+    with pytest.raises(ValueError, match="6 frames of 21x15 take"):
+        anim.save(tmp_path / "a.gif")
+    assert "data:video/mp4;base64" in anim._repr_html_()
+    monkeypatch.setattr(anim_mod, "EMBED_BYTES", 10)
+    assert "6 frames in" in anim._repr_html_() and "a.mp4" in anim._repr_html_()
+    monkeypatch.undo()
+    anim.save(tmp_path / "a.gif")
+    assert Image.open(tmp_path / "a.gif").n_frames == 6
+    # a clip short enough keeps its pictures too: the same frames as without a file
+    kept = fc.animate("sin(3*x - t)*y", ("x", -1, 1), ("y", -1, 1),
+                      output=tmp_path / "k.mp4", **kw)
+    assert isinstance(kept.frames, list)
+    assert all(np.array_equal(a, b) for a, b in zip(kept.frames, held.frames))
+    assert len(anim_mod._FileFrames(str(tmp_path / "k.mp4"), 6, (15, 21))[0:6]) == 6
+
+
+def test_a_failed_clip_leaves_no_mp4(tmp_path, monkeypatch):
+    """A clip that fails while its frames are written (here the third frame's render)
+    leaves no file, not even the encoder's temporary one."""
+    import floatcol.plot as plot_mod
+    anim_mod = sys.modules["floatcol.animate"]
+    calls = []
+    real = anim_mod.plot_surface
+
+    def failing(*args, **kw):
+        calls.append(1)
+        if len(calls) == 4:                     # (the first is the camera's fit)
+            raise ValueError("the third frame fails")
+        return real(*args, **kw)
+    monkeypatch.setattr(anim_mod, "plot_surface", failing)
+    with pytest.raises(ValueError, match="third frame"):
+        fc.animate("sin(x - t)", ("x", -1, 1), ("y", -1, 1), size=(20, 16), frames=5,
+                   output=tmp_path / "a.mp4", progress=False)
+    assert list(tmp_path.iterdir()) == []
+    assert plot_mod.plot_surface is real
 
 
 def test_a_clip_holds_no_surface_a_frame(monkeypatch):

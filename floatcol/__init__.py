@@ -10,7 +10,7 @@ from .scene import Layer, Scene
 from .plot import SurfacePlot, plot_surface, plot_trisurf, plot_wireframe
 from .render import Render, render
 from .surface import HeightField, Surface, as_surface
-from .terrain import fly_through, read_dem, terrain
+from .terrain import fly_through, lonlat, read_dem, terrain
 from .objects import Mesh, box, marker, pole, tree
 from .view import View
 
@@ -27,6 +27,6 @@ def __getattr__(name):
 
 __all__ = ["Animation", "Camera", "HeightField", "Layer", "Light", "Material", "Mesh", "Quality",
            "Render", "Scene", "Surface", "SurfacePlot", "SympyBackend", "View", "__version__",
-           "animate", "as_surface", "box", "composite", "fly", "fly_through", "marker", "pole",
-           "tree", "plot_surface", "plot_trisurf", "plot_wireframe", "read_dem", "render",
+           "animate", "as_surface", "box", "composite", "fly", "fly_through", "lonlat", "marker",
+           "pole", "tree", "plot_surface", "plot_trisurf", "plot_wireframe", "read_dem", "render",
            "render_many", "render_scene", "terrain"]

@@ -40,6 +40,12 @@ class UsageError(Exception):
 
 
 class _Parser(argparse.ArgumentParser):
+    def __init__(self, *args, **kw):
+        super().__init__(*args, **kw)
+        # a value that starts with a minus and a digit is a value, not an option (as
+        # Python 3.13's argparse has it): --fly -84.3:36.5, --u -5:5
+        self._negative_number_matcher = re.compile(r"^-\.?\d")
+
     def error(self, message):          # one line, exit 2, no usage dump
         raise UsageError(message)
 
@@ -297,6 +303,9 @@ def build_parser():
                         "--elev, --azim and --proj (Guedes 1997; sampling march). Given "
                         "again: waypoints of a flight, written as a .gif or .mp4 clip of "
                         "--frames frames along a smooth curve through them")
+    t.add_argument("--degrees", action="store_true",
+                   help="--fly's U:V are longitude:latitude in degrees (a DEM whose "
+                        "coordinates are degrees: fc.lonlat); W stays a height")
     t.add_argument("--heading", type=_value("heading"), default=None,
                    help="fly: compass heading in degrees clockwise from north (default 0; "
                         "a flight's: along its curve)")
@@ -552,6 +561,12 @@ def _animate(args):
 
 
 def _terrain(args):
+    if args.degrees:
+        if args.fly is None:
+            raise UsageError("--degrees says --fly's U:V are longitude:latitude: give --fly")
+        import floatcol as fc
+        args.fly = [fc.lonlat(args.file, p[0], p[1], extent=args.extent) + tuple(p[2:])
+                    for p in args.fly]
     if args.fly is not None and len(args.fly) > 1:
         return _flight(args)
     if os.path.splitext(args.output)[1].lower() in ANIMATION_OUTPUTS:

@@ -80,13 +80,49 @@ def read_dem(path, *, extent=None, nodata=None, vert_exag=1.0, geographic=None):
         meta["geographic"] = (max(abs(west), abs(east)) <= 180 and max(abs(south), abs(north))
                               <= 90 and abs(east - west) / max(nx - 1, 1) < 0.1
                               and "extent" in meta)
+    degrees = None
     if meta["geographic"]:
+        degrees = (west, east, south, north)
         west, east, south, north = _metres(west, east, south, north)
     # north-up rows turned to run south to north; a reversed extent flips back
     hf = HeightField(z[::-1] * vert_exag, u=(west, east), v=(south, north))
     hf.dem = {"extent": (west, east, south, north), "geographic": meta["geographic"],
-              "vert_exag": vert_exag, "shape": z.shape}
+              "vert_exag": vert_exag, "shape": z.shape, "degrees": degrees}
     return hf
+
+
+def lonlat(dem, lon, lat, *, extent=None, geographic=None):
+    """(u, v): where longitude ``lon`` and latitude ``lat`` (degrees; numbers or
+    arrays) lie on a DEM whose coordinates were degrees, in its metres from the
+    south-west corner (read_dem's), for ``fly=``, a flight's waypoints, objects'
+    positions. ``dem``: a HeightField read by read_dem (or fc.terrain's), or a DEM file
+    read as fc.terrain reads it (``extent``, ``geographic`` as read_dem's). A point
+    outside the DEM is where it would be. ValueError where the DEM's coordinates were
+    not degrees."""
+    if not isinstance(dem, HeightField):
+        dem, _ = _landscape(dem, 1.0, extent, None, geographic)
+    info = getattr(dem, "dem", None)
+    degrees = info.get("degrees") if info else None
+    if degrees is None:
+        (ua, ub), (va, vb) = dem.default_domain
+        raise ValueError("the DEM's coordinates are not degrees of longitude and latitude: "
+                         f"give points in its own units (it spans u {ua:.6g} to {ub:.6g}, "
+                         f"v {va:.6g} to {vb:.6g})")
+    try:
+        lon = np.asarray(lon, dtype=float)
+        lat = np.asarray(lat, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"lon and lat must be numbers of degrees, got {lon!r}, {lat!r}") \
+            from None
+    if not (np.isfinite(lon).all() and np.isfinite(lat).all()):
+        raise ValueError("lon and lat must be finite numbers of degrees")
+    west, _, south, _ = degrees
+    per_lon, per_lat = _per_degree(*degrees)
+    u = (lon - west) * per_lon
+    v = (lat - south) * per_lat
+    if u.ndim == 0 and v.ndim == 0:
+        return float(u), float(v)
+    return u, v
 
 
 def _smooth_allowed(kw):
@@ -481,12 +517,18 @@ def _geokeys(directory):
 
 
 def _metres(west, east, south, north):
-    """A geographic extent in degrees as metres from its south-west corner (the
-    length of a degree at the middle latitude, WGS 84)."""
+    """A geographic extent in degrees as metres from its south-west corner."""
+    per_lon, per_lat = _per_degree(west, east, south, north)
+    return 0.0, (east - west) * per_lon, 0.0, (north - south) * per_lat
+
+
+def _per_degree(west, east, south, north):
+    """The metres in a degree of longitude and of latitude at a geographic extent's
+    middle latitude (WGS 84)."""
     phi = math.radians(0.5 * (south + north))
     per_lat = 111132.954 - 559.822 * math.cos(2 * phi) + 1.175 * math.cos(4 * phi)
     per_lon = 111412.84 * math.cos(phi) - 93.5 * math.cos(3 * phi)
-    return 0.0, (east - west) * per_lon, 0.0, (north - south) * per_lat
+    return per_lon, per_lat
 
 
 def _extent(extent):

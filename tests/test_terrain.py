@@ -317,6 +317,52 @@ def test_a_dem_flown_over_in_one_call_and_one_command(tmp_path, capsys):
     assert "nothing" not in capsys.readouterr().err
 
 
+def test_longitude_and_latitude_on_a_dem_in_degrees(tmp_path, capsys):
+    """fc.lonlat puts a point given in degrees where read_dem put the DEM's heights (its
+    metres from the south-west corner): a peak at one node of a north-up grid of
+    0.001-degree cells is found at its longitude and latitude, the corners at the
+    extent's. The CLI's --degrees draws what the call at the converted point draws, and
+    --fly takes a negative longitude as a value."""
+    z = np.zeros((61, 81))
+    z[10, 30] = 500.0                              # row 10 from the north, column 30
+    ext = (10.0, 10.08, 45.0, 45.06)
+    hf = fc.read_dem(z, extent=ext)
+    assert hf.dem["geographic"] and hf.dem["degrees"] == ext
+    u, v = fc.lonlat(hf, 10.030, 45.050)
+    assert float(hf.evaluate(np.array([u]), np.array([v]))[0]) == pytest.approx(500.0)
+    (ua, ub), (va, vb) = hf.default_domain
+    assert fc.lonlat(hf, 10.0, 45.0) == (0.0, 0.0)
+    corner = fc.lonlat(hf, [10.0, 10.08], [45.0, 45.06])
+    assert np.allclose(corner, [[ua, ub], [va, vb]], rtol=1e-12)
+    assert ub == pytest.approx(0.08 * 78_850, rel=2e-3)       # a degree of longitude at 45°
+    assert vb == pytest.approx(0.06 * 111_132, rel=2e-3)
+    np.save(tmp_path / "z.npy", z)
+    assert fc.lonlat(tmp_path / "z.npy", 10.03, 45.05, extent=ext) == (u, v)
+    for dem, kw in ((tmp_path / "z.npy", {}), (fc.HeightField(z, u=(0, 8), v=(0, 6)), {})):
+        with pytest.raises(ValueError, match="not degrees"):
+            fc.lonlat(dem, 10.0, 45.0, **kw)
+    with pytest.raises(ValueError, match="finite"):
+        fc.lonlat(hf, float("nan"), 45.0)
+    # Jacksboro's DEM is in degrees; the command line takes them with --degrees
+    j = fc.lonlat(JACKSBORO, -84.3, 36.55)
+    assert 0 < j[0] < 29978.5 and 0 < j[1] < 31719
+    p = fc.terrain(JACKSBORO, vert_exag=2, size=(96, 54),
+                   fly=dict(position=j, heading=45, above=900))
+    out = tmp_path / "deg.png"
+    assert main(["terrain", JACKSBORO, "--vert-exag", "2", "--degrees", "--fly",
+                 "-84.3:36.55", "--heading", "45", "--above", "900", "--size", "96x54", "-o",
+                 str(out)]) == 0
+    from PIL import Image
+    assert np.array_equal(np.asarray(Image.open(out).convert("RGBA")), p.draw().rgba)
+    capsys.readouterr()
+    for argv in (["--degrees"], ["--degrees", "--fly", "1:2"]):
+        dem = JACKSBORO if len(argv) == 1 else str(tmp_path / "z.npy")
+        assert main(["terrain", dem] + argv + ["-o", str(tmp_path / "bad.png")]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith("floatcol: error:"), err
+        assert not os.path.exists(tmp_path / "bad.png")
+
+
 def test_a_flight_goes_at_a_steady_speed_through_its_waypoints():
     from floatcol.camera import _catmull_rom, flight
     flat = fc.HeightField(np.zeros((101, 101)), u=(0, 1000), v=(0, 1000))

@@ -75,7 +75,8 @@ class Animation:
                         f"({os.path.getsize(path) / 2**20:.0f} MB)</p>")
             with open(path, "rb") as fh:
                 data = base64.b64encode(fh.read()).decode("ascii")
-            return f'<video controls autoplay loop muted src="data:video/mp4;base64,{data}"/>'
+            return (f'<video controls autoplay loop muted src="data:video/mp4;base64,{data}">'
+                    '</video>')
 
         buf = io.BytesIO()
         _save_gif(self.frames, buf, self.fps)
@@ -229,8 +230,12 @@ class _FileFrames:
             frames.close()
 
     def __getitem__(self, k):
-        if isinstance(k, slice):
-            return [self[i] for i in range(*k.indices(self.n))]
+        if isinstance(k, slice):                # (the file decoded once)
+            wanted = range(*k.indices(self.n))
+            if not wanted:
+                return []
+            got = {i: f for i, f in zip(range(max(wanted) + 1), self) if i in wanted}
+            return [got[i] for i in wanted]
         k = operator.index(k)
         if k < 0:
             k += self.n

@@ -141,6 +141,8 @@ def test_a_clip_too_big_to_hold_is_written_to_an_mp4_as_it_comes(tmp_path, monke
     assert not np.array_equal(back[0], back[3])
     assert np.array_equal(anim.frames[-1], back[5]) and np.array_equal(anim.frames[2], back[2])
     assert [f.shape for f in anim.frames[1:3]] == [(15, 21, 4)] * 2
+    assert all(np.array_equal(a, back[i]) for a, i in zip(anim.frames[::-2], (5, 3, 1)))
+    assert anim.frames[4:2] == []
     with pytest.raises(IndexError):
         anim.frames[6]
     anim.save(tmp_path / "copy.mp4")              # the file itself, not encoded again

@@ -176,6 +176,13 @@ def terrain_case(rng: random.Random) -> dict:
         kw["azim"] = _odd(rng, lambda: rng.uniform(-360, 360))
         kw["projection"] = rng.choice(["orthographic", "perspective"])
     c["kwargs"] = kw
+    if c["call"] == "terrain" and rng.random() < 0.3:
+        # a DEM in degrees (or, past the poles, not), its fly eye placed by fc.lonlat
+        cell = rng.choice([1e-4, 1e-3, 0.05])
+        lon0, lat0 = rng.uniform(-180, 179), rng.uniform(-92, 88)
+        extent[:] = [lon0, lon0 + cell * (nx - 1), lat0, lat0 + cell * (ny - 1)]
+        c["lonlat"] = [_odd(rng, lambda: rng.uniform(extent[0] - cell, extent[1] + cell)),
+                       _odd(rng, lambda: rng.uniform(extent[2] - cell, extent[3] + cell))]
     if c["call"] == "fly":
         u0, u1, v0, v1 = (x if math.isfinite(x) else 0.0 for x in extent)
         def near(a, b):                 # (a coordinate on the map or beside it)
@@ -264,6 +271,9 @@ def _terrain_call(c):
     if c["call"] == "terrain":
         if exag is not None:
             kw["vert_exag"] = exag
+        if "lonlat" in c:
+            at = fc.lonlat(fc.read_dem(z, extent=(w, e, s, n)), *c["lonlat"])
+            kw["fly"] = dict(position=at, size=kw.pop("size"))
         return fc.terrain(z, extent=(w, e, s, n), **kw).draw()
     hf = fc.HeightField(z, u=(w, e), v=(n, s))          # rows north-up
     if c["call"] == "flight":

@@ -223,7 +223,7 @@ class _FileFrames:
         frames = imageio_ffmpeg.read_frames(self.path)
         try:
             W, H = next(frames)["size"]
-            for k, raw in zip(range(self.n), frames):
+            for _, raw in zip(range(self.n), frames):
                 rgb = np.frombuffer(raw, dtype=np.uint8).reshape(H, W, 3)[:h, :w]
                 yield np.concatenate([rgb, opaque], axis=2)
         finally:
@@ -351,7 +351,8 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     ``client``: a dask.distributed Client: the frames are rendered as its tasks (each
     worker compiles the expression once; floatcol/cluster.py), the same pictures in
     the same order. A clip whose pictures would not fit in the machine's memory is a
-    ValueError before its first frame, unless it is written to an .mp4. Returns an :class:`Animation`.
+    ValueError before its first frame, unless it is written to an .mp4. Returns an
+    :class:`Animation`.
     """
     import time as _time
 

@@ -247,15 +247,20 @@ def test_the_gallery_on_two_workers(client, tmp_path):
     assert (tmp_path / "cli" / "img" / "saddle.png").is_file()
 
 
-def test_sixty_frames_on_two_workers(client):
+def test_sixty_frames_on_two_workers(client, tmp_path):
+    """The workers' frames, fetched in order and written to the MP4 as they come, are
+    the frames drawn here."""
+    import imageio_ffmpeg
     kw = dict(t=(0, 6.28), frames=60, size=(64, 48), progress=False,
               lightsource=lambda t: (t * 57.3, 30), shadows=True)
     here = fc.animate("sin(x*y + t)", ("x", -2, 2), ("y", -2, 2), **kw)
-    there = fc.animate("sin(x*y + t)", ("x", -2, 2), ("y", -2, 2), client=client, **kw)
+    there = fc.animate("sin(x*y + t)", ("x", -2, 2), ("y", -2, 2), client=client,
+                       output=tmp_path / "c.mp4", **kw)
     assert len(there.frames) == 60
     for a, b in zip(here.frames, there.frames):
         assert np.array_equal(np.asarray(a), np.asarray(b))
     assert here.stats["samples"] == there.stats["samples"]
+    assert len(list(imageio_ffmpeg.read_frames(str(tmp_path / "c.mp4")))) == 1 + 60
 
 
 def test_a_flight_on_two_workers(client):

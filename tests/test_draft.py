@@ -77,6 +77,26 @@ def test_draft_picture_is_close_to_the_kernels(drafts, monkeypatch):
     assert d.stats["w_limits"] == pytest.approx(k.stats["w_limits"], abs=0.02)
 
 
+def test_a_draft_finds_the_surface_at_the_domains_edge(drafts, monkeypatch):
+    """README's demo (plot_surface's perspective view, what the CLI's first command
+    draws as a draft): near the domain's edge a column plane's line leans far from the
+    vertical, and Newton's iteration from s = 0 settled on the surface continued
+    beyond the edge, so the draft's left corner was a ragged fringe 122 pixels short
+    of the kernels' edge in one column. The draft now looks for the root on the part
+    of the line inside the domain, as the kernels do (_root_inside): the coverage of
+    every column within 15 pixels of the kernels' at 400x300 (measured 15; 44 before),
+    99.97 % of the pixels agreeing (99.83 % before)."""
+    kw = dict(size=(400, 300))
+    d = fc.plot_surface("3*sin(u*cos(v))", ("u", -5, 5), ("v", -5, 5), **kw).draw()
+    monkeypatch.setattr(warmup, "drafting", lambda: False)
+    k = fc.plot_surface("3*sin(u*cos(v))", ("u", -5, 5), ("v", -5, 5), **kw).draw()
+    assert (d.stats["engine"], k.stats["engine"]) == ("draft", "kernels")
+    assert d.view.orthographic is False
+    apart = (d.side != 0) != (k.side != 0)
+    assert apart.sum(axis=0).max() <= 16
+    assert 1.0 - apart.mean() > 0.9995
+
+
 def test_draft_holes_and_nothing_are_no_crash(drafts):
     r = fc.render("log(u*v)", u=(-2, 2), v=(-2, 2), size=(80, 60))
     assert r.stats["engine"] == "draft" and (r.side != 0).any() and (r.side == 0).any()

@@ -8,7 +8,8 @@ vectorised over a block of columns at a time instead of one column after another
 - every sample of every plane at once: orthographic, the column line's point (eq. 3)
   with the planes clipped to the column's stretch of the domain, so its ends are the
   domain's edge; perspective, Newton's iteration on Pi (eq. 9, ERRATA 2) from s = 0,
-  all samples together;
+  all samples together, and where it settles outside the domain or not at all, the
+  root on the part of the line inside the domain (the kernels' _root_inside);
 - two successive valid samples of a column span the pixel centres between their
   screen rows; front to back, the first span over a pixel paints it (what the
   floating interval [ymin, ymax] decides, holes and several runs included);
@@ -149,6 +150,17 @@ def _points(surface, view, x0, t):
             step = ~conv & ~bad
             s.flat[idx[step]] = si[step] - g[step] / dg[step]
             idx = idx[step]
+        # where Newton settled outside the domain or not at all, the root on the part
+        # of the plane's line inside the domain (the kernels' _root_inside): near the
+        # domain's edge, where the line leans far from the vertical, Newton from s = 0
+        # finds the surface continued beyond the edge
+        ok = done & np.isfinite(w)
+        r = r0 + k * np.where(ok, w - cw, 0.0)
+        inside, _, _ = _inside(view, cu + r * cb + t * sb, cv - r * sb + t * cb)
+        again = ~(ok & inside) & (k != 0.0) & np.isfinite(r0)
+        if again.any():
+            evals += _root_inside(surface, view, r0, k, t, np.flatnonzero(again), w, wu, wv,
+                                  done)
         ok = done & np.isfinite(w)
         s = np.where(ok, w - cw, 0.0)
         r = r0 + k * s
@@ -173,6 +185,77 @@ def _points(surface, view, x0, t):
         lam = np.abs(lx * nx + ly * ny + lz * nz)
     return dict(y=np.where(ok, ypix, np.nan), z=z, u=u, v=v, w=w, nx=nx, ny=ny, nz=nz,
                 lam=np.minimum(lam, 1.0), t=t + 0.0 * z, ok=ok), evals
+
+
+def _root_inside(surface, view, r0, k, t, idx, w, wu, wv, done):
+    """The kernels' _root_inside (kernels/sample.py) for the samples at flat indices
+    ``idx`` of arrays of one shape: on the part of each one's line (r = r0 + k s on
+    plane t) inside the domain and the scan range, where g = f - cw - s changes sign
+    between the part's ends (an end at the scan range's bottom, top has g > 0, < 0),
+    the root by Newton's iteration kept inside the bracket (bisecting where it would
+    leave it). Writes w, wu, wv and done where one is found. Returns the evaluations."""
+    ca, sa, cb, sb = _params(view)
+    cu, cv, cw = view.center
+    (ua, ub), (va, vb) = view.domain
+    r0, k, t = r0.flat[idx], k.flat[idx], t.flat[idx]
+    # the plane's line inside the domain: r in [ra, rb] (eq. 2)
+    ra = np.full(idx.shape, -np.inf)
+    rb = np.full(idx.shape, np.inf)
+    for base, slope, lo, hi in ((cu + t * sb, cb, ua, ub), (cv + t * cb, -sb, va, vb)):
+        if abs(slope) < 1e-15:
+            ra = np.where((base < lo) | (base > hi), np.inf, ra)
+        else:
+            l1, l2 = (lo - base) / slope, (hi - base) / slope
+            ra = np.maximum(ra, np.minimum(l1, l2))
+            rb = np.minimum(rb, np.maximum(l1, l2))
+    flo, fhi = view.f_range                      # (scan_range)
+    spare = 0.25 * (fhi - flo) + 1e-9
+    s_lo, s_hi = flo - spare - cw, fhi + spare - cw
+    with np.errstate(invalid="ignore"):
+        s1, s2 = (ra - r0) / k, (rb - r0) / k
+        a = np.maximum(np.minimum(s1, s2), s_lo)
+        b = np.minimum(np.maximum(s1, s2), s_hi)
+    keep = np.flatnonzero(a < b)
+    idx, r0, k, t, a, b = idx[keep], r0[keep], k[keep], t[keep], a[keep], b[keep]
+    evals = 0
+
+    def g_at(s, sel):
+        nonlocal evals
+        r = r0[sel] + k[sel] * s
+        wi, wui, wvi = surface.evaluate(cu + r * cb + t[sel] * sb, cv - r * sb + t[sel] * cb,
+                                        derivatives=True)
+        evals += sel.size
+        return (wi - cw) - s, wi, wui, wvi
+
+    ga = np.ones(a.shape)
+    gb = -np.ones(b.shape)
+    for end, g_end, beyond in ((a, ga, a > s_lo), (b, gb, b < s_hi)):
+        sel = np.flatnonzero(beyond)
+        g_end[sel] = g_at(end[sel], sel)[0]
+    go = np.flatnonzero(np.isfinite(ga) & np.isfinite(gb) & ((ga >= 0.0) != (gb >= 0.0)))
+    inner = (a > s_lo) & (b < s_hi)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s = np.where(inner, a - ga * (b - a) / (gb - ga), 0.5 * (a + b))
+    for _ in range(NEWTON_ITERS):
+        if go.size == 0:
+            break
+        g, wi, wui, wvi = g_at(s[go], go)
+        fin = np.isfinite(wi) & np.isfinite(g)
+        conv = fin & (np.abs(k[go] * g) * view.scale <= NEWTON_TOL_PX)
+        hit = go[conv]
+        w.flat[idx[hit]], wu.flat[idx[hit]], wv.flat[idx[hit]] = wi[conv], wui[conv], wvi[conv]
+        done.flat[idx[hit]] = True
+        more = fin & ~conv
+        go, g, wui, wvi = go[more], g[more], wui[more], wvi[more]
+        same = (g >= 0.0) == (ga[go] >= 0.0)
+        a[go] = np.where(same, s[go], a[go])
+        ga[go] = np.where(same, g, ga[go])
+        b[go] = np.where(same, b[go], s[go])
+        dg = k[go] * (wui * cb - wvi * sb) - 1.0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s_n = s[go] - g / dg
+        s[go] = np.where((s_n > a[go]) & (s_n < b[go]), s_n, 0.5 * (a[go] + b[go]))
+    return evals
 
 
 def _samples(surface, view, cols, t):

@@ -270,6 +270,9 @@ class HeightField(Surface):
             out = HeightField(self.hf * c, u=(ua * a, ub * a), v=(va * b, vb * b))
             source, c0 = getattr(self, "stretched_from", (self, 1.0))
             out.stretched_from = (source, c0 * c)  # (its level-of-detail pyramid: passes/area.py)
+            if a == 1.0 and b == 1.0 and getattr(self, "dem", None) is not None:
+                # heights exaggerated, the DEM's ground unchanged (terrain.lonlat)
+                out.dem = dict(self.dem, vert_exag=self.dem["vert_exag"] * c)
             while len(kept) >= SCALED_KEPT:
                 kept.pop(next(iter(kept)))
             kept[key] = out

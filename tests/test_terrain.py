@@ -346,6 +346,11 @@ def test_longitude_and_latitude_on_a_dem_in_degrees(tmp_path, capsys):
     # Jacksboro's DEM is in degrees; the command line takes them with --degrees
     j = fc.lonlat(JACKSBORO, -84.3, 36.55)
     assert 0 < j[0] < 29978.5 and 0 < j[1] < 31719
+    # a plot's height field (its heights exaggerated) is the same ground
+    assert fc.lonlat(fc.terrain(JACKSBORO, vert_exag=2).surface, -84.3, 36.55) == j
+    assert fc.read_dem(JACKSBORO).scaled(1, 1, 3).dem["vert_exag"] == 3
+    with pytest.raises(ValueError, match="not degrees"):
+        fc.lonlat(fc.read_dem(JACKSBORO).scaled(2, 1, 1), -84.3, 36.55)
     p = fc.terrain(JACKSBORO, vert_exag=2, size=(96, 54),
                    fly=dict(position=j, heading=45, above=900))
     out = tmp_path / "deg.png"

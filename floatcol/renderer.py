@@ -132,8 +132,8 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     if not many and texture is None and draft.supports(quality, views[0]) \
             and quality.device == "cpu" \
             and scene.camera.columns is None \
-            and not first.colored and not first.overlaid and not first.smooth_shading \
-            and _drafting():
+            and not first.colored and not first.overlaid \
+            and _drafting(quality.area, first.smooth_shading):
         return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
                             stacklevel + 1), texture
     if not many:
@@ -396,8 +396,9 @@ def empty_message(surface, domain):
             "ranges)")
 
 
-def _drafting():
-    """warmup.drafting(), warmup imported here: ``python -m floatcol.warmup`` runs that
-    module as __main__, which Python warns about where the package imported it first."""
+def _drafting(area, smooth):
+    """warmup.drafting(area, smooth), warmup imported here: ``python -m floatcol.warmup``
+    runs that module as __main__, which Python warns about where the package imported
+    it first."""
     from . import warmup
-    return warmup.drafting()
+    return warmup.drafting(area, smooth)

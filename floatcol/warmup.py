@@ -31,14 +31,23 @@ LOCK_NAME = "floatcol-warmup.pid"
 _child = None       # the warm-up process this process started (subprocess.Popen)
 
 
-def _dispatchers():
-    """The kernels a default picture runs (what must be compiled or cached)."""
-    from .kernels.column import column_kernel
+def _dispatchers(area=False, smooth=False):
+    """The kernels a default picture runs (what must be compiled or cached); with
+    ``area``, an area-sampled one's (fc.terrain's default) instead; with ``smooth``,
+    smooth shading's too."""
     from .kernels.shade import centre_kernel, finish_kernel
-    from .kernels.silhouette import silhouette_kernel
+    extra = ()
+    if smooth:
+        from .kernels.normals import smooth_normals_kernel
+        extra = (smooth_normals_kernel,)
     # (with the functions they take as values: _jit.kernel_calling)
+    if area:
+        from .kernels.area import area_kernel
+        return (area_kernel, *area_kernel.called, finish_kernel) + extra
+    from .kernels.column import column_kernel
+    from .kernels.silhouette import silhouette_kernel
     return (column_kernel, *column_kernel.called, finish_kernel, silhouette_kernel,
-            *silhouette_kernel.called, centre_kernel)
+            *silhouette_kernel.called, centre_kernel) + extra
 
 
 def every_kernel():
@@ -69,10 +78,11 @@ def every_kernel():
     return found
 
 
-def kernels_ready():
-    """Whether every kernel of a default picture is compiled in this process or in
-    Numba's disk cache (its index file is there)."""
-    for d in _dispatchers():
+def kernels_ready(area=False, smooth=False):
+    """Whether every kernel of a default picture (_dispatchers' of an area-sampled or
+    smooth-shaded one) is compiled in this process or in Numba's disk cache (its
+    index file is there)."""
+    for d in _dispatchers(area, smooth):
         if d.signatures:
             continue
         try:
@@ -152,12 +162,14 @@ def _spawn(lock):
     return True
 
 
-def drafting():
-    """Whether this render should be a draft: drafts are on, the kernels are not
-    ready, and a warm-up process is compiling them (started here if none is). Once
-    this process's own warm-up has ended without leaving the kernels (it failed),
-    renders compile in the process instead."""
-    if os.environ.get(ENV, "1") == "0" or kernels_ready():
+def drafting(area=False, smooth=False):
+    """Whether this render (``area``-sampled, ``smooth``-shaded) should be a draft:
+    drafts are on, its kernels are not ready, and a warm-up process is compiling them
+    (started here if none is; it compiles the default picture's and then the
+    area-sampled smooth-shaded one's: fc.terrain's). Once this process's own warm-up
+    has ended without leaving the kernels (it failed), renders compile in the process
+    instead."""
+    if os.environ.get(ENV, "1") == "0" or kernels_ready(area, smooth):
         return False
     if _child is not None:
         return _child.poll() is None
@@ -178,11 +190,16 @@ WARM_RENDERS = (
 
 
 def warm():
-    """Compile (or load) the kernels of WARM_RENDERS into Numba's cache."""
+    """Compile (or load) the kernels of WARM_RENDERS into Numba's cache, then those of
+    an area-sampled, smooth-shaded height field (fc.terrain's default picture)."""
+    import numpy as np
+
     import floatcol as fc
     for kw in WARM_RENDERS:
         r = fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), **kw)
         r.intensity
+    z = np.sin(np.linspace(0, 6, 17))[:, None] * np.cos(np.linspace(0, 5, 17))[None, :]
+    fc.render(fc.HeightField(z), size=(64, 48), antialias="area", smooth_shading=True).intensity
 
 
 def warm_all():

@@ -40,7 +40,7 @@ CASES = [
 @pytest.fixture
 def drafts(monkeypatch):
     """Every render a draft (as while a fresh install's kernels compile)."""
-    monkeypatch.setattr(warmup, "drafting", lambda: True)
+    monkeypatch.setattr(warmup, "drafting", lambda *a: True)
 
 
 @pytest.mark.parametrize("expr,u,v,elev,azim,proj,min_agree,min_psnr", CASES)
@@ -67,7 +67,7 @@ def test_draft_picture_is_close_to_the_kernels(drafts, monkeypatch):
     antialias)."""
     kw = dict(u=(-4, 4), v=(-4, 4), size=(200, 150), elev=35, azim=25)
     d = fc.render("sin(u)*cos(v)", **kw)
-    monkeypatch.setattr(warmup, "drafting", lambda: False)
+    monkeypatch.setattr(warmup, "drafting", lambda *a: False)
     k = fc.render("sin(u)*cos(v)", **kw)
     assert (d.stats["engine"], k.stats["engine"]) == ("draft", "kernels")
     assert d.rgba.shape == k.rgba.shape and d.rgba.dtype == np.uint8
@@ -88,7 +88,7 @@ def test_a_draft_finds_the_surface_at_the_domains_edge(drafts, monkeypatch):
     99.97 % of the pixels agreeing (99.83 % before)."""
     kw = dict(size=(400, 300))
     d = fc.plot_surface("3*sin(u*cos(v))", ("u", -5, 5), ("v", -5, 5), **kw).draw()
-    monkeypatch.setattr(warmup, "drafting", lambda: False)
+    monkeypatch.setattr(warmup, "drafting", lambda *a: False)
     k = fc.plot_surface("3*sin(u*cos(v))", ("u", -5, 5), ("v", -5, 5), **kw).draw()
     assert (d.stats["engine"], k.stats["engine"]) == ("draft", "kernels")
     assert d.view.orthographic is False
@@ -107,8 +107,14 @@ def test_draft_holes_and_nothing_are_no_crash(drafts):
 
 def test_draft_only_where_it_can(drafts):
     """A line drawing, shadows, translucency and several surfaces wait for the
-    kernels; so does a perspective viewpoint over the domain."""
+    kernels; so does a perspective viewpoint over the domain. An area-sampled or
+    smooth-shaded picture (fc.terrain's default) is drawn, at the pixel centres."""
     kw = dict(u=(-2, 2), v=(-2, 2), size=(48, 36))
+    area = fc.render("u*v", antialias="area", **kw)
+    assert area.stats["engine"] == "draft"
+    assert np.array_equal(area.rgba, fc.render("u*v", antialias=False, **kw).rgba)
+    dem = np.add.outer(np.sin(np.arange(9.0)), np.cos(np.arange(12.0)))
+    assert fc.terrain(dem, size=(48, 36)).draw().stats["engine"] == "draft"
     assert fc.render("u*v", method="horizon", **kw).stats["engine"] == "kernels"
     assert fc.render("u*v", shadows=True, lightsource=(30, 40), **kw).stats["engine"] == \
         "kernels"
@@ -120,9 +126,11 @@ def test_draft_only_where_it_can(drafts):
 
 def test_drafting_policy(monkeypatch, tmp_path):
     monkeypatch.setenv(warmup.ENV, "1")
-    monkeypatch.setattr(warmup, "kernels_ready", lambda: True)
+    asked = []
+    monkeypatch.setattr(warmup, "kernels_ready", lambda *a: asked.append(a) or True)
     assert not warmup.drafting()                      # kernels there: no draft
-    monkeypatch.setattr(warmup, "kernels_ready", lambda: False)
+    assert not warmup.drafting(True, True) and asked == [(False, False), (True, True)]
+    monkeypatch.setattr(warmup, "kernels_ready", lambda *a: False)
     monkeypatch.setenv(warmup.ENV, "0")
     assert not warmup.drafting()                      # drafts off: compile here
     monkeypatch.setenv(warmup.ENV, "1")
@@ -148,6 +156,31 @@ def test_drafting_policy(monkeypatch, tmp_path):
     assert warmup.drafting() and len(started) == 1    # running: no second one
     warmup._child.code = 1                            # it failed: compile here
     assert not warmup.drafting()
+
+
+def test_an_area_sampled_pictures_kernels_are_its_own(monkeypatch):
+    """kernels_ready asks for the kernels the picture runs: the area pass's (and not
+    the column pass's) for an area-sampled one, the smooth normals' for a smooth-shaded
+    one; the warm-up compiles fc.terrain's default picture's after the default one's
+    (a fresh install's first terrain took 17 s, compiling them in the process, while
+    the warm-up compiled the column pass's beside it)."""
+    from floatcol.kernels.area import area_kernel
+    from floatcol.kernels.column import column_kernel
+    from floatcol.kernels.normals import smooth_normals_kernel
+    assert column_kernel in warmup._dispatchers() and area_kernel not in warmup._dispatchers()
+    assert area_kernel in warmup._dispatchers(True) and column_kernel not in \
+        warmup._dispatchers(True)
+    assert smooth_normals_kernel in warmup._dispatchers(True, True)
+    assert smooth_normals_kernel in warmup._dispatchers(False, True)
+    import types
+    drawn = []
+    monkeypatch.setattr(fc, "render", lambda *a, **k: drawn.append((a, k)) or
+                        types.SimpleNamespace(intensity=None))
+    warmup.warm()
+    last_args, last = drawn[-1]
+    assert isinstance(last_args[0], fc.HeightField)
+    assert last["antialias"] == "area" and last["smooth_shading"] is True
+    assert len(drawn) == len(warmup.WARM_RENDERS) + 1
 
 
 def test_lock_of_another_process(monkeypatch, tmp_path):
@@ -199,22 +232,26 @@ import os, time
 import floatcol as fc
 from floatcol import warmup
 r = fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(320, 240))
+t = fc.terrain(fc.HeightField([[0, 1, 0], [1, 2, 1], [0, 1, 0]]), size=(160, 100)).draw()
 lock = warmup._lock_path()
-print(r.stats["engine"], (r.side != 0).mean(), open(lock).read() if os.path.exists(lock) else 0)
+print(r.stats["engine"], (r.side != 0).mean(), t.stats["engine"], (t.side != 0).mean(),
+      open(lock).read() if os.path.exists(lock) else 0)
 """
 
 
 def test_fresh_install_draws_a_draft_and_starts_the_warmup(tmp_path):
-    """A process with an empty kernel cache: its first picture is a draft, and the
-    warm-up process runs (here stopped at once: the suite compiles its own)."""
+    """A process with an empty kernel cache: its first picture is a draft, fc.terrain's
+    too (area-sampled and smooth-shaded), and the warm-up process runs (here stopped at
+    once: the suite compiles its own)."""
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"), FLOATCOL_DRAFT="1")
     out = subprocess.run([sys.executable, "-c", COLD], env=env, capture_output=True,
                          text=True, timeout=300)
     assert out.returncode == 0, out.stderr
-    engine, seen, pid = out.stdout.split()
+    engine, seen, t_engine, t_seen, pid = out.stdout.split()
     pid = int(pid)
     try:
         assert engine == "draft" and float(seen) > 0.2
+        assert t_engine == "draft" and float(t_seen) > 0.1        # (measured 0.167)
         assert pid > 0 and warmup._alive(pid)
     finally:
         if pid > 0:

@@ -66,7 +66,7 @@ def test_every_pass_colours_the_lower_side_alike(kw):
 def test_a_draft_colours_the_lower_side_alike(monkeypatch):
     """A fresh install's draft (passes/draft.py) too."""
     from floatcol import warmup
-    monkeypatch.setattr(warmup, "drafting", lambda: True)
+    monkeypatch.setattr(warmup, "drafting", lambda *a: True)
     same = _render(upper_color="red", lower_color="same")
     red = _render(upper_color="red", lower_color="red")
     assert same.stats["engine"] == "draft" and (same.side < 0).sum() > 300

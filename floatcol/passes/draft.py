@@ -17,10 +17,11 @@ vectorised over a block of columns at a time instead of one column after another
   v, w, normal, intensity) and is lit and coloured as finish_kernel does (shade.py's
   _light and _side_rgb, written here in numpy).
 
-What it leaves out, until the kernels are there: the corrections of section 5, the
-bisection of run ends at holes and (perspective) at the domain's edge, folds, the
-antialiasing, adaptive sampling. Against the ray caster it scores about 40 dB where
-the kernels score 63 (tests/test_draft.py measures it). Scenes it does not draw (a
+What it leaves out, until the kernels are there: the corrections of section 5, folds,
+the antialiasing (an area-sampled picture is drawn at the pixel centres), smooth
+shading (a height field's cells lit by their own partials), adaptive sampling. Against
+the ray caster it scores about 40 dB where the kernels score 63 (tests/test_draft.py
+measures it). Scenes it does not draw (a
 line drawing, shadows, translucency, several surfaces, a perspective viewpoint over
 the domain) wait for the kernels as before.
 """
@@ -46,8 +47,9 @@ BLOCK_SAMPLES = 1 << 20
 def supports(quality, view):
     """Whether the draft can draw this layer's picture: a shaded opaque picture
     without shadows (the caller checks those), and in perspective a viewpoint in
-    front of the whole domain (one ascending pass per column)."""
-    if quality.method != "column" or quality.area:
+    front of the whole domain (one ascending pass per column). An area-sampled one is
+    drawn at the pixel centres, as every draft is (no antialiasing)."""
+    if quality.method != "column":
         return False
     if view.orthographic:
         return True

@@ -180,13 +180,21 @@ def main():
     # fc.terrain's default picture (area-sampled, smooth-shaded: other kernels, which
     # the warm-up compiles after the default picture's)
     rows = []
+    ready = [sys.executable, "-c", "from floatcol import warmup; "
+             "print(warmup.kernels_ready(True, True))"]
     with tempfile.TemporaryDirectory() as cache:
         t_start = time.perf_counter()
         imp, first, engine, pid = run_terrain(cache)
         rows.append(("fresh install, drafts on", imp, first, engine))
+        own = None
         while pid and alive(pid):
+            if own is None and subprocess.run(
+                    ready, env=dict(os.environ, NUMBA_CACHE_DIR=cache), capture_output=True,
+                    text=True).stdout.strip() == "True":
+                own = time.perf_counter() - t_start
             time.sleep(0.5)
         warm = time.perf_counter() - t_start
+        own = warm if own is None else own
         rows.append(("next process, after the warm-up",) + run_terrain(cache)[:3])
     with tempfile.TemporaryDirectory() as cache:
         rows.append(("fresh install, drafts off",) + run_terrain(cache, drafts=False)[:3])
@@ -195,8 +203,9 @@ def main():
     print("| process | import s | first picture s | engine |\n|---|---|---|---|")
     for name, imp, first, engine in rows:
         print(f"| {name} | {imp:.2f} | {first:.2f} | {engine} |")
-    print(f"\nThe warm-up process had every kernel of both in the cache {warm:.0f} s after "
-          "the fresh process started.")
+    print(f"\nThe warm-up process (the terrain's kernels first) had them in the cache "
+          f"{own:.0f} s after the fresh process started, every kernel of both {warm:.0f} s "
+          "after.")
 
 
 if __name__ == "__main__":

@@ -129,9 +129,10 @@ def _running_elsewhere(lock):
     return False
 
 
-def _spawn(lock):
-    """Start the warm-up process, or find another process's running; False where
-    none can be started."""
+def _spawn(lock, area_first=False):
+    """Start the warm-up process (compiling an area-sampled, smooth-shaded picture's
+    kernels first where ``area_first``: the picture that starts it), or find another
+    process's running; False where none can be started."""
     global _child
     for _ in range(2):                  # a stale lock (its process gone) is removed once
         try:
@@ -146,7 +147,9 @@ def _spawn(lock):
         return False
     try:
         env = dict(os.environ, **{ENV: "0"})
-        _child = subprocess.Popen([sys.executable, "-m", "floatcol.warmup", lock], env=env,
+        first = ["--area-first"] if area_first else []
+        _child = subprocess.Popen([sys.executable, "-m", "floatcol.warmup", lock] + first,
+                                  env=env,
                                   stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                   stderr=subprocess.DEVNULL, start_new_session=True,
                                   close_fds=True)
@@ -165,8 +168,8 @@ def _spawn(lock):
 def drafting(area=False, smooth=False):
     """Whether this render (``area``-sampled, ``smooth``-shaded) should be a draft:
     drafts are on, its kernels are not ready, and a warm-up process is compiling them
-    (started here if none is; it compiles the default picture's and then the
-    area-sampled smooth-shaded one's: fc.terrain's). Once this process's own warm-up
+    (started here if none is; it compiles the default picture's and the
+    area-sampled smooth-shaded one's, fc.terrain's, this render's first). Once this process's own warm-up
     has ended without leaving the kernels (it failed), renders compile in the process
     instead."""
     if os.environ.get(ENV, "1") == "0" or kernels_ready(area, smooth):
@@ -176,7 +179,7 @@ def drafting(area=False, smooth=False):
     lock = _lock_path()
     if lock is None:
         return False
-    return _spawn(lock)
+    return _spawn(lock, area or smooth)
 
 
 #: What the warm-up renders: the kernels of the default pictures, in both
@@ -189,17 +192,24 @@ WARM_RENDERS = (
 )
 
 
-def warm():
-    """Compile (or load) the kernels of WARM_RENDERS into Numba's cache, then those of
-    an area-sampled, smooth-shaded height field (fc.terrain's default picture)."""
+def warm(area_first=False):
+    """Compile (or load) the kernels of WARM_RENDERS into Numba's cache and those of an
+    area-sampled, smooth-shaded height field (fc.terrain's default picture: about 20 s
+    of the 52 on 2 cores), the latter first where ``area_first``."""
     import numpy as np
 
     import floatcol as fc
-    for kw in WARM_RENDERS:
-        r = fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), **kw)
-        r.intensity
-    z = np.sin(np.linspace(0, 6, 17))[:, None] * np.cos(np.linspace(0, 5, 17))[None, :]
-    fc.render(fc.HeightField(z), size=(64, 48), antialias="area", smooth_shading=True).intensity
+
+    def default():
+        for kw in WARM_RENDERS:
+            fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), **kw).intensity
+
+    def area():
+        z = np.sin(np.linspace(0, 6, 17))[:, None] * np.cos(np.linspace(0, 5, 17))[None, :]
+        fc.render(fc.HeightField(z), size=(64, 48), antialias="area",
+                  smooth_shading=True).intensity
+    for step in ((area, default) if area_first else (default, area)):
+        step()
 
 
 def warm_all():
@@ -283,20 +293,27 @@ def warm_all_steps():
 
 
 def main(argv=None):
-    """``python -m floatcol.warmup [--all]``: warm() (warm_all() with --all). The
-    warm-up process that drafting() starts passes its lock file's path, which it
-    removes when done (nothing else is ever removed: a path that is not a lock file
-    named LOCK_NAME is an error)."""
+    """``python -m floatcol.warmup [--all] [--area-first]``: warm() (warm_all() with
+    --all; the area-sampled picture's kernels first with --area-first). The warm-up
+    process that drafting() starts passes its lock file's path, which it removes when
+    done (nothing else is ever removed: a path that is not a lock file named LOCK_NAME
+    is an error)."""
     argv = sys.argv[1:] if argv is None else argv
     everything = "--all" in argv
-    rest = [a for a in argv if a != "--all"]
+    area_first = "--area-first" in argv
+    rest = [a for a in argv if a not in ("--all", "--area-first")]
     if len(rest) > 1 or rest and os.path.basename(rest[0]) != LOCK_NAME:
-        print(f"usage: python -m floatcol.warmup [--all] (got {' '.join(argv)})",
-              file=sys.stderr)
+        print(f"usage: python -m floatcol.warmup [--all] [--area-first] "
+              f"(got {' '.join(argv)})", file=sys.stderr)
         return 2
     os.environ[ENV] = "0"
     try:
-        warm_all() if everything else warm()
+        if everything:
+            warm_all()
+        elif area_first:
+            warm(area_first=True)
+        else:
+            warm()
     finally:
         if rest:
             try:

@@ -152,10 +152,17 @@ def test_drafting_policy(monkeypatch, tmp_path):
     monkeypatch.setattr(warmup.subprocess, "Popen", Child)
     assert warmup.drafting()                          # starts the warm-up, draws a draft
     assert started and started[0][1:3] == ["-m", "floatcol.warmup"]
+    assert started[0][3:] == [str(lock)]              # the default picture's kernels first
     assert lock.read_text() == str(Child.pid)
     assert warmup.drafting() and len(started) == 1    # running: no second one
     warmup._child.code = 1                            # it failed: compile here
     assert not warmup.drafting()
+    # a terrain's picture (area-sampled, smooth-shaded) starts one that compiles its
+    # kernels first
+    monkeypatch.setattr(warmup, "_child", None)
+    lock.unlink()
+    assert warmup.drafting(True, True)
+    assert started[1][3:] == [str(lock), "--area-first"]
 
 
 def test_an_area_sampled_pictures_kernels_are_its_own(monkeypatch):
@@ -181,6 +188,12 @@ def test_an_area_sampled_pictures_kernels_are_its_own(monkeypatch):
     assert isinstance(last_args[0], fc.HeightField)
     assert last["antialias"] == "area" and last["smooth_shading"] is True
     assert len(drawn) == len(warmup.WARM_RENDERS) + 1
+    drawn.clear()
+    warmup.warm(area_first=True)
+    assert drawn[0][1]["antialias"] == "area" and len(drawn) == len(warmup.WARM_RENDERS) + 1
+    done = []
+    monkeypatch.setattr(warmup, "warm", lambda **k: done.append(k))
+    assert warmup.main(["--area-first"]) == 0 and done == [dict(area_first=True)]
 
 
 def test_lock_of_another_process(monkeypatch, tmp_path):

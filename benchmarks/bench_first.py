@@ -147,6 +147,23 @@ def compile_main(plain):
         print(f"| {float(sec):.1f} | {n} | {name} |")
 
 
+def wait_for(cache, pid, area, t_start):
+    """(seconds until the kernels of the default picture, or with ``area`` of the
+    terrain's, are in the cache; seconds until the warm-up process ``pid`` ends), from
+    t_start."""
+    check = [sys.executable, "-c", "from floatcol import warmup; "
+             f"print(warmup.kernels_ready({area}, {area}))"]
+    own = None
+    while pid and alive(pid):
+        if own is None and subprocess.run(
+                check, env=dict(os.environ, NUMBA_CACHE_DIR=cache), capture_output=True,
+                text=True).stdout.strip() == "True":
+            own = time.perf_counter() - t_start
+        time.sleep(0.5)
+    done = time.perf_counter() - t_start
+    return (done if own is None else own), done
+
+
 def alive(pid):
     try:
         os.kill(pid, 0)
@@ -161,9 +178,7 @@ def main():
         t_start = time.perf_counter()
         imp, first, e1, second, e2, pid, _ = run(cache)
         rows.append(("fresh install, drafts on", imp, first, e1, second, e2))
-        while pid and alive(pid):
-            time.sleep(0.5)
-        warm = time.perf_counter() - t_start
+        own, warm = wait_for(cache, pid, False, t_start)
         imp, first, e1, second, e2, _, _ = run(cache)
         rows.append(("next process, kernels cached", imp, first, e1, second, e2))
     with tempfile.TemporaryDirectory() as cache:
@@ -175,26 +190,16 @@ def main():
     print("|---|---|---|---|---|---|")
     for name, imp, first, e1, second, e2 in rows:
         print(f"| {name} | {imp:.2f} | {first:.2f} | {e1} | {second:.2f} | {e2} |")
-    print(f"\nThe warm-up process had the kernels in the cache {warm:.0f} s after the fresh "
-          "process started.")
+    print(f"\nThe warm-up process had the kernels in the cache {own:.0f} s after the fresh "
+          f"process started (and a terrain's too {warm:.0f} s after).")
     # fc.terrain's default picture (area-sampled, smooth-shaded: other kernels, which
     # the warm-up compiles after the default picture's)
     rows = []
-    ready = [sys.executable, "-c", "from floatcol import warmup; "
-             "print(warmup.kernels_ready(True, True))"]
     with tempfile.TemporaryDirectory() as cache:
         t_start = time.perf_counter()
         imp, first, engine, pid = run_terrain(cache)
         rows.append(("fresh install, drafts on", imp, first, engine))
-        own = None
-        while pid and alive(pid):
-            if own is None and subprocess.run(
-                    ready, env=dict(os.environ, NUMBA_CACHE_DIR=cache), capture_output=True,
-                    text=True).stdout.strip() == "True":
-                own = time.perf_counter() - t_start
-            time.sleep(0.5)
-        warm = time.perf_counter() - t_start
-        own = warm if own is None else own
+        own, warm = wait_for(cache, pid, True, t_start)
         rows.append(("next process, after the warm-up",) + run_terrain(cache)[:3])
     with tempfile.TemporaryDirectory() as cache:
         rows.append(("fresh install, drafts off",) + run_terrain(cache, drafts=False)[:3])

@@ -9,7 +9,8 @@ an empty Numba cache has its first 1920x1080 picture.
    in the process (what every fresh install did before);
 
 and the same for fc.terrain's default picture of matplotlib's sample DEM (area-sampled
-and smooth-shaded: kernels the warm-up compiles after the default picture's).
+and smooth-shaded) and then a fly camera's view of it (the level-of-detail engine):
+kernels the warm-up compiles besides the default picture's, the terrain's first.
 
     python benchmarks/bench_first.py
     python benchmarks/bench_first.py --compile   # where the compile's time goes
@@ -54,22 +55,27 @@ import floatcol as fc
 from floatcol import warmup
 from matplotlib.cbook import get_sample_data
 t1 = time.perf_counter()
-r = fc.terrain(get_sample_data("jacksboro_fault_dem.npz", asfileobj=False)).draw()
+dem = get_sample_data("jacksboro_fault_dem.npz", asfileobj=False)
+r = fc.terrain(dem).draw()
 t2 = time.perf_counter()
+f = fc.terrain(dem, fly=dict(position=(15000, 2500), above=900)).draw()
+t3 = time.perf_counter()
 lock = warmup._lock_path()
 pid = open(lock).read().strip() if lock and os.path.exists(lock) else "0"
-print(f"{t1 - t0:.2f} {t2 - t1:.2f} {r.stats['engine']} {pid or 0}")
+print(f"{t1 - t0:.2f} {t2 - t1:.2f} {r.stats['engine']} {t3 - t2:.2f} {f.stats['engine']} "
+      f"{pid or 0}")
 """
 
 
 def run_terrain(cache, drafts=True):
-    """(import s, first picture s, engine, warm-up pid) of fc.terrain's default picture
-    (area-sampled, smooth-shaded) in a new process."""
+    """(import s, first picture s, engine, then a fly camera's s, engine, warm-up pid)
+    of fc.terrain's default picture (area-sampled, smooth-shaded) and a fly view in a
+    new process."""
     env = dict(os.environ, NUMBA_CACHE_DIR=cache, FLOATCOL_DRAFT="1" if drafts else "0")
     out = subprocess.run([sys.executable, "-c", TERRAIN_SCRIPT], env=env, check=True,
                          capture_output=True, text=True).stdout.split()
-    imp, first, engine, pid = out[-4:]
-    return float(imp), float(first), engine, int(pid)
+    imp, first, engine, fly, f_engine, pid = out[-6:]
+    return float(imp), float(first), engine, float(fly), f_engine, int(pid)
 
 
 def run(cache, drafts=True):
@@ -147,21 +153,22 @@ def compile_main(plain):
         print(f"| {float(sec):.1f} | {n} | {name} |")
 
 
-def wait_for(cache, pid, area, t_start):
-    """(seconds until the kernels of the default picture, or with ``area`` of the
-    terrain's, are in the cache; seconds until the warm-up process ``pid`` ends), from
-    t_start."""
-    check = [sys.executable, "-c", "from floatcol import warmup; "
-             f"print(warmup.kernels_ready({area}, {area}))"]
-    own = None
+def wait_for(cache, pid, kinds, t_start):
+    """([seconds until the kernels of each geometry pass of ``kinds`` are in the cache
+    (warmup.kernels_ready, smooth-shaded but for "column")], seconds until the warm-up
+    process ``pid`` ends), from t_start."""
+    checks = {k: [sys.executable, "-c", "from floatcol import warmup; "
+                  f"print(warmup.kernels_ready({k!r}, {k != 'column'}))"] for k in kinds}
+    own = {}
     while pid and alive(pid):
-        if own is None and subprocess.run(
-                check, env=dict(os.environ, NUMBA_CACHE_DIR=cache), capture_output=True,
-                text=True).stdout.strip() == "True":
-            own = time.perf_counter() - t_start
+        for k, check in checks.items():
+            if k not in own and subprocess.run(
+                    check, env=dict(os.environ, NUMBA_CACHE_DIR=cache), capture_output=True,
+                    text=True).stdout.strip() == "True":
+                own[k] = time.perf_counter() - t_start
         time.sleep(0.5)
     done = time.perf_counter() - t_start
-    return (done if own is None else own), done
+    return [own.get(k, done) for k in kinds], done
 
 
 def alive(pid):
@@ -178,7 +185,7 @@ def main():
         t_start = time.perf_counter()
         imp, first, e1, second, e2, pid, _ = run(cache)
         rows.append(("fresh install, drafts on", imp, first, e1, second, e2))
-        own, warm = wait_for(cache, pid, False, t_start)
+        (own,), warm = wait_for(cache, pid, ["column"], t_start)
         imp, first, e1, second, e2, _, _ = run(cache)
         rows.append(("next process, kernels cached", imp, first, e1, second, e2))
     with tempfile.TemporaryDirectory() as cache:
@@ -191,26 +198,28 @@ def main():
     for name, imp, first, e1, second, e2 in rows:
         print(f"| {name} | {imp:.2f} | {first:.2f} | {e1} | {second:.2f} | {e2} |")
     print(f"\nThe warm-up process had the kernels in the cache {own:.0f} s after the fresh "
-          f"process started (and a terrain's too {warm:.0f} s after).")
-    # fc.terrain's default picture (area-sampled, smooth-shaded: other kernels, which
-    # the warm-up compiles after the default picture's)
+          f"process started (every kernel, a terrain's and a fly camera's too, {warm:.0f} s "
+          "after).")
+    # fc.terrain's default picture (area-sampled, smooth-shaded) and a fly view: other
+    # kernels, which the warm-up compiles besides the default picture's
     rows = []
     with tempfile.TemporaryDirectory() as cache:
         t_start = time.perf_counter()
-        imp, first, engine, pid = run_terrain(cache)
-        rows.append(("fresh install, drafts on", imp, first, engine))
-        own, warm = wait_for(cache, pid, True, t_start)
-        rows.append(("next process, after the warm-up",) + run_terrain(cache)[:3])
+        imp, first, engine, fly, f_engine, pid = run_terrain(cache)
+        rows.append(("fresh install, drafts on", imp, first, engine, fly, f_engine))
+        (own, own_fly), warm = wait_for(cache, pid, ["area", "lod"], t_start)
+        rows.append(("next process, after the warm-up",) + run_terrain(cache)[:5])
     with tempfile.TemporaryDirectory() as cache:
-        rows.append(("fresh install, drafts off",) + run_terrain(cache, drafts=False)[:3])
+        rows.append(("fresh install, drafts off",) + run_terrain(cache, drafts=False)[:5])
     print("\nfc.terrain(matplotlib's jacksboro_fault_dem.npz): its default picture, "
-          "1000x600\n")
-    print("| process | import s | first picture s | engine |\n|---|---|---|---|")
-    for name, imp, first, engine in rows:
-        print(f"| {name} | {imp:.2f} | {first:.2f} | {engine} |")
+          "1000x600, then a fly camera's\n")
+    print("| process | import s | first picture s | engine | then a fly view s | engine |")
+    print("|---|---|---|---|---|---|")
+    for name, imp, first, engine, fly, f_engine in rows:
+        print(f"| {name} | {imp:.2f} | {first:.2f} | {engine} | {fly:.2f} | {f_engine} |")
     print(f"\nThe warm-up process (the terrain's kernels first) had them in the cache "
-          f"{own:.0f} s after the fresh process started, every kernel of both {warm:.0f} s "
-          "after.")
+          f"{own:.0f} s after the fresh process started, a fly camera's {own_fly:.0f} s "
+          f"after, every kernel {warm:.0f} s after.")
 
 
 if __name__ == "__main__":

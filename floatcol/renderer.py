@@ -129,11 +129,11 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
                              views[0], texture)
         return render_translucent(layers, views, drawn, box, quality, background, texture,
                                   t_start, stop), texture
-    if not many and texture is None and draft.supports(quality, views[0]) \
+    if not many and texture is None and draft.supports(quality, views[0], drawn[0][0]) \
             and quality.device == "cpu" \
             and scene.camera.columns is None \
             and not first.colored and not first.overlaid \
-            and _drafting(quality.area, first.smooth_shading):
+            and _drafting(quality, first, drawn[0][0], views[0]):
         return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
                             stacklevel + 1), texture
     if not many:
@@ -258,10 +258,9 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     # sampling="lod": the fly-through's level-of-detail pass where it can draw the
     # view (antialiased: by Cohen-Or's area weights along the columns); "march": its
     # ray march where that can draw it (point sampled), else as "lod"
-    by_march = quality.sampling == "march" and method == "column" \
-        and march.supports(surface, view, aa_cov or quality.area)
-    by_lod = not by_march and quality.sampling in ("lod", "march") and method == "column" \
-        and lod.supports(surface, view)
+    kind = geometry_kind(quality, material, surface, view)
+    by_march = kind == "march"
+    by_lod = kind == "lod"
     by_area = quality.area or (by_lod and aa_cov)
     if by_march:
         geom = march.march_pass(surface, view, vp, buffers, device=quality.device)
@@ -396,9 +395,24 @@ def empty_message(surface, domain):
             "ranges)")
 
 
-def _drafting(area, smooth):
-    """warmup.drafting(area, smooth), warmup imported here: ``python -m floatcol.warmup``
-    runs that module as __main__, which Python warns about where the package imported
-    it first."""
+def _drafting(quality, material, surface, view):
+    """warmup.drafting of this picture's kernels (its geometry pass's, smooth shading's),
+    warmup imported here: ``python -m floatcol.warmup`` runs that module as __main__,
+    which Python warns about where the package imported it first."""
     from . import warmup
-    return warmup.drafting(area, smooth)
+    return warmup.drafting(geometry_kind(quality, material, surface, view),
+                           material.smooth_shading)
+
+
+def geometry_kind(quality, material, surface, view):
+    """The geometry pass that draws a layer (passes/): "march" (the ray march: a fly
+    camera's point-sampled view of a height field), "lod" (the level-of-detail engine:
+    a fly camera's other views), "area" (area sampling) or "column"."""
+    aa_cov, _ = quality.antialiasing(material.shading)
+    if quality.method == "column" and quality.sampling == "march" \
+            and march.supports(surface, view, aa_cov or quality.area):
+        return "march"
+    if quality.method == "column" and quality.sampling in ("lod", "march") \
+            and lod.supports(surface, view):
+        return "lod"
+    return "area" if quality.area else "column"

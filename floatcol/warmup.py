@@ -31,19 +31,25 @@ LOCK_NAME = "floatcol-warmup.pid"
 _child = None       # the warm-up process this process started (subprocess.Popen)
 
 
-def _dispatchers(area=False, smooth=False):
-    """The kernels a default picture runs (what must be compiled or cached); with
-    ``area``, an area-sampled one's (fc.terrain's default) instead; with ``smooth``,
-    smooth shading's too."""
+def _dispatchers(kind="column", smooth=False):
+    """The kernels a picture runs (what must be compiled or cached) whose geometry
+    pass is ``kind`` (renderer.geometry_kind: "column", a default picture's; "area",
+    an area-sampled one's, fc.terrain's default; "lod" or "march", a fly camera's),
+    with ``smooth``, smooth shading's too."""
     from .kernels.shade import centre_kernel, finish_kernel
     extra = ()
     if smooth:
         from .kernels.normals import smooth_normals_kernel
         extra = (smooth_normals_kernel,)
     # (with the functions they take as values: _jit.kernel_calling)
-    if area:
+    if kind == "area":
         from .kernels.area import area_kernel
         return (area_kernel, *area_kernel.called, finish_kernel) + extra
+    if kind in ("lod", "march"):
+        from .kernels.lod import lod_kernel
+        from .kernels.march import march_kernel
+        own = (march_kernel,) if kind == "march" else (lod_kernel, *lod_kernel.called)
+        return own + (finish_kernel,) + extra
     from .kernels.column import column_kernel
     from .kernels.silhouette import silhouette_kernel
     return (column_kernel, *column_kernel.called, finish_kernel, silhouette_kernel,
@@ -78,11 +84,11 @@ def every_kernel():
     return found
 
 
-def kernels_ready(area=False, smooth=False):
-    """Whether every kernel of a default picture (_dispatchers' of an area-sampled or
-    smooth-shaded one) is compiled in this process or in Numba's disk cache (its
+def kernels_ready(kind="column", smooth=False):
+    """Whether every kernel of a picture (_dispatchers' of its geometry pass ``kind``,
+    ``smooth``-shaded or not) is compiled in this process or in Numba's disk cache (its
     index file is there)."""
-    for d in _dispatchers(area, smooth):
+    for d in _dispatchers(kind, smooth):
         if d.signatures:
             continue
         try:
@@ -129,10 +135,10 @@ def _running_elsewhere(lock):
     return False
 
 
-def _spawn(lock, area_first=False):
-    """Start the warm-up process (compiling an area-sampled, smooth-shaded picture's
-    kernels first where ``area_first``: the picture that starts it), or find another
-    process's running; False where none can be started."""
+def _spawn(lock, first="column"):
+    """Start the warm-up process (compiling the kernels of the picture that starts it,
+    whose geometry pass is ``first``, first), or find another process's running;
+    False where none can be started."""
     global _child
     for _ in range(2):                  # a stale lock (its process gone) is removed once
         try:
@@ -147,8 +153,8 @@ def _spawn(lock, area_first=False):
         return False
     try:
         env = dict(os.environ, **{ENV: "0"})
-        first = ["--area-first"] if area_first else []
-        _child = subprocess.Popen([sys.executable, "-m", "floatcol.warmup", lock] + first,
+        order = [] if first == "column" else ["--first", first]
+        _child = subprocess.Popen([sys.executable, "-m", "floatcol.warmup", lock] + order,
                                   env=env,
                                   stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                   stderr=subprocess.DEVNULL, start_new_session=True,
@@ -165,21 +171,21 @@ def _spawn(lock, area_first=False):
     return True
 
 
-def drafting(area=False, smooth=False):
-    """Whether this render (``area``-sampled, ``smooth``-shaded) should be a draft:
-    drafts are on, its kernels are not ready, and a warm-up process is compiling them
-    (started here if none is; it compiles the default picture's and the
-    area-sampled smooth-shaded one's, fc.terrain's, this render's first). Once this process's own warm-up
-    has ended without leaving the kernels (it failed), renders compile in the process
-    instead."""
-    if os.environ.get(ENV, "1") == "0" or kernels_ready(area, smooth):
+def drafting(kind="column", smooth=False):
+    """Whether this render (its geometry pass ``kind``, ``smooth``-shaded or not)
+    should be a draft: drafts are on, its kernels are not ready, and a warm-up process
+    is compiling them (started here if none is; it compiles the kernels of a default
+    picture, of an area-sampled smooth-shaded one, fc.terrain's, and of a fly
+    camera's, this render's first). Once this process's own warm-up has ended without
+    leaving the kernels (it failed), renders compile in the process instead."""
+    if os.environ.get(ENV, "1") == "0" or kernels_ready(kind, smooth):
         return False
     if _child is not None:
         return _child.poll() is None
     lock = _lock_path()
     if lock is None:
         return False
-    return _spawn(lock, area or smooth)
+    return _spawn(lock, "lod" if kind == "march" else kind)
 
 
 #: What the warm-up renders: the kernels of the default pictures, in both
@@ -192,24 +198,36 @@ WARM_RENDERS = (
 )
 
 
-def warm(area_first=False):
-    """Compile (or load) the kernels of WARM_RENDERS into Numba's cache and those of an
-    area-sampled, smooth-shaded height field (fc.terrain's default picture: about 20 s
-    of the 52 on 2 cores), the latter first where ``area_first``."""
+#: the warm-up's pictures by the geometry pass whose kernels they compile: the default
+#: pictures (WARM_RENDERS), fc.terrain's default picture (about 20 s on 2 cores) and
+#: a fly camera's views, antialiased and point sampled (about 20 s)
+WARM_ORDER = ("column", "area", "lod")
+
+
+def warm(first="column"):
+    """Compile (or load) the kernels of WARM_RENDERS into Numba's cache, those of an
+    area-sampled, smooth-shaded height field (fc.terrain's default picture) and those
+    of a fly camera's views, ``first``'s (a WARM_ORDER entry) first."""
     import numpy as np
 
     import floatcol as fc
+    z = np.sin(np.linspace(0, 6, 17))[:, None] * np.cos(np.linspace(0, 5, 17))[None, :]
+    hf = fc.HeightField(z, u=(0, 16), v=(0, 16))
 
-    def default():
+    def column():
         for kw in WARM_RENDERS:
             fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), **kw).intensity
 
     def area():
-        z = np.sin(np.linspace(0, 6, 17))[:, None] * np.cos(np.linspace(0, 5, 17))[None, :]
-        fc.render(fc.HeightField(z), size=(64, 48), antialias="area",
-                  smooth_shading=True).intensity
-    for step in ((area, default) if area_first else (default, area)):
-        step()
+        fc.render(hf, size=(64, 48), antialias="area", smooth_shading=True).intensity
+
+    def lod():
+        cam = fc.fly(hf, (8, 1), heading=0, size=(64, 36), above=2)
+        fc.render(hf, **cam, antialias="area", smooth_shading=True).intensity
+        fc.render(hf, **cam, antialias=False, smooth_shading=True).intensity
+    steps = dict(column=column, area=area, lod=lod)
+    for name in (first,) + tuple(k for k in WARM_ORDER if k != first):
+        steps[name]()
 
 
 def warm_all():
@@ -293,25 +311,30 @@ def warm_all_steps():
 
 
 def main(argv=None):
-    """``python -m floatcol.warmup [--all] [--area-first]``: warm() (warm_all() with
-    --all; the area-sampled picture's kernels first with --area-first). The warm-up
-    process that drafting() starts passes its lock file's path, which it removes when
-    done (nothing else is ever removed: a path that is not a lock file named LOCK_NAME
-    is an error)."""
-    argv = sys.argv[1:] if argv is None else argv
+    """``python -m floatcol.warmup [--all] [--first area|lod]``: warm() (warm_all()
+    with --all; that picture's kernels first with --first). The warm-up process that
+    drafting() starts passes its lock file's path, which it removes when done
+    (nothing else is ever removed: a path that is not a lock file named LOCK_NAME is
+    an error)."""
+    argv = list(sys.argv[1:] if argv is None else argv)
     everything = "--all" in argv
-    area_first = "--area-first" in argv
-    rest = [a for a in argv if a not in ("--all", "--area-first")]
-    if len(rest) > 1 or rest and os.path.basename(rest[0]) != LOCK_NAME:
-        print(f"usage: python -m floatcol.warmup [--all] [--area-first] "
+    rest = [a for a in argv if a != "--all"]
+    first = "column"
+    if "--first" in rest:
+        k = rest.index("--first")
+        first = rest[k + 1] if k + 1 < len(rest) else ""
+        del rest[k:k + 2]
+    if len(rest) > 1 or rest and os.path.basename(rest[0]) != LOCK_NAME \
+            or first not in WARM_ORDER:
+        print(f"usage: python -m floatcol.warmup [--all] [--first area|lod] "
               f"(got {' '.join(argv)})", file=sys.stderr)
         return 2
     os.environ[ENV] = "0"
     try:
         if everything:
             warm_all()
-        elif area_first:
-            warm(area_first=True)
+        elif first != "column":
+            warm(first)
         else:
             warm()
     finally:

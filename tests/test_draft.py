@@ -129,7 +129,7 @@ def test_drafting_policy(monkeypatch, tmp_path):
     asked = []
     monkeypatch.setattr(warmup, "kernels_ready", lambda *a: asked.append(a) or True)
     assert not warmup.drafting()                      # kernels there: no draft
-    assert not warmup.drafting(True, True) and asked == [(False, False), (True, True)]
+    assert not warmup.drafting("area", True) and asked == [("column", False), ("area", True)]
     monkeypatch.setattr(warmup, "kernels_ready", lambda *a: False)
     monkeypatch.setenv(warmup.ENV, "0")
     assert not warmup.drafting()                      # drafts off: compile here
@@ -157,43 +157,76 @@ def test_drafting_policy(monkeypatch, tmp_path):
     assert warmup.drafting() and len(started) == 1    # running: no second one
     warmup._child.code = 1                            # it failed: compile here
     assert not warmup.drafting()
-    # a terrain's picture (area-sampled, smooth-shaded) starts one that compiles its
-    # kernels first
-    monkeypatch.setattr(warmup, "_child", None)
-    lock.unlink()
-    assert warmup.drafting(True, True)
-    assert started[1][3:] == [str(lock), "--area-first"]
+    # a terrain's picture (area-sampled, smooth-shaded) or a fly camera's starts one
+    # that compiles its kernels first
+    for kind, first in (("area", "area"), ("march", "lod")):
+        monkeypatch.setattr(warmup, "_child", None)
+        lock.unlink()
+        assert warmup.drafting(kind, True)
+        assert started[-1][3:] == [str(lock), "--first", first]
 
 
-def test_an_area_sampled_pictures_kernels_are_its_own(monkeypatch):
+def test_a_pictures_kernels_are_its_geometry_pass_own(monkeypatch):
     """kernels_ready asks for the kernels the picture runs: the area pass's (and not
-    the column pass's) for an area-sampled one, the smooth normals' for a smooth-shaded
-    one; the warm-up compiles fc.terrain's default picture's after the default one's
-    (a fresh install's first terrain took 17 s, compiling them in the process, while
-    the warm-up compiled the column pass's beside it)."""
+    the column pass's) for an area-sampled one, the level-of-detail engine's or the
+    ray march's for a fly camera's, the smooth normals' for a smooth-shaded one; the
+    warm-up compiles fc.terrain's default picture's and a fly camera's after the
+    default one's, or first (a fresh install's first terrain took 17 s, its first fly
+    view 18 s, compiling them in the process while the warm-up compiled the column
+    pass's beside it)."""
     from floatcol.kernels.area import area_kernel
     from floatcol.kernels.column import column_kernel
+    from floatcol.kernels.lod import lod_kernel
+    from floatcol.kernels.march import march_kernel
     from floatcol.kernels.normals import smooth_normals_kernel
     assert column_kernel in warmup._dispatchers() and area_kernel not in warmup._dispatchers()
-    assert area_kernel in warmup._dispatchers(True) and column_kernel not in \
-        warmup._dispatchers(True)
-    assert smooth_normals_kernel in warmup._dispatchers(True, True)
-    assert smooth_normals_kernel in warmup._dispatchers(False, True)
+    assert area_kernel in warmup._dispatchers("area") and column_kernel not in \
+        warmup._dispatchers("area")
+    assert lod_kernel in warmup._dispatchers("lod") and march_kernel in \
+        warmup._dispatchers("march")
+    assert smooth_normals_kernel in warmup._dispatchers("area", True)
+    assert smooth_normals_kernel not in warmup._dispatchers("area")
     import types
     drawn = []
     monkeypatch.setattr(fc, "render", lambda *a, **k: drawn.append((a, k)) or
                         types.SimpleNamespace(intensity=None))
-    warmup.warm()
-    last_args, last = drawn[-1]
-    assert isinstance(last_args[0], fc.HeightField)
-    assert last["antialias"] == "area" and last["smooth_shading"] is True
-    assert len(drawn) == len(warmup.WARM_RENDERS) + 1
-    drawn.clear()
-    warmup.warm(area_first=True)
-    assert drawn[0][1]["antialias"] == "area" and len(drawn) == len(warmup.WARM_RENDERS) + 1
+    order = {}
+    for first in warmup.WARM_ORDER:
+        drawn.clear()
+        warmup.warm(first)
+        order[first] = [("fly" if "d1" in k else "area" if k.get("antialias") == "area"
+                         else "column") for a, k in drawn]
+    n = len(warmup.WARM_RENDERS)
+    assert order["column"] == ["column"] * n + ["area", "fly", "fly"]
+    assert order["area"] == ["area"] + ["column"] * n + ["fly", "fly"]
+    assert order["lod"] == ["fly", "fly", "column"] + ["column"] * (n - 1) + ["area"]
     done = []
-    monkeypatch.setattr(warmup, "warm", lambda **k: done.append(k))
-    assert warmup.main(["--area-first"]) == 0 and done == [dict(area_first=True)]
+    monkeypatch.setattr(warmup, "warm", lambda *a: done.append(a))
+    assert warmup.main(["--first", "lod"]) == 0 and done == [("lod",)]
+    assert warmup.main(["--first", "sky"]) == 2
+
+
+def test_a_fly_cameras_view_is_drafted_on_the_lod_engines_planes(drafts, monkeypatch):
+    """A fly camera inside the scene (the eye above the ground, every ray going
+    farther with its distance) is drafted on planes a pixel's footprint apart from the
+    eye, as the level-of-detail engine's, the heights point-sampled: over matplotlib's
+    Jacksboro DEM its picture covers the kernels' pixels (measured 99.91 % agreeing, at
+    most 1 pixel apart in a column) in 2 s where the first fly view of a fresh install
+    waited 18 s for its kernels."""
+    from matplotlib.cbook import get_sample_data
+    dem = get_sample_data("jacksboro_fault_dem.npz", asfileobj=False)
+    kw = dict(fly=dict(position=(15000, 2500), above=900), size=(320, 180))
+    d = fc.terrain(dem, **kw).draw()
+    monkeypatch.setattr(warmup, "drafting", lambda *a: False)
+    k = fc.terrain(dem, **kw).draw()
+    assert (d.stats["engine"], k.stats["engine"]) == ("draft", "kernels")
+    apart = (d.side != 0) != (k.side != 0)
+    assert apart.sum(axis=0).max() <= 3 and 1.0 - apart.mean() > 0.998
+    # the planes: a footprint apart beyond the screen plane, the first at the eye
+    from floatcol.passes.draft import _planes
+    t = _planes(d.view)
+    assert t.size < 0.5 * d.view.planes and np.all(np.diff(t) > 0)
+    assert t[0] == pytest.approx(-d.view.d3 * np.cos(d.view.alpha))
 
 
 def test_lock_of_another_process(monkeypatch, tmp_path):

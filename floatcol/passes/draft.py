@@ -42,19 +42,27 @@ from .geometry import check_bytes, too_large
 DRAFT_BYTES = 160
 #: Samples (planes x columns) evaluated at once: the columns go in blocks of this size
 BLOCK_SAMPLES = 1 << 20
+#: A fly camera's planes at most (a pixel's footprint apart from the eye: a few thousand)
+MAX_DRAFT_PLANES = 20_000
 
 
-def supports(quality, view):
+def supports(quality, view, surface):
     """Whether the draft can draw this layer's picture: a shaded opaque picture
     without shadows (the caller checks those), and in perspective a viewpoint in
-    front of the whole domain (one ascending pass per column). An area-sampled one is
-    drawn at the pixel centres, as every draft is (no antialiasing)."""
+    front of the whole domain (one ascending pass per column), or a fly camera's
+    inside the scene that the level-of-detail engine draws (passes/lod.py supports:
+    the eye above the ground, every ray going farther with its distance), on planes a
+    pixel's footprint apart from the eye (_planes). An area-sampled one is drawn at
+    the pixel centres, as every draft is (no antialiasing)."""
     if quality.method != "column":
         return False
     if view.orthographic:
         return True
     t_eye = -view.d3 * math.cos(view.alpha)       # the viewpoint's t (eqs. 4, 10)
-    return view.t_range[0] > t_eye
+    if view.t_range[0] > t_eye:
+        return True
+    from . import lod
+    return lod.supports(surface, view)
 
 
 def _params(view):
@@ -314,12 +322,33 @@ def _evaluate(surface, u, v, ok):
 
 
 def _planes(view):
+    """The sampling planes: view.step apart (the column pass's), or where the eye is
+    among them (a fly camera's), from the eye a pixel's footprint apart at the
+    surface's middle height (the level-of-detail engine's, kernels/lod.py
+    plane_table, without its pyramid: the draft point-samples the heights)."""
     t0, t1 = view.t_range
-    n = max(int(math.floor((t1 - t0) / view.step + 1e-9)), 0) + 1
-    t = t0 + np.arange(n) * view.step
-    if t[-1] < t1 - 1e-6 * view.step:
-        t = np.append(t, t1)
-    return t
+    t_eye = -view.d3 * math.cos(view.alpha)
+    if view.orthographic or t0 > t_eye:
+        n = max(int(math.floor((t1 - t0) / view.step + 1e-9)), 0) + 1
+        t = t0 + np.arange(n) * view.step
+        if t[-1] < t1 - 1e-6 * view.step:
+            t = np.append(t, t1)
+        return t
+    ca, sa = math.cos(view.alpha), math.sin(view.alpha)
+    s_ref = 0.5 * (view.f_range[0] + view.f_range[1]) - view.center[2]
+    # a footprint: max(z + d3, d1) / (d1 scale) at z = s_ref sin(a) + t cos(a)
+    # (lod.footprint_at_depth), so t + c grows by a factor a plane where z + d3 >= d1
+    c = (s_ref * sa + view.d3) / ca
+    grow = 1.0 + 1.0 / (view.d1 * view.scale) * ca
+    t = max(t0, t_eye)
+    start = max(view.d1 / ca - c, t)             # where z + d3 reaches d1
+    near = np.arange(t, start, 1.0 / view.scale) if start > t else np.empty(0)
+    n = int(math.ceil(math.log((t1 + c) / (start + c)) / math.log(grow))) + 1 \
+        if t1 > start else 1
+    n = min(n, MAX_DRAFT_PLANES)
+    far = (start + c) * grow ** np.arange(n) - c
+    out = np.concatenate([near, far[far < t1], [t1]])
+    return out
 
 
 def _paint(y, pair, H):

@@ -207,7 +207,8 @@ WARM_ORDER = ("column", "area", "lod")
 def warm(first="column"):
     """Compile (or load) the kernels of WARM_RENDERS into Numba's cache, those of an
     area-sampled, smooth-shaded height field (fc.terrain's default picture) and those
-    of a fly camera's views, ``first``'s (a WARM_ORDER entry) first."""
+    of a fly camera's views, ``first``'s (a WARM_ORDER entry) first (and after a
+    terrain's, the other terrain's before the default picture's)."""
     import numpy as np
 
     import floatcol as fc
@@ -226,7 +227,10 @@ def warm(first="column"):
         fc.render(hf, **cam, antialias="area", smooth_shading=True).intensity
         fc.render(hf, **cam, antialias=False, smooth_shading=True).intensity
     steps = dict(column=column, area=area, lod=lod)
-    for name in (first,) + tuple(k for k in WARM_ORDER if k != first):
+    rest = [k for k in WARM_ORDER if k != first]
+    if first != "column":
+        rest.sort(key=lambda k: k == "column")    # (a terrain's pictures before)
+    for name in [first] + rest:
         steps[name]()
 
 

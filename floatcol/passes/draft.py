@@ -21,9 +21,10 @@ What it leaves out, until the kernels are there: the corrections of section 5, f
 the antialiasing (an area-sampled picture is drawn at the pixel centres), smooth
 shading (a height field's cells lit by their own partials), adaptive sampling. Against
 the ray caster it scores about 40 dB where the kernels score 63 (tests/test_draft.py
-measures it). Scenes it does not draw (a
-line drawing, shadows, translucency, several surfaces, a perspective viewpoint over
-the domain) wait for the kernels as before.
+measures it). A fly camera's view inside the scene is drawn on the level-of-detail
+engine's planes (_planes). Scenes it does not draw (a line drawing, shadows,
+translucency, several surfaces, textures, a perspective viewpoint over the domain that
+the lod engine does not draw either) wait for the kernels as before.
 """
 from __future__ import annotations
 
@@ -327,14 +328,14 @@ def _planes(view):
     surface's middle height (the level-of-detail engine's, kernels/lod.py
     plane_table, without its pyramid: the draft point-samples the heights)."""
     t0, t1 = view.t_range
-    t_eye = -view.d3 * math.cos(view.alpha)
-    if view.orthographic or t0 > t_eye:
+    ca, sa = math.cos(view.alpha), math.sin(view.alpha)
+    t_eye = -view.d3 * ca
+    if view.orthographic or t0 > t_eye or not ca > 1e-9:
         n = max(int(math.floor((t1 - t0) / view.step + 1e-9)), 0) + 1
         t = t0 + np.arange(n) * view.step
         if t[-1] < t1 - 1e-6 * view.step:
             t = np.append(t, t1)
         return t
-    ca, sa = math.cos(view.alpha), math.sin(view.alpha)
     s_ref = 0.5 * (view.f_range[0] + view.f_range[1]) - view.center[2]
     # a footprint: max(z + d3, d1) / (d1 scale) at z = s_ref sin(a) + t cos(a)
     # (lod.footprint_at_depth), so t + c grows by a factor a plane where z + d3 >= d1
@@ -347,8 +348,7 @@ def _planes(view):
         if t1 > start else 1
     n = min(n, MAX_DRAFT_PLANES)
     far = (start + c) * grow ** np.arange(n) - c
-    out = np.concatenate([near, far[far < t1], [t1]])
-    return out
+    return np.concatenate([near, far[far < t1], [t1]])
 
 
 def _paint(y, pair, H):

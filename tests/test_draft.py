@@ -229,6 +229,23 @@ def test_a_fly_cameras_view_is_drafted_on_the_lod_engines_planes(drafts, monkeyp
     assert t[0] == pytest.approx(-d.view.d3 * np.cos(d.view.alpha))
 
 
+def test_a_fly_draft_beside_a_tiny_dem_takes_few_planes(drafts):
+    """A fly camera 1500 m up, 100 m beside a DEM a metre wide (the terrain fuzzer's
+    case 251 of seed 4501): its planes from the eye a pixel apart up to the screen
+    plane were tens of millions (the draft ran out of memory). They start where a
+    point of the surface's heights may lie beyond the screen plane, at most
+    MAX_DRAFT_PLANES a pixel apart there."""
+    from floatcol.passes.draft import MAX_DRAFT_PLANES, _planes
+    z = np.random.default_rng(840608283).normal(size=(129, 33)) * 1e-6
+    hf = fc.HeightField(z, u=(4829.2, 4830.2), v=(-6617.7, -6616.7))
+    cam = fc.fly(hf, (4766.49, -6716.56), heading=-143.7, pitch=3.0, fov=36.9,
+                 size=(120, 90), above=1498.6)
+    r = fc.render(hf, **cam, antialias="area")
+    assert r.stats["engine"] == "draft"
+    assert len(_planes(r.view)) <= 2 * MAX_DRAFT_PLANES + 1
+    assert len(_planes(r.view)) < 10
+
+
 def test_lock_of_another_process(monkeypatch, tmp_path):
     """A running warm-up elsewhere (its pid in the lock) is waited for; a stale lock
     (its process gone) is replaced."""

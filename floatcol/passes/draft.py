@@ -341,9 +341,15 @@ def _planes(view):
     # (lod.footprint_at_depth), so t + c grows by a factor a plane where z + d3 >= d1
     c = (s_ref * sa + view.d3) / ca
     grow = 1.0 + 1.0 / (view.d1 * view.scale) * ca
-    t = max(t0, t_eye)
+    # from the first plane where a point of the surface's heights may lie beyond the
+    # screen plane (z + d3 > d1: before it nothing is drawn)
+    s_top = max((h - view.center[2]) * sa for h in view.f_range)
+    t = max(t0, t_eye, (view.d1 - view.d3 - s_top) / ca)
     start = max(view.d1 / ca - c, t)             # where z + d3 reaches d1
-    near = np.arange(t, start, 1.0 / view.scale) if start > t else np.empty(0)
+    # (a pixel apart before the screen plane, where nothing is drawn: at most
+    # MAX_DRAFT_PLANES planes there too, as beyond it)
+    n_near = min(int(math.ceil((start - t) * view.scale)), MAX_DRAFT_PLANES) if start > t else 0
+    near = np.linspace(t, start, n_near, endpoint=False)
     n = int(math.ceil(math.log((t1 + c) / (start + c)) / math.log(grow))) + 1 \
         if t1 > start else 1
     n = min(n, MAX_DRAFT_PLANES)

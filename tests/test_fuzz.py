@@ -48,7 +48,8 @@ N_TERRAIN = 300
 #: what the terrain cases found: a tree 1e50 tall on a DEM (its screen corners
 #: converted to pixel indices beyond an int's range: a segfault), a fly camera one
 #: pixel wide (a division by zero), on-the-fly shadows seen by a fly camera (1.4e11
-#: cells of the sweep: killed for memory)
+#: cells of the sweep: killed for memory), a fly camera's draft beside a DEM a metre
+#: wide (tens of millions of planes before its screen plane: killed for memory)
 TERRAIN_REPRODUCERS = [
     {"seed": 159015466, "shape": [64, 33], "heights": "relief",
      "extent": [-4893.2, -4894.2, 1609.5, 1859.5], "call": "terrain",
@@ -62,6 +63,11 @@ TERRAIN_REPRODUCERS = [
      "call": "fly", "kwargs": {"shadows": "on-the-fly", "lightsource": [315, 35]},
      "fly": {"position": [15000.0, 7500.0], "heading": 10.0, "pitch": -10.0, "fov": 60.0,
              "size": [64, 36], "above": 300.0}},
+    {"seed": 840608283, "shape": [129, 33], "heights": "tiny",
+     "extent": [4829.2, 4830.2, -6617.7, -6616.7], "call": "fly", "draft": True,
+     "kwargs": {"antialias": "area", "smooth_shading": False},
+     "fly": {"position": [4766.4854493240255, -6716.556149471783], "heading": -143.748,
+             "pitch": 2.971, "fov": 36.89, "size": [120, 90], "above": 1498.626}},
 ]
 
 

@@ -429,8 +429,12 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
             r = plot_surface(s, *ranges_, **options, **fixed).draw()
             samples += r.stats["samples"]
             yield r.rgba
-    # (to an .mp4 the frames are written as they come, a long clip never held)
-    out, written = _collect(made(), frames, first.size, output, fps)
+    # (to an .mp4 the frames are written as they come, a long clip never held; all of
+    # them the kernels' pictures, none a fresh install's draft; warmup imported here, as
+    # renderer._drafting says)
+    from .warmup import full_quality
+    with full_quality():
+        out, written = _collect(made(), frames, first.size, output, fps)
     anim = Animation(out, times, fps, {"samples": samples,
                                        "seconds": _time.perf_counter() - start,
                                        "camera": fixed})

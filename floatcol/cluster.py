@@ -280,7 +280,9 @@ def flight_task(hf, camera, options):
     """One frame of fc.fly_through: fc.terrain's fly picture (the heights already
     exaggerated). Returns (rgba, samples)."""
     from .terrain import terrain
-    r = terrain(hf, vert_exag=1.0, fly=camera, **options).draw()
+    from .warmup import full_quality
+    with full_quality():                         # (a clip's frames: no drafts)
+        r = terrain(hf, vert_exag=1.0, fly=camera, **options).draw()
     return r.rgba, int(r.stats["samples"])
 
 
@@ -300,5 +302,7 @@ def frame_task(expr, names, t_name, tk, ranges, options):
         base = as_surface(sympy_expression(expr, tuple(names) + (t_name,)), tuple(names),
                           time=t_name)
         _SURFACES[key] = base
-    r = plot_surface(base.at(tk), *ranges, **options).draw()
+    from .warmup import full_quality
+    with full_quality():                         # (a clip's frames: no drafts)
+        r = plot_surface(base.at(tk), *ranges, **options).draw()
     return r.rgba, int(r.stats["samples"])

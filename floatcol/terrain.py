@@ -251,6 +251,7 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
     from .camera import flight
     from .output import check_output
     from .view import check_size
+    from .warmup import full_quality
     start = time.perf_counter()
     if "fly" in options:
         raise ValueError("fly_through places the fly camera itself along path: give its "
@@ -283,8 +284,10 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
             r = terrain(hf, vert_exag=1.0, fly=camera, **options).draw()
             samples += r.stats["samples"]
             yield r.rgba
-    # (to an .mp4 the frames are written as they come, a long flight never held)
-    out, written = _collect(made(), frames, size, output, fps)
+    # (to an .mp4 the frames are written as they come, a long flight never held; all of
+    # them the kernels' pictures, none a fresh install's draft)
+    with full_quality():
+        out, written = _collect(made(), frames, size, output, fps)
     anim = Animation(out, along, fps, {"samples": samples, "positions": positions,
                                        "headings": headings, "vert_exag": exag,
                                        "seconds": time.perf_counter() - start})

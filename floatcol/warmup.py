@@ -18,9 +18,11 @@ render waits for its kernels (the test suite does, for reproducible pictures).
 """
 from __future__ import annotations
 
+import contextlib
 import os
 import subprocess
 import sys
+import threading
 import time
 
 #: The environment variable that turns drafts off ("0")
@@ -29,6 +31,20 @@ ENV = "FLOATCOL_DRAFT"
 LOCK_NAME = "floatcol-warmup.pid"
 
 _child = None       # the warm-up process this process started (subprocess.Popen)
+_state = threading.local()      # .whole: inside full_quality() (this thread)
+
+
+@contextlib.contextmanager
+def full_quality():
+    """Renders inside (in this thread) are never drafts: a clip's frames (fc.animate,
+    fc.fly_through) are all drawn alike, the first waiting for its kernels, not drafts
+    until the warm-up is done and then the kernels' pictures."""
+    before = getattr(_state, "whole", False)
+    _state.whole = True
+    try:
+        yield
+    finally:
+        _state.whole = before
 
 
 def _dispatchers(kind="column", smooth=False):
@@ -178,7 +194,8 @@ def drafting(kind="column", smooth=False):
     picture, of an area-sampled smooth-shaded one, fc.terrain's, and of a fly
     camera's, this render's first). Once this process's own warm-up has ended without
     leaving the kernels (it failed), renders compile in the process instead."""
-    if os.environ.get(ENV, "1") == "0" or kernels_ready(kind, smooth):
+    if os.environ.get(ENV, "1") == "0" or getattr(_state, "whole", False) \
+            or kernels_ready(kind, smooth):
         return False
     if _child is not None:
         return _child.poll() is None

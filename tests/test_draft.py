@@ -246,6 +246,34 @@ def test_a_fly_draft_beside_a_tiny_dem_takes_few_planes(drafts):
     assert len(_planes(r.view)) < 10
 
 
+def test_a_clips_frames_are_never_drafts(monkeypatch):
+    """While a fresh install's warm-up runs, a picture is a draft, but a clip's frames
+    (fc.animate, fc.fly_through) are all drawn alike by the kernels, the first waiting
+    for them (warmup.full_quality): a clip was drafts until the warm-up was done, then
+    the kernels' pictures, a jump in the middle of it."""
+    import floatcol.renderer as renderer
+    monkeypatch.setenv(warmup.ENV, "1")
+    monkeypatch.setattr(warmup, "kernels_ready", lambda *a: False)
+    monkeypatch.setattr(warmup, "_child", None)
+    monkeypatch.setattr(warmup, "_lock_path", lambda: "lock")
+    monkeypatch.setattr(warmup, "_spawn", lambda *a: True)     # (a warm-up running)
+    drafts = []
+    real = renderer._draft_layer
+    monkeypatch.setattr(renderer, "_draft_layer", lambda *a: drafts.append(1) or real(*a))
+    assert fc.render("sin(u)*v", size=(40, 30)).stats["engine"] == "draft"
+    assert drafts == [1]
+    fc.animate("sin(x - t)*y", ("x", -2, 2), ("y", -2, 2), t=(0, 1), frames=2, size=(40, 30),
+               progress=False)
+    dem = np.add.outer(np.sin(np.arange(9.0)), np.cos(np.arange(12.0))) * 100
+    fc.fly_through(fc.HeightField(dem, u=(0, 1100), v=(0, 800)), [(100, 100), (900, 600)],
+                   frames=2, size=(40, 24), above=200, progress=False)
+    assert drafts == [1]
+    assert fc.terrain(dem, size=(40, 30)).draw().stats["engine"] == "draft"
+    with warmup.full_quality():
+        assert not warmup.drafting()
+    assert warmup.drafting()
+
+
 def test_lock_of_another_process(monkeypatch, tmp_path):
     """A running warm-up elsewhere (its pid in the lock) is waited for; a stale lock
     (its process gone) is replaced."""

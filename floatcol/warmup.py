@@ -352,12 +352,7 @@ def main(argv=None):
         return 2
     os.environ[ENV] = "0"
     try:
-        if everything:
-            warm_all()
-        elif first != "column":
-            warm(first)
-        else:
-            warm()
+        warm_all() if everything else warm(first)
     finally:
         if rest:
             try:

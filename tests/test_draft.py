@@ -298,9 +298,10 @@ def test_warmup_main_removes_its_lock(monkeypatch, tmp_path):
     lock = tmp_path / warmup.LOCK_NAME
     lock.write_text("1")
     done = []
-    monkeypatch.setattr(warmup, "warm", lambda: done.append(os.environ[warmup.ENV]))
+    monkeypatch.setattr(warmup, "warm", lambda first: done.append((first,
+                                                                   os.environ[warmup.ENV])))
     warmup.main([str(lock)])
-    assert done == ["0"] and not lock.exists()
+    assert done == [("column", "0")] and not lock.exists()
 
 
 def test_warmup_main_removes_nothing_but_a_lock(monkeypatch, tmp_path, capsys):
@@ -309,7 +310,7 @@ def test_warmup_main_removes_nothing_but_a_lock(monkeypatch, tmp_path, capsys):
     keep = tmp_path / "precious.txt"
     keep.write_text("x")
     done = []
-    monkeypatch.setattr(warmup, "warm", lambda: done.append(1))
+    monkeypatch.setattr(warmup, "warm", lambda first: done.append(1))
     monkeypatch.setattr(warmup, "warm_all", lambda: done.append(2))
     for argv in ([str(keep)], ["--all", str(keep)], ["--al"]):
         assert warmup.main(argv) == 2

@@ -245,21 +245,31 @@ class _FileFrames:
 
 
 def _collect(made, n, size, output, fps):
-    """A clip's n frames of ``size`` (W, H) from the iterable ``made``, as they come:
-    held in a list or, where ``output`` is an .mp4, written to it one by one (and held
-    as well where they take at most KEEP_BYTES, else read back from the file:
-    _FileFrames), so that a long clip is never held. Returns (frames, written)."""
+    """A clip's n frames of ``size`` (W, H) from ``made``, an iterable of (rgba,
+    samples), as they come: held in a list or, where ``output`` is an .mp4, written to
+    it one by one (and held as well where they take at most KEEP_BYTES, else read back
+    from the file: _FileFrames), so that a long clip is never held. All of them the
+    kernels' pictures, none a fresh install's draft (warmup.full_quality: a clip does
+    not jump from drafts to the kernels' pictures when the warm-up is done; warmup
+    imported here, as renderer._drafting says). Returns (frames, written, samples)."""
+    from .warmup import full_quality
     W, H = size
-    if output is None or os.path.splitext(output)[1].lower() != ".mp4":
-        return list(made), False
-    keep = n * W * H * 4 <= KEEP_BYTES
     kept = []
-    with _mp4_writer(output, (H, W), fps) as send:
-        for f in made:
-            send(f)
-            if keep:
+    samples = 0
+    with full_quality():
+        if output is None or os.path.splitext(output)[1].lower() != ".mp4":
+            for f, k in made:
                 kept.append(f)
-    return (kept if keep else _FileFrames(output, n, (H, W))), True
+                samples += k
+            return kept, False, samples
+        keep = n * W * H * 4 <= KEEP_BYTES
+        with _mp4_writer(output, (H, W), fps) as send:
+            for f, k in made:
+                send(f)
+                samples += k
+                if keep:
+                    kept.append(f)
+    return (kept if keep else _FileFrames(output, n, (H, W))), True, samples
 
 
 class _Lazy:
@@ -406,35 +416,25 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     if "norm" not in options:
         fixed["vmin"] = w_lo if vmin is None else vmin
         fixed["vmax"] = (w_hi if w_hi > w_lo else w_lo + 1.0) if vmax is None else vmax
-    samples = 0
     if client is not None:
         from .cluster import _check_client
         _check_client(client)
 
     def made():
-        nonlocal samples
         if client is not None:
             from .cluster import render_frames
             tasks = [(sym, names, t_name, float(tk), ranges_,
                       dict(options, **fixed, **({} if sun_k is None else {"lightsource": sun_k})))
                      for tk, sun_k in zip(times, suns)]
-            for rgba, n in render_frames(tasks, client):
-                samples += n
-                yield rgba
+            yield from render_frames(tasks, client)
             return
         for s, sun_k in tqdm(zip(surfaces, suns), total=len(times), desc="floatcol animate",
                              unit="frame", delay=1.0, disable=not progress, leave=False):
             if sun_k is not None:
                 options["lightsource"] = sun_k
             r = plot_surface(s, *ranges_, **options, **fixed).draw()
-            samples += r.stats["samples"]
-            yield r.rgba
-    # (to an .mp4 the frames are written as they come, a long clip never held; all of
-    # them the kernels' pictures, none a fresh install's draft; warmup imported here, as
-    # renderer._drafting says)
-    from .warmup import full_quality
-    with full_quality():
-        out, written = _collect(made(), frames, first.size, output, fps)
+            yield r.rgba, r.stats["samples"]
+    out, written, samples = _collect(made(), frames, first.size, output, fps)
     anim = Animation(out, times, fps, {"samples": samples,
                                        "seconds": _time.perf_counter() - start,
                                        "camera": fixed})

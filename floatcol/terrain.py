@@ -251,7 +251,6 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
     from .camera import flight
     from .output import check_output
     from .view import check_size
-    from .warmup import full_quality
     start = time.perf_counter()
     if "fly" in options:
         raise ValueError("fly_through places the fly camera itself along path: give its "
@@ -266,28 +265,21 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
     _check_memory(frames, size, output)
     cameras = [dict(position=tuple(float(x) for x in pos), heading=float(head), pitch=pitch,
                     fov=fov, near=near, size=size) for pos, head in zip(positions, headings)]
-    samples = 0
     if client is not None:
         from .cluster import _check_client
         _check_client(client)
 
     def made():
-        nonlocal samples
         if client is not None:
             from .cluster import flight_frames
-            for rgba, n in flight_frames(hf, cameras, options, client):
-                samples += n
-                yield rgba
+            yield from flight_frames(hf, cameras, options, client)
             return
         for camera in tqdm(cameras, desc="floatcol fly_through", unit="frame", delay=1.0,
                            disable=not progress, leave=False):
             r = terrain(hf, vert_exag=1.0, fly=camera, **options).draw()
-            samples += r.stats["samples"]
-            yield r.rgba
-    # (to an .mp4 the frames are written as they come, a long flight never held; all of
-    # them the kernels' pictures, none a fresh install's draft)
-    with full_quality():
-        out, written = _collect(made(), frames, size, output, fps)
+            yield r.rgba, r.stats["samples"]
+    # (to an .mp4 the frames are written as they come, a long flight never held)
+    out, written, samples = _collect(made(), frames, size, output, fps)
     anim = Animation(out, along, fps, {"samples": samples, "positions": positions,
                                        "headings": headings, "vert_exag": exag,
                                        "seconds": time.perf_counter() - start})

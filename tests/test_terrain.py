@@ -542,11 +542,11 @@ def test_a_long_flight_to_an_mp4_is_never_held(tmp_path, monkeypatch):
         alive = []
 
         def tracked():
-            for f in made:
+            for f, n in made:
                 gc.collect()
                 alive.append(weakref.ref(f))
                 peak.append(sum(r() is not None for r in alive))
-                yield f
+                yield f, n
         return real(tracked(), *args)
     monkeypatch.setattr(anim_mod, "_collect", spy)
     way = [(15000, 2500), (15500, 9000), (20000, 14000)]

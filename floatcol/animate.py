@@ -244,6 +244,11 @@ class _FileFrames:
         return next(itertools.islice(iter(self), k, None))
 
 
+def _streamed(output):
+    """Whether a clip's frames go to ``output`` as they come (an .mp4), not held."""
+    return output is not None and os.path.splitext(output)[1].lower() == ".mp4"
+
+
 def _collect(made, n, size, output, fps):
     """A clip's n frames of ``size`` (W, H) from ``made``, an iterable of (rgba,
     samples), as they come: held in a list or, where ``output`` is an .mp4, written to
@@ -257,7 +262,7 @@ def _collect(made, n, size, output, fps):
     kept = []
     samples = 0
     with full_quality():
-        if output is None or os.path.splitext(output)[1].lower() != ".mp4":
+        if not _streamed(output):
             for f, k in made:
                 kept.append(f)
                 samples += k
@@ -324,7 +329,7 @@ def _check_memory(frames, size, output=None):
     fit in the machine's memory (_memory.fits) rather than be killed for memory while
     it renders. One written to an MP4 (``output``) holds none beyond KEEP_BYTES
     (_collect)."""
-    if output is not None and os.path.splitext(output)[1].lower() == ".mp4":
+    if _streamed(output):
         return
     need = frames * int(size[0]) * int(size[1]) * 4
     if not fits(need):

@@ -19,6 +19,7 @@ import floatcol as fc
 from conftest import background_result, reference_for
 from floatcol import warmup
 from reference import psnr
+from test_fold import ANNULUS
 
 RIPPLES = "2*exp(-(u**2+v**2))*cos(3*sqrt(u**2+v**2))"
 CASES = [
@@ -32,9 +33,22 @@ CASES = [
     # a hemisphere: its rim is a run's end at a hole (bisected), both sides seen
     ("sqrt(1-u**2-v**2)", (-1.2, 1.2), (-1.2, 1.2), 35, 30, "orthographic", 0.993, 25.0),
     ("sqrt(1-u**2-v**2)", (-1.2, 1.2), (-1.2, 1.2), 35, 30, "perspective", 0.994, 27.5),
-    # (measured 99.464 % / 25.74 dB and 99.594 % / 28.39 dB; the kernels 99.443 % /
-    # 25.55 dB and 99.562 % / 27.69 dB)
+    # (measured 99.464 % / 25.74 dB and 99.583 % / 27.94 dB; the kernels 99.443 % /
+    # 25.55 dB and 99.562 % / 27.69 dB; its rim's columns are drawn ray by ray, below)
+    # columns that fold (_fold_columns), drawn ray by ray (_ray_columns): a steep view
+    # of Gordon's function, whose column planes' lines meet its ridges' flanks more
+    # than once at the picture's right (99.406 %, 29.11 dB when the draft followed one
+    # point a plane there: streaks), and test_fold.py's annulus, whose rims fold every
+    # column away from the centre (94.917 %, 20.45 dB before: the bottom of its outer
+    # wall missing; the kernels, tracing the folds, 98.573 %, 24.06 dB)
+    ("3*sin(u*cos(v))", (-5, 5), (-5, 5), 50, -140, "perspective", 0.998, 33.0),  # 99.917 %, 34.29
+    (ANNULUS, (-2.2, 2.2), (-2.2, 2.2), 40, -30, "perspective", 0.984, 23.5),   # 98.594 %, 24.11
 ]
+#: the G-buffer's bound (below) for the steep view of 3 sin(u cos v) from elevation 50:
+#: measured 0.0231, 0.0233, 0.0978 (0.0329, 0.0304, 0.1322 before its fold columns
+#: were drawn ray by ray; the kernels 0.0050, 0.0054, 0.0117); the annulus's 0.0020,
+#: 0.0035, 0.0162 (0.0065, 0.0108, 0.0306 before)
+G_TOL = {50: 0.11}
 
 
 @pytest.fixture
@@ -54,10 +68,11 @@ def test_draft_matches_ray_caster(drafts, expr, u, v, elev, azim, proj, min_agre
     assert agree >= min_agree, f"side agreement {agree:.5f}"
     assert psnr(r.intensity, ref.intensity) >= min_psnr
     # the G-buffer's values: the seen point's u, v and depth at the 99th percentile
-    # (measured at most 0.0049, 0.0133, 0.0164: 3 sin(u cos v)'s ridges, uncorrected)
+    # (measured at most 0.0049, 0.0133, 0.0164: 3 sin(u cos v)'s ridges, uncorrected;
+    # the steep views: G_TOL)
     both = (r.side != 0) & (ref.side == r.side)
     for mine, truth in ((r.u, ref.u), (r.v, ref.v), (r.depth, ref.depth)):
-        assert np.percentile(np.abs(mine[both] - truth[both]), 99) < 0.025
+        assert np.percentile(np.abs(mine[both] - truth[both]), 99) < G_TOL.get(elev, 0.025)
 
 
 def test_draft_picture_is_close_to_the_kernels(drafts, monkeypatch):

@@ -27,6 +27,7 @@ from .passes import (antialias, area, colour, draft, finish, geometry, horizon, 
                      normals, overlays, shadow as shadows)
 from .passes.composite import composite as merge
 from .passes.translucency import render_translucent
+from .kernels import layout as L
 from .kernels.shade import INTERP_INTENSITY
 from .result import Render
 from .surface import as_surface, check_range
@@ -228,6 +229,26 @@ def _relit(view, light_dir):
     return dataclasses.replace(view, light=light)
 
 
+def _textured_columns(surface, view, vp, column, material, source, box, colours, c_limits,
+                      bg8, lit):
+    """picture(offset) -> (rgba, evals) for antialias.subcolumn_pass: a textured (or
+    colour field's) surface's whole picture at a sub-column offset in pixels (vp's
+    VP_XOFF), by the column pass (``column``: its lines, their stride, batch evaluator
+    and device) and coloured as the centre's picture: its colour field's range
+    (c_limits), the light its points take (lit)."""
+    n_lines, hstride, fb, device = column
+    W, H = view.width, view.height
+
+    def picture(offset):
+        sub_vp = vp.copy()
+        sub_vp[L.VP_XOFF] = offset
+        g = geometry.column_pass(surface, view, sub_vp, geometry.allocate(W, H, n_lines, 1),
+                                 hstride, fb, device=device)
+        base, _ = colour.base_colours(material, source, g, W, H, box, colours, c_limits)
+        return finish.finish_pass(g, H, W, colours, bg8, lit, base)[0], g.evals
+    return picture
+
+
 def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, texture=None,
            index=0):
     """One layer's passes: a Render of its own."""
@@ -262,6 +283,7 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
     by_march = kind == "march"
     by_lod = kind == "lod"
     by_area = quality.area or (by_lod and aa_cov)
+    fb = None                           # (the column pass's batch evaluator, if any)
     if by_march:
         geom = march.march_pass(surface, view, vp, buffers, device=quality.device)
     elif by_lod:
@@ -299,17 +321,16 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
         light_args = (vp, colours.mp, lit)
         base = finish.NO_BASE
         if p.source is not None:
-            if sub_columns > 1:
-                raise ValueError("a texture or color field is antialiased along the columns "
-                                 "and across them by their edges: use antialias=True (not "
-                                 "sub-columns)")
             base, c_limits = colour.base_colours(material, p.source, geom, W, H, box, colours)
         rgba, side = finish.finish_pass(geom, H, W, colours, bg8, lit, base)
         if aa_cov and sub_columns == 1 and not by_area:
             antialias.staircase_pass(geom, side, rgba)
         if sub_columns > 1:
+            picture = None if p.source is None else _textured_columns(
+                surface, view, vp, (n_lines, hstride, fb, quality.device), material,
+                p.source, box, colours, c_limits, bg8, lit)
             rgba, ev2 = antialias.subcolumn_pass(surface, geom, sub_columns, rgba, colours,
-                                                 bg8, lit)
+                                                 bg8, lit, picture)
             evals += ev2
         if material.overlaid:
             overlays.overlay_pass(rgba, material, p.source, geom, W, box, w_limits, c_limits,

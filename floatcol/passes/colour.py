@@ -226,9 +226,9 @@ def colour_table_rgb(values, lut, lo, hi):
     return lut[idx, :3]
 
 
-def field_base(material, field, geom, W, H, box, lower_rgb):
+def field_base(material, field, geom, W, H, box, lower_rgb, c_range=None):
     """(base (H, W, 6) float32, c_limits) of a colour field given as an expression
-    (kernels/texture.py's field_kernel and colour_kernel)."""
+    (kernels/texture.py's field_kernel and colour_kernel); c_range as base_colours'."""
     vals = _pool.empty((H, W), np.float64)
     e_vals = _pool.empty((H, W), np.float64)
     field_kernel(geom.gbuf, geom.ebuf, W, float(box[0]), float(box[1]), *_centre(geom),
@@ -236,6 +236,8 @@ def field_base(material, field, geom, W, H, box, lower_rgb):
     with np.errstate(all="ignore"):
         lo, hi = np.nanmin(vals) if np.isfinite(vals).any() else 0.0, \
             np.nanmax(vals) if np.isfinite(vals).any() else 1.0
+    if c_range is not None:
+        lo, hi = c_range
     lut, c_lo, c_hi, limits = material.color_table(np.array([[lo, hi]], dtype=np.float64))
     base = _pool.empty((H, W, 6), np.float32)
     # (a NaN value: the colour map's "bad" colour where one is set, else the lower side's)
@@ -246,17 +248,19 @@ def field_base(material, field, geom, W, H, box, lower_rgb):
     return base, (limits if np.isfinite(vals).any() else None)
 
 
-def base_colours(material, source, geom, W, H, box, colours):
+def base_colours(material, source, geom, W, H, box, colours, c_range=None):
     """(base (H, W, 6) float32, c_limits or None): the colour of the surface at each
     pixel and of its edge surface (finish_kernel's ``base``) from a material's texture
     or colour field (``source``, prepare's) over its own colours (``colours``,
-    Material.table)."""
+    Material.table). A colour field's colour map spans the values seen, or
+    ``c_range`` (lo, hi) where given (a sub-column's picture takes the centre's
+    c_limits)."""
     lut, w_lo, w_hi, lower_rgb = colours.lut, colours.w_lo, colours.w_hi, colours.lower_rgb
     if source.field is None and not callable(source.texture):
         return texture_base(source.texture, geom, W, H, box, source.extent, source.filter,
                             lut, w_lo, w_hi, lower_rgb), None
     if source.field is not None and not isinstance(source.field, np.ndarray):
-        return field_base(material, source.field, geom, W, H, box, lower_rgb)
+        return field_base(material, source.field, geom, W, H, box, lower_rgb, c_range)
     u, v, w, side, eu, ev = picture_planes(geom, W, (box[0], box[1], 1.0), edges=True)
     seen = side != 0.0
     edge = np.isfinite(eu)
@@ -268,6 +272,8 @@ def base_colours(material, source, geom, W, H, box, colours):
         vals = field_values(source.field, u, v, seen, source.extent)
         finite = vals[np.isfinite(vals)]
         rng = np.array([[finite.min(), finite.max()]]) if finite.size else np.array([[0.0, 1.0]])
+        if c_range is not None:
+            rng = np.array([c_range], dtype=np.float64)
         lut_c, lo, hi, limits = material.color_table(rng)
         nan_rgb = color.bad(material.cmap)             # (else the lower side's colour)
         if nan_rgb is None:

@@ -25,18 +25,19 @@ from .render import box_factors
 from .surface import as_surface, check_range, sympy_expression
 
 ANIMATION_FORMATS = {".gif": "GIF", ".mp4": "MP4"}
-#: a clip written to an MP4 keeps its frames' pictures as well where they take at most
-#: this many bytes (130 frames of 1920x1080); a longer one's are read back from the
-#: file when asked (_FileFrames), so that its length is bounded by the disk, not memory
+#: a clip written to a file (GIF or MP4) keeps its frames' pictures as well where they
+#: take at most this many bytes (130 frames of 1920x1080); a longer one's are read back
+#: from the file when asked (_FileFrames), so that its length is bounded by the disk,
+#: not memory
 KEEP_BYTES = 2**30
-#: a notebook shows a clip read back from its MP4 inline up to this size (matplotlib's
-#: animation.embed_limit), else names the file
+#: a notebook shows a clip read back from its file inline up to this size
+#: (matplotlib's animation.embed_limit), else names the file
 EMBED_BYTES = 20 * 2**20
 
 
 class Animation:
     """Frames of a time-varying surface: ``frames`` (list of (H, W, 4) uint8; a long
-    clip written to an MP4, a sequence read back from it: KEEP_BYTES), ``times``,
+    clip written to a file, a sequence read back from it: KEEP_BYTES), ``times``,
     ``fps``; ``save(path)`` writes .gif or .mp4. ``stats["camera"]`` holds the
     plot_surface options the whole clip was drawn with (scale, center, vmin, ...)."""
 
@@ -52,14 +53,14 @@ class Animation:
     def save(self, path):
         path, ext = check_output(path, ANIMATION_FORMATS)
         held = self.frames
-        if isinstance(held, _FileFrames):
-            if ext == ".mp4":                   # (its own file: a copy, not re-encoded)
-                if not (os.path.exists(path) and os.path.samefile(path, held.path)):
-                    with atomic_file(path) as tmp:
-                        shutil.copyfile(held.path, tmp)
-                return path
-            _check_memory(len(held), held.shape[::-1])
-            held = list(held)
+        if isinstance(held, _FileFrames) and ext == held.ext:
+            # its own file: a copy, not encoded again
+            if not (os.path.exists(path) and os.path.samefile(path, held.path)):
+                with atomic_file(path) as tmp:
+                    shutil.copyfile(held.path, tmp)
+            return path
+        # (frames read back from a file go from one file to the other as they are
+        # decoded: never held)
         if ext == ".gif":
             write_gif(held, path, self.fps)
         else:
@@ -75,6 +76,8 @@ class Animation:
                         f"({os.path.getsize(path) / 2**20:.0f} MB)</p>")
             with open(path, "rb") as fh:
                 data = base64.b64encode(fh.read()).decode("ascii")
+            if self.frames.ext == ".gif":
+                return f'<img src="data:image/gif;base64,{data}"/>'
             return (f'<video controls autoplay loop muted src="data:video/mp4;base64,{data}">'
                     '</video>')
 
@@ -84,25 +87,17 @@ class Animation:
         return f'<img src="data:image/gif;base64,{data}"/>'
 
 
-def _gif_images(frames, threads=None):
-    """The frames over white, each quantized to its own 255 colours (median cut), in
-    ``threads`` threads (default: a core each; Pillow's quantizer lets the others run:
-    60 frames of 1000x600 in 2.3 instead of 4.5 s on 2 cores, the same images)."""
-    from concurrent.futures import ThreadPoolExecutor
-
+def _quantized(f):
+    """A frame over white, quantized to its own 255 colours (median cut): a "P" image."""
     from PIL import Image
+    img = Image.fromarray(np.ascontiguousarray(f), "RGBA")
+    white = Image.new("RGBA", img.size, (255, 255, 255, 255))
+    return Image.alpha_composite(white, img).convert("RGB").quantize(
+        colors=255, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
 
-    def one(f):
-        img = Image.fromarray(np.ascontiguousarray(f), "RGBA")
-        white = Image.new("RGBA", img.size, (255, 255, 255, 255))
-        return Image.alpha_composite(white, img).convert("RGB").quantize(
-            colors=255, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
-    threads = min(os.cpu_count() or 1, len(frames)) if threads is None else threads
-    if threads <= 1:
-        return [one(f) for f in frames]
-    with ThreadPoolExecutor(threads) as pool:
-        return list(pool.map(one, frames))
 
+#: a GIF's frames are quantized this many at a time (_GifSink)
+GIF_BATCH = 8
 
 #: the slowest frame rate: a GIF holds a frame at most 655.35 s (a 16-bit count of
 #: hundredths of a second; 1/0.01 fps = 100 s)
@@ -139,34 +134,119 @@ def _check_frames(frames):
 
 
 def write_gif(frames, path, fps):
-    """The frames as a looping GIF, 1 / fps s each (20 ms at least). Frames that equal
-    the one before lengthen its hold instead (as Pillow would merge them), which a GIF
-    keeps for at most GIF_MAX_MS: a picture held longer (a still surface at a slow
-    frame rate) is shown that long."""
-    with atomic_file(path) as tmp:
-        _save_gif(frames, tmp, fps)
+    """The frames (any iterable of (h, w, 4) uint8 pictures) as a looping GIF, 1 / fps
+    s each (20 ms at least), written as they come (_gif_writer). Frames that equal
+    the one before lengthen its hold instead, which a GIF keeps for at most
+    GIF_MAX_MS: a picture held longer (a still surface at a slow frame rate) is shown
+    that long."""
+    with atomic_file(path) as tmp, open(tmp, "wb") as fh, _gif_writer(fh, fps) as send:
+        for f in frames:
+            send(f)
 
 
 def _save_gif(frames, target, fps):
-    """write_gif's GIF to a path or a binary file object."""
-    images = _gif_images(frames)
-    step = min(max(20, round(1000 / fps)), GIF_MAX_MS)
-    kept, holds, last = [], [], None
-    for im in images:
-        key = im.convert("RGBA").tobytes()
-        if kept and key == last:
-            holds[-1] = min(holds[-1] + step, GIF_MAX_MS)
-            continue
-        kept.append(im)
-        holds.append(step)
-        last = key
-    kept[0].save(target, format="GIF", save_all=True, append_images=kept[1:],
-                 duration=holds if len(kept) > 1 else holds[0], loop=0)
+    """write_gif's GIF to a binary file object."""
+    with _gif_writer(target, fps) as send:
+        for f in frames:
+            send(f)
+
+
+def _quantized_rgb(f):
+    """(_quantized(f), its colours (h, w, 3) uint8): a frame as the GIF shows it."""
+    im = _quantized(f)
+    return im, np.asarray(im.convert("RGB"))
+
+
+class _GifSink:
+    """_gif_writer's send(frame): frames quantized (_quantized) in ``threads`` threads
+    (Pillow's quantizer lets the others run: 60 frames of 1000x600 in 2.3 instead of
+    4.5 s on 2 cores), GIF_BATCH at a time, between the renders (quantizing while a
+    frame renders slowed the render's parallel loop, whose threads wait for the
+    slowest: 300 frames of 1280x720 in 24 instead of 20.5 s), and written in order by
+    Pillow's GIF encoder (GifImagePlugin.getheader and getdata: one frame at a time,
+    its own colour table): a frame equal to the one before lengthens its hold (at most
+    GIF_MAX_MS), and a frame is written over the one shown before it where it differs
+    from it (its bounding box). ``counts``: how many of the clip's frames each frame
+    of the file shows."""
+
+    def __init__(self, fh, fps, threads):
+        self.fh = fh
+        self.step = min(max(20, round(1000 / fps)), GIF_MAX_MS)
+        self.threads = max(1, threads)
+        self.batch = []                         # frames not yet quantized
+        self.pending = None                     # [image, rgb, hold ms, count]: not written
+        self.shown = None                       # the picture shown (rgb) after the last
+        self.counts = []
+
+    def __call__(self, frame):
+        self.batch.append(frame)
+        if len(self.batch) >= GIF_BATCH:
+            self._quantize()
+
+    def _quantize(self):
+        batch, self.batch = self.batch, []
+        if self.threads <= 1 or len(batch) <= 1:
+            done = [_quantized_rgb(f) for f in batch]
+        else:
+            from concurrent.futures import ThreadPoolExecutor
+            with ThreadPoolExecutor(min(self.threads, len(batch))) as pool:
+                done = list(pool.map(_quantized_rgb, batch))
+        del batch
+        for im, rgb in done:
+            self._add(im, rgb)
+
+    def _add(self, im, rgb):
+        p = self.pending
+        if p is not None and np.array_equal(rgb, p[1]):
+            p[2] = min(p[2] + self.step, GIF_MAX_MS)
+            p[3] += 1
+            return
+        self._write()
+        self.pending = [im, rgb, self.step, 1]
+
+    def _write(self):
+        from PIL import GifImagePlugin
+        if self.pending is None:
+            return
+        im, rgb, hold, count = self.pending
+        box = (0, 0) + im.size
+        if self.shown is None:
+            head, _ = GifImagePlugin.getheader(im.copy(), info={"loop": 0, "duration": hold})
+            self.fh.write(b"".join(head))
+        else:
+            diff = np.any(rgb != self.shown, axis=2)
+            rows, cols = np.flatnonzero(diff.any(axis=1)), np.flatnonzero(diff.any(axis=0))
+            box = (int(cols[0]), int(rows[0]), int(cols[-1]) + 1, int(rows[-1]) + 1)
+        part = im if box == (0, 0) + im.size else im.crop(box)
+        self.fh.write(b"".join(GifImagePlugin.getdata(part, offset=box[:2], duration=hold,
+                                                      include_color_table=True)))
+        self.shown = rgb
+        self.counts.append(count)
+        self.pending = None
+
+    def close(self):
+        self._quantize()
+        self._write()
+        if self.shown is None:
+            raise ValueError("a GIF needs at least one frame")
+        self.fh.write(b";")                         # the trailer
+
+
+@contextlib.contextmanager
+def _gif_writer(fh, fps, threads=None):
+    """Yield send(frame): each (h, w, 4) uint8 frame, over white, into a looping GIF on
+    the binary file object ``fh`` as it comes (_GifSink; send.counts after it). A
+    failure leaves the file unfinished (atomic_file lets it go)."""
+    send = _GifSink(fh, fps, (os.cpu_count() or 1) if threads is None else threads)
+    yield send
+    send.close()
 
 
 def write_mp4(frames, path, fps):
-    """The frames as an H.264 MP4 (imageio-ffmpeg), over white, 1 / fps s each."""
-    with _mp4_writer(path, np.asarray(frames[0]).shape[:2], fps) as send:
+    """The frames (a list, or frames read back from a file: decoded as they are
+    written) as an H.264 MP4 (imageio-ffmpeg), over white, 1 / fps s each."""
+    shape = frames.shape if isinstance(frames, _FileFrames) else np.asarray(frames[0]).shape[:2]
+    with _mp4_writer(path, shape, fps) as send:
         for f in frames:
             send(f)
 
@@ -203,20 +283,27 @@ def _mp4_writer(path, shape, fps):
 
 
 class _FileFrames:
-    """The frames of a clip written to an MP4 and not held (longer than KEEP_BYTES),
+    """The frames of a clip written to a file and not held (longer than KEEP_BYTES),
     decoded from the file when asked: (h, w, 4) uint8, opaque (over white), as
-    encoded (H.264 is lossy: within a few levels of the rendered pictures). Iterating
-    decodes the file once; ``frames[k]`` decodes it up to frame k."""
+    encoded: an MP4's within a few levels of the rendered pictures (H.264 is lossy), a
+    GIF's each quantized to its 255 colours (``counts``: how many of the clip's frames
+    each of the file's shows, _GifSink). Iterating decodes the file once;
+    ``frames[k]`` decodes it up to frame k."""
 
-    def __init__(self, path, n, shape):
+    def __init__(self, path, n, shape, counts=None):
         self.path = os.path.abspath(path)
+        self.ext = os.path.splitext(path)[1].lower()
         self.n = n
         self.shape = shape
+        self.counts = counts
 
     def __len__(self):
         return self.n
 
     def __iter__(self):
+        return itertools.islice(self._gif() if self.ext == ".gif" else self._mp4(), self.n)
+
+    def _mp4(self):
         import imageio_ffmpeg
         h, w = self.shape
         opaque = np.full((h, w, 1), 255, dtype=np.uint8)
@@ -224,10 +311,18 @@ class _FileFrames:
         try:
             W, H = next(frames)["size"]
             for _, raw in zip(range(self.n), frames):
-                rgb = np.frombuffer(raw, dtype=np.uint8).reshape(H, W, 3)[:h, :w]
-                yield np.concatenate([rgb, opaque], axis=2)
+                rgb = np.frombuffer(raw, dtype=np.uint8).reshape(H, W, 3)
+                yield np.concatenate([rgb[:h, :w], opaque], axis=2)
         finally:
             frames.close()
+
+    def _gif(self):
+        from PIL import Image, ImageSequence
+        with Image.open(self.path) as im:
+            for count, frame in zip(self.counts, ImageSequence.Iterator(im)):
+                rgba = np.asarray(frame.convert("RGBA"))
+                for _ in range(count):
+                    yield rgba
 
     def __getitem__(self, k):
         if isinstance(k, slice):                # (the file decoded once)
@@ -245,18 +340,32 @@ class _FileFrames:
 
 
 def _streamed(output):
-    """Whether a clip's frames go to ``output`` as they come (an .mp4), not held."""
-    return output is not None and os.path.splitext(output)[1].lower() == ".mp4"
+    """Whether a clip's frames go to ``output`` as they come (a .gif or .mp4 file), not
+    held."""
+    return output is not None and os.path.splitext(output)[1].lower() in ANIMATION_FORMATS
+
+
+@contextlib.contextmanager
+def _clip_writer(path, shape, fps):
+    """Yield send(frame): each (h, w, 4) uint8 frame of ``shape`` (h, w) into the GIF
+    or MP4 at ``path`` as it comes; the file appears at the end, whole, or not at all."""
+    if os.path.splitext(path)[1].lower() == ".mp4":
+        with _mp4_writer(path, shape, fps) as send:
+            yield send
+        return
+    with atomic_file(path) as tmp, open(tmp, "wb") as fh, _gif_writer(fh, fps) as send:
+        yield send
 
 
 def _collect(made, n, size, output, fps):
     """A clip's n frames of ``size`` (W, H) from ``made``, an iterable of (rgba,
-    samples), as they come: held in a list or, where ``output`` is an .mp4, written to
-    it one by one (and held as well where they take at most KEEP_BYTES, else read back
-    from the file: _FileFrames), so that a long clip is never held. All of them the
-    kernels' pictures, none a fresh install's draft (warmup.full_quality: a clip does
-    not jump from drafts to the kernels' pictures when the warm-up is done; warmup
-    imported here, as renderer._drafting says). Returns (frames, written, samples)."""
+    samples), as they come: held in a list or, where there is an ``output`` (a .gif or
+    .mp4), written to it one by one (and held as well where they take at most
+    KEEP_BYTES, else read back from the file: _FileFrames), so that a long clip is
+    never held. All of them the kernels' pictures, none a fresh install's draft
+    (warmup.full_quality: a clip does not jump from drafts to the kernels' pictures
+    when the warm-up is done; warmup imported here, as renderer._drafting says).
+    Returns (frames, written, samples)."""
     from .warmup import full_quality
     W, H = size
     kept = []
@@ -268,13 +377,14 @@ def _collect(made, n, size, output, fps):
                 samples += k
             return kept, False, samples
         keep = n * W * H * 4 <= KEEP_BYTES
-        with _mp4_writer(output, (H, W), fps) as send:
+        with _clip_writer(output, (H, W), fps) as send:
             for f, k in made:
                 send(f)
                 samples += k
                 if keep:
                     kept.append(f)
-    return (kept if keep else _FileFrames(output, n, (H, W))), True, samples
+    counts = getattr(send, "counts", None)
+    return (kept if keep else _FileFrames(output, n, (H, W), counts)), True, samples
 
 
 class _Lazy:
@@ -327,8 +437,8 @@ class _Envelope:
 def _check_memory(frames, size, output=None):
     """A clip holds every frame's picture (Animation.frames): refuse one that cannot
     fit in the machine's memory (_memory.fits) rather than be killed for memory while
-    it renders. One written to an MP4 (``output``) holds none beyond KEEP_BYTES
-    (_collect)."""
+    it renders. One written to a file (``output``, a GIF or an MP4) holds none beyond
+    KEEP_BYTES (_collect)."""
     if _streamed(output):
         return
     need = frames * int(size[0]) * int(size[1]) * 4
@@ -359,14 +469,14 @@ def animate(expr, *ranges, t=(0.0, 2 * math.pi), frames=60, output=None, fps=20,
     """Render w = f(u, v, t) at ``frames`` times in ``t`` = (low, high) or
     (symbol, low, high) (the symbol defaults to t). ``endpoint=False`` leaves out
     t = high, so a periodic clip loops without a repeated frame. ``output``: a .gif or
-    .mp4 file to write (an .mp4 as the frames come: a long clip is never held,
-    _collect), ``fps`` frames a second (0.01 to 120). Other options as
+    .mp4 file to write as the frames come (a long clip is never held, _collect),
+    ``fps`` frames a second (0.01 to 120). Other options as
     :func:`floatcol.plot_surface`; ``lightsource`` may be a function of t giving
     (azdeg, altdeg) (a moving sun, with ``shadows=True`` its shadows move).
     ``client``: a dask.distributed Client: the frames are rendered as its tasks (each
     worker compiles the expression once; floatcol/cluster.py), the same pictures in
     the same order. A clip whose pictures would not fit in the machine's memory is a
-    ValueError before its first frame, unless it is written to an .mp4. Returns an
+    ValueError before its first frame, unless it is written to a file. Returns an
     :class:`Animation`.
     """
     import time as _time

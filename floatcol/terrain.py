@@ -235,8 +235,8 @@ def fly_through(source, path, frames=60, *, heading=None, pitch=-10.0, fov=60.0,
     (``vert_exag``, once for the clip), looking along the curve (``heading`` None;
     ``look_ahead``: toward its point that far ahead, turning into sharp corners
     early) or toward one compass heading, ``pitch`` degrees up with a horizontal field of view
-    ``fov``. ``output``: a .gif or .mp4 file to write (an .mp4 as the frames come: a
-    long flight is never held, animate._collect), ``fps`` frames a second; other
+    ``fov``. ``output``: a .gif or .mp4 file to write as the frames come (a long
+    flight is never held, animate._collect), ``fps`` frames a second; other
     options as fc.terrain's (texture=, shadows=, objects=, antialias=False for the
     ray march's point samples, ...). ``client``: a dask.distributed Client, the frames
     its tasks (the height field sent to each worker once: floatcol/cluster.py), the

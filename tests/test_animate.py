@@ -67,16 +67,27 @@ def test_gif_and_mp4(tmp_path):
 
 
 def test_gif_frames_quantized_in_threads_are_the_serial_ones():
-    """Each GIF frame is quantized on its own, so quantizing them in threads gives the
-    same images and palettes as one after the other."""
-    from floatcol.animate import _gif_images
+    """Each GIF frame is quantized on its own (to its own 255 colours), so quantizing
+    them in threads writes the same file as one after the other, and the file's frames
+    are the quantized pictures, pixel for pixel."""
+    import io
+    from floatcol.animate import _gif_writer, _quantized
     frames = [fc.render("sin(u*v + %g)" % (0.3 * k), u=(-3, 3), v=(-3, 3),
                         size=(90, 60)).rgba for k in range(5)]
-    serial = _gif_images(frames, threads=1)
-    threaded = _gif_images(frames, threads=3)
-    assert [im.tobytes() for im in threaded] == [im.tobytes() for im in serial]
-    assert [im.getpalette() for im in threaded] == [im.getpalette() for im in serial]
-    assert len({im.tobytes() for im in serial}) == 5          # (five different frames)
+    files = []
+    for threads in (1, 3):
+        buf = io.BytesIO()
+        with _gif_writer(buf, 10, threads) as send:
+            for f in frames:
+                send(f)
+        files.append(buf.getvalue())
+    assert files[0] == files[1]
+    im = Image.open(io.BytesIO(files[0]))
+    assert im.n_frames == 5
+    for k, f in enumerate(frames):
+        im.seek(k)
+        assert np.array_equal(np.asarray(im.convert("RGB")),
+                              np.asarray(_quantized(f).convert("RGB")))
 
 
 def test_a_still_gif_at_the_slowest_rate(tmp_path):
@@ -99,16 +110,17 @@ def test_a_still_gif_at_the_slowest_rate(tmp_path):
 
 
 def test_a_clip_too_big_to_hold_is_refused_before_it_renders(tmp_path, monkeypatch):
-    """A clip keeps every frame's picture: one that cannot fit in memory (80 % of the
-    machine's, as a picture's buffers) is a ValueError before the first frame, not a
-    process killed for memory (the CLI's --frames=100000 at 480x360 asked 64 GiB). Its
-    camera's envelope is a running maximum, so no frames x grid stack is built either."""
+    """A clip without a file keeps every frame's picture: one that cannot fit in memory
+    (80 % of the machine's, as a picture's buffers) is a ValueError before the first
+    frame, not a process killed for memory (the CLI's --frames=100000 at 480x360 asked
+    64 GiB). Its camera's envelope is a running maximum, so no frames x grid stack is
+    built either. (One written to a file holds none: below.)"""
     import floatcol._memory as memory
     need = 10 * 20 * 16 * 4
     monkeypatch.setattr(memory, "machine_bytes", lambda: (need - 1) / memory.SHARE)
     with pytest.raises(ValueError, match="10 frames of 20x16 take 0.0 GiB, more than this"):
         fc.animate("sin(x - t)", ("x", -1, 1), ("y", -1, 1), size=(20, 16), frames=10,
-                   output=tmp_path / "big.gif", progress=False)
+                   progress=False)
     assert list(tmp_path.iterdir()) == []
 
 
@@ -117,14 +129,13 @@ def test_a_clip_too_big_to_hold_is_written_to_an_mp4_as_it_comes(tmp_path, monke
     to hold is not refused: its frames are read back from the file when asked, within
     a few levels of the pictures (H.264), at their own odd size (the video's even one
     cropped). Kept frames and copies of the file are the same frames; a GIF of it is
-    refused as the clip would have been."""
+    written as its frames are decoded."""
     anim_mod = sys.modules["floatcol.animate"]
     kw = dict(t=(0, 1), size=(21, 15), frames=6, progress=False)
     held = fc.animate("sin(3*x - t)*y", ("x", -1, 1), ("y", -1, 1), **kw)
     monkeypatch.setattr(anim_mod, "fits", lambda need: need < 6 * 21 * 15 * 4)
     with pytest.raises(ValueError, match="6 frames of 21x15 take"):
-        fc.animate("sin(3*x - t)*y", ("x", -1, 1), ("y", -1, 1), output=tmp_path / "a.gif",
-                   **kw)
+        fc.animate("sin(3*x - t)*y", ("x", -1, 1), ("y", -1, 1), **kw)
     monkeypatch.setattr(anim_mod, "KEEP_BYTES", 0)
     anim = fc.animate("sin(3*x - t)*y", ("x", -1, 1), ("y", -1, 1),
                       output=tmp_path / "a.mp4", **kw)
@@ -148,14 +159,12 @@ def test_a_clip_too_big_to_hold_is_written_to_an_mp4_as_it_comes(tmp_path, monke
     anim.save(tmp_path / "copy.mp4")              # the file itself, not encoded again
     assert (tmp_path / "copy.mp4").read_bytes() == (tmp_path / "a.mp4").read_bytes()
     assert anim.save(tmp_path / "a.mp4") == str(tmp_path / "a.mp4")
-    with pytest.raises(ValueError, match="6 frames of 21x15 take"):
-        anim.save(tmp_path / "a.gif")
+    anim.save(tmp_path / "a.gif")                 # (decoded as it is written)
+    assert Image.open(tmp_path / "a.gif").n_frames == 6
     assert "data:video/mp4;base64" in anim._repr_html_()
     monkeypatch.setattr(anim_mod, "EMBED_BYTES", 10)
     assert "6 frames in" in anim._repr_html_() and "a.mp4" in anim._repr_html_()
     monkeypatch.undo()
-    anim.save(tmp_path / "a.gif")
-    assert Image.open(tmp_path / "a.gif").n_frames == 6
     # a clip short enough keeps its pictures too: the same frames as without a file
     kept = fc.animate("sin(3*x - t)*y", ("x", -1, 1), ("y", -1, 1),
                       output=tmp_path / "k.mp4", **kw)
@@ -164,7 +173,45 @@ def test_a_clip_too_big_to_hold_is_written_to_an_mp4_as_it_comes(tmp_path, monke
     assert len(anim_mod._FileFrames(str(tmp_path / "k.mp4"), 6, (15, 21))[0:6]) == 6
 
 
-def test_a_failed_clip_leaves_no_mp4(tmp_path, monkeypatch):
+def test_a_clip_too_big_to_hold_is_written_to_a_gif_as_it_comes(tmp_path, monkeypatch):
+    """To a GIF too a clip's frames are written as they are rendered (quantized in a
+    core's threads, a frame or so in flight each): one too big to hold is not refused,
+    and its frames are read back from the file when asked, each the rendered picture
+    quantized to its 255 colours, pixel for pixel. Equal frames are one frame of the
+    file, held longer, and read back as many. Copies are the file; an MP4 of it is
+    written as its frames are decoded; a notebook shows the file."""
+    from floatcol.animate import _quantized
+    anim_mod = sys.modules["floatcol.animate"]
+    kw = dict(t=(0, 1), size=(21, 15), frames=6, progress=False)
+    held = fc.animate("sin(3*x - t)*y", ("x", -1, 1), ("y", -1, 1), **kw)
+    monkeypatch.setattr(anim_mod, "fits", lambda need: need < 6 * 21 * 15 * 4)
+    monkeypatch.setattr(anim_mod, "KEEP_BYTES", 0)
+    anim = fc.animate("sin(3*x - t)*y", ("x", -1, 1), ("y", -1, 1),
+                      output=tmp_path / "a.gif", **kw)
+    assert not isinstance(anim.frames, list) and len(anim) == 6
+    back = list(anim.frames)
+    assert [f.shape for f in back] == [(15, 21, 4)] * 6
+    for f, g in zip(back, held.frames):
+        assert np.array_equal(f, np.asarray(_quantized(g).convert("RGBA")))
+    assert not np.array_equal(back[0], back[3])
+    assert np.array_equal(anim.frames[4], back[4]) and len(anim.frames[1:4]) == 3
+    anim.save(tmp_path / "copy.gif")
+    assert (tmp_path / "copy.gif").read_bytes() == (tmp_path / "a.gif").read_bytes()
+    anim.save(tmp_path / "a.mp4")
+    import imageio_ffmpeg
+    assert len(list(imageio_ffmpeg.read_frames(str(tmp_path / "a.mp4")))) == 7   # (+ metadata)
+    assert "data:image/gif;base64" in anim._repr_html_()
+    # a still clip: one frame in the file, held six frames' time, read back six times
+    still = fc.animate("sin(3*x)*y + 0*t", ("x", -1, 1), ("y", -1, 1),
+                       output=tmp_path / "still.gif", fps=10, **kw)
+    with Image.open(tmp_path / "still.gif") as im:
+        assert (im.n_frames, im.info["duration"]) == (1, 600)
+    frames = list(still.frames)
+    assert len(frames) == 6 and all(np.array_equal(f, frames[0]) for f in frames)
+
+
+@pytest.mark.parametrize("ext", [".mp4", ".gif"])
+def test_a_failed_clip_leaves_no_file(tmp_path, monkeypatch, ext):
     """A clip that fails while its frames are written (here the third frame's render)
     leaves no file, not even the encoder's temporary one."""
     import floatcol.plot as plot_mod
@@ -180,7 +227,7 @@ def test_a_failed_clip_leaves_no_mp4(tmp_path, monkeypatch):
     monkeypatch.setattr(anim_mod, "plot_surface", failing)
     with pytest.raises(ValueError, match="third frame"):
         fc.animate("sin(x - t)", ("x", -1, 1), ("y", -1, 1), size=(20, 16), frames=5,
-                   output=tmp_path / "a.mp4", progress=False)
+                   output=tmp_path / f"a{ext}", progress=False)
     assert list(tmp_path.iterdir()) == []
     assert plot_mod.plot_surface is real
 

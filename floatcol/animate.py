@@ -158,16 +158,17 @@ def _quantized_rgb(f):
 
 
 class _GifSink:
-    """_gif_writer's send(frame): frames quantized (_quantized) in ``threads`` threads
-    (Pillow's quantizer lets the others run: 60 frames of 1000x600 in 2.3 instead of
-    4.5 s on 2 cores), GIF_BATCH at a time, between the renders (quantizing while a
-    frame renders slowed the render's parallel loop, whose threads wait for the
-    slowest: 300 frames of 1280x720 in 24 instead of 20.5 s), and written in order by
-    Pillow's GIF encoder (GifImagePlugin.getheader and getdata: one frame at a time,
-    its own colour table): a frame equal to the one before lengthens its hold (at most
-    GIF_MAX_MS), and a frame is written over the one shown before it where it differs
-    from it (its bounding box). ``counts``: how many of the clip's frames each frame
-    of the file shows."""
+    """_gif_writer's send(frame): frames quantized (_quantized) GIF_BATCH at a time in
+    ``threads`` threads (Pillow's quantizer lets the others run: 60 frames of 1000x600
+    in 2.3 instead of 4.5 s on 2 cores), so that at most a batch of pictures is held,
+    and written in order by Pillow's GIF encoder (GifImagePlugin.getheader and
+    getdata: one frame at a time, its own colour table): a frame equal to the one
+    before lengthens its hold (at most GIF_MAX_MS), and a frame is written over the
+    one shown before it where it differs from it (its bounding box). 300 frames of
+    1280x720 from fc.animate: 1.98 GB at the peak when the clip was held and given to
+    Pillow whole, 0.38-0.41 GB so, in 25.2 s against 23.3 s (quantizing a frame in
+    flight each thread beside the renders instead of batches: no faster, 24-25 s).
+    ``counts``: how many of the clip's frames each frame of the file shows."""
 
     def __init__(self, fh, fps, threads):
         self.fh = fh

@@ -4,8 +4,9 @@ A photograph draped over a wave, a DEM draped with an image made from it (its
 hillshaded colour relief, as an orthophoto would be), Gordon's function coloured by its
 slope with a colorbar, its contour lines, and matplotlib's own call form with the mesh's
 lines drawn on the exact surface. Textures are read through mip-maps (each pixel
-averages the texels it covers), lines are drawn from the G-buffer: antialiased, a
-constant width in pixels, hidden wherever the surface hides them.
+averages the texels it covers; with sub-columns, ``antialias=3``, across the pixel
+too), lines are drawn from the G-buffer: antialiased, a constant width in pixels, hidden
+wherever the surface hides them.
 """
 import matplotlib
 
@@ -19,11 +20,12 @@ from matplotlib.colors import LightSource  # noqa: E402
 
 import floatcol as fc  # noqa: E402
 
-# a photograph on a wave: the image's first row is its top, the texture's row 0 is v's low end
+# a photograph on a wave: the image's first row is its top, the texture's row 0 is v's low end;
+# antialias=3: each pixel averages three sub-columns across it, the photograph's too
 with get_sample_data("grace_hopper.jpg") as f:
     photo = plt.imread(f)[::-1]
 fc.render("0.4*sin(1.5*u)*cos(v)", u=(-4, 4), v=(-3, 3), size=(800, 560), elev=35, azim=20,
-          texture=photo, ambient=0.45, specular=0.1).save("texture_photo.png")
+          texture=photo, ambient=0.45, specular=0.1, antialias=3).save("texture_photo.png")
 
 # a DEM draped with an image of itself: colour relief under a low sun
 dem = get_sample_data("jacksboro_fault_dem.npz")

@@ -133,7 +133,7 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     if not many and texture is None and draft.supports(quality, views[0], drawn[0][0]) \
             and quality.device == "cpu" \
             and scene.camera.columns is None \
-            and not first.colored and not first.overlaid \
+            and not first.overlaid \
             and _drafting(quality, first, drawn[0][0], views[0]):
         return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
                             stacklevel + 1), texture
@@ -372,8 +372,8 @@ def _draft_layer(p, view, drawn, box, background, t_start, stacklevel):
     material = p.material
     material.check_limits()
     t_setup = time.perf_counter()
-    rgba, side, intensity, depth, gbuf, evals, w_limits = draft.draft_pass(
-        surface, view, material, p.terms, box, color.to_rgba8(background))
+    rgba, side, intensity, depth, gbuf, evals, w_limits, c_limits = draft.draft_pass(
+        surface, view, material, p.terms, box, color.to_rgba8(background), p.source)
     t_end = time.perf_counter()
     if nowhere_finite(surface, domain) and not (side != 0).any():
         warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,
@@ -383,6 +383,8 @@ def _draft_layer(p, view, drawn, box, background, t_start, stacklevel):
              "planes": view.planes, "step": view.step, "scale": view.scale, "lines": 0,
              "method": "column", "derivatives": surface.derivatives, "w_limits": w_limits,
              "box": box, "engine": "draft"}
+    if c_limits is not None:
+        stats["c_limits"] = c_limits   # the colour field's range on the colormap
     return Render(rgba, intensity, side, depth, stats, view, gbuf, box=box)
 
 

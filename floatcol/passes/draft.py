@@ -25,9 +25,10 @@ antialiasing (an area-sampled picture is drawn at the pixel centres), smooth
 shading (a height field's cells lit by their own partials), adaptive sampling. Against
 the ray caster it scores about 40 dB where the kernels score 63 (tests/test_draft.py
 measures it). A fly camera's view inside the scene is drawn on the level-of-detail
-engine's planes (_planes). Scenes it does not draw (a line drawing, shadows,
-translucency, several surfaces, textures, a perspective viewpoint over the domain that
-the lod engine does not draw either) wait for the kernels as before.
+engine's planes (_planes). A texture or colour field colours it (draft_base). Scenes
+it does not draw (a line drawing, contours and wireframes, shadows, translucency,
+several surfaces, a perspective viewpoint over the domain that the lod engine does not
+draw either) wait for the kernels as before.
 """
 from __future__ import annotations
 
@@ -663,10 +664,12 @@ def _toward_viewer(view, H, W, depth):
     return vx * q, vy * q, vz * q
 
 
-def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8):
+def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8, base=None):
     """(rgba (H, W, 4) uint8, intensity (H, W) float32), rows from the bottom, of the
     draft's G-buffer g and seen sides ``side`` (_sides): finish_kernel's colours of a
-    fully covered pixel (shade.py's _light, _side_rgb, pixel_rgba), in numpy."""
+    fully covered pixel (shade.py's _light, _side_rgb, pixel_rgba), in numpy. ``base``
+    (H, W, 3): the surface's colours (a texture's or colour field's: draft_base)
+    instead of its sides'."""
     H, W = side.shape
     seen = side != 0
     ambient, specular, shininess = terms
@@ -690,20 +693,91 @@ def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8
         ok = (nl_s > 0.0) & (rv > 0.0)
         sp = np.where(ok, specular * np.power(np.where(ok, rv, 0.0), shininess), 0.0)
     w = g[..., L.G_W].astype(np.float64) + view.w_origin       # (layout.py G_W)
-    if lut.shape[1] > 3:
-        idx = np.maximum(np.searchsorted(lut[:, 3], w, side="right") - 1, 0)
+    if base is None:
+        upper = _table_rgb(w, lut, w_lo, w_hi)
+        rgb = np.where((side > 0)[..., None], upper, lower_or_upper(lower_rgb, upper))
     else:
-        span = w_hi - w_lo if w_hi > w_lo else 1.0
-        x = (w - w_lo) / span * (lut.shape[0] - 1)
-        idx = np.clip(np.nan_to_num(x), 0, lut.shape[0] - 1).astype(np.int64)
-    rgb = np.where((side > 0)[..., None], lut[idx, :3],
-                   lower_or_upper(lower_rgb, lut[idx, :3]))
+        rgb = base
     rgb = np.minimum(rgb * inten[..., None] + sp[..., None], 1.0)
     rgba = np.empty((H, W, 4), dtype=np.uint8)
     rgba[...] = bg8
     rgba[seen, :3] = (rgb[seen] * 255.0 + 0.5).astype(np.uint8)
     rgba[seen, 3] = 255
     return rgba, np.where(seen, inten, np.nan).astype(np.float32)
+
+
+def _table_rgb(w, lut, w_lo, w_hi):
+    """The upper side's colours at heights w (shade._side_rgb), in numpy."""
+    if lut.shape[1] > 3:
+        idx = np.maximum(np.searchsorted(lut[:, 3], w, side="right") - 1, 0)
+    else:
+        span = w_hi - w_lo if w_hi > w_lo else 1.0
+        x = (w - w_lo) / span * (lut.shape[0] - 1)
+        idx = np.clip(np.nan_to_num(x), 0, lut.shape[0] - 1).astype(np.int64)
+    return lut[idx, :3]
+
+
+def draft_base(material, source, view, g, side, box, own):
+    """((H, W, 3) colours, c_limits or None): a texture's or colour field's colours
+    (passes/colour.py ``source``) at the draft's seen points, rows from the bottom,
+    both sides, in numpy: a texture image bilinear on the mip level of each pixel's
+    footprint (its texel coordinates' steps to the next pixel; texture_kernel's
+    filters left for the kernels), premultiplied over the surface's own colours
+    ``own`` (H, W, 3); a colour field through the material's colour map over the
+    values seen."""
+    from .colour import _bilinear, _called, colour_table_rgb, field_values
+    from .. import color
+    seen = side != 0
+    u = (g[..., L.G_U].astype(np.float64) + view.center[0]) / box[0]   # (layout.py G_U)
+    v = (g[..., L.G_V].astype(np.float64) + view.center[1]) / box[1]
+    out = own.copy()
+    if not seen.any():
+        return out, None
+    if source.field is not None:
+        vals = field_values(source.field, u, v, seen, source.extent)
+        finite = vals[np.isfinite(vals)]
+        rng = np.array([[finite.min(), finite.max()]]) if finite.size else \
+            np.array([[0.0, 1.0]])
+        lut_c, lo, hi, limits = material.color_table(rng)
+        rgb = colour_table_rgb(vals, lut_c, lo, hi)
+        nan_rgb = color.bad(material.cmap)
+        rgb[~np.isfinite(vals)] = lower_or_upper(material.colors()[1], lut_c[0, :3]) \
+            if nan_rgb is None else nan_rgb
+        out[seen] = rgb
+        return np.clip(out, 0.0, 1.0), limits
+    if callable(source.texture):
+        tex = _called(source.texture, u[seen], v[seen])
+    else:
+        levels = source.texture
+        u0, u1, v0, v1 = source.extent
+        h, w = (int(x) for x in levels.shapes[0])
+        x = (u - u0) / (u1 - u0) * (w - 1)        # node-centred, as texture_base
+        y = (v - v0) / (v1 - v0) * (h - 1)
+        # the footprint: the largest step of the texel coordinates to a seen neighbour
+        step = np.zeros(x.shape)
+        for a in (x, y):
+            for axis in (0, 1):
+                d = np.abs(np.diff(a, axis=axis))
+                ok = np.isfinite(d)
+                d = np.where(ok, d, 0.0)
+                pad = [(0, 0), (0, 0)]
+                pad[axis] = (1, 0)
+                step = np.maximum(step, np.pad(d, pad))
+                pad[axis] = (0, 1)
+                step = np.maximum(step, np.pad(d, pad))
+        k = np.clip(np.floor(np.log2(np.maximum(step, 1.0))), 0,
+                    len(levels.shapes) - 1).astype(np.int64)
+        tex = np.zeros((int(seen.sum()), 4))
+        ks, xs, ys = k[seen], x[seen], y[seen]
+        for lv in np.unique(ks):
+            hk, wk = (int(n) for n in levels.shapes[lv])
+            o = int(levels.offsets[lv])
+            level = levels.flat[o:o + hk * wk * 4].reshape(hk, wk, 4)
+            at = ks == lv
+            tex[at] = _bilinear(level, xs[at] * (wk - 1) / max(w - 1, 1),
+                                ys[at] * (hk - 1) / max(h - 1, 1))
+    out[seen] = tex[:, :3] + (1.0 - tex[:, 3:4]) * own[seen]   # premultiplied over it
+    return np.clip(out, 0.0, 1.0), None
 
 
 def _sides(view, g, seen):
@@ -734,9 +808,10 @@ def tiled(g):
     return np.ascontiguousarray(padded.reshape(H, n_tiles, L.TILE, C).transpose(1, 0, 2, 3))
 
 
-def draft_pass(surface, view, material, terms, box, bg8):
+def draft_pass(surface, view, material, terms, box, bg8, source=None):
     """The draft picture of one layer, top row first: (rgba, side, intensity, depth,
-    tiled G-buffer, evaluations per column, w_limits)."""
+    tiled G-buffer, evaluations per column, w_limits, c_limits); ``source`` its
+    texture or colour field (passes/colour.py prepare's), or None."""
     W, H = view.width, view.height
     check_bytes(W, H, W * H * DRAFT_BYTES)
     try:
@@ -747,8 +822,14 @@ def draft_pass(surface, view, material, terms, box, bg8):
     _, lower_rgb = material.colors()
     lut, w_lo, w_hi, w_limits = material.color_table(column_ranges(g, side, view.w_origin),
                                                      box[2])
+    base = c_limits = None
+    if source is not None:
+        upper = _table_rgb(g[..., L.G_W].astype(np.float64) + view.w_origin, lut, w_lo,
+                           w_hi)
+        own = np.where((side > 0)[..., None], upper, lower_or_upper(lower_rgb, upper))
+        base, c_limits = draft_base(material, source, view, g, side, box, own)
     rgba, intensity = draft_finish(view, g, side, material, terms, lut, w_lo, w_hi,
-                                   lower_rgb, bg8)
+                                   lower_rgb, bg8, base)
     depth = np.where(seen, g[..., L.G_DEPTH], np.inf).astype(np.float32)
     return (rgba[::-1], side[::-1], intensity[::-1], depth[::-1], tiled(g), evals,
-            w_limits)
+            w_limits, c_limits)

@@ -139,9 +139,8 @@ def write_gif(frames, path, fps):
     the one before lengthen its hold instead, which a GIF keeps for at most
     GIF_MAX_MS: a picture held longer (a still surface at a slow frame rate) is shown
     that long."""
-    with atomic_file(path) as tmp, open(tmp, "wb") as fh, _gif_writer(fh, fps) as send:
-        for f in frames:
-            send(f)
+    with atomic_file(path) as tmp, open(tmp, "wb") as fh:
+        _save_gif(frames, fh, fps)
 
 
 def _save_gif(frames, target, fps):

@@ -226,6 +226,31 @@ def colour_table_rgb(values, lut, lo, hi):
     return lut[idx, :3]
 
 
+def field_table(material, vals, lower_rgb, c_range=None):
+    """A colour field's colour map over the values seen (``vals``, NaN where none; or
+    ``c_range`` (lo, hi) where given): (lut, lo, hi, c_limits, the colour of a NaN
+    value: the colour map's "bad" colour where one is set, else the lower side's)."""
+    if c_range is not None:
+        rng = np.array([c_range], dtype=np.float64)
+    else:
+        finite = vals[np.isfinite(vals)]
+        rng = np.array([[finite.min(), finite.max()]]) if finite.size else \
+            np.array([[0.0, 1.0]])
+    lut, lo, hi, limits = material.color_table(rng)
+    nan_rgb = color.bad(material.cmap)
+    if nan_rgb is None:
+        nan_rgb = lower_or_upper(lower_rgb, lut[0, :3])
+    return lut, lo, hi, limits, nan_rgb
+
+
+def field_rgb(vals, table):
+    """The colours of a colour field's values on its map (field_table's)."""
+    lut, lo, hi, _, nan_rgb = table
+    rgb = colour_table_rgb(vals, lut, lo, hi)
+    rgb[~np.isfinite(vals)] = nan_rgb
+    return rgb
+
+
 def field_base(material, field, geom, W, H, box, lower_rgb, c_range=None):
     """(base (H, W, 6) float32, c_limits) of a colour field given as an expression
     (kernels/texture.py's field_kernel and colour_kernel); c_range as base_colours'."""
@@ -270,21 +295,12 @@ def base_colours(material, source, geom, W, H, box, colours, c_range=None):
     limits = None
     if source.field is not None:
         vals = field_values(source.field, u, v, seen, source.extent)
-        finite = vals[np.isfinite(vals)]
-        rng = np.array([[finite.min(), finite.max()]]) if finite.size else np.array([[0.0, 1.0]])
-        if c_range is not None:
-            rng = np.array([c_range], dtype=np.float64)
-        lut_c, lo, hi, limits = material.color_table(rng)
-        nan_rgb = color.bad(material.cmap)             # (else the lower side's colour)
-        if nan_rgb is None:
-            nan_rgb = lower_or_upper(lower_rgb, lut_c[0, :3])
-        own = colour_table_rgb(vals, lut_c, lo, hi)
-        own[~np.isfinite(vals)] = nan_rgb
+        table = field_table(material, vals, lower_rgb, c_range)
+        limits = table[3]
+        own = field_rgb(vals, table)
         if edge.any():                                 # the edge surfaces' own values
             e_vals = field_values(source.field, eu, ev, edge, source.extent)
-            e_own = colour_table_rgb(e_vals, lut_c, lo, hi)
-            e_own[~np.isfinite(e_vals)] = nan_rgb
-            base[edge, 3:] = np.clip(e_own, 0.0, 1.0)
+            base[edge, 3:] = np.clip(field_rgb(e_vals, table), 0.0, 1.0)
     else:
         # the surface's own colour under a texture's transparent parts: its side's
         # (w and the table's ends both in the box's units)

@@ -41,6 +41,7 @@ from ..kernels import layout as L
 from ..kernels.sample import DOMAIN_EPS, NEWTON_ITERS, NEWTON_TOL_PX
 from ..kernels.fold import FOLD_NEAR
 from ..kernels.shade import INTERP_INTENSITY
+from .colour import colour_table_rgb
 from .geometry import check_bytes, too_large
 
 #: Bytes a pixel of a draft holds at most at once: its G-buffer (9 float32) twice
@@ -86,24 +87,38 @@ def _normal(view, wu, wv):
     return nx * q, ny * q, nz * q
 
 
+def _in_domain(view, lines):
+    """(lo, hi): the stretch of x where each line (u, v) = (u0 + du x, v0 + dv x) lies
+    inside the domain (lo > hi where it misses it); ``lines`` (u0, du, v0, dv), numbers
+    or arrays of one shape."""
+    (ua, ub), (va, vb) = view.domain
+    u0, du, v0, dv = lines
+    lo, hi = -np.inf, np.inf
+    for base, slope, a, b in ((u0, du, ua, ub), (v0, dv, va, vb)):
+        flat = np.abs(slope) < 1e-15
+        with np.errstate(divide="ignore", invalid="ignore"):
+            l1, l2 = (a - base) / slope, (b - base) / slope
+        lo = np.where(flat, np.where((base < a) | (base > b), np.inf, lo),
+                      np.maximum(lo, np.minimum(l1, l2)))
+        hi = np.where(flat, hi, np.minimum(hi, np.maximum(l1, l2)))
+    return lo, hi
+
+
+def _s_range(view):
+    """(s_lo, s_hi): the heights on Π (from the view's centre) where the surface may
+    be: f's range with a quarter of it to spare (the kernels' scan_range)."""
+    flo, fhi = view.f_range
+    spare = 0.25 * (fhi - flo) + 1e-9
+    return flo - spare - view.center[2], fhi + spare - view.center[2]
+
+
 def _column_t(view, x0):
     """(ta, tb) of each orthographic column: its line's stretch inside the domain
     (ta > tb where it misses)."""
     ca, sa, cb, sb = _params(view)
     cu, cv, _ = view.center
-    (ua, ub), (va, vb) = view.domain
-    lo = np.full(x0.shape, -np.inf)
-    hi = np.full(x0.shape, np.inf)
     # u = cu + x0 cb + t sb, v = cv - x0 sb + t cb (eq. 3)
-    for base, slope, a, b in ((cu + x0 * cb, sb, ua, ub), (cv - x0 * sb, cb, va, vb)):
-        if abs(slope) < 1e-15:
-            out = (base < a) | (base > b)
-            lo = np.where(out, np.inf, lo)
-        else:
-            l1, l2 = (a - base) / slope, (b - base) / slope
-            lo = np.maximum(lo, np.minimum(l1, l2))
-            hi = np.minimum(hi, np.maximum(l1, l2))
-    return lo, hi
+    return _in_domain(view, (cu + x0 * cb, sb, cv - x0 * sb, cb))
 
 
 def _inside(view, u, v):
@@ -212,21 +227,10 @@ def _root_inside(surface, view, r0, k, t, idx, w, wu, wv, done):
     leave it). Writes w, wu, wv and done where one is found. Returns the evaluations."""
     ca, sa, cb, sb = _params(view)
     cu, cv, cw = view.center
-    (ua, ub), (va, vb) = view.domain
     r0, k, t = r0.flat[idx], k.flat[idx], t.flat[idx]
     # the plane's line inside the domain: r in [ra, rb] (eq. 2)
-    ra = np.full(idx.shape, -np.inf)
-    rb = np.full(idx.shape, np.inf)
-    for base, slope, lo, hi in ((cu + t * sb, cb, ua, ub), (cv + t * cb, -sb, va, vb)):
-        if abs(slope) < 1e-15:
-            ra = np.where((base < lo) | (base > hi), np.inf, ra)
-        else:
-            l1, l2 = (lo - base) / slope, (hi - base) / slope
-            ra = np.maximum(ra, np.minimum(l1, l2))
-            rb = np.minimum(rb, np.maximum(l1, l2))
-    flo, fhi = view.f_range                      # (scan_range)
-    spare = 0.25 * (fhi - flo) + 1e-9
-    s_lo, s_hi = flo - spare - cw, fhi + spare - cw
+    ra, rb = _in_domain(view, (cu + t * sb, cb, cv + t * cb, -sb))
+    s_lo, s_hi = _s_range(view)
     with np.errstate(invalid="ignore"):
         s1, s2 = (ra - r0) / k, (rb - r0) / k
         a = np.maximum(np.minimum(s1, s2), s_lo)
@@ -353,7 +357,6 @@ def _rays(view, t):
     range to one after they leave it; A, B: each row's ray s = A t + B on its column's
     plane Π, eqs. 4, 10 inverted)."""
     ca, sa, _, _ = _params(view)
-    cw = view.center[2]
     d1, d3, H = view.d1, view.d3, view.height
     y0 = (np.arange(H) - (H - 1) * 0.5) / view.scale
     den = d1 * ca - y0 * sa
@@ -361,9 +364,7 @@ def _rays(view, t):
     den = np.where(rows, den, 1.0)
     A = (d1 * sa + y0 * ca) / den
     B = y0 * d3 / den
-    flo, fhi = view.f_range                       # (scan_range)
-    spare = 0.25 * (fhi - flo) + 1e-9
-    s_lo, s_hi = flo - spare - cw, fhi + spare - cw
+    s_lo, s_hi = _s_range(view)
     with np.errstate(divide="ignore", invalid="ignore"):
         ta, tb = (s_lo - B) / A, (s_hi - B) / A
     t_first = np.where(A != 0.0, np.minimum(ta, tb), -np.inf)
@@ -413,17 +414,7 @@ def _ray_columns(surface, view, x0, t, rays):
     # each ray's planes over the domain: its ground point (u, v) is linear in t
     rr = xr * (A * sa + ca) / d1                  # r = rr t + r0 (eq. 9)
     r0 = xr * (B * sa + d3) / d1
-    lo = np.full(rows.size, -np.inf)
-    hi = np.full(rows.size, np.inf)
-    (ua, ub), (va, vb) = view.domain
-    for base, slope, a, b in ((cu + r0 * cb, rr * cb + sb, ua, ub),
-                              (cv - r0 * sb, cb - rr * sb, va, vb)):
-        flat = np.abs(slope) < 1e-15
-        with np.errstate(divide="ignore", invalid="ignore"):
-            l1, l2 = (a - base) / slope, (b - base) / slope
-        lo = np.where(flat, np.where((base < a) | (base > b), np.inf, lo),
-                      np.maximum(lo, np.minimum(l1, l2)))
-        hi = np.where(flat, hi, np.minimum(hi, np.maximum(l1, l2)))
+    lo, hi = _in_domain(view, (cu + r0 * cb, rr * cb + sb, cv - r0 * sb, cb - rr * sb))
     i0 = np.maximum(i0, np.searchsorted(t, lo) - 1)
     i1 = np.minimum(i1, np.searchsorted(t, hi, side="right"))
     evals = 0
@@ -638,13 +629,11 @@ def draft_geometry(surface, view):
             hit_f, f, ev = _ray_columns(surface, view, x0[cf], t, rays)
             budget -= ev
             evals[c0 + cf] += ev // cf.size
-            rows = rays[0]
-            hit[np.ix_(rows, cf)] = hit_f[rows]
+            rows = rays[0][:, None]                # (the rows the rays drew)
+            hit[:, cf] = np.where(rows, hit_f, hit[:, cf])
             for ch, name in names:
-                part = gb[:, cf, ch]
-                part[rows] = np.where(hit_f[rows], f[name][rows] - origin.get(ch, 0.0),
-                                      part[rows])
-                gb[:, cf, ch] = part
+                gb[:, cf, ch] = np.where(rows & hit_f, f[name] - origin.get(ch, 0.0),
+                                         gb[:, cf, ch])
         seen[:, c0:c0 + cols.size] = hit
     n = g[..., L.G_NX:L.G_NZ + 1]
     norm = np.sqrt((n.astype(np.float64) ** 2).sum(-1, keepdims=True))
@@ -694,7 +683,7 @@ def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8
         sp = np.where(ok, specular * np.power(np.where(ok, rv, 0.0), shininess), 0.0)
     w = g[..., L.G_W].astype(np.float64) + view.w_origin       # (layout.py G_W)
     if base is None:
-        upper = _table_rgb(w, lut, w_lo, w_hi)
+        upper = colour_table_rgb(w, lut, w_lo, w_hi)
         rgb = np.where((side > 0)[..., None], upper, lower_or_upper(lower_rgb, upper))
     else:
         rgb = base
@@ -706,17 +695,6 @@ def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8
     return rgba, np.where(seen, inten, np.nan).astype(np.float32)
 
 
-def _table_rgb(w, lut, w_lo, w_hi):
-    """The upper side's colours at heights w (shade._side_rgb), in numpy."""
-    if lut.shape[1] > 3:
-        idx = np.maximum(np.searchsorted(lut[:, 3], w, side="right") - 1, 0)
-    else:
-        span = w_hi - w_lo if w_hi > w_lo else 1.0
-        x = (w - w_lo) / span * (lut.shape[0] - 1)
-        idx = np.clip(np.nan_to_num(x), 0, lut.shape[0] - 1).astype(np.int64)
-    return lut[idx, :3]
-
-
 def draft_base(material, source, view, g, side, box, own):
     """((H, W, 3) colours, c_limits or None): a texture's or colour field's colours
     (passes/colour.py ``source``) at the draft's seen points, rows from the bottom,
@@ -725,8 +703,7 @@ def draft_base(material, source, view, g, side, box, own):
     filters left for the kernels), premultiplied over the surface's own colours
     ``own`` (H, W, 3); a colour field through the material's colour map over the
     values seen."""
-    from .colour import _bilinear, _called, colour_table_rgb, field_values
-    from .. import color
+    from .colour import _bilinear, _called, field_rgb, field_table, field_values
     seen = side != 0
     u = (g[..., L.G_U].astype(np.float64) + view.center[0]) / box[0]   # (layout.py G_U)
     v = (g[..., L.G_V].astype(np.float64) + view.center[1]) / box[1]
@@ -735,16 +712,9 @@ def draft_base(material, source, view, g, side, box, own):
         return out, None
     if source.field is not None:
         vals = field_values(source.field, u, v, seen, source.extent)
-        finite = vals[np.isfinite(vals)]
-        rng = np.array([[finite.min(), finite.max()]]) if finite.size else \
-            np.array([[0.0, 1.0]])
-        lut_c, lo, hi, limits = material.color_table(rng)
-        rgb = colour_table_rgb(vals, lut_c, lo, hi)
-        nan_rgb = color.bad(material.cmap)
-        rgb[~np.isfinite(vals)] = lower_or_upper(material.colors()[1], lut_c[0, :3]) \
-            if nan_rgb is None else nan_rgb
-        out[seen] = rgb
-        return np.clip(out, 0.0, 1.0), limits
+        table = field_table(material, vals, material.colors()[1])
+        out[seen] = field_rgb(vals, table)
+        return np.clip(out, 0.0, 1.0), table[3]
     if callable(source.texture):
         tex = _called(source.texture, u[seen], v[seen])
     else:
@@ -824,7 +794,7 @@ def draft_pass(surface, view, material, terms, box, bg8, source=None):
                                                      box[2])
     base = c_limits = None
     if source is not None:
-        upper = _table_rgb(g[..., L.G_W].astype(np.float64) + view.w_origin, lut, w_lo,
+        upper = colour_table_rgb(g[..., L.G_W].astype(np.float64) + view.w_origin, lut, w_lo,
                            w_hi)
         own = np.where((side > 0)[..., None], upper, lower_or_upper(lower_rgb, upper))
         base, c_limits = draft_base(material, source, view, g, side, box, own)

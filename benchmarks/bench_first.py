@@ -14,6 +14,11 @@ kernels the warm-up compiles besides the default picture's, the terrain's first.
 
     python benchmarks/bench_first.py
     python benchmarks/bench_first.py --compile   # where the compile's time goes
+    python benchmarks/bench_first.py --shadows   # a first picture with shadows
+
+``--shadows`` instead times a first picture with shadows (1920x1080, the sun at 120/15)
+and then one with soft shadows (a light of 1 degree), drafted (passes/draft_shadow.py)
+while the warm-up compiles the column pass's and the shadows' kernels.
 
 ``--compile`` instead compiles with an empty cache, in a process of its own on one
 core, the default picture's kernels and then every kernel (warmup.warm_all), as the
@@ -47,6 +52,10 @@ print(f"{t1 - t0:.2f} {t2 - t1:.2f} {a.stats['engine']} {t3 - t2:.2f} {b.stats['
       f"{pid or 0}")
 """
 
+SHADOW_SCRIPT = SCRIPT.replace(
+    'size=(1920, 1080))', 'size=(1920, 1080), lightsource=(120, 15), shadows=True)').replace(
+    'projection="perspective", **kw', 'light_radius=1.0, **kw')
+
 
 TERRAIN_SCRIPT = """
 import os, time
@@ -78,10 +87,10 @@ def run_terrain(cache, drafts=True):
     return float(imp), float(first), engine, float(fly), f_engine, int(pid)
 
 
-def run(cache, drafts=True):
+def run(cache, drafts=True, script=SCRIPT):
     env = dict(os.environ, NUMBA_CACHE_DIR=cache, FLOATCOL_DRAFT="1" if drafts else "0")
     t = time.perf_counter()
-    out = subprocess.run([sys.executable, "-c", SCRIPT], env=env, check=True,
+    out = subprocess.run([sys.executable, "-c", script], env=env, check=True,
                          capture_output=True, text=True).stdout.split()
     wall = time.perf_counter() - t
     imp, first, e1, second, e2, pid = out[-6:]
@@ -222,8 +231,32 @@ def main():
           f"after, every kernel {warm:.0f} s after.")
 
 
+def shadows_main():
+    """--shadows: a first picture with shadows, then one with soft shadows."""
+    rows = []
+    with tempfile.TemporaryDirectory() as cache:
+        t_start = time.perf_counter()
+        out = run(cache, script=SHADOW_SCRIPT)
+        rows.append(("fresh install, drafts on",) + out[:5])
+        _, warm = wait_for(cache, out[5], [], t_start)
+        rows.append(("next process, after the warm-up",) + run(cache, script=SHADOW_SCRIPT)[:5])
+    with tempfile.TemporaryDirectory() as cache:
+        rows.append(("fresh install, drafts off",) +
+                    run(cache, drafts=False, script=SHADOW_SCRIPT)[:5])
+    print(f"{os.cpu_count()} cpus; 3 sin(u cos v), 1920x1080, the sun at 120/15, shadows=True\n")
+    print("| process | import s | first picture s (shadows) | engine | "
+          "then soft shadows s | engine |")
+    print("|---|---|---|---|---|---|")
+    for name, imp, first, e1, second, e2 in rows:
+        print(f"| {name} | {imp:.2f} | {first:.2f} | {e1} | {second:.2f} | {e2} |")
+    print(f"\nThe warm-up process (the shadows' kernels after the column pass's) ended "
+          f"{warm:.0f} s after the fresh process started.")
+
+
 if __name__ == "__main__":
-    if "--compile" in sys.argv[1:]:
+    if "--shadows" in sys.argv[1:]:
+        shadows_main()
+    elif "--compile" in sys.argv[1:]:
         compile_main("--plain" in sys.argv[1:])
     else:
         main()

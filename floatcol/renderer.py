@@ -103,7 +103,15 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     background = scene.background
     if background is None:
         background = default_background(quality.method, first.shading)
-    texture = _shadow_texture(layers[0].light, scene.camera, quality, drawn, views[0])
+    # a fresh install's draft (passes/draft.py) while the kernels compile: decided
+    # before the shadow texture, which a draft makes in numpy (passes/draft_shadow.py)
+    drafted = (not many and first.opacity >= 1.0 and quality.device == "cpu"
+               and scene.camera.columns is None and not first.overlaid
+               and not (objects and layers[0].light.shadows)
+               and draft.supports(quality, views[0], drawn[0][0])
+               and _drafting(quality, first, drawn[0][0], views[0], layers[0].light))
+    texture = _shadow_texture(layers[0].light, scene.camera, quality, drawn, views[0],
+                              sweep=not drafted)
     if texture is not None and objects:
         texture.occluders = _occluders(texture, objects, layers[0].surface, box)
     if any(p.material.opacity < 1.0 for p in layers):
@@ -130,13 +138,9 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
                              views[0], texture)
         return render_translucent(layers, views, drawn, box, quality, background, texture,
                                   t_start, stop), texture
-    if not many and texture is None and draft.supports(quality, views[0], drawn[0][0]) \
-            and quality.device == "cpu" \
-            and scene.camera.columns is None \
-            and not first.overlaid \
-            and _drafting(quality, first, drawn[0][0], views[0]):
+    if drafted:
         return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
-                            stacklevel + 1), texture
+                            stacklevel + 1, texture), texture
     if not many:
         return _layer(layers[0], views[0], drawn[0], box, quality, background, t_start,
                       stacklevel + 1, texture), texture
@@ -169,9 +173,9 @@ def _prepare(layer, scene):
                      colour.prepare(material, domain, scene.vars or surface.variables))
 
 
-def _shadow_texture(light, camera, quality, drawn, view):
+def _shadow_texture(light, camera, quality, drawn, view, sweep=True):
     """The light's shadow texture over every layer (passes/shadow.py), or None where
-    the light casts no shadows."""
+    the light casts no shadows; with sweep=False its grid alone (a draft's)."""
     if not light.shadows:
         return None
     if quality.method != "column":
@@ -179,7 +183,8 @@ def _shadow_texture(light, camera, quality, drawn, view):
                          "has no light)")
     from .view import _number
     direction = light.world_direction(_number("elev", camera.elev), _number("azim", camera.azim))
-    return shadows.Texture(drawn, view, direction, light.radius, light.shadow_method)
+    return shadows.Texture(drawn, view, direction, light.radius, light.shadow_method,
+                           sweep=sweep)
 
 
 def _occluders(texture, objects, surface, box):
@@ -366,14 +371,16 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
                   light_args, box, shadow=shadow)
 
 
-def _draft_layer(p, view, drawn, box, background, t_start, stacklevel):
-    """One layer's draft picture (passes/draft.py): a Render as _layer's."""
+def _draft_layer(p, view, drawn, box, background, t_start, stacklevel, texture=None):
+    """One layer's draft picture (passes/draft.py): a Render as _layer's; with the
+    light's shadow ``texture`` (not swept), its shadows (passes/draft_shadow.py)."""
     surface, domain = drawn
     material = p.material
     material.check_limits()
     t_setup = time.perf_counter()
-    rgba, side, intensity, depth, gbuf, evals, w_limits, c_limits = draft.draft_pass(
-        surface, view, material, p.terms, box, color.to_rgba8(background), p.source)
+    shadows = None if texture is None else (texture, domain)
+    rgba, side, intensity, depth, gbuf, evals, w_limits, c_limits, shadow = draft.draft_pass(
+        surface, view, material, p.terms, box, color.to_rgba8(background), p.source, shadows)
     t_end = time.perf_counter()
     if nowhere_finite(surface, domain) and not (side != 0).any():
         warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,
@@ -385,7 +392,7 @@ def _draft_layer(p, view, drawn, box, background, t_start, stacklevel):
              "box": box, "engine": "draft"}
     if c_limits is not None:
         stats["c_limits"] = c_limits   # the colour field's range on the colormap
-    return Render(rgba, intensity, side, depth, stats, view, gbuf, box=box)
+    return Render(rgba, intensity, side, depth, stats, view, gbuf, box=box, shadow=shadow)
 
 
 def default_background(method, shading):
@@ -418,13 +425,13 @@ def empty_message(surface, domain):
             "ranges)")
 
 
-def _drafting(quality, material, surface, view):
-    """warmup.drafting of this picture's kernels (its geometry pass's, smooth shading's),
-    warmup imported here: ``python -m floatcol.warmup`` runs that module as __main__,
-    which Python warns about where the package imported it first."""
+def _drafting(quality, material, surface, view, light):
+    """warmup.drafting of this picture's kernels (its geometry pass's, smooth shading's,
+    its shadows'), warmup imported here: ``python -m floatcol.warmup`` runs that module
+    as __main__, which Python warns about where the package imported it first."""
     from . import warmup
     return warmup.drafting(geometry_kind(quality, material, surface, view),
-                           material.smooth_shading)
+                           material.smooth_shading, warmup.shadow_kind(light))
 
 
 def geometry_kind(quality, material, surface, view):

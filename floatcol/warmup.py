@@ -47,16 +47,42 @@ def full_quality():
         _state.whole = before
 
 
-def _dispatchers(kind="column", smooth=False):
+#: the kinds of shadows whose kernels differ (shadow_kind's)
+SHADOW_KINDS = ("texture", "soft", "on-the-fly")
+
+
+def shadow_kind(light):
+    """The kind of shadows a light (light.py Light) casts, a SHADOW_KINDS entry, or None
+    where it casts none."""
+    if not light.shadows:
+        return None
+    if light.shadow_method == "on-the-fly":
+        return "on-the-fly"
+    return "soft" if light.radius > 0.0 else "texture"
+
+
+def _shadow_dispatchers(shadows):
+    """The kernels of shadows of the kind ``shadows`` (shadow_kind's, or None)."""
+    if shadows is None:
+        return ()
+    from .kernels import shadow as k
+    if shadows == "on-the-fly":
+        return (k.sweep_cells, k.sweep_order, k.shadow_sweep)
+    own = (k.horizon_sweeps, k.shadow_lookup)
+    return own + (k.horizon_slopes,) if shadows == "soft" else own
+
+
+def _dispatchers(kind="column", smooth=False, shadows=None):
     """The kernels a picture runs (what must be compiled or cached) whose geometry
     pass is ``kind`` (renderer.geometry_kind: "column", a default picture's; "area",
     an area-sampled one's, fc.terrain's default; "lod" or "march", a fly camera's),
-    with ``smooth``, smooth shading's too."""
+    with ``smooth``, smooth shading's too, and those of its ``shadows`` (shadow_kind's,
+    or None)."""
     from .kernels.shade import centre_kernel, finish_kernel
-    extra = ()
+    extra = _shadow_dispatchers(shadows)
     if smooth:
         from .kernels.normals import smooth_normals_kernel
-        extra = (smooth_normals_kernel,)
+        extra += (smooth_normals_kernel,)
     # (with the functions they take as values: _jit.kernel_calling)
     if kind == "area":
         from .kernels.area import area_kernel
@@ -100,11 +126,11 @@ def every_kernel():
     return found
 
 
-def kernels_ready(kind="column", smooth=False):
+def kernels_ready(kind="column", smooth=False, shadows=None):
     """Whether every kernel of a picture (_dispatchers' of its geometry pass ``kind``,
-    ``smooth``-shaded or not) is compiled in this process or in Numba's disk cache (its
-    index file is there)."""
-    for d in _dispatchers(kind, smooth):
+    ``smooth``-shaded or not, with ``shadows`` of that kind or none) is compiled in
+    this process or in Numba's disk cache (its index file is there)."""
+    for d in _dispatchers(kind, smooth, shadows):
         if d.signatures:
             continue
         try:
@@ -151,10 +177,10 @@ def _running_elsewhere(lock):
     return False
 
 
-def _spawn(lock, first="column"):
+def _spawn(lock, first="column", shadows=None):
     """Start the warm-up process (compiling the kernels of the picture that starts it,
-    whose geometry pass is ``first``, first), or find another process's running;
-    False where none can be started."""
+    whose geometry pass is ``first``, with its ``shadows``' kind, first), or find
+    another process's running; False where none can be started."""
     global _child
     for _ in range(2):                  # a stale lock (its process gone) is removed once
         try:
@@ -170,6 +196,8 @@ def _spawn(lock, first="column"):
     try:
         env = dict(os.environ, **{ENV: "0"})
         order = [] if first == "column" else ["--first", first]
+        if shadows is not None:
+            order += ["--shadows", shadows]
         _child = subprocess.Popen([sys.executable, "-m", "floatcol.warmup", lock] + order,
                                   env=env,
                                   stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
@@ -187,22 +215,23 @@ def _spawn(lock, first="column"):
     return True
 
 
-def drafting(kind="column", smooth=False):
-    """Whether this render (its geometry pass ``kind``, ``smooth``-shaded or not)
-    should be a draft: drafts are on, its kernels are not ready, and a warm-up process
-    is compiling them (started here if none is; it compiles the kernels of a default
-    picture, of an area-sampled smooth-shaded one, fc.terrain's, and of a fly
-    camera's, this render's first). Once this process's own warm-up has ended without
-    leaving the kernels (it failed), renders compile in the process instead."""
+def drafting(kind="column", smooth=False, shadows=None):
+    """Whether this render (its geometry pass ``kind``, ``smooth``-shaded or not, with
+    ``shadows`` of a shadow_kind or none) should be a draft: drafts are on, its kernels
+    are not ready, and a warm-up process is compiling them (started here if none is;
+    it compiles the kernels of a default picture, of an area-sampled smooth-shaded
+    one, fc.terrain's, of a fly camera's, and of each kind of shadows, this render's
+    first). Once this process's own warm-up has ended without leaving the kernels (it
+    failed), renders compile in the process instead."""
     if os.environ.get(ENV, "1") == "0" or getattr(_state, "whole", False) \
-            or kernels_ready(kind, smooth):
+            or kernels_ready(kind, smooth, shadows):
         return False
     if _child is not None:
         return _child.poll() is None
     lock = _lock_path()
     if lock is None:
         return False
-    return _spawn(lock, "lod" if kind == "march" else kind)
+    return _spawn(lock, "lod" if kind == "march" else kind, shadows)
 
 
 #: What the warm-up renders: the kernels of the default pictures, in both
@@ -221,11 +250,13 @@ WARM_RENDERS = (
 WARM_ORDER = ("column", "area", "lod")
 
 
-def warm(first="column"):
+def warm(first="column", shadows=None):
     """Compile (or load) the kernels of WARM_RENDERS into Numba's cache, those of an
-    area-sampled, smooth-shaded height field (fc.terrain's default picture) and those
-    of a fly camera's views, ``first``'s (a WARM_ORDER entry) first (and after a
-    terrain's, the other terrain's before the default picture's)."""
+    area-sampled, smooth-shaded height field (fc.terrain's default picture), those
+    of a fly camera's views and those of each kind of shadows (SHADOW_KINDS),
+    ``first``'s (a WARM_ORDER entry) first (and after a terrain's, the other
+    terrain's before the default picture's), with ``shadows``' kind right after it
+    (drawn by the same geometry pass: about 5 s more)."""
     import numpy as np
 
     import floatcol as fc
@@ -243,12 +274,33 @@ def warm(first="column"):
         cam = fc.fly(hf, (8, 1), heading=0, size=(64, 36), above=2)
         fc.render(hf, **cam, antialias="area", smooth_shading=True).intensity
         fc.render(hf, **cam, antialias=False, smooth_shading=True).intensity
+
+    def shadowed(kind, shadow):
+        """A small picture of the geometry pass ``kind`` with shadows of that kind."""
+        opts = dict(lightsource=(30, 40),
+                    shadows="on-the-fly" if shadow == "on-the-fly" else True)
+        if shadow == "soft":
+            opts["light_radius"] = 1.0
+        if kind == "column":
+            fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(64, 48), **opts).intensity
+        elif kind == "area":
+            fc.render(hf, size=(64, 48), antialias="area", smooth_shading=True,
+                      **opts).intensity
+        else:
+            cam = fc.fly(hf, (8, 1), heading=0, size=(64, 36), above=2)
+            fc.render(hf, **cam, antialias="area", smooth_shading=True, **opts).intensity
     steps = dict(column=column, area=area, lod=lod)
     rest = [k for k in WARM_ORDER if k != first]
     if first != "column":
         rest.sort(key=lambda k: k == "column")    # (a terrain's pictures before)
-    for name in [first] + rest:
+    steps[first]()
+    if shadows is not None:
+        shadowed(first, shadows)
+    for name in rest:
         steps[name]()
+    for shadow in SHADOW_KINDS:
+        if shadow != shadows:
+            shadowed("column", shadow)
 
 
 def warm_all():
@@ -332,8 +384,9 @@ def warm_all_steps():
 
 
 def main(argv=None):
-    """``python -m floatcol.warmup [--all] [--first area|lod]``: warm() (warm_all()
-    with --all; that picture's kernels first with --first). The warm-up process that
+    """``python -m floatcol.warmup [--all] [--first area|lod] [--shadows KIND]``: warm()
+    (warm_all() with --all; that picture's kernels first with --first, its shadows'
+    right after with --shadows). The warm-up process that
     drafting() starts passes its lock file's path, which it removes when done
     (nothing else is ever removed: a path that is not a lock file named LOCK_NAME is
     an error)."""
@@ -341,18 +394,23 @@ def main(argv=None):
     everything = "--all" in argv
     rest = [a for a in argv if a != "--all"]
     first = "column"
+    shadows = None
     if "--first" in rest:
         k = rest.index("--first")
         first = rest[k + 1] if k + 1 < len(rest) else ""
         del rest[k:k + 2]
+    if "--shadows" in rest:
+        k = rest.index("--shadows")
+        shadows = rest[k + 1] if k + 1 < len(rest) else ""
+        del rest[k:k + 2]
     if len(rest) > 1 or rest and os.path.basename(rest[0]) != LOCK_NAME \
-            or first not in WARM_ORDER:
+            or first not in WARM_ORDER or shadows not in SHADOW_KINDS + (None,):
         print(f"usage: python -m floatcol.warmup [--all] [--first area|lod] "
-              f"(got {' '.join(argv)})", file=sys.stderr)
+              f"[--shadows texture|soft|on-the-fly] (got {' '.join(argv)})", file=sys.stderr)
         return 2
     os.environ[ENV] = "0"
     try:
-        warm_all() if everything else warm(first)
+        warm_all() if everything else warm(first, shadows)
     finally:
         if rest:
             try:

@@ -25,10 +25,11 @@ antialiasing (an area-sampled picture is drawn at the pixel centres), smooth
 shading (a height field's cells lit by their own partials), adaptive sampling. Against
 the ray caster it scores about 40 dB where the kernels score 63 (tests/test_draft.py
 measures it). A fly camera's view inside the scene is drawn on the level-of-detail
-engine's planes (_planes). A texture or colour field colours it (draft_base). Scenes
-it does not draw (a line drawing, contours and wireframes, shadows, translucency,
-several surfaces, a perspective viewpoint over the domain that the lod engine does not
-draw either) wait for the kernels as before.
+engine's planes (_planes). A texture or colour field colours it (draft_base), a
+light casts its shadows (passes/draft_shadow.py). Scenes it does not draw (a line
+drawing, contours and wireframes, translucency, objects with shadows, several
+surfaces, a perspective viewpoint over the domain that the lod engine does not draw
+either) wait for the kernels as before.
 """
 from __future__ import annotations
 
@@ -54,8 +55,8 @@ MAX_DRAFT_PLANES = 20_000
 
 
 def supports(quality, view, surface):
-    """Whether the draft can draw this layer's picture: a shaded opaque picture
-    without shadows (the caller checks those), and in perspective a viewpoint in
+    """Whether the draft can draw this layer's picture: a shaded opaque picture (the
+    caller checks that), and in perspective a viewpoint in
     front of the whole domain (one ascending pass per column), or a fly camera's
     inside the scene that the level-of-detail engine draws (passes/lod.py supports:
     the eye above the ground, every ray going farther with its distance), on planes a
@@ -653,12 +654,14 @@ def _toward_viewer(view, H, W, depth):
     return vx * q, vy * q, vz * q
 
 
-def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8, base=None):
+def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8, base=None,
+                 lit=None):
     """(rgba (H, W, 4) uint8, intensity (H, W) float32), rows from the bottom, of the
     draft's G-buffer g and seen sides ``side`` (_sides): finish_kernel's colours of a
     fully covered pixel (shade.py's _light, _side_rgb, pixel_rgba), in numpy. ``base``
     (H, W, 3): the surface's colours (a texture's or colour field's: draft_base)
-    instead of its sides'."""
+    instead of its sides'; ``lit`` (H, W): the part of the light that reaches each
+    point (draft_shadow's; None: all of it)."""
     H, W = side.shape
     seen = side != 0
     ambient, specular, shininess = terms
@@ -671,7 +674,8 @@ def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8
     nl = lx * nx + ly * ny + lz * nz
     lam = g[..., L.G_I].astype(np.float64) if material.interp == INTERP_INTENSITY \
         else np.abs(nl)
-    inten = ambient + (1.0 - ambient) * np.minimum(lam, 1.0)
+    lit = 1.0 if lit is None else lit
+    inten = ambient + (1.0 - ambient) * np.minimum(lam, 1.0) * lit
     sp = np.zeros((H, W))
     if specular > 0.0:
         nv = nx * vx + ny * vy + nz * vz
@@ -680,7 +684,7 @@ def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8
         nl_s = np.where(flip, -nl, nl)
         rv = 2.0 * nl_s * nv_s - (lx * vx + ly * vy + lz * vz)   # R.V
         ok = (nl_s > 0.0) & (rv > 0.0)
-        sp = np.where(ok, specular * np.power(np.where(ok, rv, 0.0), shininess), 0.0)
+        sp = np.where(ok, specular * np.power(np.where(ok, rv, 0.0), shininess), 0.0) * lit
     w = g[..., L.G_W].astype(np.float64) + view.w_origin       # (layout.py G_W)
     if base is None:
         upper = colour_table_rgb(w, lut, w_lo, w_hi)
@@ -778,10 +782,12 @@ def tiled(g):
     return np.ascontiguousarray(padded.reshape(H, n_tiles, L.TILE, C).transpose(1, 0, 2, 3))
 
 
-def draft_pass(surface, view, material, terms, box, bg8, source=None):
+def draft_pass(surface, view, material, terms, box, bg8, source=None, shadows=None):
     """The draft picture of one layer, top row first: (rgba, side, intensity, depth,
-    tiled G-buffer, evaluations per column, w_limits, c_limits); ``source`` its
-    texture or colour field (passes/colour.py prepare's), or None."""
+    tiled G-buffer, evaluations per column, w_limits, c_limits, shadow or None);
+    ``source`` its texture or colour field (passes/colour.py prepare's), or None;
+    ``shadows`` (the light's passes/shadow.py Texture, not swept; the layer's domain)
+    or None (passes/draft_shadow.py)."""
     W, H = view.width, view.height
     check_bytes(W, H, W * H * DRAFT_BYTES)
     try:
@@ -798,8 +804,12 @@ def draft_pass(surface, view, material, terms, box, bg8, source=None):
                            w_hi)
         own = np.where((side > 0)[..., None], upper, lower_or_upper(lower_rgb, upper))
         base, c_limits = draft_base(material, source, view, g, side, box, own)
+    shadow = lit = None
+    if shadows is not None:
+        from .draft_shadow import draft_shadow
+        shadow, lit = draft_shadow(shadows[0], surface, shadows[1], view, g, side)
     rgba, intensity = draft_finish(view, g, side, material, terms, lut, w_lo, w_hi,
-                                   lower_rgb, bg8, base)
+                                   lower_rgb, bg8, base, lit)
     depth = np.where(seen, g[..., L.G_DEPTH], np.inf).astype(np.float32)
     return (rgba[::-1], side[::-1], intensity[::-1], depth[::-1], tiled(g), evals,
-            w_limits, c_limits)
+            w_limits, c_limits, None if shadow is None else shadow[::-1])

@@ -91,7 +91,7 @@ class Texture:
     is shadowed by its own layer's horizon, and by another layer where the ray crosses
     it (kernels/shadow.py shadow_lookup), so layers shadow each other."""
 
-    def __init__(self, drawn, view, light_world, radius=0.0, method="texture"):
+    def __init__(self, drawn, view, light_world, radius=0.0, method="texture", sweep=True):
         lw = np.asarray(light_world, dtype=np.float64)
         #: the objects' triangles as casters (objects.Occluders), or None
         self.occluders = None
@@ -107,6 +107,8 @@ class Texture:
         self.w_origin = view.w_origin
         ground = math.hypot(self.light[0], self.light[1])
         self.texels = 0
+        #: whether the planes are made (sweep=False: a draft's, passes/draft_shadow.py)
+        self.swept = False
         self.zenith = ground <= ZENITH
         if self.zenith:
             return
@@ -114,31 +116,16 @@ class Texture:
         self.tan_theta = self.light[2] / ground
         corners = np.array([(u, v) for _, ((ua, ub), (va, vb)) in drawn
                             for u in (ua, ub) for v in (va, vb)])
-        sig = corners @ np.array([self.gu, self.gv])
-        tau = corners @ np.array([-self.gv, self.gu])
+        self._sig = corners @ np.array([self.gu, self.gv])
+        self._tau = corners @ np.array([-self.gv, self.gu])
         # a pixel's footprint on the ground: 1 / scale, in perspective at the nearest
         # point of the surface (as the sampling planes' step)
-        h = 1.0 / (view.scale * TEXELS_PER_PIXEL)
+        self._h = 1.0 / (view.scale * TEXELS_PER_PIXEL)
         if not view.orthographic:
-            h *= max(view.q_near / view.d1, 1.0)
-        span_sig = float(sig.max() - sig.min())
-        span_tau = float(tau.max() - tau.min())
-        if not (math.isfinite(span_sig) and math.isfinite(span_tau) and math.isfinite(h)
-                and h > 0.0):
-            raise ValueError("shadows need a domain of a finite size: the ranges of u and v "
-                             "are too wide")
-        # (a huge domain against the pixel's footprint: the cap below takes it)
-        h = max(h, max(span_sig, span_tau) / (MAX_SWEEP_CELLS + MAX_TEXELS))
-        n_sig = int(math.ceil(span_sig / h)) + 3
-        n_tau = int(math.ceil(span_tau / h)) + 3
+            self._h *= max(view.q_near / view.d1, 1.0)
         cap = MAX_SWEEP_CELLS if self.on_the_fly else MAX_TEXELS
-        if n_sig * n_tau > cap:
-            h *= math.sqrt(n_sig * n_tau / cap)
-            n_sig = int(math.ceil(span_sig / h)) + 3
-            n_tau = int(math.ceil(span_tau / h)) + 3
+        h, self.s0, self.t0, n_sig, n_tau = self.grid(cap)
         self.h = h
-        self.s0 = sig.min() - h
-        self.t0 = tau.min() - h
         self.n_sig, self.n_tau = n_sig, n_tau
         if self.on_the_fly:
             if self.rho > 0.0:
@@ -148,8 +135,36 @@ class Texture:
                 raise ValueError("shadows='on-the-fly' draws the shadows of one surface: "
                                  "use shadows=True (the shadow texture) for several")
             self.drawn = drawn
-            self.texels = 0
             return
+        if sweep:
+            self._sweep(drawn)
+
+    def grid(self, cap):
+        """(h, s0, t0, n_sig, n_tau): the texel grid over the layers' domains, texels h
+        apart along the light's ground direction (sigma from s0) and across it (tau from
+        t0), about a pixel's footprint each and at most ``cap`` of them."""
+        span_sig = float(self._sig.max() - self._sig.min())
+        span_tau = float(self._tau.max() - self._tau.min())
+        h = self._h
+        if not (math.isfinite(span_sig) and math.isfinite(span_tau) and math.isfinite(h)
+                and h > 0.0):
+            raise ValueError("shadows need a domain of a finite size: the ranges of u and v "
+                             "are too wide")
+        # (a huge domain against the pixel's footprint: the cap below takes it)
+        h = max(h, max(span_sig, span_tau) / (MAX_SWEEP_CELLS + MAX_TEXELS))
+        n_sig = int(math.ceil(span_sig / h)) + 3
+        n_tau = int(math.ceil(span_tau / h)) + 3
+        if n_sig * n_tau > cap:
+            h *= math.sqrt(n_sig * n_tau / cap)
+            n_sig = int(math.ceil(span_sig / h)) + 3
+            n_tau = int(math.ceil(span_tau / h)) + 3
+        return h, float(self._sig.min() - h), float(self._tau.min() - h), n_sig, n_tau
+
+    def _sweep(self, drawn):
+        """The planes hmax, hmin, hsurf (and soft shadows' slopes) by kernels/shadow.py's
+        sweeps, or the kept ones of the same surface, light and grid."""
+        h, n_sig, n_tau = self.h, self.n_sig, self.n_tau
+        self.swept = True
         # the last texture of one surface is kept (_held) for the same light and texel
         # grid: a fly-through's frames (the grid capped at MAX_TEXELS: the same for
         # every frame) or an orthographic view turned at one scale need it again (a

@@ -353,8 +353,27 @@ def test_warmup_main_removes_its_lock(monkeypatch, tmp_path):
     done = []
     monkeypatch.setattr(warmup, "warm", lambda first, shadows: done.append(
         (first, shadows, os.environ[warmup.ENV])))
+    monkeypatch.setattr(warmup, "_the_rest", lambda: done.append("rest"))
     warmup.main([str(lock)])
-    assert done == [("column", None, "0")] and not lock.exists()
+    # the first pictures' kernels, then every other at a lower priority, then the lock
+    assert done == [("column", None, "0"), "rest"] and not lock.exists()
+    done.clear()
+    warmup.main([])                 # by hand: warm() alone
+    assert done == [("column", None, "0")]
+
+
+def test_the_rest_of_the_warmup_runs_every_step_at_a_lower_priority(monkeypatch):
+    """_the_rest: after the first pictures' kernels, warm_all_steps' at niceness
+    REST_NICENESS; a step that fails leaves the others to run."""
+    done = []
+    monkeypatch.setattr(os, "nice", lambda n: done.append(("nice", n)))
+
+    def fails():
+        raise RuntimeError("no")
+    monkeypatch.setattr(warmup, "warm_all_steps", lambda: [fails, lambda: done.append(1),
+                                                           lambda: done.append(2)])
+    warmup._the_rest()
+    assert done == [("nice", warmup.REST_NICENESS), 1, 2]
 
 
 def test_warmup_main_removes_nothing_but_a_lock(monkeypatch, tmp_path, capsys):

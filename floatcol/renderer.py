@@ -103,33 +103,27 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     background = scene.background
     if background is None:
         background = default_background(quality.method, first.shading)
+    light = layers[0].light
+    translucent = any(p.material.opacity < 1.0 for p in layers)
+    if translucent:
+        _check_translucent(layers, quality, light)
     # a fresh install's draft (passes/draft.py) while the kernels compile: decided
-    # before the shadow texture, which a draft makes in numpy (passes/draft_shadow.py)
-    drafted = (not many and first.opacity >= 1.0 and quality.device == "cpu"
+    # before the shadow texture, which a draft makes in numpy (passes/draft_shadow.py);
+    # a translucent one (passes/draft_layers.py) without objects, textures or lines
+    drafted = (not many and quality.device == "cpu"
                and scene.camera.columns is None and not first.overlaid
-               and not (objects and layers[0].light.shadows)
+               and not (objects and (light.shadows or translucent))
+               and not (translucent and layers[0].source is not None)
                and draft.supports(quality, views[0], drawn[0][0])
-               and _drafting(quality, first, drawn[0][0], views[0], layers[0].light))
-    texture = _shadow_texture(layers[0].light, scene.camera, quality, drawn, views[0],
+               and _drafting(quality, first, drawn[0][0], views[0], light))
+    texture = _shadow_texture(light, scene.camera, quality, drawn, views[0],
                               sweep=not drafted)
     if texture is not None and objects:
         texture.occluders = _occluders(texture, objects, layers[0].surface, box)
-    if any(p.material.opacity < 1.0 for p in layers):
-        if any(p.material.smooth_shading for p in layers):
-            raise ValueError("smooth_shading lights opaque surfaces: use opacity=1 (translucent "
-                             "layers are lit by their cells' own normals)")
-        if quality.method != "column":
-            raise ValueError("opacity below 1 needs shaded pictures: method='column' (a line "
-                             "drawing has no layers to blend)")
-        if quality.area:
-            raise ValueError("antialias='area' needs opaque surfaces: opacity=1 (translucent "
-                             "layers are antialiased by their own coverage)")
-        if texture is not None and texture.on_the_fly:
-            # (every layer looks its shadow up: section 6.2.2's sweep answers the seen
-            # pixels of one opaque surface; it was an AttributeError)
-            raise ValueError("opacity below 1 takes its shadows from the shadow texture: "
-                             "use shadows=True (shadows='on-the-fly' draws one opaque "
-                             "surface)")
+    if drafted:
+        return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
+                            stacklevel + 1, texture), texture
+    if translucent:
         stop = None
         if objects:
             # (the objects' depth: where the layers over them stop composing)
@@ -138,9 +132,6 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
                              views[0], texture)
         return render_translucent(layers, views, drawn, box, quality, background, texture,
                                   t_start, stop), texture
-    if drafted:
-        return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
-                            stacklevel + 1, texture), texture
     if not many:
         return _layer(layers[0], views[0], drawn[0], box, quality, background, t_start,
                       stacklevel + 1, texture), texture
@@ -153,6 +144,25 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     out = merge(renders, color.to_rgba8(background))
     out.stats["seconds"] = time.perf_counter() - t_start
     return out, texture
+
+
+def _check_translucent(layers, quality, light):
+    """ValueError for what a translucent picture cannot take."""
+    if any(p.material.smooth_shading for p in layers):
+        raise ValueError("smooth_shading lights opaque surfaces: use opacity=1 (translucent "
+                         "layers are lit by their cells' own normals)")
+    if quality.method != "column":
+        raise ValueError("opacity below 1 needs shaded pictures: method='column' (a line "
+                         "drawing has no layers to blend)")
+    if quality.area:
+        raise ValueError("antialias='area' needs opaque surfaces: opacity=1 (translucent "
+                         "layers are antialiased by their own coverage)")
+    if light.shadows and light.shadow_method == "on-the-fly":
+        # (every layer looks its shadow up: section 6.2.2's sweep answers the seen
+        # pixels of one opaque surface; it was an AttributeError)
+        raise ValueError("opacity below 1 takes its shadows from the shadow texture: "
+                         "use shadows=True (shadows='on-the-fly' draws one opaque "
+                         "surface)")
 
 
 def _prepare(layer, scene):
@@ -379,8 +389,17 @@ def _draft_layer(p, view, drawn, box, background, t_start, stacklevel, texture=N
     material.check_limits()
     t_setup = time.perf_counter()
     shadows = None if texture is None else (texture, domain)
-    rgba, side, intensity, depth, gbuf, evals, w_limits, c_limits, shadow = draft.draft_pass(
-        surface, view, material, p.terms, box, color.to_rgba8(background), p.source, shadows)
+    extra = {}
+    if material.opacity < 1.0:
+        from .passes.draft_layers import draft_translucent
+        rgba, side, intensity, depth, gbuf, evals, w_limits, shadow, seen = draft_translucent(
+            surface, view, material, p.terms, box, color.to_rgba8(background), shadows)
+        c_limits = None
+        extra = {"translucent": True, "layers": seen}
+    else:
+        rgba, side, intensity, depth, gbuf, evals, w_limits, c_limits, shadow = \
+            draft.draft_pass(surface, view, material, p.terms, box, color.to_rgba8(background),
+                             p.source, shadows)
     t_end = time.perf_counter()
     if nowhere_finite(surface, domain) and not (side != 0).any():
         warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,
@@ -389,7 +408,7 @@ def _draft_layer(p, view, drawn, box, background, t_start, stacklevel, texture=N
              "kernel_seconds": t_end - t_setup, "setup_seconds": t_setup - t_start,
              "planes": view.planes, "step": view.step, "scale": view.scale, "lines": 0,
              "method": "column", "derivatives": surface.derivatives, "w_limits": w_limits,
-             "box": box, "engine": "draft"}
+             "box": box, "engine": "draft", **extra}
     if c_limits is not None:
         stats["c_limits"] = c_limits   # the colour field's range on the colormap
     return Render(rgba, intensity, side, depth, stats, view, gbuf, box=box, shadow=shadow)
@@ -430,8 +449,9 @@ def _drafting(quality, material, surface, view, light):
     its shadows'), warmup imported here: ``python -m floatcol.warmup`` runs that module
     as __main__, which Python warns about where the package imported it first."""
     from . import warmup
-    return warmup.drafting(geometry_kind(quality, material, surface, view),
-                           material.smooth_shading, warmup.shadow_kind(light))
+    kind = "layers" if material.opacity < 1.0 else geometry_kind(quality, material, surface,
+                                                                   view)
+    return warmup.drafting(kind, material.smooth_shading, warmup.shadow_kind(light))
 
 
 def geometry_kind(quality, material, surface, view):

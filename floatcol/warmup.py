@@ -76,9 +76,9 @@ def _shadow_dispatchers(shadows):
 def _dispatchers(kind="column", smooth=False, shadows=None):
     """The kernels a picture runs (what must be compiled or cached) whose geometry
     pass is ``kind`` (renderer.geometry_kind: "column", a default picture's; "area",
-    an area-sampled one's, fc.terrain's default; "lod" or "march", a fly camera's),
-    with ``smooth``, smooth shading's too, and those of its ``shadows`` (shadow_kind's,
-    or None)."""
+    an area-sampled one's, fc.terrain's default; "lod" or "march", a fly camera's;
+    "layers", a translucent one's), with ``smooth``, smooth shading's too, and those of
+    its ``shadows`` (shadow_kind's, or None)."""
     from .kernels.shade import centre_kernel, finish_kernel
     extra = _shadow_dispatchers(shadows)
     if smooth:
@@ -88,6 +88,9 @@ def _dispatchers(kind="column", smooth=False, shadows=None):
     if kind == "area":
         from .kernels.area import area_kernel
         return (area_kernel, *area_kernel.called, finish_kernel) + extra
+    if kind == "layers":                # a translucent picture's (passes/translucency.py)
+        from .kernels.layers import composite_kernel, layers_kernel, picture_kernel
+        return (layers_kernel, *layers_kernel.called, composite_kernel, picture_kernel) + extra
     if kind in ("lod", "march"):
         from .kernels.lod import lod_kernel
         from .kernels.march import march_kernel
@@ -249,15 +252,18 @@ WARM_RENDERS = (
 #: pictures (WARM_RENDERS), fc.terrain's default picture (about 20 s on 2 cores) and
 #: a fly camera's views, antialiased and point sampled (about 20 s)
 WARM_ORDER = ("column", "area", "lod")
+#: what ``--first`` may name: a WARM_ORDER entry, or a translucent picture's kernels
+FIRSTS = WARM_ORDER + ("layers",)
 
 
 def warm(first="column", shadows=None):
     """Compile (or load) the kernels of WARM_RENDERS into Numba's cache, those of an
     area-sampled, smooth-shaded height field (fc.terrain's default picture), those
     of a fly camera's views and those of each kind of shadows (SHADOW_KINDS),
-    ``first``'s (a WARM_ORDER entry) first (and after a terrain's, the other
-    terrain's before the default picture's), with ``shadows``' kind right after it
-    (drawn by the same geometry pass: about 5 s more)."""
+    ``first``'s (a WARM_ORDER entry, or "layers": a translucent picture's, which the
+    others' leave to _the_rest) first (and after a terrain's, the other terrain's
+    before the default picture's), with ``shadows``' kind right after it (drawn by
+    the same pass: about 5 s more)."""
     import numpy as np
 
     import floatcol as fc
@@ -276,13 +282,20 @@ def warm(first="column", shadows=None):
         fc.render(hf, **cam, antialias="area", smooth_shading=True).intensity
         fc.render(hf, **cam, antialias=False, smooth_shading=True).intensity
 
+    def layers(**opts):
+        for proj in ("orthographic", "perspective"):
+            fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(64, 48), opacity=0.5,
+                      projection=proj, **opts).intensity
+
     def shadowed(kind, shadow):
         """A small picture of the geometry pass ``kind`` with shadows of that kind."""
         opts = dict(lightsource=(30, 40),
                     shadows="on-the-fly" if shadow == "on-the-fly" else True)
         if shadow == "soft":
             opts["light_radius"] = 1.0
-        if kind == "column":
+        if kind == "layers":
+            layers(**opts)
+        elif kind == "column":
             fc.render("3*sin(u*cos(v))", u=(-5, 5), v=(-5, 5), size=(64, 48), **opts).intensity
         elif kind == "area":
             fc.render(hf, size=(64, 48), antialias="area", smooth_shading=True,
@@ -290,9 +303,9 @@ def warm(first="column", shadows=None):
         else:
             cam = fc.fly(hf, (8, 1), heading=0, size=(64, 36), above=2)
             fc.render(hf, **cam, antialias="area", smooth_shading=True, **opts).intensity
-    steps = dict(column=column, area=area, lod=lod)
+    steps = dict(column=column, area=area, lod=lod, layers=layers)
     rest = [k for k in WARM_ORDER if k != first]
-    if first != "column":
+    if first not in ("column", "layers"):
         rest.sort(key=lambda k: k == "column")    # (a terrain's pictures before)
     steps[first]()
     if shadows is not None:
@@ -407,7 +420,7 @@ def _the_rest():
 
 
 def main(argv=None):
-    """``python -m floatcol.warmup [--all] [--first area|lod] [--shadows KIND]``: warm()
+    """``python -m floatcol.warmup [--all] [--first area|lod|layers] [--shadows KIND]``: warm()
     (warm_all() with --all; that picture's kernels first with --first, its shadows'
     right after with --shadows), and for the warm-up process that drafting() starts,
     then the rest at a lower priority (_the_rest). The warm-up process that
@@ -428,8 +441,8 @@ def main(argv=None):
         shadows = rest[k + 1] if k + 1 < len(rest) else ""
         del rest[k:k + 2]
     if len(rest) > 1 or rest and os.path.basename(rest[0]) != LOCK_NAME \
-            or first not in WARM_ORDER or shadows not in SHADOW_KINDS + (None,):
-        print(f"usage: python -m floatcol.warmup [--all] [--first area|lod] "
+            or first not in FIRSTS or shadows not in SHADOW_KINDS + (None,):
+        print(f"usage: python -m floatcol.warmup [--all] [--first area|lod|layers] "
               f"[--shadows texture|soft|on-the-fly] (got {' '.join(argv)})", file=sys.stderr)
         return 2
     os.environ[ENV] = "0"

@@ -26,8 +26,9 @@ shading (a height field's cells lit by their own partials), adaptive sampling. A
 the ray caster it scores about 40 dB where the kernels score 63 (tests/test_draft.py
 measures it). A fly camera's view inside the scene is drawn on the level-of-detail
 engine's planes (_planes). A texture or colour field colours it (draft_base), a
-light casts its shadows (passes/draft_shadow.py). Scenes it does not draw (a line
-drawing, contours and wireframes, translucency, objects with shadows, several
+light casts its shadows (passes/draft_shadow.py), a translucent surface shows every
+layer (passes/draft_layers.py). Scenes it does not draw (a line drawing, contours and
+wireframes, objects with shadows or translucency, a translucent texture, several
 surfaces, a perspective viewpoint over the domain that the lod engine does not draw
 either) wait for the kernels as before.
 """
@@ -562,11 +563,11 @@ def _planes(view):
     return np.concatenate([near, far[far < t1], [t1]])
 
 
-def _paint(y, pair, H):
-    """Front to back, the first span of surface (``pair``) between two successive
-    samples (screen rows ``y``, (n, m)) over each pixel centre paints it: (hit (H, m)
-    bool, plane index k of the span's far sample, fraction of the way from its near
-    sample), rows from the bottom."""
+def crossings(y, pair, H):
+    """Every pixel centre that a span of surface (``pair``) between two successive
+    samples (screen rows ``y``, (n, m)) passes over: (seg, pix), the span (an index
+    into the flattened (n - 1, m): k m + c for the span from plane k to k + 1 of column
+    c) and the pixel (row j from the bottom, j m + c), in plane order."""
     n, m = y.shape
     ya, yb = y[:-1], y[1:]
     lo = np.where(pair, np.ceil(np.minimum(ya, yb)), 1.0)
@@ -577,7 +578,16 @@ def _paint(y, pair, H):
     seg = np.repeat(np.arange(cnt.size, dtype=np.int64), cnt)   # spans in plane order
     first = np.cumsum(cnt) - cnt
     j = lo.ravel().astype(np.int64)[seg] + (np.arange(seg.size, dtype=np.int64) - first[seg])
-    pix = j * m + seg % m
+    return seg, j * m + seg % m
+
+
+def _paint(y, pair, H):
+    """Front to back, the first span of surface (``pair``) between two successive
+    samples (screen rows ``y``, (n, m)) over each pixel centre paints it: (hit (H, m)
+    bool, plane index k of the span's far sample, fraction of the way from its near
+    sample), rows from the bottom."""
+    n, m = y.shape
+    seg, pix = crossings(y, pair, H)
     best = np.full(H * m, np.iinfo(np.int64).max)
     np.minimum.at(best, pix, seg)                 # the nearest span over each pixel
     hit = best != np.iinfo(np.int64).max
@@ -643,10 +653,16 @@ def draft_geometry(surface, view):
 
 
 def _toward_viewer(view, H, W, depth):
+    return viewer_at(view, np.arange(W), np.arange(H)[:, None], depth)
+
+
+def viewer_at(view, cols, rows, depth):
+    """The unit vector toward the viewpoint at pixel columns ``cols`` and rows ``rows``
+    (from the bottom) and depth ``depth`` (arrays that broadcast)."""
     if view.orthographic:
         return 0.0, 0.0, -1.0
-    x0 = (np.arange(W) - (W - 1) * 0.5) / view.scale
-    y0 = (np.arange(H) - (H - 1) * 0.5)[:, None] / view.scale
+    x0 = (cols - (view.width - 1) * 0.5) / view.scale
+    y0 = (rows - (view.height - 1) * 0.5) / view.scale
     e = depth + view.d3
     m = e / view.d1
     vx, vy, vz = -x0 * m, -y0 * m, -e
@@ -664,10 +680,26 @@ def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8
     point (draft_shadow's; None: all of it)."""
     H, W = side.shape
     seen = side != 0
+    rgb, inten = shade(view, g, side, np.arange(W), np.arange(H)[:, None], material, terms,
+                       lut, w_lo, w_hi, lower_rgb, base, lit)
+    rgba = np.empty((H, W, 4), dtype=np.uint8)
+    rgba[...] = bg8
+    rgba[seen, :3] = (rgb[seen] * 255.0 + 0.5).astype(np.uint8)
+    rgba[seen, 3] = 255
+    return rgba, np.where(seen, inten, np.nan).astype(np.float32)
+
+
+def shade(view, g, side, cols, rows, material, terms, lut, w_lo, w_hi, lower_rgb, base=None,
+          lit=None):
+    """(rgb (..., 3) in [0, 1], intensity (...)) of the points g (..., G_SIZE) seen from
+    ``side`` (+1 upper, else lower) at pixel columns ``cols`` and rows ``rows`` (from the
+    bottom; arrays that broadcast with g's shape): finish_kernel's light and colour
+    (shade.py's _light, _side_rgb), ``base`` the surface's colours instead of its
+    sides', ``lit`` the part of the light that reaches each point."""
     ambient, specular, shininess = terms
     depth = g[..., L.G_DEPTH].astype(np.float64)
     nx, ny, nz = (g[..., ch].astype(np.float64) for ch in (L.G_NX, L.G_NY, L.G_NZ))
-    vx, vy, vz = _toward_viewer(view, H, W, depth)
+    vx, vy, vz = viewer_at(view, cols, rows, depth)
     lx, ly, lz = view.light
     if lx == 0.0 and ly == 0.0 and lz == 0.0:
         lx, ly, lz = vx, vy, vz
@@ -676,7 +708,7 @@ def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8
         else np.abs(nl)
     lit = 1.0 if lit is None else lit
     inten = ambient + (1.0 - ambient) * np.minimum(lam, 1.0) * lit
-    sp = np.zeros((H, W))
+    sp = np.zeros(depth.shape)
     if specular > 0.0:
         nv = nx * vx + ny * vy + nz * vz
         flip = nv < 0.0                       # the seen side's normal
@@ -691,12 +723,7 @@ def draft_finish(view, g, side, material, terms, lut, w_lo, w_hi, lower_rgb, bg8
         rgb = np.where((side > 0)[..., None], upper, lower_or_upper(lower_rgb, upper))
     else:
         rgb = base
-    rgb = np.minimum(rgb * inten[..., None] + sp[..., None], 1.0)
-    rgba = np.empty((H, W, 4), dtype=np.uint8)
-    rgba[...] = bg8
-    rgba[seen, :3] = (rgb[seen] * 255.0 + 0.5).astype(np.uint8)
-    rgba[seen, 3] = 255
-    return rgba, np.where(seen, inten, np.nan).astype(np.float32)
+    return np.minimum(rgb * inten[..., None] + sp[..., None], 1.0), inten
 
 
 def draft_base(material, source, view, g, side, box, own):

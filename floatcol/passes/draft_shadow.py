@@ -280,13 +280,23 @@ def draft_shadow(texture, surface, domain, view, g, side):
     shadow = np.full((H, W), np.nan, dtype=np.float32)
     seen = side != 0
     if seen.any():
-        shadow[seen] = _seen_shadow(texture, surface, domain, view, g[seen], side[seen])
+        shadow[seen] = shadow_of(shadow_planes(texture, surface, domain), view, g[seen],
+                                 side[seen])
     lit = np.where(seen, 1.0 - shadow, 1.0).astype(np.float32)
     return shadow, lit
 
 
-def _seen_shadow(texture, surface, domain, view, g, s):
-    """The shadow of the seen points (g (n, G_SIZE), sides s (n,))."""
+def shadow_planes(texture, surface, domain):
+    """What shadow_of reads: (texture, its planes (texture_planes'), or None where the
+    light stands at the zenith: attached shadows alone)."""
+    return texture, None if texture.zenith else texture_planes(texture, surface, domain)
+
+
+def shadow_of(planes, view, g, s):
+    """The shadow (n,) of the points g (n, G_SIZE) seen from sides s (n,) (+1 upper, -1
+    lower): 1 attached (the seen side faces away from the light) or in the cast
+    shadow, 0 lit, between at an edge or in a penumbra; ``planes`` shadow_planes'."""
+    texture, t = planes
     light = np.asarray(view.light, dtype=np.float64)
     nx, ny, nz = (g[:, ch].astype(np.float64) for ch in (L.G_NX, L.G_NY, L.G_NZ))
     nn = np.sqrt(nx * nx + ny * ny + nz * nz)
@@ -295,9 +305,8 @@ def _seen_shadow(texture, surface, domain, view, g, s):
                           0.0)
     out = np.ones(s.shape)                         # attached where not facing the light
     lit_side = facing > 0.0
-    if texture.zenith or not lit_side.any():
+    if t is None or not lit_side.any():
         return np.where(lit_side, 0.0, out)
-    t = texture_planes(texture, surface, domain)
     for upper in (True, False):
         at = lit_side & ((s > 0) if upper else (s < 0))
         if not at.any():

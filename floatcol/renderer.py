@@ -111,7 +111,8 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     # before the shadow texture, which a draft makes in numpy (passes/draft_shadow.py);
     # a translucent one (passes/draft_layers.py) without objects, textures or lines
     drafted = (not many and quality.device == "cpu"
-               and scene.camera.columns is None and not first.overlaid
+               and scene.camera.columns is None
+               and not (first.overlaid and (translucent or not first.fill))
                and not (objects and (light.shadows or translucent))
                and not (translucent and layers[0].source is not None)
                and draft.supports(quality, views[0], drawn[0][0])
@@ -400,6 +401,10 @@ def _draft_layer(p, view, drawn, box, background, t_start, stacklevel, texture=N
         rgba, side, intensity, depth, gbuf, evals, w_limits, c_limits, shadow = \
             draft.draft_pass(surface, view, material, p.terms, box, color.to_rgba8(background),
                              p.source, shadows)
+        if material.overlaid:           # contours and wireframes, drawn in numpy
+            overlays.overlay_planes(rgba, material, p.source, draft.planes(gbuf, side, view,
+                                                                           box),
+                                    w_limits, c_limits, p.domain, draw=overlays.draw_lines)
     t_end = time.perf_counter()
     if nowhere_finite(surface, domain) and not (side != 0).any():
         warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,

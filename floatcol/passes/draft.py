@@ -27,8 +27,9 @@ the ray caster it scores about 40 dB where the kernels score 63 (tests/test_draf
 measures it). A fly camera's view inside the scene is drawn on the level-of-detail
 engine's planes (_planes). A texture or colour field colours it (draft_base), a
 light casts its shadows (passes/draft_shadow.py), a translucent surface shows every
-layer (passes/draft_layers.py). Scenes it does not draw (a line drawing, contours and
-wireframes, objects with shadows or translucency, a translucent texture, several
+layer (passes/draft_layers.py), contours and wireframes are drawn on it in numpy
+(passes/overlays.py draw_lines, from planes()). Scenes it does not draw (a line
+drawing, objects with shadows or translucency, a translucent texture or lines, several
 surfaces, a perspective viewpoint over the domain that the lod engine does not draw
 either) wait for the kernels as before.
 """
@@ -798,6 +799,21 @@ def column_ranges(g, side, w_origin=0.0):
     w = g[..., L.G_W].astype(np.float64) + w_origin
     return np.stack([np.where(up, w, np.inf).min(axis=0),
                      np.where(up, w, -np.inf).max(axis=0)], axis=1)
+
+
+def planes(gbuf, side, view, box):
+    """(u, v, w, side) of each pixel, top row first, as colour.picture_planes gives them
+    from the kernels' G-buffer (the surface's units, NaN where nothing is seen), from
+    the draft's tiled G-buffer ``gbuf`` and sides ``side`` (top row first)."""
+    H, W = side.shape
+    g = gbuf.transpose(1, 0, 2, 3).reshape(H, -1, L.G_SIZE)[::-1, :W].astype(np.float64)
+    seen = side != 0
+    out = []
+    for ch, origin, stretch in ((L.G_U, view.center[0], box[0]),
+                                (L.G_V, view.center[1], box[1]),
+                                (L.G_W, view.w_origin, box[2])):
+        out.append(np.where(seen, (g[..., ch] + origin) / stretch, np.nan))
+    return (*out, side.astype(np.float64))
 
 
 def tiled(g):

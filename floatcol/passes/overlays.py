@@ -30,6 +30,41 @@ def _draw(rgba, q, seen, width, rgb, levels=None, origin=0.0, spacing=0.0):
                  np.asarray(rgb, dtype=np.float64)[:3], rgba)
 
 
+def draw_lines(rgba, q, seen, width, rgb, levels=None, origin=0.0, spacing=0.0):
+    """_draw in numpy (a fresh install's drafts: no compile), lines_kernel's arithmetic:
+    the lines q = level (the sorted ``levels``, or origin + k spacing where spacing >
+    0) over rgba in place, each covering a pixel by clip(width / 2 + 1/2 - d, 0, 1), d
+    = |q - level| / |grad q| pixels, |grad q| from the smaller one-sided difference to a
+    seen neighbour each way (none either way: no line there)."""
+    qs = np.where(seen, q, np.nan)
+    p = np.pad(qs, 1, constant_values=np.nan)
+    c = p[1:-1, 1:-1]
+    with np.errstate(invalid="ignore"):
+        gx = np.fmin(np.abs(p[1:-1, :-2] - c), np.abs(p[1:-1, 2:] - c))
+        gy = np.fmin(np.abs(p[:-2, 1:-1] - c), np.abs(p[2:, 1:-1] - c))
+        grad = np.where(np.isfinite(gx) & np.isfinite(gy), np.sqrt(gx * gx + gy * gy), np.nan)
+        if spacing > 0.0:
+            dist = np.abs(qs - (origin + np.floor((qs - origin) / spacing + 0.5) * spacing))
+        else:
+            lv = np.sort(np.asarray(levels, dtype=np.float64)) if levels is not None \
+                else np.zeros(0)
+            if lv.size == 0:
+                return
+            k = np.searchsorted(lv, np.nan_to_num(qs))
+            up = np.where(k < lv.size, lv[np.minimum(k, lv.size - 1)] - qs, np.inf)
+            down = np.where(k > 0, qs - lv[np.maximum(k - 1, 0)], np.inf)
+            dist = np.where(np.isnan(qs), np.nan, np.minimum(up, down))
+        px = np.where(grad > 0.0, dist / np.where(grad > 0.0, grad, 1.0),
+                      np.where(dist == 0.0, 0.0, np.inf))
+        cov = np.clip(width * 0.5 + 0.5 - px, 0.0, 1.0)
+    at = seen & np.isfinite(qs) & np.isfinite(grad) & np.isfinite(dist) & (cov > 0.0)
+    if not at.any():
+        return
+    cv = cov[at][:, None]
+    val = rgba[at, :3] / 255.0 * (1.0 - cv) + np.asarray(rgb, dtype=np.float64)[:3] * cv
+    rgba[at, :3] = np.floor(np.clip(val * 255.0 + 0.5, 0.0, 255.0)).astype(np.uint8)
+
+
 def _draw_rim(rgba, q, qe, seen, width, rgb, lo, hi, n, levels=None):
     """The wireframe lines q = lo + k (hi - lo) / (n - 1) (or q = the sorted
     ``levels``, lo and hi their ends) on the pixels just off the surface: the outer
@@ -197,7 +232,17 @@ def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domai
     if not material.fill:
         _lines_alone(rgba, material, source, geom, W, box, w_limits, c_limits, domain, bg8)
         return
-    u, v, w, side, *rim_uv = picture_planes(geom, W, box, edges=edges)
+    overlay_planes(rgba, material, source, picture_planes(geom, W, box, edges=edges), w_limits,
+                   c_limits, domain, edges)
+
+
+def overlay_planes(rgba, material, source, planes, w_limits, c_limits, domain, edges=False,
+                   draw=_draw):
+    """overlay_pass's lines (the surface filled) from the picture's planes (u, v, w,
+    side[, eu, ev]: colour.picture_planes', top row first, or a draft's), each kind
+    drawn by ``draw`` (_draw: kernels/texture.py's lines_kernel; a draft's numpy
+    draw_lines)."""
+    u, v, w, side, *rim_uv = planes
     seen = side != 0.0
     if not seen.any():
         return
@@ -209,7 +254,7 @@ def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domai
         qs, qes, steps = _coordinates(material, u, v, seen, rims)
         for q, qe, st, lo, hi, (levels, n) in zip(qs, qes, steps, (ua, va), (ub, vb), lines):
             if levels is not None:             # (a mesh's own lines)
-                _draw(rgba, q, seen & np.isfinite(q), material.linewidth, rgb, levels=levels)
+                draw(rgba, q, seen & np.isfinite(q), material.linewidth, rgb, levels=levels)
                 if st is not None:
                     _draw_boundary(rgba, q, st, seen, material.linewidth, rgb, levels[0],
                                    levels[-1])
@@ -217,7 +262,7 @@ def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domai
                     _draw_rim(rgba, q, qe, seen, material.linewidth, rgb, levels[0],
                               levels[-1], max(len(levels), 2), levels=levels)
                 continue
-            _draw(rgba, q, seen, material.linewidth, rgb, origin=lo, spacing=(hi - lo) / (n - 1))
+            draw(rgba, q, seen, material.linewidth, rgb, origin=lo, spacing=(hi - lo) / (n - 1))
             if qe is not None:
                 _draw_rim(rgba, q, qe, seen, material.linewidth, rgb, lo, hi, n)
     if material.contours is not None:
@@ -230,7 +275,7 @@ def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domai
             lo, hi = w_limits
         levels = contour_levels(material.contours, lo, hi)
         rgb = color.to_rgb(material.contour_color, "contour_color")
-        _draw(rgba, q, seen & np.isfinite(q), material.contour_width, rgb, levels=levels)
+        draw(rgba, q, seen & np.isfinite(q), material.contour_width, rgb, levels=levels)
 
 
 def _lines_alone(rgba, material, source, geom, W, box, w_limits, c_limits, domain, bg8):

@@ -110,18 +110,21 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     # a fresh install's draft (passes/draft.py) while the kernels compile: decided
     # before the shadow texture, which a draft makes in numpy (passes/draft_shadow.py);
     # a translucent one (passes/draft_layers.py) without objects, textures or lines
-    drafted = (not many and quality.device == "cpu"
-               and scene.camera.columns is None
-               and not (first.overlaid and (translucent or not first.fill))
+    # (several opaque surfaces are drafted one by one and merged by depth, without
+    # shadows: a draft's texture has one layer)
+    drafted = (quality.device == "cpu" and scene.camera.columns is None
+               and not (many and (translucent or light.shadows))
+               and not any(p.material.overlaid and (translucent or not p.material.fill)
+                           for p in layers)
                and not (objects and (light.shadows or translucent))
                and not (translucent and layers[0].source is not None)
-               and draft.supports(quality, views[0], drawn[0][0])
+               and all(draft.supports(quality, v, d[0]) for v, d in zip(views, drawn))
                and _drafting(quality, first, drawn[0][0], views[0], light))
     texture = _shadow_texture(light, scene.camera, quality, drawn, views[0],
                               sweep=not drafted)
     if texture is not None and objects:
         texture.occluders = _occluders(texture, objects, layers[0].surface, box)
-    if drafted:
+    if drafted and not many:
         return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
                             stacklevel + 1, texture), texture
     if translucent:
@@ -140,10 +143,15 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     for k, (p, view, (s, dom)) in enumerate(zip(layers, views, drawn)):
         if p.light_dir is not layers[0].light_dir:
             view = _relit(view, p.light_dir)
+        if drafted:
+            renders.append(_draft_layer(p, view, (s, dom), box, (0, 0, 0, 0),
+                                        time.perf_counter(), stacklevel + 1))
+            continue
         renders.append(_layer(p, view, (s, dom), box, quality, (0, 0, 0, 0),
                               time.perf_counter(), stacklevel + 1, texture, k))
     out = merge(renders, color.to_rgba8(background))
     out.stats["seconds"] = time.perf_counter() - t_start
+    out.stats["engine"] = "draft" if drafted else "kernels"
     return out, texture
 
 

@@ -122,10 +122,11 @@ def test_draft_holes_and_nothing_are_no_crash(drafts):
 
 def test_draft_only_where_it_can(drafts):
     """A line drawing, objects with shadows or translucency, a translucent texture or
-    lines and several surfaces wait for the kernels; so does a perspective viewpoint over the
-    domain. An area-sampled or smooth-shaded picture (fc.terrain's default) is drawn,
-    at the pixel centres, and so are shadows and translucency (test_a_drafts_shadows_...,
-    test_a_translucent_draft_...)."""
+    lines, and several surfaces with shadows or translucency wait for the kernels; so
+    does a perspective viewpoint over the domain. An area-sampled or smooth-shaded
+    picture (fc.terrain's default) is drawn, at the pixel centres, and so are shadows,
+    translucency and several opaque surfaces (test_a_drafts_shadows_...,
+    test_a_translucent_draft_..., test_several_surfaces_...)."""
     kw = dict(u=(-2, 2), v=(-2, 2), size=(48, 36))
     hf = fc.HeightField(np.add.outer(np.sin(np.arange(9.0)), np.cos(np.arange(12.0))))
     area = fc.render("u*v", antialias="area", **kw)
@@ -138,7 +139,7 @@ def test_draft_only_where_it_can(drafts):
     # drawing (fill=False) and a translucent surface's lines wait for the kernels
     assert fc.render("u*v", contours=5, wireframe=8, **kw).stats["engine"] == "draft"
     assert fc.render("u*v", wireframe=8, fill=False, **kw).stats["engine"] == "kernels"
-    assert "engine" not in fc.render("u*v", contours=5, opacity=0.5, **kw).stats
+    assert fc.render("u*v", contours=5, opacity=0.5, **kw).stats["engine"] == "kernels"
     assert fc.render("u*v", shadows=True, lightsource=(30, 40), **kw).stats["engine"] == \
         "draft"
     assert fc.render(hf, objects=[fc.pole(4, 4, 3)], size=(48, 36), shadows=True,
@@ -146,9 +147,9 @@ def test_draft_only_where_it_can(drafts):
     glass = fc.render("u*v", opacity=0.5, **kw)
     assert glass.stats["engine"] == "draft" and glass.stats["translucent"]
     # a translucent picture with a texture or objects waits for the kernels
-    assert "engine" not in fc.render("u*v", opacity=0.5, color="u", **kw).stats
-    assert "engine" not in fc.render(hf, opacity=0.5, objects=[fc.pole(4, 4, 3)],
-                                     size=(48, 36)).stats
+    assert fc.render("u*v", opacity=0.5, color="u", **kw).stats["engine"] == "kernels"
+    assert fc.render(hf, opacity=0.5, objects=[fc.pole(4, 4, 3)],
+                     size=(48, 36)).stats["engine"] == "kernels"
     over = fc.render("0*u", u=(-10, 10), v=(-10, 10), size=(40, 30), elev=90,
                      projection="perspective", d1=10.0, d2=5.0, scale=8.0)
     assert over.stats["engine"] == "kernels"
@@ -669,7 +670,7 @@ def test_a_translucent_drafts_shadows_and_colours_are_the_kernels(drafts, monkey
         d = fc.render("3*sin(u*cos(v))", **base, **kw)
         monkeypatch.setattr(warmup, "drafting", lambda *a: False)
         k = fc.render("3*sin(u*cos(v))", **base, **kw)
-        assert d.stats["engine"] == "draft" and "engine" not in k.stats
+        assert (d.stats["engine"], k.stats["engine"]) == ("draft", "kernels")
         diff = np.abs(d.rgba.astype(int) - k.rgba.astype(int)).max(-1)
         assert (diff > 8).mean() < 0.06
         both = (d.side != 0) & (d.side == k.side)
@@ -723,3 +724,28 @@ def test_a_drafts_contours_and_wireframes(drafts, monkeypatch, kw):
     assert (diff > 8).mean() < 0.05 and (diff > 32).mean() < 0.025
     lined = (d.rgba != plain.rgba).any(-1).mean()
     assert lined > 0.08                                   # the lines are there
+
+
+def test_several_surfaces_are_drafted_one_by_one_and_merged(drafts, monkeypatch):
+    """render_many's opaque surfaces: each drafted over a transparent background, merged
+    by depth as the kernels' layers are (passes/composite.py): against the kernels'
+    picture at 200x150, 1.6 % and 1.8 % of the pixels more than 8 levels apart
+    (silhouettes and the uncorrected draft), the nearest surface the same at every
+    pixel (measured). With shadows, or translucent, they wait for the kernels."""
+    layers = [fc.Layer("sin(u)*cos(v)", ((-3, 3), (-3, 3))),
+              fc.Layer("u*v/5", ((-3, 3), (-3, 3)), fc.Material(cmap="plasma", contours=5))]
+    for kw in (dict(), dict(projection="perspective", elev=20, azim=-60)):
+        d = fc.render_many(layers, size=(200, 150), **kw)
+        monkeypatch.setattr(warmup, "drafting", lambda *a: False)
+        k = fc.render_many(layers, size=(200, 150), **kw)
+        monkeypatch.setattr(warmup, "drafting", lambda *a: True)
+        assert (d.stats["engine"], k.stats["engine"]) == ("draft", "kernels")
+        diff = np.abs(d.rgba.astype(int) - k.rgba.astype(int)).max(-1)
+        assert (diff > 8).mean() < 0.03
+        assert (d.stats["surface"] == k.stats["surface"]).mean() > 0.995
+        assert set(np.unique(d.stats["surface"])) == {-1, 0, 1}
+    shadowed = fc.render_many(layers, size=(40, 30), lightsource=(30, 40), shadows=True)
+    assert shadowed.stats["engine"] == "kernels"
+    glass = fc.render_many([fc.Layer(y.surface, y.domain, fc.Material(opacity=0.5))
+                            for y in layers], size=(40, 30))
+    assert glass.stats["engine"] == "kernels" and glass.stats["translucent"]

@@ -28,10 +28,11 @@ measures it). A fly camera's view inside the scene is drawn on the level-of-deta
 engine's planes (_planes). A texture or colour field colours it (draft_base), a
 light casts its shadows (passes/draft_shadow.py), a translucent surface shows every
 layer (passes/draft_layers.py), contours and wireframes are drawn on it in numpy
-(passes/overlays.py draw_lines, from planes()). Scenes it does not draw (a line
-drawing, objects with shadows or translucency, a translucent texture or lines, several
-surfaces, a perspective viewpoint over the domain that the lod engine does not draw
-either) wait for the kernels as before.
+(passes/overlays.py draw_lines, from planes()); several opaque surfaces are drafted
+one by one and merged by depth (renderer.py). Scenes it does not draw (a line drawing,
+objects with shadows or translucency, a translucent texture or lines, several surfaces
+with shadows or translucency, a perspective viewpoint over the domain that the lod
+engine does not draw either) wait for the kernels as before.
 """
 from __future__ import annotations
 

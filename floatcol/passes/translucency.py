@@ -322,6 +322,7 @@ def render_translucent(layers, views, drawn, box, quality, background, texture, 
     rgba, intensity, side, depth, shadow, which, gbuf, stats, front = translucent_pass(
         layers, views, drawn, box, quality, background, texture, stop)
     stats.update({"seconds": time.perf_counter() - t_start, "method": "column",
+                  "engine": "kernels",
                   "box": box, "planes": views[0].planes, "step": views[0].step,
                   "scale": views[0].scale, "surfaces": len(layers)})
     if len(layers) > 1:

@@ -22,8 +22,8 @@ The same shadow texture as passes/shadow.py's, made and read without a compile:
 Given the kernels' G-buffer, it gives the kernels' shadows (within float rounding:
 tests/test_draft.py).
 
-What a draft leaves out: the objects' shadows (a picture with objects and shadows
-waits for its kernels) and several layers (drafts draw one).
+What a draft leaves out: the objects' shadows and several surfaces' shadows on each
+other (such pictures wait for their kernels).
 """
 from __future__ import annotations
 
@@ -34,6 +34,7 @@ import numpy as np
 from ..kernels import layout as L
 from ..kernels.shadow import NONE, SLOPE_NONE, STRIP_SPREAD, STRIPS, WALL
 from .shadow import BIAS_TEXELS, GRAZING, MAX_TEXELS
+
 
 def texture_planes(texture, surface, domain):
     """A draft's shadow texture of one layer: the object ``texture`` (passes/shadow.py

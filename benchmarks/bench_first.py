@@ -207,8 +207,8 @@ def main():
     for name, imp, first, e1, second, e2 in rows:
         print(f"| {name} | {imp:.2f} | {first:.2f} | {e1} | {second:.2f} | {e2} |")
     print(f"\nThe warm-up process had the kernels in the cache {own:.0f} s after the fresh "
-          f"process started (every kernel, a terrain's and a fly camera's too, {warm:.0f} s "
-          "after).")
+          f"process started (its warm-up ended {warm:.0f} s after: a terrain's and a fly "
+          "camera's kernels, then every option's at a lower priority).")
     # fc.terrain's default picture (area-sampled, smooth-shaded) and a fly view: other
     # kernels, which the warm-up compiles besides the default picture's
     rows = []
@@ -228,7 +228,7 @@ def main():
         print(f"| {name} | {imp:.2f} | {first:.2f} | {engine} | {fly:.2f} | {f_engine} |")
     print(f"\nThe warm-up process (the terrain's kernels first) had them in the cache "
           f"{own:.0f} s after the fresh process started, a fly camera's {own_fly:.0f} s "
-          f"after, every kernel {warm:.0f} s after.")
+          f"after; it ended {warm:.0f} s after (every option's kernels too).")
 
 
 def shadows_main():

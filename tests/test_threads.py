@@ -27,8 +27,11 @@ CASES = [dict(projection="orthographic", method="column"),
          # translucency: every layer, a column per thread, lists a band at a time
          dict(projection="orthographic", opacity=0.5),
          dict(projection="perspective", opacity=0.4, lightsource=(315, 25), shadows=True),
-         # columns whose curve folds back, traced (kernels/fold.py)
+         # columns whose curve folds back, traced (kernels/fold.py), opaque and
+         # translucent (every crossing of the traced pieces, fold.trace_layers_into)
          dict(projection="perspective", elev=40, azim=-30, dom=(-2.2, 2.2),
+              expr="4.9*(sqrt(4 - u**2 - v**2) + sqrt(u**2 + v**2 - 1) - 2)"),
+         dict(projection="perspective", elev=40, azim=-30, dom=(-2.2, 2.2), opacity=0.5,
               expr="4.9*(sqrt(4 - u**2 - v**2) + sqrt(u**2 + v**2 - 1) - 2)"),
          # exact area sampling (kernels/area.py)
          dict(projection="perspective", antialias="area"),

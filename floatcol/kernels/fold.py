@@ -23,6 +23,10 @@ The traced pixel then replaces the column pass's where that saw nothing, another
 or a farther surface; where both agree the traced point replaces the column pass's
 G-buffer entry (lerped across the fold) and the column pass's coverages stay, unless
 the traced curve runs on through the pixel (_inside_piece).
+
+The translucent layers (layers.py) trace a folding column's curve the same way
+(trace_layers_into), every step's rows kept as crossings (_raster's translucent form),
+all of them, not the nearest alone.
 """
 import math
 
@@ -31,7 +35,7 @@ import numpy as np
 from ._jit import ngjit, ngjit_inline, ngjit_nrt_free
 from .index import ceil_index, floor_index, round_index, trunc_index
 from .layout import (
-    E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_T, G_U, G_V, G_W,
+    E_SEEN, G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIZE, G_T, G_U, G_V, G_W,
     VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_WORG,
     VP_SA, VP_SB, VP_SCALE, VP_T0, VP_T1,
 )
@@ -88,6 +92,14 @@ P_I = 6
 P_SIDE = 7
 P_T = 8
 P_SIZE = 9
+#: a translucent column's crossing (trace_layers_into): its depth, then its point (P_*)
+X_DEPTH = 0
+XING_SIZE = P_SIZE + 1
+#: the row of trace_layers_into's ecol that counts each row's crossings (its E_SEEN
+#: row stays 0: _seed's _traced_at never takes a translucent column's row as traced)
+XING_COUNT = E_SEEN + 1
+#: crossings a translucent column keeps a row (the surface's layers along one ray)
+XING_MAX = 16
 
 
 @ngjit_inline
@@ -189,12 +201,26 @@ def _point(vp, x0, t, s, u, v, w, wu, wv, p):
 def _raster(gcol, ecol, ya, za, a, yb, zb, b, cu, cv, wo):
     """Rows between the points a (row ya, depth za) and b of the curve: lerped
     G-buffer entries where nothing nearer is there yet (u, v from the view's centre
-    (cu, cv), w from wo: layout.py G_U, G_W)."""
+    (cu, cv), w from wo: layout.py G_U, G_W). A gcol wider than G_SIZE is a
+    translucent column's list of crossings instead (trace_layers_into: every one
+    kept, XING_SIZE values each, ecol[XING_COUNT] how many a row holds)."""
     H = gcol.shape[0]
     if yb == ya:
         return
     lo = max(ceil_index(min(ya, yb)), 0)
     hi = min(floor_index(max(ya, yb)), H - 1)
+    if gcol.shape[1] > G_SIZE:
+        for j in range(lo, hi + 1):
+            lam = (j - ya) / (yb - ya)
+            n = int(ecol[XING_COUNT, j])
+            if n * XING_SIZE + XING_SIZE > gcol.shape[1]:
+                continue                          # (the row's list is full)
+            rec = gcol[j, n * XING_SIZE:(n + 1) * XING_SIZE]
+            rec[X_DEPTH] = za + lam * (zb - za)
+            for q in range(P_SIZE):
+                rec[1 + q] = a[q] + lam * (b[q] - a[q])
+            ecol[XING_COUNT, j] = n + 1
+        return
     for j in range(lo, hi + 1):
         lam = (j - ya) / (yb - ya)
         z = za + lam * (zb - za)
@@ -364,10 +390,6 @@ def trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n
     n_cross[:] = 0
     t0 = vp[VP_T0]
     dt = vp[VP_DT]
-    n = fold_planes(vp)
-    ca = vp[VP_CA]
-    d1 = vp[VP_D1]
-    k = x0 * vp[VP_SA] / d1
     s_lo, s_hi = scan_range(vp)                          # as sample._bracketed_s
     s_min = s_lo - (s_hi - s_lo)                          # beyond: toward a pole
     s_max = s_hi + (s_hi - s_lo)
@@ -378,35 +400,8 @@ def trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n
             evals += _seed(kind, fg, hf, hfp, vp, x0, t0 + i * dt,
                            gcol[j, G_W] + (vp[VP_WORG] - vp[VP_CW]), s_min, s_max, tg, te,
                            cross, n_cross, a, b)
-    ds = (s_hi - s_lo) / (SEED_SCAN - 1)
-    for i in range(0, n, SEED_STRIDE):                    # what it never met
-        t = t0 + i * dt
-        r0 = x0 * (t * ca + vp[VP_D3]) / d1              # eq. (9)
-        g_prev = np.nan
-        for m in range(SEED_SCAN):
-            s = s_lo + m * ds
-            g, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, s)
-            evals += ev
-            if math.isfinite(g) and math.isfinite(g_prev) and (g >= 0.0) != (g_prev >= 0.0):
-                lo = s - ds
-                hi = s
-                g_lo = g_prev
-                for _ in range(SEED_BISECT):
-                    mid = 0.5 * (lo + hi)
-                    gm, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, mid)
-                    evals += ev
-                    if not math.isfinite(gm):
-                        break
-                    if (gm >= 0.0) == (g_lo >= 0.0):
-                        lo = mid
-                        g_lo = gm
-                    else:
-                        hi = mid
-                # a sign change across a pole of f is no root
-                if abs(g_lo) <= 2.0 * abs(hi - lo) + CORRECT_TOL_PX / vp[VP_SCALE]:
-                    evals += _seed(kind, fg, hf, hfp, vp, x0, t, 0.5 * (lo + hi), s_min,
-                                   s_max, tg, te, cross, n_cross, a, b)
-            g_prev = g
+    evals += _scan_seeds(kind, f, fg, hf, hfp, vp, x0, s_lo, s_hi, s_min, s_max, 0,
+                         fold_planes(vp), SEED_STRIDE, False, tg, te, cross, n_cross, a, b)
     side_before = 0.0
     for j in range(H):
         # the first row of each piece the column pass saw, where no trace runs through
@@ -447,6 +442,103 @@ def trace_column_into(kind, f, fg, hf, hfp, vp, x0, gcol, ecol, tg, te, cross, n
             # goes on through both neighbours
             ecol[E_SEEN, j] = side
     return evals
+
+
+@ngjit_nrt_free
+def _scan_seeds(kind, f, fg, hf, hfp, vp, x0, s_lo, s_hi, s_min, s_max, i_lo, i_hi, stride,
+                known, tg, te, cross, n_cross, a, b):
+    """Seeds what the column pass never met: every root of g on every stride-th plane
+    from i_lo to i_hi (SEED_SCAN points over [s_lo, s_hi], each sign change bisected),
+    each traced
+    (_seed); with ``known``, a sign change whose bracket a traced piece crosses already
+    is not bisected (trace_layers_into's scan of every plane). Returns the
+    evaluations."""
+    t0 = vp[VP_T0]
+    dt = vp[VP_DT]
+    ca = vp[VP_CA]
+    d1 = vp[VP_D1]
+    k = x0 * vp[VP_SA] / d1
+    evals = 0
+    ds = (s_hi - s_lo) / (SEED_SCAN - 1)
+    for i in range(i_lo, i_hi, stride):
+        t = t0 + i * dt
+        r0 = x0 * (t * ca + vp[VP_D3]) / d1              # eq. (9)
+        g_prev = np.nan
+        for m in range(SEED_SCAN):
+            s = s_lo + m * ds
+            g, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, s)
+            evals += ev
+            if math.isfinite(g) and math.isfinite(g_prev) and (g >= 0.0) != (g_prev >= 0.0) \
+                    and not (known and _known_root(vp, cross, n_cross, i, t, s - ds, s)):
+                lo = s - ds
+                hi = s
+                g_lo = g_prev
+                for _ in range(SEED_BISECT):
+                    mid = 0.5 * (lo + hi)
+                    gm, ev = _g_at(kind, f, hf, hfp, vp, r0, k, t, mid)
+                    evals += ev
+                    if not math.isfinite(gm):
+                        break
+                    if (gm >= 0.0) == (g_lo >= 0.0):
+                        lo = mid
+                        g_lo = gm
+                    else:
+                        hi = mid
+                # a sign change across a pole of f is no root
+                if abs(g_lo) <= 2.0 * abs(hi - lo) + CORRECT_TOL_PX / vp[VP_SCALE]:
+                    evals += _seed(kind, fg, hf, hfp, vp, x0, t, 0.5 * (lo + hi), s_min,
+                                   s_max, tg, te, cross, n_cross, a, b)
+            g_prev = g
+    return evals
+
+
+@ngjit_inline
+def _known_root(vp, cross, n_cross, i, t, lo, hi):
+    """Is the root of g between s = lo and hi on plane i (at t) one to pass over: a
+    traced piece crosses there, or it lies off the picture (its piece, where it comes
+    back, is seeded there; _trace does not start off it)?"""
+    row = _screen(vp, t, 0.5 * (lo + hi))[0]
+    if not -OFF_PX - 1.0 <= row <= vp[VP_H] + OFF_PX:
+        return True
+    if i >= cross.shape[0]:
+        return False
+    for c in range(n_cross[i]):
+        if lo <= cross[i, c] <= hi:
+            return True
+    return False
+
+
+#: a translucent column's seeds: the roots on every LAYER_SEED_STRIDE-th plane (its
+#: column pass's points are not kept)
+LAYER_SEED_STRIDE = 1
+
+
+@ngjit
+def layers_fold_scratch(vp, H):
+    """trace_layers_into's scratch for a column of H rows: (tg (H, XING_MAX *
+    XING_SIZE), te (XING_COUNT + 1, H), cross, n_cross, a, b) as fold_scratch's."""
+    n = fold_planes(vp)
+    return (np.empty((H, XING_MAX * XING_SIZE)), np.zeros((XING_COUNT + 1, H)),
+            np.empty((n, CROSS_MAX)), np.zeros(n, dtype=np.int64), np.empty(P_SIZE),
+            np.empty(P_SIZE))
+
+
+@ngjit_nrt_free
+def trace_layers_into(kind, f, fg, hf, hfp, vp, x0, ta, tb, tg, te, cross, n_cross, a, b):
+    """Every crossing of column x0's folding curve with each row's ray, for the
+    translucent layers (layers.py): the curve's pieces traced as trace_column_into
+    traces them (seeded by the roots on every LAYER_SEED_STRIDE-th plane from t = ta to
+    tb, the column's planes), each step's rows kept in the row's list (tg, te:
+    layers_fold_scratch's, _raster's translucent form) instead of the nearest alone.
+    Returns the evaluations."""
+    te[:, :] = 0.0
+    n_cross[:] = 0
+    s_lo, s_hi = scan_range(vp)
+    i_lo = max(floor_index((ta - vp[VP_T0]) / vp[VP_DT]), 0)
+    i_hi = min(ceil_index((tb - vp[VP_T0]) / vp[VP_DT]) + 1, fold_planes(vp))
+    return _scan_seeds(kind, f, fg, hf, hfp, vp, x0, s_lo, s_hi, s_lo - (s_hi - s_lo),
+                       s_hi + (s_hi - s_lo), i_lo, i_hi, LAYER_SEED_STRIDE, True, tg, te, cross,
+                       n_cross, a, b)
 
 
 @ngjit_inline

@@ -44,9 +44,13 @@ from .layout import (
     A_BUMP, A_I, A_NX, A_NY, A_NZ, A_SIZE, A_T, A_U, A_V, A_VN, A_W, A_Y, A_Z,
     G_DEPTH, G_I, G_NX, G_NY, G_NZ, G_SIZE, G_T, G_U, G_V, G_W,
     M_ALPHA, M_LOWER, M_SPAN, M_WLO, S_OK,
-    VP_AA, VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_H, VP_ORTHO, VP_SA, VP_SB,
+    VP_AA, VP_CA, VP_CB, VP_CU, VP_CV, VP_CW, VP_D1, VP_D3, VP_DT, VP_FOLD, VP_H, VP_ORTHO,
+    VP_SA, VP_SB,
     VP_SCALE, VP_T0, VP_T1, VP_W, VP_WORG,
 )
+from .fold import (
+    FOLD_NEAR, P_I, P_NX, P_NY, P_NZ, P_T, P_U, P_V, P_W, X_DEPTH, XING_COUNT, XING_SIZE,
+    fold_test, layers_fold_scratch, trace_layers_into)
 from .sample import column_x0, sample_point
 from .shade import _light, _side_rgb, toward_viewer
 from .texture import LN_FN, LN_WIRE, layer_field, layer_lines, layer_texel, layer_wire_coords
@@ -118,7 +122,8 @@ W_DIR = 0         # +1 rising, -1 falling, 0 not yet known
 W_PJ = 1          # the waiting pixel (row from the bottom); W_NONE: none
 W_PSTART = 2      # where the stretch's part in it began (a y)
 W_PCEN = 3        # 1.0: the stretch crossed its centre (the record is the centre's)
-W_SIZE = 4
+W_FOLD = 4        # 1.0: a perspective sample where the curve folds back in t (fold.py)
+W_SIZE = 5
 W_NONE = -1e18
 
 
@@ -503,6 +508,7 @@ def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, sh, hmax, hmin,
     crec = scr[5]
     wk = scr[6]
     aa = vp[VP_AA] != 0.0
+    folds = vp[VP_ORTHO] == 0.0 and vp[VP_FOLD] != 0.0
     t0 = vp[VP_T0]
     dt = vp[VP_DT]
     lo = min(ta, tb)
@@ -526,6 +532,8 @@ def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, sh, hmax, hmin,
         st, ev, guess = _sample(kind, f, fg, hf, hfp, vp, x0, t, cur, guess)
         evals += ev
         ok = st == S_OK
+        if ok and folds and fold_test(vp, x0, cur[A_NX], cur[A_NY], cur[A_NZ], 0.0):
+            wk[W_FOLD] = 1.0
         if ok != prev_ok and i > 0:
             t_in = t if ok else prev_t
             t_out = prev_t if ok else t
@@ -542,6 +550,9 @@ def _layer_pass(kind, f, fg, hf, hfp, vp, x0, ta, tb, mp, lut, sh, hmax, hmin,
                     g = g2
                 else:
                     t_out = tm
+            if found and folds and fold_test(vp, x0, edge[A_NX], edge[A_NY], edge[A_NZ],
+                                             FOLD_NEAR):
+                wk[W_FOLD] = 1.0                # (a rim's last sample: nearly a fold)
             if ok:
                 _start(wk, pend, edge if found else cur)
                 if found:
@@ -605,6 +616,72 @@ def _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf,
     return evals
 
 
+@ngjit_nrt_free
+def _column_layers_folded(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf, slopes,
+                          occ, lists, off, K, counts, trans, gfirst, hits, b, scr, saved, tg, te,
+                          cross, n_cross, fa, fb):
+    """_column_layers, and where a perspective column's curve folds back in t (a sample
+    with 1 - k f_r < 0, or nearly at a run's end: fold.py's fold_test), which one point
+    a plane cannot follow, its crossings again from the curve's traced pieces instead
+    (fold.trace_layers_into: every crossing of each row's ray, sorted by depth here
+    and emitted front to back, each covering its pixel whole) on every row a traced
+    piece crosses; the others keep the pass's (a piece's last steps toward the
+    domain's edge or a hole stop short of it, where the pass bisects the run's end).
+    ``saved`` (H,), tg .. fb: layers_fold_scratch's."""
+    H = trans.shape[0]
+    wk = scr[6]
+    wk[W_FOLD] = 0.0
+    traced = vp[VP_ORTHO] == 0.0 and vp[VP_FOLD] != 0.0
+    if traced:
+        for j in range(H):
+            saved[j] = hits[b, j]
+    evals = _column_layers(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf,
+                           slopes, occ, lists, off, K, counts, trans, gfirst, hits, b, scr)
+    if not traced or wk[W_FOLD] == 0.0:
+        return evals
+    lo, hi = _column_t_range(vp, x0)     # (the planes that may meet the domain)
+    m = CLIP_MARGIN_PLANES * vp[VP_DT] + CLIP_TOL * (1.0 + abs(lo) + abs(hi))
+    evals += trace_layers_into(kind, f, fg, hf, hfp, vp, x0, lo - m, hi + m, tg, te, cross,
+                               n_cross, fa, fb)
+    rec = scr[3]
+    crec = scr[5]
+    for j in range(H):
+        n = int(te[XING_COUNT, j])
+        if n == 0:
+            continue                     # no traced piece there: the pass's crossings stay
+        counts[b, j] = 0                 # the row's crossings, as before the pass
+        trans[j] = 1.0
+        hits[b, j] = int(saved[j])
+        row = tg[j]
+        for m in range(1, n):            # by depth (insertion: a few a row)
+            q = m
+            while q > 0 and row[(q - 1) * XING_SIZE + X_DEPTH] > row[q * XING_SIZE + X_DEPTH]:
+                for k in range(XING_SIZE):
+                    x = row[(q - 1) * XING_SIZE + k]
+                    row[(q - 1) * XING_SIZE + k] = row[q * XING_SIZE + k]
+                    row[q * XING_SIZE + k] = x
+                q -= 1
+        for m in range(n):
+            x = row[m * XING_SIZE:(m + 1) * XING_SIZE]
+            depth = x[X_DEPTH]
+            rec[A_Y] = j
+            rec[A_Z] = depth
+            rec[A_U] = x[1 + P_U]
+            rec[A_V] = x[1 + P_V]
+            rec[A_W] = x[1 + P_W]
+            rec[A_NX] = x[1 + P_NX]
+            rec[A_NY] = x[1 + P_NY]
+            rec[A_NZ] = x[1 + P_NZ]
+            rec[A_I] = x[1 + P_I]
+            rec[A_T] = x[1 + P_T]
+            rec[A_BUMP] = 0.0
+            vx, vy, vz = toward_viewer(vp, x0, float(j), depth)
+            rec[A_VN] = rec[A_NX] * vx + rec[A_NY] * vy + rec[A_NZ] * vz
+            _emit(vp, x0, j, rec, 1.0, mp, lut, sh, hmax, hmin, hsurf, slopes, occ, lists, off,
+                  K, counts, trans, gfirst, hits, b, crec)
+    return evals
+
+
 @ngjit
 def layers_scratch(H):
     """_column_layers' scratch for a column of H rows, as it must start: (trans
@@ -618,12 +695,14 @@ def _layers_functions(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsu
     arguments, a column's x0 and number b and layers_scratch's arrays
     (_jit.kernel_calling)."""
     trans, scr = function_type(layers_scratch, types.int64).signature.return_type.types
-    return ((_column_layers, function_type(
-        _column_layers, kind, f, fg, hf, hfp, vp, types.float64, mp, lut, sh, hmax, hmin,
-        hsurf, slopes, occ, lists, off, K, counts, trans, gfirst, hits, types.int64, scr)),)
+    fold = function_type(layers_fold_scratch, vp, types.int64).signature.return_type.types
+    return ((_column_layers_folded, function_type(
+        _column_layers_folded, kind, f, fg, hf, hfp, vp, types.float64, mp, lut, sh, hmax,
+        hmin, hsurf, slopes, occ, lists, off, K, counts, trans, gfirst, hits, types.int64, scr,
+        trans, *fold)),)
 
 
-@kernel_calling(_layers_functions, (_column_layers,))
+@kernel_calling(_layers_functions, (_column_layers_folded,))
 def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf, slopes, occ,
                   lists, off, K, counts, gfirst, hits, evals, column):
     """One surface's crossings in the band of columns c0 .. c0 + B - 1 (B =
@@ -635,7 +714,7 @@ def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf, 
     objects' occluders (frames, coef, start, items, grids), tested where sh's SH_OBJ
     says.
     counts must be 0 on entry; the columns in parallel, each with its own scratch.
-    ``column``: _column_layers as a function value (_jit.kernel_calling)."""
+    ``column``: _column_layers_folded as a function value (_jit.kernel_calling)."""
     B = lists.shape[0]
     H = lists.shape[1]
     W = int(vp[VP_W])
@@ -645,9 +724,12 @@ def layers_kernel(kind, f, fg, hf, hfp, vp, c0, mp, lut, sh, hmax, hmin, hsurf, 
         if c >= W:
             continue
         trans, scr = layers_scratch(H)
+        saved = np.empty(H)
+        tg, te, cross, n_cross, fa, fb = layers_fold_scratch(vp, H)
         x0 = column_x0(vp, c)
         evals[b] += column(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin, hsurf,
-                           slopes, occ, lists, off, K, counts, trans, gfirst, hits, b, scr)
+                           slopes, occ, lists, off, K, counts, trans, gfirst, hits, b, scr,
+                           saved, tg, te, cross, n_cross, fa, fb)
 
 
 # The composite's sums per pixel, acc (H, W, ACC_SIZE) float64

@@ -640,9 +640,9 @@ def _column_layers_folded(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin,
     if not traced or wk[W_FOLD] == 0.0:
         return evals
     lo, hi = _column_t_range(vp, x0)     # (the planes that may meet the domain)
-    m = CLIP_MARGIN_PLANES * vp[VP_DT] + CLIP_TOL * (1.0 + abs(lo) + abs(hi))
-    evals += trace_layers_into(kind, f, fg, hf, hfp, vp, x0, lo - m, hi + m, tg, te, cross,
-                               n_cross, fa, fb)
+    margin = CLIP_MARGIN_PLANES * vp[VP_DT] + CLIP_TOL * (1.0 + abs(lo) + abs(hi))
+    evals += trace_layers_into(kind, f, fg, hf, hfp, vp, x0, lo - margin, hi + margin, tg, te,
+                               cross, n_cross, fa, fb)
     rec = scr[3]
     crec = scr[5]
     for j in range(H):
@@ -657,23 +657,23 @@ def _column_layers_folded(kind, f, fg, hf, hfp, vp, x0, mp, lut, sh, hmax, hmin,
             q = m
             while q > 0 and row[(q - 1) * XING_SIZE + X_DEPTH] > row[q * XING_SIZE + X_DEPTH]:
                 for k in range(XING_SIZE):
-                    x = row[(q - 1) * XING_SIZE + k]
+                    swap = row[(q - 1) * XING_SIZE + k]
                     row[(q - 1) * XING_SIZE + k] = row[q * XING_SIZE + k]
-                    row[q * XING_SIZE + k] = x
+                    row[q * XING_SIZE + k] = swap
                 q -= 1
         for m in range(n):
-            x = row[m * XING_SIZE:(m + 1) * XING_SIZE]
-            depth = x[X_DEPTH]
+            xing = row[m * XING_SIZE:(m + 1) * XING_SIZE]
+            depth = xing[X_DEPTH]
             rec[A_Y] = j
             rec[A_Z] = depth
-            rec[A_U] = x[1 + P_U]
-            rec[A_V] = x[1 + P_V]
-            rec[A_W] = x[1 + P_W]
-            rec[A_NX] = x[1 + P_NX]
-            rec[A_NY] = x[1 + P_NY]
-            rec[A_NZ] = x[1 + P_NZ]
-            rec[A_I] = x[1 + P_I]
-            rec[A_T] = x[1 + P_T]
+            rec[A_U] = xing[1 + P_U]
+            rec[A_V] = xing[1 + P_V]
+            rec[A_W] = xing[1 + P_W]
+            rec[A_NX] = xing[1 + P_NX]
+            rec[A_NY] = xing[1 + P_NY]
+            rec[A_NZ] = xing[1 + P_NZ]
+            rec[A_I] = xing[1 + P_I]
+            rec[A_T] = xing[1 + P_T]
             rec[A_BUMP] = 0.0
             vx, vy, vz = toward_viewer(vp, x0, float(j), depth)
             rec[A_VN] = rec[A_NX] * vx + rec[A_NY] * vy + rec[A_NZ] * vz

@@ -58,8 +58,8 @@ MAX_DRAFT_PLANES = 20_000
 
 
 def supports(quality, view, surface):
-    """Whether the draft can draw this layer's picture: a shaded opaque picture (the
-    caller checks that), and in perspective a viewpoint in
+    """Whether the draft can draw this layer's picture: a shaded picture (renderer.py
+    checks the rest), and in perspective a viewpoint in
     front of the whole domain (one ascending pass per column), or a fly camera's
     inside the scene that the level-of-detail engine draws (passes/lod.py supports:
     the eye above the ground, every ray going farther with its distance), on planes a

@@ -583,11 +583,39 @@ def crossings(y, pair, H):
     return seg, j * m + seg % m
 
 
+#: the G-buffer's channels (layout.py G_*) and the samples' fields (_points') they hold
+G_FIELDS = ((L.G_DEPTH, "z"), (L.G_U, "u"), (L.G_V, "v"), (L.G_W, "w"), (L.G_NX, "nx"),
+            (L.G_NY, "ny"), (L.G_NZ, "nz"), (L.G_I, "lam"), (L.G_T, "t"))
+
+
+def _origins(view):
+    """What the G-buffer's channels are kept from: u and v from the view's centre, w
+    from its w_origin, as the kernels store them (layout.py G_U, G_W); 0 elsewhere."""
+    return {L.G_U: view.center[0], L.G_V: view.center[1], L.G_W: view.w_origin}
+
+
+def span_points(smp, k, c, rows, view):
+    """(n, G_SIZE) float64: the G-buffer entries at pixel rows ``rows`` (from the
+    bottom) on the spans from sample k - 1 to sample k of columns c (_samples' smp),
+    each field linear in the row between the two."""
+    y = smp["y"]
+    y0, y1 = y[k - 1, c], y[k, c]
+    dy = y1 - y0
+    lam = np.clip(np.where(dy != 0.0, (rows - y0) / np.where(dy != 0.0, dy, 1.0), 0.0),
+                  0.0, 1.0)
+    origin = _origins(view)
+    out = np.zeros((k.size, L.G_SIZE))
+    for ch, name in G_FIELDS:
+        a = smp[name]
+        out[:, ch] = (a[k - 1, c] - origin.get(ch, 0.0)) + lam * (a[k, c] - a[k - 1, c])
+    return out
+
+
 def _paint(y, pair, H):
     """Front to back, the first span of surface (``pair``) between two successive
     samples (screen rows ``y``, (n, m)) over each pixel centre paints it: (hit (H, m)
-    bool, plane index k of the span's far sample, fraction of the way from its near
-    sample), rows from the bottom."""
+    bool, plane index k of the span's far sample, its column, the pixel's row), rows
+    from the bottom."""
     n, m = y.shape
     seg, pix = crossings(y, pair, H)
     best = np.full(H * m, np.iinfo(np.int64).max)
@@ -596,11 +624,7 @@ def _paint(y, pair, H):
     sel = best[hit]
     k = sel // m + 1
     c = sel % m
-    rows = np.flatnonzero(hit) // m
-    y0, y1 = y[k - 1, c], y[k, c]
-    dy = y1 - y0
-    lam = np.where(dy != 0.0, (rows - y0) / np.where(dy != 0.0, dy, 1.0), 0.0)
-    return hit.reshape(H, m), k, c, np.clip(lam, 0.0, 1.0)
+    return hit.reshape(H, m), k, c, np.flatnonzero(hit) // m
 
 
 def draft_geometry(surface, view):
@@ -612,11 +636,7 @@ def draft_geometry(surface, view):
     seen = np.zeros((H, W), dtype=bool)
     evals = np.zeros(W, dtype=np.int64)
     block = max(1, BLOCK_SAMPLES // max(t.size, 1))
-    names = ((L.G_DEPTH, "z"), (L.G_U, "u"), (L.G_V, "v"), (L.G_W, "w"), (L.G_NX, "nx"),
-             (L.G_NY, "ny"), (L.G_NZ, "nz"), (L.G_I, "lam"), (L.G_T, "t"))
-    # u and v from the view's centre, w from its w_origin, as the kernels store them
-    # (layout.py G_U, G_W)
-    origin = {L.G_U: view.center[0], L.G_V: view.center[1], L.G_W: view.w_origin}
+    origin = _origins(view)
     traces = not view.orthographic and _column_planes(view)
     rays = None
     budget = RAY_EVALS
@@ -624,11 +644,9 @@ def draft_geometry(surface, view):
         cols = np.arange(c0, min(W, c0 + block), dtype=np.float64)
         smp, pair, ev = _samples(surface, view, cols, t)
         evals[c0:c0 + cols.size] = ev // max(cols.size, 1)
-        hit, k, c, lam = _paint(smp["y"], pair, H)
+        hit, k, c, rows = _paint(smp["y"], pair, H)
         gb = g[:, c0:c0 + cols.size]
-        for ch, name in names:
-            a = smp[name]
-            gb[hit, ch] = (a[k - 1, c] - origin.get(ch, 0.0)) + lam * (a[k, c] - a[k - 1, c])
+        gb[hit] = span_points(smp, k, c, rows, view)
         # a column whose curve folds back: ray by ray instead (_ray_columns), where
         # the picture is the column pass's (the lod engine's traces no folds)
         x0 = (cols - (W - 1) * 0.5) / view.scale
@@ -644,7 +662,7 @@ def draft_geometry(surface, view):
             evals[c0 + cf] += ev // cf.size
             rows = rays[0][:, None]                # (the rows the rays drew)
             hit[:, cf] = np.where(rows, hit_f, hit[:, cf])
-            for ch, name in names:
+            for ch, name in G_FIELDS:
                 gb[:, cf, ch] = np.where(rows & hit_f, f[name] - origin.get(ch, 0.0),
                                          gb[:, cf, ch])
         seen[:, c0:c0 + cols.size] = hit

@@ -38,10 +38,6 @@ STOP = 1.0 / 512.0
 #: crossings a block of columns holds at once (their fields: some 20 float64 each)
 BLOCK_CROSSINGS = 1 << 21
 
-_NAMES = ((L.G_DEPTH, "z"), (L.G_U, "u"), (L.G_V, "v"), (L.G_W, "w"), (L.G_NX, "nx"),
-          (L.G_NY, "ny"), (L.G_NZ, "nz"), (L.G_I, "lam"), (L.G_T, "t"))
-
-
 def shown(opacity):
     """How many crossings of a surface of this opacity a pixel composites: those in
     front of the transmittance's fall below STOP."""
@@ -82,7 +78,6 @@ def _composited(surface, view, material, terms, box, bg8, shadows):
     shadow = np.full((H, W), np.nan, dtype=np.float32)
     evals = np.zeros(W, dtype=np.int64)
     t = draft._planes(view)
-    origin = {L.G_U: view.center[0], L.G_V: view.center[1], L.G_W: view.w_origin}
     block = max(1, min(draft.BLOCK_SAMPLES // max(t.size, 1), BLOCK_CROSSINGS // (4 * H)))
     for c0 in range(0, W if n_show else 0, block):
         cols = np.arange(c0, min(W, c0 + block), dtype=np.float64)
@@ -99,19 +94,10 @@ def _composited(surface, view, material, terms, box, bg8, shadows):
         rank = np.arange(pix.size) - np.repeat(start, count)
         rows, c = pix // m, pix % m
         at = rows * W + c0 + c                  # the picture's pixel (rows from the bottom)
-        np.add.at(hits, at[start], count)
+        hits[at[start]] += count                # (one pixel a group)
         keep = rank < n_show
         seg, rows, c, at, rank = seg[keep], rows[keep], c[keep], at[keep], rank[keep]
-        k = seg // m + 1
-        y = smp["y"]
-        y0, y1 = y[k - 1, c], y[k, c]
-        dy = y1 - y0
-        lam = np.clip(np.where(dy != 0.0, (rows - y0) / np.where(dy != 0.0, dy, 1.0), 0.0),
-                      0.0, 1.0)
-        pts = np.empty((seg.size, L.G_SIZE))
-        for ch, name in _NAMES:
-            f = smp[name]
-            pts[:, ch] = (f[k - 1, c] - origin.get(ch, 0.0)) + lam * (f[k, c] - f[k - 1, c])
+        pts = draft.span_points(smp, seg // m + 1, c, rows, view)
         n = pts[:, L.G_NX:L.G_NZ + 1]
         norm = np.sqrt((n * n).sum(-1, keepdims=True))
         pts[:, L.G_NX:L.G_NZ + 1] = np.where(norm > 0, n / np.where(norm > 0, norm, 1.0), 0.0)

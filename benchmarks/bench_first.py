@@ -15,10 +15,13 @@ kernels the warm-up compiles besides the default picture's, the terrain's first.
     python benchmarks/bench_first.py
     python benchmarks/bench_first.py --compile   # where the compile's time goes
     python benchmarks/bench_first.py --shadows   # a first picture with shadows
+    python benchmarks/bench_first.py --lines     # a first line drawing
 
 ``--shadows`` instead times a first picture with shadows (1920x1080, the sun at 120/15)
 and then one with soft shadows (a light of 1 degree), drafted (passes/draft_shadow.py)
-while the warm-up compiles the column pass's and the shadows' kernels.
+while the warm-up compiles the column pass's and the shadows' kernels. ``--lines`` times
+a line drawing (method="horizon", passes/draft_horizon.py) and then plot_wireframe's
+hidden-line drawing (fill=False), both drafted while the column pass's kernels compile.
 
 ``--compile`` instead compiles with an empty cache, in a process of its own on one
 core, the default picture's kernels and then every kernel (warmup.warm_all), as the
@@ -55,6 +58,11 @@ print(f"{t1 - t0:.2f} {t2 - t1:.2f} {a.stats['engine']} {t3 - t2:.2f} {b.stats['
 SHADOW_SCRIPT = SCRIPT.replace(
     'size=(1920, 1080))', 'size=(1920, 1080), lightsource=(120, 15), shadows=True)').replace(
     'projection="perspective", **kw', 'light_radius=1.0, **kw')
+
+LINES_SCRIPT = SCRIPT.replace(
+    'a = fc.render("3*sin(u*cos(v))", **kw)',
+    'a = fc.render("3*sin(u*cos(v))", method="horizon", **kw)').replace(
+    'projection="perspective", **kw', 'projection="perspective", wireframe=40, fill=False, **kw')
 
 
 TERRAIN_SCRIPT = """
@@ -231,31 +239,44 @@ def main():
           f"after; it ended {warm:.0f} s after (every option's kernels too).")
 
 
-def shadows_main():
-    """--shadows: a first picture with shadows, then one with soft shadows."""
+#: the options' first pictures: (script, the scene, its first picture, its second, what
+#: the warm-up compiles first)
+OPTIONS = {
+    "--shadows": (SHADOW_SCRIPT, "the sun at 120/15, shadows=True", "(shadows)",
+                  "then soft shadows s", "the shadows' kernels after the column pass's"),
+    "--lines": (LINES_SCRIPT, "line drawings", "(method='horizon')",
+                "then plot_wireframe's (perspective, wireframe=40, fill=False) s",
+                "the column pass's kernels first"),
+}
+
+
+def options_main(option):
+    """--shadows: a first picture with shadows, then one with soft shadows; --lines: a
+    line drawing, then a hidden-line wireframe."""
+    script, scene, first_name, second_name, order = OPTIONS[option]
     rows = []
     with tempfile.TemporaryDirectory() as cache:
         t_start = time.perf_counter()
-        out = run(cache, script=SHADOW_SCRIPT)
+        out = run(cache, script=script)
         rows.append(("fresh install, drafts on",) + out[:5])
         _, warm = wait_for(cache, out[5], [], t_start)
-        rows.append(("next process, after the warm-up",) + run(cache, script=SHADOW_SCRIPT)[:5])
+        rows.append(("next process, after the warm-up",) + run(cache, script=script)[:5])
     with tempfile.TemporaryDirectory() as cache:
-        rows.append(("fresh install, drafts off",) +
-                    run(cache, drafts=False, script=SHADOW_SCRIPT)[:5])
-    print(f"{os.cpu_count()} cpus; 3 sin(u cos v), 1920x1080, the sun at 120/15, shadows=True\n")
-    print("| process | import s | first picture s (shadows) | engine | "
-          "then soft shadows s | engine |")
+        rows.append(("fresh install, drafts off",) + run(cache, drafts=False, script=script)[:5])
+    print(f"{os.cpu_count()} cpus; 3 sin(u cos v), 1920x1080, {scene}\n")
+    print(f"| process | import s | first picture s {first_name} | engine | {second_name} | "
+          "engine |")
     print("|---|---|---|---|---|---|")
     for name, imp, first, e1, second, e2 in rows:
         print(f"| {name} | {imp:.2f} | {first:.2f} | {e1} | {second:.2f} | {e2} |")
-    print(f"\nThe warm-up process (the shadows' kernels after the column pass's) ended "
-          f"{warm:.0f} s after the fresh process started.")
+    print(f"\nThe warm-up process ({order}) ended {warm:.0f} s after the fresh process "
+          "started.")
 
 
 if __name__ == "__main__":
-    if "--shadows" in sys.argv[1:]:
-        shadows_main()
+    chosen = [a for a in sys.argv[1:] if a in OPTIONS]
+    if chosen:
+        options_main(chosen[0])
     elif "--compile" in sys.argv[1:]:
         compile_main("--plain" in sys.argv[1:])
     else:

@@ -114,8 +114,7 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     # shadows: a draft's texture has one layer)
     drafted = (quality.device == "cpu" and scene.camera.columns is None
                and not (many and (translucent or light.shadows))
-               and not any(p.material.overlaid and (translucent or not p.material.fill)
-                           for p in layers)
+               and not any(p.material.overlaid and translucent for p in layers)
                and not (objects and (light.shadows or translucent))
                and not (translucent and layers[0].source is not None)
                and all(draft.supports(quality, v, d[0]) for v, d in zip(views, drawn))
@@ -125,7 +124,7 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     if texture is not None and objects:
         texture.occluders = _occluders(texture, objects, layers[0].surface, box)
     if drafted and not many:
-        return _draft_layer(layers[0], views[0], drawn[0], box, background, t_start,
+        return _draft_layer(layers[0], views[0], drawn[0], box, quality, background, t_start,
                             stacklevel + 1, texture), texture
     if translucent:
         stop = None
@@ -144,7 +143,7 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
         if p.light_dir is not layers[0].light_dir:
             view = _relit(view, p.light_dir)
         if drafted:
-            renders.append(_draft_layer(p, view, (s, dom), box, (0, 0, 0, 0),
+            renders.append(_draft_layer(p, view, (s, dom), box, quality, (0, 0, 0, 0),
                                         time.perf_counter(), stacklevel + 1))
             continue
         renders.append(_layer(p, view, (s, dom), box, quality, (0, 0, 0, 0),
@@ -273,27 +272,36 @@ def _textured_columns(surface, view, vp, column, material, source, box, colours,
     return picture
 
 
+#: what smooth shading lights (ValueError's message elsewhere)
+SMOOTH_SHADED = ("smooth_shading lights shaded pictures antialiased along the columns: use "
+                 "method='column' and antialias=True, 'area' or False (not sub-columns)")
+
+
+def _line_planes(material, view, quality):
+    """A line drawing's (view on its planes, hstride, lines) (geometry.horizon_planes),
+    or ValueError for a material it cannot draw; a shaded picture's (view, 0, 1)."""
+    if quality.method != "horizon":
+        return view, 0, 1
+    if material.colored or material.overlaid:
+        raise ValueError("a texture, color field, contours or wireframe need shaded "
+                         "pictures: method='column'")
+    n_lines = quality.n_lines()
+    view, hstride = geometry.horizon_planes(view, n_lines)
+    return view, hstride, n_lines
+
+
 def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, texture=None,
            index=0):
     """One layer's passes: a Render of its own."""
     surface, domain = drawn
     material = p.material
     method = quality.method
-    hstride = 0
-    n_lines = 1
-    if method == "horizon":
-        if material.colored or material.overlaid:
-            raise ValueError("a texture, color field, contours or wireframe need shaded "
-                             "pictures: method='column'")
-        n_lines = quality.n_lines()
-        view, hstride = geometry.horizon_planes(view, n_lines)
+    view, hstride, n_lines = _line_planes(material, view, quality)
     material.check_limits()
     fixes = quality.fixes(material.interpolation)
     aa_cov, sub_columns = quality.antialiasing(material.shading)
     if material.smooth_shading and (method == "horizon" or sub_columns > 1):
-        raise ValueError("smooth_shading lights shaded pictures antialiased along the columns: "
-                         "use method='column' and antialias=True, 'area' or False (not "
-                         "sub-columns)")
+        raise ValueError(SMOOTH_SHADED)
     t_setup = time.perf_counter()
 
     W, H = view.width, view.height
@@ -390,11 +398,14 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
                   light_args, box, shadow=shadow)
 
 
-def _draft_layer(p, view, drawn, box, background, t_start, stacklevel, texture=None):
+def _draft_layer(p, view, drawn, box, quality, background, t_start, stacklevel, texture=None):
     """One layer's draft picture (passes/draft.py): a Render as _layer's; with the
-    light's shadow ``texture`` (not swept), its shadows (passes/draft_shadow.py)."""
+    light's shadow ``texture`` (not swept), its shadows (passes/draft_shadow.py); a
+    line drawing's by passes/draft_horizon.py."""
     surface, domain = drawn
     material = p.material
+    if quality.method == "horizon":
+        return _draft_lines(p, view, drawn, box, quality, background, t_start, stacklevel)
     material.check_limits()
     t_setup = time.perf_counter()
     shadows = None if texture is None else (texture, domain)
@@ -410,9 +421,14 @@ def _draft_layer(p, view, drawn, box, background, t_start, stacklevel, texture=N
             draft.draft_pass(surface, view, material, p.terms, box, color.to_rgba8(background),
                              p.source, shadows)
         if material.overlaid:           # contours and wireframes, drawn in numpy
-            overlays.overlay_planes(rgba, material, p.source, draft.planes(gbuf, side, view,
-                                                                           box),
-                                    w_limits, c_limits, p.domain, draw=overlays.draw_lines)
+            planes = draft.planes(gbuf, side, view, box)
+            if material.fill:
+                overlays.overlay_planes(rgba, material, p.source, planes, w_limits, c_limits,
+                                        p.domain, draw=overlays.draw_lines)
+            else:                       # (the lines alone, hidden where the surface is)
+                overlays.lines_alone(rgba, material, p.source, planes, w_limits, c_limits,
+                                     p.domain, color.to_rgba8(background),
+                                     draw=overlays.draw_lines)
     t_end = time.perf_counter()
     if nowhere_finite(surface, domain) and not (side != 0).any():
         warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,
@@ -425,6 +441,30 @@ def _draft_layer(p, view, drawn, box, background, t_start, stacklevel, texture=N
     if c_limits is not None:
         stats["c_limits"] = c_limits   # the colour field's range on the colormap
     return Render(rgba, intensity, side, depth, stats, view, gbuf, box=box, shadow=shadow)
+
+
+def _draft_lines(p, view, drawn, box, quality, background, t_start, stacklevel):
+    """_draft_layer of a line drawing (method="horizon")."""
+    from .passes.draft_horizon import draft_line_pass
+    surface, domain = drawn
+    material = p.material
+    view, hstride, n_lines = _line_planes(material, view, quality)
+    material.check_limits()
+    if material.smooth_shading:
+        raise ValueError(SMOOTH_SHADED)
+    t_setup = time.perf_counter()
+    rgba, side, intensity, depth, seen, line_t, gbuf, evals = draft_line_pass(
+        surface, view, hstride, n_lines, background)
+    t_end = time.perf_counter()
+    if nowhere_finite(surface, domain) and not seen.any():
+        warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,
+                      stacklevel=stacklevel + 1)
+    stats = {"samples": int(evals.sum()), "seconds": t_end - t_start,
+             "kernel_seconds": t_end - t_setup, "setup_seconds": t_setup - t_start,
+             "planes": view.planes, "step": view.step, "scale": view.scale, "lines": n_lines,
+             "method": "horizon", "derivatives": surface.derivatives, "w_limits": None,
+             "box": box, "engine": "draft"}
+    return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t, seen, box=box)
 
 
 def default_background(method, shading):

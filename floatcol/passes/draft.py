@@ -28,11 +28,12 @@ measures it). A fly camera's view inside the scene is drawn on the level-of-deta
 engine's planes (_planes). A texture or colour field colours it (draft_base), a
 light casts its shadows (passes/draft_shadow.py), a translucent surface shows every
 layer (passes/draft_layers.py), contours and wireframes are drawn on it in numpy
-(passes/overlays.py draw_lines, from planes()); several opaque surfaces are drafted
-one by one and merged by depth (renderer.py). Scenes it does not draw (a line drawing,
-objects with shadows or translucency, a translucent texture or lines, several surfaces
-with shadows or translucency, a perspective viewpoint over the domain that the lod
-engine does not draw either) wait for the kernels as before.
+(passes/overlays.py draw_lines, from planes(); the lines alone with fill=False); a
+line drawing's horizon lines are marked from its samples (passes/draft_horizon.py);
+several opaque surfaces are drafted one by one and merged by depth (renderer.py).
+Scenes it does not draw (objects with shadows or translucency, a translucent texture or
+lines, several surfaces with shadows or translucency, a perspective viewpoint over the
+domain that the lod engine does not draw either) wait for the kernels as before.
 """
 from __future__ import annotations
 
@@ -58,20 +59,22 @@ MAX_DRAFT_PLANES = 20_000
 
 
 def supports(quality, view, surface):
-    """Whether the draft can draw this layer's picture: a shaded picture (renderer.py
-    checks the rest), and in perspective a viewpoint in
-    front of the whole domain (one ascending pass per column), or a fly camera's
-    inside the scene that the level-of-detail engine draws (passes/lod.py supports:
-    the eye above the ground, every ray going farther with its distance), on planes a
-    pixel's footprint apart from the eye (_planes). An area-sampled one is drawn at
-    the pixel centres, as every draft is (no antialiasing)."""
-    if quality.method != "column":
+    """Whether the draft can draw this layer's picture: a shaded picture or a line
+    drawing (renderer.py checks the rest), and in perspective a viewpoint in front of
+    the whole domain (one ascending pass per column), or for a shaded picture a fly
+    camera's inside the scene that the level-of-detail engine draws (passes/lod.py
+    supports: the eye above the ground, every ray going farther with its distance), on
+    planes a pixel's footprint apart from the eye (_planes). An area-sampled one is
+    drawn at the pixel centres, as every draft is (no antialiasing)."""
+    if quality.method not in ("column", "horizon"):
         return False
     if view.orthographic:
         return True
     t_eye = -view.d3 * math.cos(view.alpha)       # the viewpoint's t (eqs. 4, 10)
     if view.t_range[0] > t_eye:
         return True
+    if quality.method == "horizon":     # (a line drawing's planes are the column pass's)
+        return False
     from . import lod
     return lod.supports(surface, view)
 
@@ -627,9 +630,12 @@ def _paint(y, pair, H):
     return hit.reshape(H, m), k, c, np.flatnonzero(hit) // m
 
 
-def draft_geometry(surface, view):
+def draft_geometry(surface, view, hrec=None, hstride=0):
     """(g (H, W, G_SIZE) float32 rows from the bottom, seen (H, W) bool, evals (W,)):
-    the draft's G-buffer (layout.py's G_* channels) of one layer."""
+    the draft's G-buffer (layout.py's G_* channels) of one layer; with ``hstride`` >
+    0, a line drawing's, whose horizon records go to ``hrec`` (W, lines, H_SIZE) as
+    the column pass writes them (passes/draft_horizon.py; no column traced ray by
+    ray: the kernels trace no folds in a line drawing either)."""
     W, H = view.width, view.height
     t = _planes(view)
     g = np.zeros((H, W, L.G_SIZE), dtype=np.float32)
@@ -637,13 +643,16 @@ def draft_geometry(surface, view):
     evals = np.zeros(W, dtype=np.int64)
     block = max(1, BLOCK_SAMPLES // max(t.size, 1))
     origin = _origins(view)
-    traces = not view.orthographic and _column_planes(view)
+    traces = not view.orthographic and _column_planes(view) and hstride == 0
     rays = None
     budget = RAY_EVALS
     for c0 in range(0, W, block):
         cols = np.arange(c0, min(W, c0 + block), dtype=np.float64)
         smp, pair, ev = _samples(surface, view, cols, t)
         evals[c0:c0 + cols.size] = ev // max(cols.size, 1)
+        if hstride > 0:
+            from .draft_horizon import horizon_records
+            horizon_records(smp, pair, t, hstride, hrec[c0:c0 + cols.size])
         hit, k, c, rows = _paint(smp["y"], pair, H)
         gb = g[:, c0:c0 + cols.size]
         gb[hit] = span_points(smp, k, c, rows, view)

@@ -230,7 +230,8 @@ def overlay_pass(rgba, material, source, geom, W, box, w_limits, c_limits, domai
     surface (section 6.4's edge buffer) is seen: the lines along the domain's edges
     are whole there, not their inner half."""
     if not material.fill:
-        _lines_alone(rgba, material, source, geom, W, box, w_limits, c_limits, domain, bg8)
+        lines_alone(rgba, material, source, picture_planes(geom, W, box, edges=True), w_limits,
+                    c_limits, domain, bg8, edges=True)
         return
     overlay_planes(rgba, material, source, picture_planes(geom, W, box, edges=edges), w_limits,
                    c_limits, domain, edges)
@@ -278,10 +279,12 @@ def overlay_planes(rgba, material, source, planes, w_limits, c_limits, domain, e
         draw(rgba, q, seen & np.isfinite(q), material.contour_width, rgb, levels=levels)
 
 
-def _lines_alone(rgba, material, source, geom, W, box, w_limits, c_limits, domain, bg8):
-    """overlay_pass with fill=False: each kind of line drawn white on black to find the
-    part of each pixel it covers (the same lines_kernel), then the contours over the
-    wireframe over the background, straight alpha; the surface's own colours gone."""
+def lines_alone(rgba, material, source, planes, w_limits, c_limits, domain, bg8, edges=False,
+                draw=_draw):
+    """overlay_pass with fill=False from the picture's planes (overlay_planes'): each
+    kind of line drawn white on black to find the part of each pixel it covers (the
+    same ``draw``), then the contours over the wireframe over the background, straight
+    alpha; the surface's own colours gone (a draft's lines too, draw=draw_lines)."""
     kinds = []
     for keep in ("wireframe", "contours"):
         if getattr(material, keep) is None:
@@ -289,8 +292,7 @@ def _lines_alone(rgba, material, source, geom, W, box, w_limits, c_limits, domai
         canvas = np.zeros_like(rgba)
         alone = replace(material, fill=True, edgecolor="white", contour_color="white",
                         **{k: None for k in ("wireframe", "contours") if k != keep})
-        overlay_pass(canvas, alone, source, geom, W, box, w_limits, c_limits, domain,
-                     edges=True)
+        overlay_planes(canvas, alone, source, planes, w_limits, c_limits, domain, edges, draw)
         cov = canvas[..., 0].astype(np.float64) / 255.0
         rgb = color.to_rgb(material.edgecolor if keep == "wireframe" else
                            material.contour_color, "edgecolor" if keep == "wireframe"

@@ -115,7 +115,7 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     drafted = (quality.device == "cpu" and scene.camera.columns is None
                and not (many and (translucent or light.shadows))
                and not any(p.material.overlaid and translucent for p in layers)
-               and not (objects and (light.shadows or translucent))
+               and not (objects and translucent)
                and not (translucent and layers[0].source is not None)
                and all(draft.supports(quality, v, d[0]) for v, d in zip(views, drawn))
                and _drafting(quality, first, drawn[0][0], views[0], light))

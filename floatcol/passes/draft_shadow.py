@@ -22,8 +22,10 @@ The same shadow texture as passes/shadow.py's, made and read without a compile:
 Given the kernels' G-buffer, it gives the kernels' shadows (within float rounding:
 tests/test_draft.py).
 
-What a draft leaves out: the objects' shadows and several surfaces' shadows on each
-other (such pictures wait for their kernels).
+Objects cast their shadows on the draft's points by the kernels' own code (the
+objects' kernels compile in a few seconds), and the surface's on them from the draft's
+planes. What a draft leaves out: several surfaces' shadows on each other (such pictures
+wait for their kernels).
 """
 from __future__ import annotations
 
@@ -280,11 +282,33 @@ def draft_shadow(texture, surface, domain, view, g, side):
     H, W = side.shape
     shadow = np.full((H, W), np.nan, dtype=np.float32)
     seen = side != 0
+    planes = shadow_planes(texture, surface, domain)
     if seen.any():
-        shadow[seen] = shadow_of(shadow_planes(texture, surface, domain), view, g[seen],
-                                 side[seen])
+        shadow[seen] = shadow_of(planes, view, g[seen], side[seen])
     lit = np.where(seen, 1.0 - shadow, 1.0).astype(np.float32)
+    if texture.occluders is not None:
+        # the objects: their shadows on the surface (passes/shadow.py objects_cast, the
+        # kernels' own code on the draft's points), and the texture's planes the draft's,
+        # which the objects pass reads for the surface's shadows on them (objects.py
+        # _surfaces_cast)
+        _adopt(texture, planes[1])
+        from .shadow import objects_cast
+        with np.errstate(invalid="ignore"):
+            point = np.stack([g[..., L.G_U] + view.center[0], g[..., L.G_V] + view.center[1],
+                              g[..., L.G_W] + view.w_origin], axis=-1)[::-1].astype(np.float64)
+        # (as tiles of one lane: the kernels' layout, (H, tiles, lanes, 3))
+        objects_cast(texture.occluders, point.reshape(H, W, 1, 3), shadow[::-1], lit[::-1])
     return shadow, lit
+
+
+def _adopt(texture, t):
+    """The draft's planes ``t`` (texture_planes', None at the zenith) as the Texture's
+    own, as its kernels' sweep leaves them (passes/shadow.py Texture._sweep)."""
+    if t is None:
+        return
+    texture.hmax, texture.hmin, texture.hsurf = t.hmax, t.hmin, t.hsurf
+    texture.slopes = np.zeros((0, 1, 1)) if t.slopes is None else t.slopes
+    texture.texels = t.hsurf.size
 
 
 def shadow_planes(texture, surface, domain):

@@ -216,23 +216,25 @@ def shadow_pass(texture, view, geom, W, H, layer=0):
         return _on_the_fly(texture, geom, W, H, light, shadow, lit)
     _lookup(texture, geom, W, light, shadow, lit, layer)
     if texture.occluders is not None:
-        _objects_cast(texture.occluders, geom, W, H, shadow, lit)
+        # the G-buffer's seen points, top row first: (H, tiles, lanes, u v w), a view
+        # (u, v from the view's centre: layout.py G_U; the G-buffer holds anything where
+        # nothing is seen, signalling NaNs too: not read there)
+        with np.errstate(invalid="ignore"):
+            point = geom.gbuf[:, ::-1, :, G_U:G_W + 1].transpose(1, 0, 2, 3).astype(np.float64)
+            point[..., 0] += geom.vp[VP_CU]
+            point[..., 1] += geom.vp[VP_CV]
+            point[..., 2] += geom.vp[VP_WORG]
+        objects_cast(texture.occluders, point, shadow, lit)
     return shadow, lit
 
 
-def _objects_cast(occluders, geom, W, H, shadow, lit):
-    """The objects' cast shadows on a layer's seen points (objects.Occluders or
-    DiskOccluders ``cast``), in place: 1 where a triangle stands between the point and
-    the light, the part of the pixel in shadow at the shadow's edge, the part of the
-    light's disk hidden for a light of a radius."""
-    # the G-buffer's seen points, top row first: (H, tiles, lanes, u v w), a view
-    # (u, v from the view's centre: layout.py G_U; the G-buffer holds anything where
-    # nothing is seen, signalling NaNs too: not read there)
-    with np.errstate(invalid="ignore"):
-        point = geom.gbuf[:, ::-1, :, G_U:G_W + 1].transpose(1, 0, 2, 3).astype(np.float64)
-        point[..., 0] += geom.vp[VP_CU]
-        point[..., 1] += geom.vp[VP_CV]
-        point[..., 2] += geom.vp[VP_WORG]
+def objects_cast(occluders, point, shadow, lit):
+    """The objects' cast shadows on a layer's seen points ``point`` (H, tiles, lanes,
+    3) as a tiled G-buffer holds them (a draft's: lanes 1), in the box, top row first
+    (objects.Occluders or DiskOccluders ``cast``), into shadow and lit (H, W) in place:
+    1 where a triangle stands between the point and the light, the part of the pixel in
+    shadow at the shadow's edge, the part of the light's disk hidden for a light of a
+    radius (a draft's too, passes/draft_shadow.py)."""
     cast = occluders.cast(point, shadow < 1.0, ~np.isnan(shadow))   # (NaN: nothing seen)
     np.maximum(shadow, cast, out=shadow)                      # (NaN stays NaN)
     changed = cast > 0.0

@@ -113,7 +113,7 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     # (several opaque surfaces are drafted one by one and merged by depth, without
     # shadows: a draft's texture has one layer)
     drafted = (quality.device == "cpu" and scene.camera.columns is None
-               and not (many and (translucent or light.shadows))
+               and not (many and translucent)
                and not any(p.material.overlaid and translucent for p in layers)
                and not (objects and translucent)
                and not (translucent and layers[0].source is not None)
@@ -144,7 +144,7 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
             view = _relit(view, p.light_dir)
         if drafted:
             renders.append(_draft_layer(p, view, (s, dom), box, quality, (0, 0, 0, 0),
-                                        time.perf_counter(), stacklevel + 1))
+                                        time.perf_counter(), stacklevel + 1, texture, k))
             continue
         renders.append(_layer(p, view, (s, dom), box, quality, (0, 0, 0, 0),
                               time.perf_counter(), stacklevel + 1, texture, k))
@@ -398,17 +398,18 @@ def _layer(p, view, drawn, box, quality, background, t_start, stacklevel, textur
                   light_args, box, shadow=shadow)
 
 
-def _draft_layer(p, view, drawn, box, quality, background, t_start, stacklevel, texture=None):
+def _draft_layer(p, view, drawn, box, quality, background, t_start, stacklevel, texture=None,
+                 index=0):
     """One layer's draft picture (passes/draft.py): a Render as _layer's; with the
-    light's shadow ``texture`` (not swept), its shadows (passes/draft_shadow.py); a
-    line drawing's by passes/draft_horizon.py."""
+    light's shadow ``texture`` (not swept), its shadows as layer ``index`` of the
+    texture's (passes/draft_shadow.py); a line drawing's by passes/draft_horizon.py."""
     surface, domain = drawn
     material = p.material
     if quality.method == "horizon":
         return _draft_lines(p, view, drawn, box, quality, background, t_start, stacklevel)
     material.check_limits()
     t_setup = time.perf_counter()
-    shadows = None if texture is None else (texture, domain)
+    shadows = None if texture is None else (texture, index)
     extra = {}
     if material.opacity < 1.0:
         from .passes.draft_layers import draft_translucent

@@ -121,9 +121,8 @@ def test_draft_holes_and_nothing_are_no_crash(drafts):
 
 
 def test_draft_only_where_it_can(drafts):
-    """Objects with translucency, a translucent texture or lines, and several surfaces
-    with shadows or translucency wait for the kernels; so does a perspective viewpoint
-    over the domain. An area-sampled or smooth-shaded
+    """Objects with translucency, a translucent texture or lines, and several translucent
+    surfaces wait for the kernels; so does a perspective viewpoint over the domain. An area-sampled or smooth-shaded
     picture (fc.terrain's default) is drawn, at the pixel centres, and so are shadows,
     translucency and several opaque surfaces (test_a_drafts_shadows_...,
     test_a_translucent_draft_..., test_several_surfaces_...)."""
@@ -590,7 +589,6 @@ def test_a_drafts_shadows_are_the_kernels_on_their_points(monkeypatch, expr, U, 
 
     def keep(light, camera, quality, drawn, view, sweep=True):
         made["texture"] = texture(light, camera, quality, drawn, view, sweep=False)
-        made["drawn"] = drawn[0]
         return texture(light, camera, quality, drawn, view, sweep)
     monkeypatch.setattr(renderer, "_shadow_texture", keep)
     kw = dict(light_radius=radius) if radius else {}
@@ -598,7 +596,7 @@ def test_a_drafts_shadows_are_the_kernels_on_their_points(monkeypatch, expr, U, 
                   shadows=method, **kw)
     assert r.stats["engine"] == "kernels" and not made["texture"].swept
     g = _untile(r._gbuf, r.side.shape[1])          # rows from the bottom
-    shadow, lit = draft_shadow(made["texture"], *made["drawn"], r.view, g, r.side[::-1])
+    shadow, lit = draft_shadow(made["texture"], 0, r.view, g, r.side[::-1])
     shadow, lit = shadow[::-1], lit[::-1]
     assert np.array_equal(np.isnan(shadow), np.isnan(r.shadow))
     assert np.nanmax(np.abs(shadow - r.shadow)) < 1e-5
@@ -736,7 +734,7 @@ def test_several_surfaces_are_drafted_one_by_one_and_merged(drafts, monkeypatch)
     by depth as the kernels' layers are (passes/composite.py): against the kernels'
     picture at 200x150, 1.6 % and 1.8 % of the pixels more than 8 levels apart
     (silhouettes and the uncorrected draft), the nearest surface the same at every
-    pixel (measured). With shadows, or translucent, they wait for the kernels."""
+    pixel (measured). Translucent, they wait for the kernels."""
     layers = [fc.Layer("sin(u)*cos(v)", ((-3, 3), (-3, 3))),
               fc.Layer("u*v/5", ((-3, 3), (-3, 3)), fc.Material(cmap="plasma", contours=5))]
     for kw in (dict(), dict(projection="perspective", elev=20, azim=-60)):
@@ -750,7 +748,7 @@ def test_several_surfaces_are_drafted_one_by_one_and_merged(drafts, monkeypatch)
         assert (d.stats["surface"] == k.stats["surface"]).mean() > 0.995
         assert set(np.unique(d.stats["surface"])) == {-1, 0, 1}
     shadowed = fc.render_many(layers, size=(40, 30), lightsource=(30, 40), shadows=True)
-    assert shadowed.stats["engine"] == "kernels"
+    assert shadowed.stats["engine"] == "draft"       # (test_several_surfaces_shadows_...)
     glass = fc.render_many([fc.Layer(y.surface, y.domain, fc.Material(opacity=0.5))
                             for y in layers], size=(40, 30))
     assert glass.stats["engine"] == "kernels" and glass.stats["translucent"]
@@ -856,3 +854,61 @@ def test_objects_shadows_are_drafted(drafts, monkeypatch, extra):
     assert cast.sum() > 300 and (d.shadow[cast] > 0.5).mean() > 0.99
     diff = np.abs(d.rgba.astype(int) - k.rgba.astype(int)).max(-1)
     assert (diff > 8).mean() < 0.015
+
+
+PLATE = [fc.Layer("sin(u)*cos(v)", ((-3, 3), (-3, 3))),
+         fc.Layer("1.5 + 0*u", ((-1, 1), (-1.5, 1.5)), fc.Material(cmap="plasma"))]
+
+
+@pytest.mark.parametrize("extra", [dict(), dict(light_radius=3.0),
+                                   dict(projection="perspective", elev=25, azim=-50)])
+def test_several_surfaces_shadows_are_drafted(drafts, monkeypatch, extra):
+    """Several surfaces with shadows (render_many): the draft's texture holds a layer
+    per surface (passes/draft_shadow.py texture_planes) and a point takes another
+    layer's shadow where the light's ray crosses it (kernels/shadow.py _crossed, in
+    numpy). A plate over a wave: at 320x240 the plate's shadow on the wave covers 5 310
+    to 6 197 pixels, and the draft's shadow is the kernels' at every pixel where both
+    see the same surface (measured: hard, soft and in perspective); 1.0 % of the pixels
+    more than 8 levels apart."""
+    kw = dict(size=(320, 240), shadows=True, lightsource=(300, 40), **extra)
+    d = fc.render_many(PLATE, **kw)
+    monkeypatch.setattr(warmup, "drafting", lambda *a: False)
+    k = fc.render_many(PLATE, **kw)
+    alone = fc.render_many(PLATE[:1], **kw)
+    assert (d.stats["engine"], k.stats["engine"]) == ("draft", "kernels")
+    same = (d.stats["surface"] == k.stats["surface"]) & ~np.isnan(k.shadow)
+    assert same.mean() > 0.25                     # (the surfaces cover 28-36 %)
+    assert np.array_equal(np.isnan(d.shadow[same]), np.isnan(k.shadow[same]))
+    assert (np.abs(d.shadow[same] - k.shadow[same]) <= 0.5).mean() > 0.999
+    plate = (k.stats["surface"] == 0) & (k.shadow > 0.5) & ~(alone.shadow > 0.5)
+    assert plate.sum() > 4000 and (d.shadow[plate] > 0.5).mean() > 0.99
+    diff = np.abs(d.rgba.astype(int) - k.rgba.astype(int)).max(-1)
+    assert (diff > 8).mean() < 0.015
+
+
+def test_a_drafts_texture_of_several_layers_is_the_kernels(monkeypatch):
+    """texture_planes (numpy) against Texture's sweeps (kernels/shadow.py horizon_sweeps,
+    horizon_slopes) for a plate over a wave under a sun of a radius: every layer's
+    hmax, hmin, hsurf and slopes the same within float32 rounding (f evaluated in SIMD
+    code by the kernels: within 2 ulp), the holes (NaN) at the same texels."""
+    from floatcol import renderer
+    from floatcol.passes.draft_shadow import texture_planes
+    made = {}
+    texture = renderer._shadow_texture
+
+    def keep(light, camera, quality, drawn, view, sweep=True):
+        made["draft"] = texture(light, camera, quality, drawn, view, sweep=False)
+        made["kernels"] = out = texture(light, camera, quality, drawn, view, sweep)
+        return out
+    monkeypatch.setattr(renderer, "_shadow_texture", keep)
+    monkeypatch.setattr(warmup, "drafting", lambda *a: False)
+    fc.render_many(PLATE, size=(200, 150), shadows=True, lightsource=(300, 40),
+                   light_radius=3.0)
+    t, k = texture_planes(made["draft"]), made["kernels"]
+    assert t.hmax.shape == k.hmax.shape and t.hmax.shape[0] == 2
+    for name in ("hmax", "hmin", "hsurf", "slopes"):
+        a, b = getattr(t, name), getattr(k, name)
+        assert a.shape == b.shape and np.array_equal(np.isnan(a), np.isnan(b)), name
+        ok = ~np.isnan(a)
+        assert np.allclose(a[ok], b[ok], rtol=1e-5, atol=1e-5), name
+    assert np.isnan(t.hsurf[1]).mean() > 0.5 and not np.isnan(t.hsurf[1]).all()

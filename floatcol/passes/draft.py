@@ -32,8 +32,8 @@ layer (passes/draft_layers.py), contours and wireframes are drawn on it in numpy
 line drawing's horizon lines are marked from its samples (passes/draft_horizon.py);
 several opaque surfaces are drafted one by one and merged by depth (renderer.py).
 Scenes it does not draw (objects with translucency, a translucent texture or lines,
-several surfaces with shadows or translucency, a perspective viewpoint over the domain
-that the lod engine does not draw either) wait for the kernels as before.
+several translucent surfaces, a perspective viewpoint over the domain that the lod
+engine does not draw either) wait for the kernels as before.
 """
 from __future__ import annotations
 
@@ -857,7 +857,7 @@ def draft_pass(surface, view, material, terms, box, bg8, source=None, shadows=No
     """The draft picture of one layer, top row first: (rgba, side, intensity, depth,
     tiled G-buffer, evaluations per column, w_limits, c_limits, shadow or None);
     ``source`` its texture or colour field (passes/colour.py prepare's), or None;
-    ``shadows`` (the light's passes/shadow.py Texture, not swept; the layer's domain)
+    ``shadows`` (the light's passes/shadow.py Texture, not swept; the layer's index in it)
     or None (passes/draft_shadow.py)."""
     W, H = view.width, view.height
     check_bytes(W, H, W * H * DRAFT_BYTES)
@@ -878,7 +878,7 @@ def draft_pass(surface, view, material, terms, box, bg8, source=None, shadows=No
     shadow = lit = None
     if shadows is not None:
         from .draft_shadow import draft_shadow
-        shadow, lit = draft_shadow(shadows[0], surface, shadows[1], view, g, side)
+        shadow, lit = draft_shadow(shadows[0], shadows[1], view, g, side)
     rgba, intensity = draft_finish(view, g, side, material, terms, lut, w_lo, w_hi,
                                    lower_rgb, bg8, base, lit)
     depth = np.where(seen, g[..., L.G_DEPTH], np.inf).astype(np.float32)

@@ -70,7 +70,7 @@ def _composited(surface, view, material, terms, box, bg8, shadows):
     planes = None
     if shadows is not None:
         from .draft_shadow import shadow_planes
-        planes = shadow_planes(shadows[0], surface, shadows[1])
+        planes = shadow_planes(shadows[0])
     acc = np.zeros((4, H * W))                   # colour times alpha, intensity
     hits = np.zeros(H * W, dtype=np.int64)       # crossings met
     g = np.zeros((H, W, L.G_SIZE), dtype=np.float32)

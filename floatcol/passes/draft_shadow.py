@@ -22,10 +22,11 @@ The same shadow texture as passes/shadow.py's, made and read without a compile:
 Given the kernels' G-buffer, it gives the kernels' shadows (within float rounding:
 tests/test_draft.py).
 
-Objects cast their shadows on the draft's points by the kernels' own code (the
-objects' kernels compile in a few seconds), and the surface's on them from the draft's
-planes. What a draft leaves out: several surfaces' shadows on each other (such pictures
-wait for their kernels).
+Several surfaces (render_many) have a layer each in the texture, and a point takes
+another layer's shadow where the light's ray crosses it (the kernels' _crossed: between
+that layer's extremes beyond it). Objects cast their shadows on the draft's points by
+the kernels' own code (the objects' kernels compile in a few seconds), and the
+surfaces' fall on them from the draft's planes.
 """
 from __future__ import annotations
 
@@ -38,41 +39,48 @@ from ..kernels.shadow import NONE, SLOPE_NONE, STRIP_SPREAD, STRIPS, WALL
 from .shadow import BIAS_TEXELS, GRAZING, MAX_TEXELS
 
 
-def texture_planes(texture, surface, domain):
-    """A draft's shadow texture of one layer: the object ``texture`` (passes/shadow.py
-    Texture, not swept) with hmax, hmin, hsurf (1, lines, samples) float32 as the
-    kernels' horizon_sweeps make them (on a grid of at most MAX_TEXELS texels), and
-    for a light of a radius the slopes (4, lines, samples) of horizon_slopes."""
+def texture_planes(texture):
+    """A draft's shadow texture of the layers ``texture.drawn`` (the object ``texture``,
+    passes/shadow.py Texture, not swept): hmax, hmin, hsurf (layers, lines, samples)
+    float32 as the kernels' horizon_sweeps make them (on a grid of at most MAX_TEXELS
+    texels), and for a light of a radius the slopes (4 layers, lines, samples) of
+    horizon_slopes; made once a texture (every layer's draft reads them)."""
     from types import SimpleNamespace
+    held = getattr(texture, "draft_planes", None)
+    if held is not None:
+        return held
     h, s0, t0, n_sig, n_tau = texture.grid(MAX_TEXELS)
     gu, gv, tan_theta = texture.gu, texture.gv, texture.tan_theta
-    (ua, ub), (va, vb) = domain
+    n = len(texture.drawn)
+    hmax = np.empty((n, n_tau, n_sig), dtype=np.float32)
+    hmin = np.empty((n, n_tau, n_sig), dtype=np.float32)
+    hsurf = np.empty((n, n_tau, n_sig), dtype=np.float32)
     sigma = s0 + np.arange(n_sig) * h
     tau = (t0 + np.arange(n_tau) * h)[:, None]
     u = sigma * gu - tau * gv
     v = sigma * gv + tau * gu
-    inside = (u >= ua) & (u <= ub) & (v >= va) & (v <= vb)
-    w = np.full(u.shape, np.nan)
-    if inside.any():
-        w[inside] = surface.evaluate(u[inside], v[inside])
-    with np.errstate(invalid="ignore"):
-        hs = np.where(np.isfinite(w), (w - texture.w_origin) - sigma * tan_theta, np.nan)
-    del u, v, w, inside
-    hmax = np.empty((1, n_tau, n_sig), dtype=np.float32)
-    hmin = np.empty((1, n_tau, n_sig), dtype=np.float32)
-    # the running extremes from the light's side (the last sample), strictly beyond
-    run = np.maximum.accumulate(np.where(np.isnan(hs), -NONE, hs)[:, ::-1], axis=1)[:, ::-1]
-    hmax[0, :, :-1] = run[:, 1:]
-    hmax[0, :, -1] = -NONE
-    run = np.minimum.accumulate(np.where(np.isnan(hs), NONE, hs)[:, ::-1], axis=1)[:, ::-1]
-    hmin[0, :, :-1] = run[:, 1:]
-    hmin[0, :, -1] = NONE
-    del run
+    for layer, (surface, ((ua, ub), (va, vb))) in enumerate(texture.drawn):
+        inside = (u >= ua) & (u <= ub) & (v >= va) & (v <= vb)
+        w = np.full(u.shape, np.nan)
+        if inside.any():
+            w[inside] = surface.evaluate(u[inside], v[inside])
+        with np.errstate(invalid="ignore"):
+            hs = np.where(np.isfinite(w), (w - texture.w_origin) - sigma * tan_theta, np.nan)
+        del w, inside
+        # the running extremes from the light's side (the last sample), strictly beyond
+        run = np.maximum.accumulate(np.where(np.isnan(hs), -NONE, hs)[:, ::-1], axis=1)[:, ::-1]
+        hmax[layer, :, :-1] = run[:, 1:]
+        hmax[layer, :, -1] = -NONE
+        run = np.minimum.accumulate(np.where(np.isnan(hs), NONE, hs)[:, ::-1], axis=1)[:, ::-1]
+        hmin[layer, :, :-1] = run[:, 1:]
+        hmin[layer, :, -1] = NONE
+        del run
+        hsurf[layer] = hs
     out = SimpleNamespace(h=h, s0=s0, t0=t0, gu=gu, gv=gv, tan_theta=tan_theta,
-                          rho=texture.rho, hmax=hmax, hmin=hmin,
-                          hsurf=hs.astype(np.float32)[None], slopes=None)
+                          rho=texture.rho, hmax=hmax, hmin=hmin, hsurf=hsurf, slopes=None)
     if texture.rho > 0.0:
-        out.slopes = _slopes(out.hsurf[0], h)
+        out.slopes = np.concatenate([_slopes(hsurf[layer], h) for layer in range(n)])
+    texture.draft_planes = out
     return out
 
 
@@ -172,15 +180,16 @@ def _texels_rise(hsurf, cells):
         return np.fmax.reduce(hs, axis=0) - np.fmin.reduce(hs, axis=0)
 
 
-def _hard(t, upper, facing, hp, cells):
-    """point_shadow's cast part over arrays (one layer, points of one side): the
+def _hard(t, upper, facing, hp, cells, layer=0, crossed=None):
+    """point_shadow's cast part over arrays (layer ``layer``'s points of one side): the
     point's depth below its own horizon over one texel's rise, 1 in shadow, 0 lit,
     between at the edge. The depth: the texels' own (hmax - H upper, H - hmin lower)
     averaged over those of the surface on the point's side of a wall (_own_depth),
-    else the horizon interpolated."""
-    hext = t.hmax[0] if upper else t.hmin[0]
-    hsurf = cells.corners(t.hsurf[0])
-    rise = _texels_rise(t.hsurf[0], cells)
+    else the horizon interpolated; at least how far it lies inside another layer
+    (``crossed``, _crossed's)."""
+    hext = t.hmax[layer] if upper else t.hmin[layer]
+    hsurf = cells.corners(t.hsurf[layer])
+    rise = _texels_rise(t.hsurf[layer], cells)
     with np.errstate(invalid="ignore"):
         near = np.where(rise > WALL * t.h, 0.5 * rise, np.inf)
         ok = [~np.isnan(hs) & (np.abs(hs - hp) <= near) for hs in hsurf]
@@ -188,6 +197,8 @@ def _hard(t, upper, facing, hp, cells):
     margin = cells.average(depth, ok)
     horizon = cells.bilinear(hext) - hp if upper else hp - cells.bilinear(hext)
     margin = np.where(np.isnan(margin), horizon, margin)
+    if crossed is not None:
+        margin = np.maximum(margin, crossed)
     width = abs(t.tan_theta) * t.h
     bs = np.where(facing < GRAZING, BIAS_TEXELS * width, 0.0)
     return np.clip((margin - bs) / max(width, 1e-300) + 0.5, 0.0, 1.0)
@@ -232,19 +243,20 @@ def _strip_blocked(x0, x1, y):
     return np.where(y >= 1.0, full, np.where(y <= -1.0, 0.0, area))
 
 
-def _soft(t, upper, pt, ps, hp, cells, hard):
-    """soft_shadow's value over arrays (one layer, points of one side), ``hard`` the
-    hard answer, kept where the texels know no horizon or straddle a wall: the part of
-    the light's disk below the horizon rising at m over the light's ray, made at
+def _soft(t, upper, pt, ps, hp, cells, hard, layer=0, crossed=None):
+    """soft_shadow's value over arrays (layer ``layer``'s points of one side), ``hard``
+    the hard answer, kept where the texels know no horizon or straddle a wall: the part
+    of the light's disk below the horizon rising at m over the light's ray, made at
     distance D; where the disk's rays spread over more than STRIP_SPREAD texels
     across the light, STRIPS strips each with its displaced line's occluder
-    (_disk_below)."""
+    (_disk_below); at least another layer's hard, antialiased crossing (``crossed``)."""
     side = 0 if upper else 1
-    rise, dist = t.slopes[side], t.slopes[2 + side]
-    surface = [~np.isnan(hs) for hs in cells.corners(t.hsurf[0])]
+    hsurf = t.hsurf[layer]
+    rise, dist = t.slopes[4 * layer + side], t.slopes[4 * layer + 2 + side]
+    surface = [~np.isnan(hs) for hs in cells.corners(hsurf)]
     m = cells.average(rise, surface)
     D = cells.average(dist, surface)
-    soft = ~np.isnan(m) & ~(_texels_rise(t.hsurf[0], cells) > WALL * t.h)
+    soft = ~np.isnan(m) & ~(_texels_rise(hsurf, cells) > WALL * t.h)
     out = hard.copy()
     if not soft.any():
         return out
@@ -261,30 +273,34 @@ def _soft(t, upper, pt, ps, hp, cells, hard):
         dx = 2.0 / STRIPS
         for q in range(STRIPS):
             x0 = -1.0 + q * dx
-            hk, dk = _occluder(rise, dist, t.hsurf[0],
-                               _Cells(t.hsurf[0].shape, pt + (x0 + 0.5 * dx) * spread, ps))
+            hk, dk = _occluder(rise, dist, hsurf,
+                               _Cells(hsurf.shape, pt + (x0 + 0.5 * dx) * spread, ps))
             with np.errstate(invalid="ignore", divide="ignore"):
                 mk = np.where(np.isnan(hk), -sgn * SLOPE_NONE,
                               np.where(dk < 0.5 * D, m, (hk - hp) / dk))
             area += _strip_blocked(x0, x0 + dx,
                                    sgn * (np.arctan(t.tan_theta + mk) - theta) / rho)
         val[wide] = np.minimum(area / math.pi, 1.0)
+    if crossed is not None:     # other layers: their hard, antialiased crossings
+        val = np.maximum(val, np.clip(crossed[soft] / max(abs(t.tan_theta) * t.h, 1e-300)
+                                      + 0.5, 0.0, 1.0))
     out[soft] = val
     return out
 
 
-def draft_shadow(texture, surface, domain, view, g, side):
-    """(shadow, lit) (H, W) float32, rows from the bottom, of the draft's G-buffer g
-    (H, W, G_SIZE: u, v from the view's centre, w from its w_origin, unit normals) and
-    seen sides ``side`` (+1, -1, 0): shadow 1 / 0 / between, NaN where nothing is seen;
-    lit = 1 - shadow (1 where nothing is seen), as passes/shadow.py shadow_pass's.
-    ``texture`` the light's passes/shadow.py Texture (not swept)."""
+def draft_shadow(texture, layer, view, g, side):
+    """(shadow, lit) (H, W) float32, rows from the bottom, of layer ``layer``'s draft
+    G-buffer g (H, W, G_SIZE: u, v from the view's centre, w from its w_origin, unit
+    normals) and seen sides ``side`` (+1, -1, 0): shadow 1 / 0 / between, NaN where
+    nothing is seen; lit = 1 - shadow (1 where nothing is seen), as passes/shadow.py
+    shadow_pass's. ``texture`` the light's passes/shadow.py Texture (not swept) of
+    the layers ``texture.drawn``."""
     H, W = side.shape
     shadow = np.full((H, W), np.nan, dtype=np.float32)
     seen = side != 0
-    planes = shadow_planes(texture, surface, domain)
+    planes = shadow_planes(texture)
     if seen.any():
-        shadow[seen] = shadow_of(planes, view, g[seen], side[seen])
+        shadow[seen] = shadow_of(planes, view, g[seen], side[seen], layer)
     lit = np.where(seen, 1.0 - shadow, 1.0).astype(np.float32)
     if texture.occluders is not None:
         # the objects: their shadows on the surface (passes/shadow.py objects_cast, the
@@ -311,16 +327,17 @@ def _adopt(texture, t):
     texture.texels = t.hsurf.size
 
 
-def shadow_planes(texture, surface, domain):
+def shadow_planes(texture):
     """What shadow_of reads: (texture, its planes (texture_planes'), or None where the
     light stands at the zenith: attached shadows alone)."""
-    return texture, None if texture.zenith else texture_planes(texture, surface, domain)
+    return texture, None if texture.zenith else texture_planes(texture)
 
 
-def shadow_of(planes, view, g, s):
-    """The shadow (n,) of the points g (n, G_SIZE) seen from sides s (n,) (+1 upper, -1
-    lower): 1 attached (the seen side faces away from the light) or in the cast
-    shadow, 0 lit, between at an edge or in a penumbra; ``planes`` shadow_planes'."""
+def shadow_of(planes, view, g, s, layer=0):
+    """The shadow (n,) of layer ``layer``'s points g (n, G_SIZE) seen from sides s (n,)
+    (+1 upper, -1 lower): 1 attached (the seen side faces away from the light) or in
+    the cast shadow (its own layer's horizon, or another layer that the light's ray
+    crosses), 0 lit, between at an edge or in a penumbra; ``planes`` shadow_planes'."""
     texture, t = planes
     light = np.asarray(view.light, dtype=np.float64)
     nx, ny, nz = (g[:, ch].astype(np.float64) for ch in (L.G_NX, L.G_NY, L.G_NZ))
@@ -344,8 +361,21 @@ def shadow_of(planes, view, g, s):
         pt = (-u * t.gv + v * t.gu - t.t0) / t.h
         hp = w - along * t.tan_theta
         cells = _Cells(t.hsurf[0].shape, pt, ps)
-        val = _hard(t, upper, facing[at], hp, cells)
+        crossed = _crossed(t, layer, hp, cells)
+        val = _hard(t, upper, facing[at], hp, cells, layer, crossed)
         if t.rho > 0.0:
-            val = _soft(t, upper, pt, ps, hp, cells, val)
+            val = _soft(t, upper, pt, ps, hp, cells, val, layer, crossed)
         out[at] = val
+    return out
+
+
+def _crossed(t, layer, hp, cells):
+    """kernels/shadow.py _crossed over arrays: how far each point at H = hp lies between
+    another layer's extremes beyond it (the light's ray crosses that layer), the most
+    over the other layers; None with one layer."""
+    out = None
+    for m in range(t.hmax.shape[0]):
+        if m != layer:
+            c = np.minimum(cells.bilinear(t.hmax[m]) - hp, hp - cells.bilinear(t.hmin[m]))
+            out = c if out is None else np.maximum(out, c)
     return out

@@ -93,6 +93,8 @@ class Texture:
 
     def __init__(self, drawn, view, light_world, radius=0.0, method="texture", sweep=True):
         lw = np.asarray(light_world, dtype=np.float64)
+        #: the layers (surface, domain) it is the texture of
+        self.drawn = drawn
         #: the objects' triangles as casters (objects.Occluders), or None
         self.occluders = None
         #: the light's angular radius in radians (0: a point at infinity, hard shadows)
@@ -134,7 +136,6 @@ class Texture:
             if len(drawn) > 1:
                 raise ValueError("shadows='on-the-fly' draws the shadows of one surface: "
                                  "use shadows=True (the shadow texture) for several")
-            self.drawn = drawn
             return
         if sweep:
             self._sweep(drawn)

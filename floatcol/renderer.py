@@ -108,15 +108,14 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     if translucent:
         _check_translucent(layers, quality, light)
     # a fresh install's draft (passes/draft.py) while the kernels compile: decided
-    # before the shadow texture, which a draft makes in numpy (passes/draft_shadow.py);
-    # a translucent one (passes/draft_layers.py) without objects, textures or lines
-    # (several opaque surfaces are drafted one by one and merged by depth, without
-    # shadows: a draft's texture has one layer)
+    # before the shadow texture, which a draft makes in numpy (passes/draft_shadow.py,
+    # a layer per surface); a translucent one (passes/draft_layers.py, every layer's
+    # crossings merged by depth) without objects, textures or lines (several opaque
+    # surfaces are drafted one by one and merged by depth)
     drafted = (quality.device == "cpu" and scene.camera.columns is None
-               and not (many and translucent)
                and not any(p.material.overlaid and translucent for p in layers)
                and not (objects and translucent)
-               and not (translucent and layers[0].source is not None)
+               and not (translucent and any(p.source is not None for p in layers))
                and all(draft.supports(quality, v, d[0]) for v, d in zip(views, drawn))
                and _drafting(quality, first, drawn[0][0], views[0], light))
     texture = _shadow_texture(light, scene.camera, quality, drawn, views[0],
@@ -126,6 +125,9 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     if drafted and not many:
         return _draft_layer(layers[0], views[0], drawn[0], box, quality, background, t_start,
                             stacklevel + 1, texture), texture
+    if drafted and translucent:         # several surfaces, one at least translucent
+        return _draft_translucent(layers, views, drawn, box, background, texture,
+                                  t_start), texture
     if translucent:
         stop = None
         if objects:
@@ -441,6 +443,23 @@ def _draft_layer(p, view, drawn, box, quality, background, t_start, stacklevel, 
              "box": box, "engine": "draft", **extra}
     if c_limits is not None:
         stats["c_limits"] = c_limits   # the colour field's range on the colormap
+    return Render(rgba, intensity, side, depth, stats, view, gbuf, box=box, shadow=shadow)
+
+
+def _draft_translucent(layers, views, drawn, box, background, texture, t_start):
+    """The draft of several surfaces, one at least translucent
+    (passes/draft_layers.py draft_translucent_layers): a Render as render_translucent's."""
+    from .passes.draft_layers import draft_translucent_layers
+    for p in layers:
+        p.material.check_limits()
+    rgba, side, intensity, depth, gbuf, evals, w_limits, shadow, met, which = \
+        draft_translucent_layers(layers, views, drawn, box, color.to_rgba8(background),
+                                 texture)
+    view = views[0]
+    stats = {"samples": int(evals.sum()), "seconds": time.perf_counter() - t_start,
+             "translucent": True, "layers": met, "w_limits": w_limits, "method": "column",
+             "engine": "draft", "box": box, "planes": view.planes, "step": view.step,
+             "scale": view.scale, "surfaces": len(layers), "surface": which}
     return Render(rgba, intensity, side, depth, stats, view, gbuf, box=box, shadow=shadow)
 
 

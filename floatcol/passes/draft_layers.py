@@ -19,9 +19,13 @@ background, as kernels/layers.py's picture_kernel. ``Render.intensity`` is the
 layers' intensities composited over black; side, depth, shadow and the G-buffer the
 nearest crossing's; ``stats["layers"]`` how many crossings each pixel's ray met.
 
+Several surfaces (draft_translucent_layers): each layer's first crossings at a pixel,
+merged with the other layers' by depth and composited front to back, each with its own
+opacity, while the transmittance stays above STOP.
+
 What it leaves out, until the kernels are there: antialiasing (a crossing covers its
 pixel whole), the halving of spans that fold or turn, textures, colour fields and
-lines (those pictures wait for the kernels), several surfaces.
+lines (those pictures wait for the kernels).
 """
 from __future__ import annotations
 
@@ -60,17 +64,84 @@ def draft_translucent(surface, view, material, terms, box, bg8, shadows=None):
         raise ValueError(too_large(W, H, W * H * draft.DRAFT_BYTES)) from None
 
 
-def _composited(surface, view, material, terms, box, bg8, shadows):
-    W, H = view.width, view.height
+def _layer_colours(view, material, box, texture):
+    """One layer's (opacity, crossings shown, (lut, w_lo, w_hi), w_limits, lower_rgb,
+    shadow planes or None) (the colour map over f's range, as the kernels' layers take
+    it: hidden ones show)."""
     a = float(material.opacity)
-    n_show = shown(a)           # (0: the surface is not drawn, nor its crossings counted)
-    # (the colour map over f's range, as the kernels' layers: hidden ones show)
     lut, w_lo, w_hi, w_limits = material.color_table(np.array([view.f_range]), box[2])
     _, lower_rgb = material.colors()
     planes = None
-    if shadows is not None:
+    if texture is not None:
         from .draft_shadow import shadow_planes
-        planes = shadow_planes(shadows[0])
+        planes = shadow_planes(texture)
+    return a, shown(a), (lut, w_lo, w_hi), w_limits, lower_rgb, planes
+
+
+def _block(surface, view, material, terms, colours, t, cols, c0, n_show, layer=0):
+    """The crossings of the columns ``cols`` (from c0) of one layer on planes t, each
+    pixel's first n_show in front-to-back order: a dict of at (the pixel, rows from the
+    bottom: row W + column), rows, xs (its column), rank, pts (G-buffer entries), s
+    (the side seen), rgb, inten, shade (its shadow, or None); with ``hit`` (the pixels
+    met, one a group: at) and ``count`` (how many crossings each), and the evaluations
+    of f; None where no span crosses a pixel centre."""
+    W, H = view.width, view.height
+    m = cols.size
+    (lut, w_lo, w_hi), lower_rgb, planes = colours
+    smp, pair, ev = draft._samples(surface, view, cols, t)
+    seg, pix = draft.crossings(smp["y"], pair, H)
+    if seg.size == 0:
+        return None, ev
+    order = np.argsort(pix, kind="stable")         # by pixel, each front to back
+    seg, pix = seg[order], pix[order]
+    start = np.flatnonzero(np.r_[True, pix[1:] != pix[:-1]])
+    count = np.diff(np.r_[start, pix.size])
+    rank = np.arange(pix.size) - np.repeat(start, count)
+    rows, c = pix // m, pix % m
+    at = rows * W + c0 + c                  # the picture's pixel (rows from the bottom)
+    out = dict(hit=at[start], count=count)  # (one pixel a group)
+    keep = rank < n_show
+    seg, rows, c, at, rank = seg[keep], rows[keep], c[keep], at[keep], rank[keep]
+    pts = draft.span_points(smp, seg // m + 1, c, rows, view)
+    n = pts[:, L.G_NX:L.G_NZ + 1]
+    norm = np.sqrt((n * n).sum(-1, keepdims=True))
+    pts[:, L.G_NX:L.G_NZ + 1] = np.where(norm > 0, n / np.where(norm > 0, norm, 1.0), 0.0)
+    xs = c0 + c
+    vx, vy, vz = draft.viewer_at(view, xs, rows, pts[:, L.G_DEPTH])
+    s = np.where(pts[:, L.G_NX] * vx + pts[:, L.G_NY] * vy + pts[:, L.G_NZ] * vz >= 0.0,
+                 1, -1).astype(np.int8)
+    lit = shade_of = None
+    if planes is not None:
+        from .draft_shadow import shadow_of
+        shade_of = shadow_of(planes, view, pts, s, layer)
+        lit = 1.0 - shade_of
+    rgb, inten = draft.shade(view, pts, s, xs, rows, material, terms, lut, w_lo, w_hi,
+                             lower_rgb, None, lit)
+    out.update(at=at, rows=rows, xs=xs, rank=rank, pts=pts, s=s, rgb=rgb, inten=inten,
+               shade=shade_of)
+    return out, ev
+
+
+def _picture(acc, trans, bg8, H, W):
+    """(rgba (H, W, 4) uint8, rows from the bottom) of the crossings' sums ``acc``
+    (colour times alpha) and what they let through ``trans`` over the background."""
+    bg = np.asarray(bg8, dtype=np.float64) / 255.0
+    rest = trans * bg[3]
+    alpha = (1.0 - trans) + rest
+    q = np.where(alpha > 0.0, 1.0 / np.where(alpha > 0.0, alpha, 1.0), 1.0)
+    rgba = np.empty((H * W, 4), dtype=np.uint8)
+    for k in range(3):
+        rgba[:, k] = np.clip(np.round((acc[k] + rest * bg[k]) * q * 255.0), 0, 255)
+    rgba[:, 3] = np.clip(np.round(alpha * 255.0), 0, 255)
+    return rgba.reshape(H, W, 4)
+
+
+def _composited(surface, view, material, terms, box, bg8, shadows):
+    W, H = view.width, view.height
+    texture, layer = shadows if shadows is not None else (None, 0)
+    a, n_show, table, w_limits, lower_rgb, planes = _layer_colours(view, material, box,
+                                                                   texture)
+    colours = (table, lower_rgb, planes)
     acc = np.zeros((4, H * W))                   # colour times alpha, intensity
     hits = np.zeros(H * W, dtype=np.int64)       # crossings met
     g = np.zeros((H, W, L.G_SIZE), dtype=np.float32)
@@ -81,60 +152,119 @@ def _composited(surface, view, material, terms, box, bg8, shadows):
     block = max(1, min(draft.BLOCK_SAMPLES // max(t.size, 1), BLOCK_CROSSINGS // (4 * H)))
     for c0 in range(0, W if n_show else 0, block):
         cols = np.arange(c0, min(W, c0 + block), dtype=np.float64)
-        m = cols.size
-        smp, pair, ev = draft._samples(surface, view, cols, t)
-        evals[c0:c0 + m] = ev // max(m, 1)
-        seg, pix = draft.crossings(smp["y"], pair, H)
-        if seg.size == 0:
+        x, ev = _block(surface, view, material, terms, colours, t, cols, c0, n_show, layer)
+        evals[c0:c0 + cols.size] = ev // max(cols.size, 1)
+        if x is None:
             continue
-        order = np.argsort(pix, kind="stable")         # by pixel, each front to back
-        seg, pix = seg[order], pix[order]
-        start = np.flatnonzero(np.r_[True, pix[1:] != pix[:-1]])
-        count = np.diff(np.r_[start, pix.size])
-        rank = np.arange(pix.size) - np.repeat(start, count)
-        rows, c = pix // m, pix % m
-        at = rows * W + c0 + c                  # the picture's pixel (rows from the bottom)
-        hits[at[start]] += count                # (one pixel a group)
-        keep = rank < n_show
-        seg, rows, c, at, rank = seg[keep], rows[keep], c[keep], at[keep], rank[keep]
-        pts = draft.span_points(smp, seg // m + 1, c, rows, view)
-        n = pts[:, L.G_NX:L.G_NZ + 1]
-        norm = np.sqrt((n * n).sum(-1, keepdims=True))
-        pts[:, L.G_NX:L.G_NZ + 1] = np.where(norm > 0, n / np.where(norm > 0, norm, 1.0), 0.0)
-        xs = c0 + c
-        vx, vy, vz = draft.viewer_at(view, xs, rows, pts[:, L.G_DEPTH])
-        s = np.where(pts[:, L.G_NX] * vx + pts[:, L.G_NY] * vy + pts[:, L.G_NZ] * vz >= 0.0,
-                     1, -1).astype(np.int8)
-        lit = shade_of = None
-        if planes is not None:
-            from .draft_shadow import shadow_of
-            shade_of = shadow_of(planes, view, pts, s)
-            lit = 1.0 - shade_of
-        rgb, inten = draft.shade(view, pts, s, xs, rows, material, terms, lut, w_lo, w_hi,
-                                 lower_rgb, None, lit)
+        hits[x["hit"]] += x["count"]
+        at, rank, rgb = x["at"], x["rank"], x["rgb"]
         wgt = a * (1.0 - a) ** rank                    # T_k a
         for q in range(3):
             acc[q] += np.bincount(at, wgt * rgb[:, q], minlength=H * W)
-        acc[3] += np.bincount(at, wgt * inten, minlength=H * W)
+        acc[3] += np.bincount(at, wgt * x["inten"], minlength=H * W)
         front = rank == 0                               # the nearest crossing
-        fr, fc = rows[front], xs[front]
-        g[fr, fc] = pts[front]
-        side[fr, fc] = s[front]
-        if shade_of is not None:
-            shadow[fr, fc] = shade_of[front]
+        fr, fc = x["rows"][front], x["xs"][front]
+        g[fr, fc] = x["pts"][front]
+        side[fr, fc] = x["s"][front]
+        if x["shade"] is not None:
+            shadow[fr, fc] = x["shade"][front]
     trans = (1.0 - a) ** np.minimum(hits, n_show)      # what the crossings let through
-    bg = np.asarray(bg8, dtype=np.float64) / 255.0
-    rest = trans * bg[3]
-    alpha = (1.0 - trans) + rest
-    q = np.where(alpha > 0.0, 1.0 / np.where(alpha > 0.0, alpha, 1.0), 1.0)
-    rgba = np.empty((H * W, 4), dtype=np.uint8)
-    for k in range(3):
-        rgba[:, k] = np.clip(np.round((acc[k] + rest * bg[k]) * q * 255.0), 0, 255)
-    rgba[:, 3] = np.clip(np.round(alpha * 255.0), 0, 255)
+    rgba = _picture(acc, trans, bg8, H, W)
     intensity = np.where(trans < 1.0, acc[3], np.nan).astype(np.float32)
     seen = side != 0
     depth = np.where(seen, g[..., L.G_DEPTH], np.inf).astype(np.float32)
     layers = np.minimum(hits, np.iinfo(np.int16).max).astype(np.int16).reshape(H, W)
-    return (rgba.reshape(H, W, 4)[::-1], side[::-1], intensity.reshape(H, W)[::-1],
+    return (rgba[::-1], side[::-1], intensity.reshape(H, W)[::-1],
             depth[::-1], draft.tiled(g), evals, w_limits,
             None if planes is None else shadow[::-1], layers[::-1])
+
+
+def draft_translucent_layers(layers, views, drawn, box, bg8, texture=None):
+    """The draft of several surfaces, one at least translucent (renderer.py's prepared
+    layers, one View each from one camera; ``texture`` the light's shadow texture, not
+    swept, or None): every layer's crossings (each layer's first shown(opacity) at a
+    pixel) merged by depth at each pixel and composited front to back (6.6),
+
+        C = sum_j T_j a_j c_j,    T_j = prod_{i<j} (1 - a_i),
+
+    while T_j stays above STOP, as kernels/layers.py composite_kernel. Returns (rgba,
+    side, intensity, depth, tiled G-buffer, evaluations per column, w_limits (a list),
+    shadow or None, crossings met (H, W) int16, the nearest layer (H, W) int8: -1
+    none), top row first."""
+    view0 = views[0]
+    W, H = view0.width, view0.height
+    check_bytes(W, H, W * H * draft.DRAFT_BYTES * len(layers))
+    try:
+        return _merged(layers, views, drawn, box, bg8, texture)
+    except MemoryError:
+        raise ValueError(too_large(W, H, W * H * draft.DRAFT_BYTES * len(layers))) from None
+
+
+def _merged(layers, views, drawn, box, bg8, texture):
+    W, H = views[0].width, views[0].height
+    n = len(layers)
+    info = [_layer_colours(view, p.material, box, texture) for p, view in zip(layers, views)]
+    ts = [draft._planes(view) for view in views]
+    acc = np.zeros((4, H * W))
+    trans = np.ones(H * W)
+    hits = np.zeros(H * W, dtype=np.int64)
+    g = np.zeros((H, W, L.G_SIZE), dtype=np.float32)
+    side = np.zeros((H, W), dtype=np.int8)
+    which = np.full((H, W), -1, dtype=np.int8)
+    shadow = np.full((H, W), np.nan, dtype=np.float32)
+    evals = np.zeros(W, dtype=np.int64)
+    most = max(t.size for t in ts)
+    block = max(1, min(draft.BLOCK_SAMPLES // max(most, 1), BLOCK_CROSSINGS // (4 * H * n)))
+    for c0 in range(0, W, block):
+        cols = np.arange(c0, min(W, c0 + block), dtype=np.float64)
+        parts = []
+        for k, (p, view, (surface, _)) in enumerate(zip(layers, views, drawn)):
+            a, n_show, table, _, lower_rgb, planes = info[k]
+            if n_show == 0:             # (not drawn, nor its crossings counted)
+                continue
+            x, ev = _block(surface, view, p.material, p.terms, (table, lower_rgb, planes),
+                           ts[k], cols, c0, n_show, k)
+            evals[c0:c0 + cols.size] += ev // max(cols.size, 1)
+            if x is None:
+                continue
+            hits[x["hit"]] += x["count"]
+            x["a"] = np.full(x["at"].size, a)
+            x["layer"] = np.full(x["at"].size, k, dtype=np.int8)
+            if x["shade"] is None:
+                x["shade"] = np.full(x["at"].size, np.nan)
+            parts.append(x)
+        if not parts:
+            continue
+        x = {name: np.concatenate([q[name] for q in parts])
+             for name in ("at", "rows", "xs", "pts", "s", "rgb", "inten", "shade", "a", "layer")}
+        order = np.lexsort((x["pts"][:, L.G_DEPTH], x["at"]))   # by pixel, near to far
+        x = {name: v[order] for name, v in x.items()}
+        at, a = x["at"], x["a"]
+        start = np.flatnonzero(np.r_[True, at[1:] != at[:-1]])
+        count = np.diff(np.r_[start, at.size])
+        rank = np.arange(at.size) - np.repeat(start, count)
+        # T before each crossing: the product of what the nearer ones let through
+        t_before = np.ones(at.size)
+        for r in range(1, int(count.max())):
+            j = start[count > r] + r
+            t_before[j] = t_before[j - 1] * (1.0 - a[j - 1])
+        keep = t_before > STOP
+        wgt = np.where(keep, t_before * a, 0.0)
+        for q in range(3):
+            acc[q] += np.bincount(at, wgt * x["rgb"][:, q], minlength=H * W)
+        acc[3] += np.bincount(at, wgt * x["inten"], minlength=H * W)
+        np.multiply.at(trans, at[keep], 1.0 - a[keep])
+        front = rank == 0                               # the nearest crossing
+        fr, fc = x["rows"][front], x["xs"][front]
+        g[fr, fc] = x["pts"][front]
+        side[fr, fc] = x["s"][front]
+        which[fr, fc] = x["layer"][front]
+        shadow[fr, fc] = x["shade"][front]
+    rgba = _picture(acc, trans, bg8, H, W)
+    intensity = np.where(trans < 1.0, acc[3], np.nan).astype(np.float32)
+    seen = side != 0
+    depth = np.where(seen, g[..., L.G_DEPTH], np.inf).astype(np.float32)
+    met = np.minimum(hits, np.iinfo(np.int16).max).astype(np.int16).reshape(H, W)
+    return (rgba[::-1], side[::-1], intensity.reshape(H, W)[::-1], depth[::-1],
+            draft.tiled(g), evals, [q[3] for q in info],
+            None if texture is None else shadow[::-1], met[::-1], which[::-1])

@@ -110,11 +110,10 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     # a fresh install's draft (passes/draft.py) while the kernels compile: decided
     # before the shadow texture, which a draft makes in numpy (passes/draft_shadow.py,
     # a layer per surface); a translucent one (passes/draft_layers.py, every layer's
-    # crossings merged by depth) without objects, textures or lines (several opaque
-    # surfaces are drafted one by one and merged by depth)
+    # crossings merged by depth, objects seen through them) without textures or lines
+    # (several opaque surfaces are drafted one by one and merged by depth)
     drafted = (quality.device == "cpu" and scene.camera.columns is None
                and not any(p.material.overlaid and translucent for p in layers)
-               and not (objects and translucent)
                and not (translucent and any(p.source is not None for p in layers))
                and all(draft.supports(quality, v, d[0]) for v, d in zip(views, drawn))
                and _drafting(quality, first, drawn[0][0], views[0], light))
@@ -122,12 +121,18 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
                               sweep=not drafted)
     if texture is not None and objects:
         texture.occluders = _occluders(texture, objects, layers[0].surface, box)
+    if drafted and translucent and (many or objects):
+        # several surfaces, one at least translucent, or translucency with objects
+        stop = None
+        if objects:
+            from .objects import depth_map
+            stop = depth_map(objects, as_surface(scene.layers[0].surface, scene.vars), box,
+                             views[0], texture)
+        return _draft_translucent(layers, views, drawn, box, background, texture, t_start,
+                                  stop), texture
     if drafted and not many:
         return _draft_layer(layers[0], views[0], drawn[0], box, quality, background, t_start,
                             stacklevel + 1, texture), texture
-    if drafted and translucent:         # several surfaces, one at least translucent
-        return _draft_translucent(layers, views, drawn, box, background, texture,
-                                  t_start), texture
     if translucent:
         stop = None
         if objects:
@@ -446,21 +451,31 @@ def _draft_layer(p, view, drawn, box, quality, background, t_start, stacklevel, 
     return Render(rgba, intensity, side, depth, stats, view, gbuf, box=box, shadow=shadow)
 
 
-def _draft_translucent(layers, views, drawn, box, background, texture, t_start):
-    """The draft of several surfaces, one at least translucent
-    (passes/draft_layers.py draft_translucent_layers): a Render as render_translucent's."""
+def _draft_translucent(layers, views, drawn, box, background, texture, t_start, stop=None):
+    """The draft of several surfaces, one at least translucent, or of translucency with
+    objects (``stop`` their depth: objects.depth_map's) (passes/draft_layers.py
+    draft_translucent_layers): a Render as render_translucent's."""
     from .passes.draft_layers import draft_translucent_layers
     for p in layers:
         p.material.check_limits()
-    rgba, side, intensity, depth, gbuf, evals, w_limits, shadow, met, which = \
+    if texture is not None and texture.occluders is not None:
+        # (the objects pass reads the surfaces' shadows on the objects in the planes)
+        from .passes.draft_shadow import adopt
+        adopt(texture)
+    rgba, side, intensity, depth, gbuf, evals, w_limits, shadow, met, which, front = \
         draft_translucent_layers(layers, views, drawn, box, color.to_rgba8(background),
-                                 texture)
+                                 texture, stop)
     view = views[0]
     stats = {"samples": int(evals.sum()), "seconds": time.perf_counter() - t_start,
              "translucent": True, "layers": met, "w_limits": w_limits, "method": "column",
              "engine": "draft", "box": box, "planes": view.planes, "step": view.step,
-             "scale": view.scale, "surfaces": len(layers), "surface": which}
-    return Render(rgba, intensity, side, depth, stats, view, gbuf, box=box, shadow=shadow)
+             "scale": view.scale, "surfaces": len(layers)}
+    if len(layers) > 1:
+        stats["surface"] = which
+    else:
+        stats["w_limits"] = w_limits[0]
+    return Render(rgba, intensity, side, depth, stats, view, gbuf, box=box, shadow=shadow,
+                  _front=front)
 
 
 def _draft_lines(p, view, drawn, box, quality, background, t_start, stacklevel):

@@ -31,9 +31,8 @@ layer (passes/draft_layers.py), contours and wireframes are drawn on it in numpy
 (passes/overlays.py draw_lines, from planes(); the lines alone with fill=False); a
 line drawing's horizon lines are marked from its samples (passes/draft_horizon.py);
 several opaque surfaces are drafted one by one and merged by depth (renderer.py).
-Scenes it does not draw (objects with translucency, a translucent texture or lines, a
-perspective viewpoint over the domain that the lod engine does not draw either) wait
-for the kernels as before.
+Scenes it does not draw (a translucent texture or lines, a perspective viewpoint over
+the domain that the lod engine does not draw either) wait for the kernels as before.
 """
 from __future__ import annotations
 

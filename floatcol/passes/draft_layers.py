@@ -21,7 +21,9 @@ nearest crossing's; ``stats["layers"]`` how many crossings each pixel's ray met.
 
 Several surfaces (draft_translucent_layers): each layer's first crossings at a pixel,
 merged with the other layers' by depth and composited front to back, each with its own
-opacity, while the transmittance stays above STOP.
+opacity, while the transmittance stays above STOP; with objects (one surface or more),
+what lies over each object's depth kept apart for the objects pass, as the kernels'
+composite keeps it, and the objects' shadows on every crossing.
 
 What it leaves out, until the kernels are there: antialiasing (a crossing covers its
 pixel whole), the halving of spans that fold or turn, textures, colour fields and
@@ -114,6 +116,11 @@ def _block(surface, view, material, terms, colours, t, cols, c0, n_show, layer=0
     if planes is not None:
         from .draft_shadow import shadow_of
         shade_of = shadow_of(planes, view, pts, s, layer)
+        occluders = planes[0].occluders
+        if occluders is not None:       # the objects' shadows (kernels/layers.py's too)
+            point = np.stack([pts[:, L.G_U] + view.center[0], pts[:, L.G_V] + view.center[1],
+                              pts[:, L.G_W] + view.w_origin], axis=-1)[None]
+            shade_of = np.maximum(shade_of, occluders.blocked(point, (shade_of < 1.0)[None])[0])
         lit = 1.0 - shade_of
     rgb, inten = draft.shade(view, pts, s, xs, rows, material, terms, lut, w_lo, w_hi,
                              lower_rgb, None, lit)
@@ -179,7 +186,7 @@ def _composited(surface, view, material, terms, box, bg8, shadows):
             None if planes is None else shadow[::-1], layers[::-1])
 
 
-def draft_translucent_layers(layers, views, drawn, box, bg8, texture=None):
+def draft_translucent_layers(layers, views, drawn, box, bg8, texture=None, stop=None):
     """The draft of several surfaces, one at least translucent (renderer.py's prepared
     layers, one View each from one camera; ``texture`` the light's shadow texture, not
     swept, or None): every layer's crossings (each layer's first shown(opacity) at a
@@ -190,18 +197,28 @@ def draft_translucent_layers(layers, views, drawn, box, bg8, texture=None):
     while T_j stays above STOP, as kernels/layers.py composite_kernel. Returns (rgba,
     side, intensity, depth, tiled G-buffer, evaluations per column, w_limits (a list),
     shadow or None, crossings met (H, W) int16, the nearest layer (H, W) int8: -1
-    none), top row first."""
+    none, front), top row first. With objects, ``stop`` (H, W) the depth of the
+    nearest at each pixel (objects.depth_map's, inf: none), front is composite_kernel's
+    (front_acc (H, W, ACC_SIZE): the sums of the crossings nearer than it; opaque (H,
+    W): the depth at which the transmittance falls below STOP, inf: never), else
+    None."""
     view0 = views[0]
     W, H = view0.width, view0.height
     check_bytes(W, H, W * H * draft.DRAFT_BYTES * len(layers))
     try:
-        return _merged(layers, views, drawn, box, bg8, texture)
+        return _merged(layers, views, drawn, box, bg8, texture, stop)
     except MemoryError:
         raise ValueError(too_large(W, H, W * H * draft.DRAFT_BYTES * len(layers))) from None
 
 
-def _merged(layers, views, drawn, box, bg8, texture):
+def _merged(layers, views, drawn, box, bg8, texture, stop):
     W, H = views[0].width, views[0].height
+    if stop is not None:
+        from ..kernels.layers import ACC_A, ACC_B, ACC_G, ACC_I, ACC_R, ACC_SIZE
+        z_stop = np.asarray(stop, dtype=np.float64)[::-1].ravel()   # (rows from the bottom)
+        front_acc = np.zeros((ACC_SIZE, H * W))
+        front_trans = np.ones(H * W)
+        opaque = np.full(H * W, np.inf)
     n = len(layers)
     info = [_layer_colours(view, p.material, box, texture) for p, view in zip(layers, views)]
     ts = [draft._planes(view) for view in views]
@@ -248,12 +265,21 @@ def _merged(layers, views, drawn, box, bg8, texture):
         for r in range(1, int(count.max())):
             j = start[count > r] + r
             t_before[j] = t_before[j - 1] * (1.0 - a[j - 1])
-        keep = t_before > STOP
+        keep = t_before >= STOP
         wgt = np.where(keep, t_before * a, 0.0)
         for q in range(3):
             acc[q] += np.bincount(at, wgt * x["rgb"][:, q], minlength=H * W)
         acc[3] += np.bincount(at, wgt * x["inten"], minlength=H * W)
         np.multiply.at(trans, at[keep], 1.0 - a[keep])
+        if stop is not None:            # what lies over the objects, and where none shows
+            over = keep & (x["pts"][:, L.G_DEPTH] < z_stop[at])
+            for q, val in ((ACC_R, x["rgb"][:, 0]), (ACC_G, x["rgb"][:, 1]),
+                           (ACC_B, x["rgb"][:, 2]), (ACC_I, x["inten"])):
+                front_acc[q] += np.bincount(at, np.where(over, wgt * val, 0.0),
+                                            minlength=H * W)
+            np.multiply.at(front_trans, at[over], 1.0 - a[over])
+            last = keep & (t_before * (1.0 - a) < STOP)
+            opaque[at[last]] = x["pts"][last, L.G_DEPTH]
         front = rank == 0                               # the nearest crossing
         fr, fc = x["rows"][front], x["xs"][front]
         g[fr, fc] = x["pts"][front]
@@ -265,6 +291,11 @@ def _merged(layers, views, drawn, box, bg8, texture):
     seen = side != 0
     depth = np.where(seen, g[..., L.G_DEPTH], np.inf).astype(np.float32)
     met = np.minimum(hits, np.iinfo(np.int16).max).astype(np.int16).reshape(H, W)
+    front = None
+    if stop is not None:
+        front_acc[ACC_A] = 1.0 - front_trans
+        front = (np.ascontiguousarray(front_acc.T.reshape(H, W, ACC_SIZE)[::-1]),
+                 opaque.reshape(H, W)[::-1].astype(np.float32))
     return (rgba[::-1], side[::-1], intensity.reshape(H, W)[::-1], depth[::-1],
             draft.tiled(g), evals, [q[3] for q in info],
-            None if texture is None else shadow[::-1], met[::-1], which[::-1])
+            None if texture is None else shadow[::-1], met[::-1], which[::-1], front)

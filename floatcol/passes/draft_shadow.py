@@ -307,7 +307,7 @@ def draft_shadow(texture, layer, view, g, side):
         # kernels' own code on the draft's points), and the texture's planes the draft's,
         # which the objects pass reads for the surface's shadows on them (objects.py
         # _surfaces_cast)
-        _adopt(texture, planes[1])
+        adopt(texture)
         from .shadow import objects_cast
         with np.errstate(invalid="ignore"):
             point = np.stack([g[..., L.G_U] + view.center[0], g[..., L.G_V] + view.center[1],
@@ -317,11 +317,13 @@ def draft_shadow(texture, layer, view, g, side):
     return shadow, lit
 
 
-def _adopt(texture, t):
-    """The draft's planes ``t`` (texture_planes', None at the zenith) as the Texture's
-    own, as its kernels' sweep leaves them (passes/shadow.py Texture._sweep)."""
-    if t is None:
+def adopt(texture):
+    """The draft's planes (texture_planes') as the Texture's own, as its kernels' sweep
+    leaves them (passes/shadow.py Texture._sweep): what the objects pass reads for the
+    surfaces' shadows on the objects (none at the zenith)."""
+    if texture.zenith:
         return
+    t = texture_planes(texture)
     texture.hmax, texture.hmin, texture.hsurf = t.hmax, t.hmin, t.hsurf
     texture.slopes = np.zeros((0, 1, 1)) if t.slopes is None else t.slopes
     texture.texels = t.hsurf.size

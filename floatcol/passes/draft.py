@@ -31,8 +31,11 @@ layer (passes/draft_layers.py), contours and wireframes are drawn on it in numpy
 (passes/overlays.py draw_lines, from planes(); the lines alone with fill=False); a
 line drawing's horizon lines are marked from its samples (passes/draft_horizon.py);
 several opaque surfaces are drafted one by one and merged by depth (renderer.py).
-Scenes it does not draw (a translucent texture or lines, a perspective viewpoint over
-the domain that the lod engine does not draw either) wait for the kernels as before.
+A perspective eye over the domain looking down past the nadir is drawn by the column
+pass's two passes from the eye's t, forward and back (split, halves). Scenes it does
+not draw (a translucent texture or lines, a perspective viewpoint over the domain that
+neither that nor the lod engine draws: an eye under the surface) wait for the kernels
+as before.
 """
 from __future__ import annotations
 
@@ -60,7 +63,8 @@ MAX_DRAFT_PLANES = 20_000
 def supports(quality, view, surface):
     """Whether the draft can draw this layer's picture: a shaded picture or a line
     drawing (renderer.py checks the rest), and in perspective a viewpoint in front of
-    the whole domain (one ascending pass per column), or for a shaded picture a fly
+    the whole domain (one ascending pass per column), or for a shaded picture an eye
+    over it looking down past the nadir (split: two passes from the eye's t) or a fly
     camera's inside the scene that the level-of-detail engine draws (passes/lod.py
     supports: the eye above the ground, every ray going farther with its distance), on
     planes a pixel's footprint apart from the eye (_planes). An area-sampled one is
@@ -74,6 +78,8 @@ def supports(quality, view, surface):
         return True
     if quality.method == "horizon":     # (a line drawing's planes are the column pass's)
         return False
+    if split(view):         # (looking down past the nadir: two passes from the eye's t)
+        return True
     from . import lod
     return lod.supports(surface, view)
 
@@ -527,9 +533,67 @@ def _evaluate(surface, u, v, ok):
 
 def _column_planes(view):
     """Whether the draft samples the column pass's planes, view.step apart (_planes):
-    orthographic, or the eye in front of the domain; else a fly camera's."""
+    orthographic, the eye in front of the domain, or looking down past the nadir
+    (_split); else a fly camera's."""
     ca = math.cos(view.alpha)
-    return view.orthographic or view.t_range[0] > -view.d3 * ca or not ca > 1e-9
+    return view.orthographic or view.t_range[0] > -view.d3 * ca or not ca > 1e-9 \
+        or split(view)
+
+
+def split(view):
+    """Whether a perspective picture's eye is not in front of the domain and some of its
+    rays go nearer in t with their distance (looking down past the nadir: the rays of
+    the top or the bottom row, d1 cos(a) - y0 sin(a) <= 0, eqs. 4 and 10 inverted, as
+    passes/lod.py supports): the column pass's two passes from the eye's t, forward
+    and back (kernels/column.py render_column_into), which the lod engine cannot
+    draw."""
+    if view.orthographic:
+        return False
+    ca, sa = math.cos(view.alpha), math.sin(view.alpha)
+    if view.t_range[0] > -view.d3 * ca:
+        return False
+    half = (view.height + 1.0) * 0.5 / view.scale
+    return min(view.d1 * ca - y0 * sa for y0 in (-half, half)) <= 0.0
+
+
+def halves(view, t):
+    """The planes ``t`` (_planes') in the passes that sample them, each front to back:
+    the one pass, or for a split view (split) the column pass's two from the eye's t,
+    forward and back, each starting at the eye's t (or the domain's end nearer it)."""
+    if not split(view):
+        return [t]
+    t_eye = -view.d3 * math.cos(view.alpha)
+    t_lo, t_hi = view.t_range
+    out = []
+    if t_hi > t_eye:
+        start = max(t_lo, t_eye)
+        out.append(np.concatenate([[start], t[t > start]]))
+    if t_lo < t_eye:
+        start = min(t_hi, t_eye)
+        out.append(np.concatenate([[start], t[t < start][::-1]]))
+    return out
+
+
+def _split_block(surface, view, cols, t):
+    """A split view's (split) block of columns ``cols``: each pass's first span over
+    each pixel centre (_paint), a pixel taking the pass that reaches it first (each ray
+    goes one way from the eye: the passes' pixels meet at the nadir's row alone).
+    Returns (hit (H, m), the G-buffer entries of the hit pixels in row order, the
+    evaluations of f)."""
+    H = view.height
+    hit = np.zeros((H, cols.size), dtype=bool)
+    vals = np.zeros((H, cols.size, L.G_SIZE))
+    evals = 0
+    for th in halves(view, t):
+        smp, pair, ev = _samples(surface, view, cols, th)
+        evals += ev
+        got, k, c, rows = _paint(smp["y"], pair, H)
+        fresh = ~hit[got]
+        pts = span_points(smp, k[fresh], c[fresh], rows[fresh], view)
+        new = got & ~hit
+        vals[new] = pts
+        hit |= got
+    return hit, vals[hit], evals
 
 
 def _planes(view):
@@ -642,11 +706,18 @@ def draft_geometry(surface, view, hrec=None, hstride=0):
     evals = np.zeros(W, dtype=np.int64)
     block = max(1, BLOCK_SAMPLES // max(t.size, 1))
     origin = _origins(view)
-    traces = not view.orthographic and _column_planes(view) and hstride == 0
+    twice = split(view)
+    traces = not view.orthographic and _column_planes(view) and hstride == 0 and not twice
     rays = None
     budget = RAY_EVALS
     for c0 in range(0, W, block):
         cols = np.arange(c0, min(W, c0 + block), dtype=np.float64)
+        if twice:           # (looking down past the nadir: no fold traced ray by ray)
+            hit, vals, ev = _split_block(surface, view, cols, t)
+            evals[c0:c0 + cols.size] = ev // max(cols.size, 1)
+            g[:, c0:c0 + cols.size][hit] = vals
+            seen[:, c0:c0 + cols.size] = hit
+            continue
         smp, pair, ev = _samples(surface, view, cols, t)
         evals[c0:c0 + cols.size] = ev // max(cols.size, 1)
         if hstride > 0:

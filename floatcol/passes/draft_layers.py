@@ -159,22 +159,12 @@ def _composited(surface, view, material, terms, box, bg8, shadows):
     block = max(1, min(draft.BLOCK_SAMPLES // max(t.size, 1), BLOCK_CROSSINGS // (4 * H)))
     for c0 in range(0, W if n_show else 0, block):
         cols = np.arange(c0, min(W, c0 + block), dtype=np.float64)
-        x, ev = _block(surface, view, material, terms, colours, t, cols, c0, n_show, layer)
-        evals[c0:c0 + cols.size] = ev // max(cols.size, 1)
-        if x is None:
-            continue
-        hits[x["hit"]] += x["count"]
-        at, rank, rgb = x["at"], x["rank"], x["rgb"]
-        wgt = a * (1.0 - a) ** rank                    # T_k a
-        for q in range(3):
-            acc[q] += np.bincount(at, wgt * rgb[:, q], minlength=H * W)
-        acc[3] += np.bincount(at, wgt * x["inten"], minlength=H * W)
-        front = rank == 0                               # the nearest crossing
-        fr, fc = x["rows"][front], x["xs"][front]
-        g[fr, fc] = x["pts"][front]
-        side[fr, fc] = x["s"][front]
-        if x["shade"] is not None:
-            shadow[fr, fc] = x["shade"][front]
+        for th in draft.halves(view, t):    # (two passes where the view looks down past
+            x, ev = _block(surface, view, material, terms, colours, th, cols, c0,   # the
+                           n_show, layer)                                          # nadir)
+            evals[c0:c0 + cols.size] += ev // max(cols.size, 1)
+            if x is not None:
+                _add(x, a, acc, hits, g, side, shadow)
     trans = (1.0 - a) ** np.minimum(hits, n_show)      # what the crossings let through
     rgba = _picture(acc, trans, bg8, H, W)
     intensity = np.where(trans < 1.0, acc[3], np.nan).astype(np.float32)
@@ -184,6 +174,23 @@ def _composited(surface, view, material, terms, box, bg8, shadows):
     return (rgba[::-1], side[::-1], intensity.reshape(H, W)[::-1],
             depth[::-1], draft.tiled(g), evals, w_limits,
             None if planes is None else shadow[::-1], layers[::-1])
+
+
+def _add(x, a, acc, hits, g, side, shadow):
+    """One pass's crossings x (_block's) of one surface of opacity a into the sums acc
+    and the crossings met, its nearest crossing's into g, side and shadow."""
+    hits[x["hit"]] += x["count"]
+    at, rank, rgb = x["at"], x["rank"], x["rgb"]
+    wgt = a * (1.0 - a) ** rank                    # T_k a
+    for q in range(3):
+        acc[q] += np.bincount(at, wgt * rgb[:, q], minlength=hits.size)
+    acc[3] += np.bincount(at, wgt * x["inten"], minlength=hits.size)
+    front = rank == 0                               # the nearest crossing
+    fr, fc = x["rows"][front], x["xs"][front]
+    g[fr, fc] = x["pts"][front]
+    side[fr, fc] = x["s"][front]
+    if x["shade"] is not None:
+        shadow[fr, fc] = x["shade"][front]
 
 
 def draft_translucent_layers(layers, views, drawn, box, bg8, texture=None, stop=None):
@@ -239,17 +246,18 @@ def _merged(layers, views, drawn, box, bg8, texture, stop):
             a, n_show, table, _, lower_rgb, planes = info[k]
             if n_show == 0:             # (not drawn, nor its crossings counted)
                 continue
-            x, ev = _block(surface, view, p.material, p.terms, (table, lower_rgb, planes),
-                           ts[k], cols, c0, n_show, k)
-            evals[c0:c0 + cols.size] += ev // max(cols.size, 1)
-            if x is None:
-                continue
-            hits[x["hit"]] += x["count"]
-            x["a"] = np.full(x["at"].size, a)
-            x["layer"] = np.full(x["at"].size, k, dtype=np.int8)
-            if x["shade"] is None:
-                x["shade"] = np.full(x["at"].size, np.nan)
-            parts.append(x)
+            for th in draft.halves(view, ts[k]):    # (two passes past the nadir)
+                x, ev = _block(surface, view, p.material, p.terms,
+                               (table, lower_rgb, planes), th, cols, c0, n_show, k)
+                evals[c0:c0 + cols.size] += ev // max(cols.size, 1)
+                if x is None:
+                    continue
+                hits[x["hit"]] += x["count"]
+                x["a"] = np.full(x["at"].size, a)
+                x["layer"] = np.full(x["at"].size, k, dtype=np.int8)
+                if x["shade"] is None:
+                    x["shade"] = np.full(x["at"].size, np.nan)
+                parts.append(x)
         if not parts:
             continue
         x = {name: np.concatenate([q[name] for q in parts])

@@ -110,19 +110,18 @@ def _render_layers(scene, stacklevel, composite, t_start, objects):
     # a fresh install's draft (passes/draft.py) while the kernels compile: decided
     # before the shadow texture, which a draft makes in numpy (passes/draft_shadow.py,
     # a layer per surface); a translucent one (passes/draft_layers.py, every layer's
-    # crossings merged by depth, objects seen through them) without textures or lines
-    # (several opaque surfaces are drafted one by one and merged by depth)
+    # crossings merged by depth, objects seen through them, textures and lines on each
+    # crossing); several opaque surfaces are drafted one by one and merged by depth
     drafted = (quality.device == "cpu" and scene.camera.columns is None
-               and not any(p.material.overlaid and translucent for p in layers)
-               and not (translucent and any(p.source is not None for p in layers))
                and all(draft.supports(quality, v, d[0]) for v, d in zip(views, drawn))
                and _drafting(quality, first, drawn[0][0], views[0], light))
     texture = _shadow_texture(light, scene.camera, quality, drawn, views[0],
                               sweep=not drafted)
     if texture is not None and objects:
         texture.occluders = _occluders(texture, objects, layers[0].surface, box)
-    if drafted and translucent and (many or objects):
-        # several surfaces, one at least translucent, or translucency with objects
+    if drafted and translucent and (many or objects or first.overlaid):
+        # several surfaces, one at least translucent, or translucency with objects or
+        # lines (each crossing's own alpha)
         stop = None
         if objects:
             from .objects import depth_map
@@ -421,7 +420,8 @@ def _draft_layer(p, view, drawn, box, quality, background, t_start, stacklevel, 
     if material.opacity < 1.0:
         from .passes.draft_layers import draft_translucent
         rgba, side, intensity, depth, gbuf, evals, w_limits, shadow, seen = draft_translucent(
-            surface, view, material, p.terms, box, color.to_rgba8(background), shadows)
+            surface, view, material, p.terms, box, color.to_rgba8(background), shadows,
+            p.source)
         c_limits = None
         extra = {"translucent": True, "layers": seen}
     else:

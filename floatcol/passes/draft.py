@@ -33,9 +33,9 @@ line drawing's horizon lines are marked from its samples (passes/draft_horizon.p
 several opaque surfaces are drafted one by one and merged by depth (renderer.py).
 A perspective eye over the domain looking down past the nadir is drawn by the column
 pass's two passes from the eye's t, forward and back (split, halves). Scenes it does
-not draw (a translucent texture or lines, a perspective viewpoint over the domain that
-neither that nor the lod engine draws: an eye under the surface) wait for the kernels
-as before.
+not draw (a perspective viewpoint over the domain that neither that nor the lod engine
+draws: an eye under the surface; a line drawing looking down past the nadir) wait for
+the kernels as before.
 """
 from __future__ import annotations
 

@@ -25,9 +25,15 @@ opacity, while the transmittance stays above STOP; with objects (one surface or 
 what lies over each object's depth kept apart for the objects pass, as the kernels'
 composite keeps it, and the objects' shadows on every crossing.
 
+A texture or colour field (the translucent path's texture: passes/colour.py prepare)
+colours each crossing from the mip level of its pixel's footprint (_textured), and
+contours and wireframes lie on it at its opacity (_lines: kernels/texture.py's
+layer_lines in numpy, from translucency.layer_lines' parameters), which changes the
+crossing's alpha (such a surface is composited by draft_translucent_layers, crossing by
+crossing).
+
 What it leaves out, until the kernels are there: antialiasing (a crossing covers its
-pixel whole), the halving of spans that fold or turn, textures, colour fields and
-lines (those pictures wait for the kernels).
+pixel whole) and the halving of spans that fold or turn.
 """
 from __future__ import annotations
 
@@ -54,22 +60,27 @@ def shown(opacity):
     return int(math.ceil(math.log(STOP) / math.log1p(-opacity)))
 
 
-def draft_translucent(surface, view, material, terms, box, bg8, shadows=None):
+def draft_translucent(surface, view, material, terms, box, bg8, shadows=None, source=None):
     """The draft picture of one translucent layer, top row first: (rgba, side,
     intensity, depth, tiled G-buffer, evaluations per column, w_limits, shadow or None,
-    layers (H, W) int16); ``shadows`` as draft.draft_pass's."""
+    layers (H, W) int16); ``shadows`` as draft.draft_pass's, ``source`` its texture or
+    colour field (passes/colour.py prepare's: a translucent one's is a texture), or
+    None."""
     W, H = view.width, view.height
     check_bytes(W, H, W * H * draft.DRAFT_BYTES)
     try:
-        return _composited(surface, view, material, terms, box, bg8, shadows)
+        return _composited(surface, view, material, terms, box, bg8, shadows, source)
     except MemoryError:
         raise ValueError(too_large(W, H, W * H * draft.DRAFT_BYTES)) from None
 
 
-def _layer_colours(view, material, box, texture):
-    """One layer's (opacity, crossings shown, (lut, w_lo, w_hi), w_limits, lower_rgb,
-    shadow planes or None) (the colour map over f's range, as the kernels' layers take
-    it: hidden ones show)."""
+def _layer_colours(view, material, box, texture, source=None, domain=None):
+    """One layer's (opacity, crossings shown, colours, w_limits): colours (_block's) the
+    colour map over f's range (as the kernels' layers take it: hidden ones show), the
+    lower side's colour, the shadow planes or None, its texture
+    (translucency.layer_texture's) or None, and its contours and wireframe
+    (translucency.layer_lines', over its ``domain``) or None."""
+    from .translucency import layer_lines, layer_texture
     a = float(material.opacity)
     lut, w_lo, w_hi, w_limits = material.color_table(np.array([view.f_range]), box[2])
     _, lower_rgb = material.colors()
@@ -77,7 +88,169 @@ def _layer_colours(view, material, box, texture):
     if texture is not None:
         from .draft_shadow import shadow_planes
         planes = shadow_planes(texture)
-    return a, shown(a), (lut, w_lo, w_hi), w_limits, lower_rgb, planes
+    tex = layer_texture(source, box)
+    lines = layer_lines(material, domain, box, w_limits, source) if material.overlaid \
+        else np.zeros(0)
+    return a, shown(a), ((lut, w_lo, w_hi), lower_rgb, planes, tex if tex[0].size else None,
+                         lines if lines.size else None), w_limits
+
+
+def _pixel_grads(view, pts, vx, vy, vz):
+    """kernels/layers.py _axis_grads over arrays: (along, step) where along(gx, gy, gz)
+    is how much a quantity whose gradient's screen image is g changes from each
+    crossing's point to the one a pixel away on the screen."""
+    from ..kernels.layers import GRAZE
+    ca, sa, cb, sb = draft._params(view)
+    m = np.full(pts.shape[0], 1.0 / view.scale)
+    if not view.orthographic:
+        m *= (pts[:, L.G_DEPTH] + view.d3) / view.d1
+    nx, ny, nz = pts[:, L.G_NX], pts[:, L.G_NY], pts[:, L.G_NZ]
+    nv = nx * vx + ny * vy + nz * vz
+    nv = np.where(np.abs(nv) < GRAZE, np.where(nv >= 0.0, GRAZE, -GRAZE), nv)
+
+    def along(gx, gy, gz):
+        k = (gx * vx + gy * vy + gz * vz) / nv
+        return m * np.hypot(gx - nx * k, gy - ny * k)
+    return along, (ca, sa, cb, sb)
+
+
+def _grid_bilinear(grid, nx, ny, x, y, su, sv):
+    """kernels/texture.py _grid_bilinear over arrays: (q, dq/du, dq/dv) of a grid (ny,
+    nx) bilinear at grid coordinates (x, y), clamped to it."""
+    x = np.clip(x, 0.0, nx - 1.0)
+    y = np.clip(y, 0.0, ny - 1.0)
+    i = np.minimum(y.astype(np.int64), ny - 2)
+    j = np.minimum(x.astype(np.int64), nx - 2)
+    fx, fy = x - j, y - i
+    g00, g01, g10, g11 = grid[i, j], grid[i, j + 1], grid[i + 1, j], grid[i + 1, j + 1]
+    q = (g00 * (1.0 - fx) + g01 * fx) * (1.0 - fy) + (g10 * (1.0 - fx) + g11 * fx) * fy
+    qx = (g01 - g00) * (1.0 - fy) + (g11 - g10) * fy
+    qy = (g10 - g00) * (1.0 - fx) + (g11 - g01) * fx
+    return q, qx * su, qy * sv
+
+
+def _cover(dist, grad, width):
+    """kernels/texture.py _line_cover over arrays."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        px = np.where(grad > 0.0, dist / np.where(grad > 0.0, grad, 1.0),
+                      np.where(dist == 0.0, 0.0, np.inf))
+        cov = np.clip(width * 0.5 + 0.5 - px, 0.0, 1.0)
+    return np.where(np.isfinite(dist) & ~np.isnan(grad), cov, 0.0)
+
+
+def _to_level(levels, q):
+    """|q - the nearest of the sorted ``levels``| (inf: none)."""
+    if levels.size == 0:
+        return np.full(q.shape, np.inf)
+    k = np.searchsorted(levels, np.nan_to_num(q))
+    up = np.where(k < levels.size, levels[np.minimum(k, levels.size - 1)] - q, np.inf)
+    down = np.where(k > 0, q - levels[np.maximum(k - 1, 0)], np.inf)
+    return np.where(np.isnan(q), np.nan, np.minimum(up, down))
+
+
+def _lines(view, ln, pts, vx, vy, vz):
+    """kernels/texture.py layer_lines of each crossing, its gradients as _emit takes
+    them (kernels/layers.py): the lines' colour premultiplied by the part of the pixel
+    they cover (n, 3), and that part (n,): the wireframe's, then the contours over it."""
+    from ..kernels import texture as T
+    along, (ca, sa, cb, sb) = _pixel_grads(view, pts, vx, vy, vz)
+    u = pts[:, L.G_U] + view.center[0]
+    v = pts[:, L.G_V] + view.center[1]
+    q = pts[:, L.G_W] + view.w_origin
+    gu = along(cb, -sa * sb, ca * sb)           # the axes u, v, w on the screen
+    gv = along(-sb, -sa * cb, ca * cb)
+    gw = along(0.0, ca, sa)
+
+    def field_grad(qu, qv):
+        return along(qu * cb - qv * sb, -(qu * sb + qv * cb) * sa, (qu * sb + qv * cb) * ca)
+    nlev = int(ln[T.LN_NLEV])
+    fn = int(ln[T.LN_FN])
+    if fn > 0:                                  # the contours are a colour field's
+        grid = ln[T.LN_SIZE + nlev:T.LN_SIZE + nlev + fn * fn].reshape(fn, fn)
+        q, qu, qv = _grid_bilinear(grid, fn, fn, (u - ln[T.LN_FU0]) * ln[T.LN_FSU],
+                                   (v - ln[T.LN_FV0]) * ln[T.LN_FSV], ln[T.LN_FSU],
+                                   ln[T.LN_FSV])
+        gw = field_grad(qu, qv)
+    out = np.zeros((u.size, 3))
+    al = np.zeros(u.size)
+
+    def over(k, cov):
+        keep = 1.0 - cov
+        for c in range(3):
+            out[:, c] = cov * ln[k + c] + keep * out[:, c]
+        al[:] = cov + keep * al
+    wire = ln[T.LN_WIRE]
+    if wire == 1.0:
+        for x, x0, dx, grad in ((u, ln[T.LN_U0], ln[T.LN_DU], gu),
+                                (v, ln[T.LN_V0], ln[T.LN_DV], gv)):
+            dist = np.abs(x - (x0 + np.floor((x - x0) / dx + 0.5) * dx))
+            over(T.LN_ER, _cover(dist, grad, ln[T.LN_EW]))
+    elif wire != 0.0:
+        base = T.LN_SIZE + nlev + fn * fn
+        nu, nw = int(ln[T.LN_NWU]), int(ln[T.LN_NWV])
+        wa, wb = u, v
+        if wire == 3.0:                         # a curvilinear mesh's indices
+            gnx, gny = int(ln[T.LN_GNX]), int(ln[T.LN_GNY])
+            ij = ln[base + nu + nw:base + nu + nw + 2 * gnx * gny].reshape(gny, gnx, 2)
+            x = (u - ln[T.LN_GU0]) * ln[T.LN_GSU]
+            y = (v - ln[T.LN_GV0]) * ln[T.LN_GSV]
+            wa, au, av = _grid_bilinear(ij[..., 0], gnx, gny, x, y, ln[T.LN_GSU], ln[T.LN_GSV])
+            wb, bu, bv = _grid_bilinear(ij[..., 1], gnx, gny, x, y, ln[T.LN_GSU], ln[T.LN_GSV])
+            gu, gv = field_grad(au, av), field_grad(bu, bv)
+        over(T.LN_ER, _cover(_to_level(ln[base:base + nu], wa), gu, ln[T.LN_EW]))
+        over(T.LN_ER, _cover(_to_level(ln[base + nu:base + nu + nw], wb), gv, ln[T.LN_EW]))
+    if nlev > 0:
+        over(T.LN_CR, _cover(_to_level(ln[T.LN_SIZE:T.LN_SIZE + nlev], q), gw, ln[T.LN_CW]))
+    return out, al
+
+
+def _mip(tex, x, y, lod):
+    """kernels/texture.py texel_at over arrays: (n, 4) the mip-map ``tex``
+    (layer_texture's flat levels, offsets, shapes) looked up trilinearly at level-0
+    texel coordinates (x, y) and levels of detail ``lod``."""
+    from .colour import _bilinear
+    flat, offsets, shapes = tex[:3]
+    n_lev = offsets.shape[0]
+    lod = np.clip(lod, 0.0, n_lev - 1.0)
+    k = lod.astype(np.int64)
+    f = lod - k
+    k1 = np.minimum(k + 1, n_lev - 1)
+    out = np.zeros((x.size, 4))
+    for lv in np.unique(np.r_[k, k1[f > 0.0]]):
+        h, w = (int(q) for q in shapes[lv])
+        level = flat[int(offsets[lv]):int(offsets[lv]) + h * w * 4].reshape(h, w, 4)
+        sc = 1.0 / (1 << int(lv))
+        for sel, wgt in ((k == lv, 1.0 - f), ((k1 == lv) & (f > 0.0), f)):
+            if sel.any():
+                out[sel] += wgt[sel, None] * _bilinear(level, (x[sel] + 0.5) * sc - 0.5,
+                                                       (y[sel] + 0.5) * sc - 0.5)
+    return out
+
+
+def _textured(view, tex, pts, s, vx, vy, vz, colours):
+    """(n, 3) the crossings' colours with the texture over the sides' own
+    (kernels/layers.py _emit's: the level of detail from the pixel's footprint at the
+    point, 1 / scale, times the distance over d1 in perspective, over |N.V| from
+    0.05; kernels/texture.py layer_texel)."""
+    from ..color import lower_or_upper
+    from .colour import colour_table_rgb
+    (lut, w_lo, w_hi), lower_rgb = colours[:2]
+    w = pts[:, L.G_W] + view.w_origin
+    upper = colour_table_rgb(w, lut, w_lo, w_hi)
+    own = np.where((s > 0)[:, None], upper, lower_or_upper(lower_rgb, upper))
+    fp = np.full(w.shape, 1.0 / view.scale)
+    if not view.orthographic:
+        fp *= (pts[:, L.G_DEPTH] + view.d3) / view.d1
+    nv = np.abs(pts[:, L.G_NX] * vx + pts[:, L.G_NY] * vy + pts[:, L.G_NZ] * vz)
+    fp /= np.maximum(nv, 0.05)
+    ou, su, ov, sv = tex[3]
+    rho = fp * max(abs(su), abs(sv))
+    with np.errstate(divide="ignore"):
+        lod = np.where(rho > 1.0, np.log2(np.maximum(rho, 1.0)), 0.0)
+    u = pts[:, L.G_U] + view.center[0]
+    v = pts[:, L.G_V] + view.center[1]
+    texel = _mip(tex, (u - ou) * su, (v - ov) * sv, lod)
+    return texel[:, :3] + (1.0 - texel[:, 3:4]) * own
 
 
 def _block(surface, view, material, terms, colours, t, cols, c0, n_show, layer=0):
@@ -89,7 +262,7 @@ def _block(surface, view, material, terms, colours, t, cols, c0, n_show, layer=0
     of f; None where no span crosses a pixel centre."""
     W, H = view.width, view.height
     m = cols.size
-    (lut, w_lo, w_hi), lower_rgb, planes = colours
+    (lut, w_lo, w_hi), lower_rgb, planes, tex, ln = colours
     smp, pair, ev = draft._samples(surface, view, cols, t)
     seg, pix = draft.crossings(smp["y"], pair, H)
     if seg.size == 0:
@@ -122,8 +295,18 @@ def _block(surface, view, material, terms, colours, t, cols, c0, n_show, layer=0
                               pts[:, L.G_W] + view.w_origin], axis=-1)[None]
             shade_of = np.maximum(shade_of, occluders.blocked(point, (shade_of < 1.0)[None])[0])
         lit = 1.0 - shade_of
+    base = None if tex is None else _textured(view, tex, pts, s, vx, vy, vz, colours)
     rgb, inten = draft.shade(view, pts, s, xs, rows, material, terms, lut, w_lo, w_hi,
-                             lower_rgb, None, lit)
+                             lower_rgb, base, lit)
+    if ln is not None:
+        # contours and wireframe lines of the surface's opacity laid over the lit
+        # crossing (kernels/layers.py _emit): its alpha and colour change
+        a = float(material.opacity)
+        lrgb, la = _lines(view, ln, pts, vx, vy, vz)
+        keep = 1.0 - a * la
+        alpha = a * la + keep * a
+        rgb = (a * lrgb + keep[:, None] * (a * rgb)) / alpha[:, None]
+        out["alpha"] = alpha
     out.update(at=at, rows=rows, xs=xs, rank=rank, pts=pts, s=s, rgb=rgb, inten=inten,
                shade=shade_of)
     return out, ev
@@ -143,12 +326,11 @@ def _picture(acc, trans, bg8, H, W):
     return rgba.reshape(H, W, 4)
 
 
-def _composited(surface, view, material, terms, box, bg8, shadows):
+def _composited(surface, view, material, terms, box, bg8, shadows, source):
     W, H = view.width, view.height
     texture, layer = shadows if shadows is not None else (None, 0)
-    a, n_show, table, w_limits, lower_rgb, planes = _layer_colours(view, material, box,
-                                                                   texture)
-    colours = (table, lower_rgb, planes)
+    a, n_show, colours, w_limits = _layer_colours(view, material, box, texture, source)
+    planes = colours[2]
     acc = np.zeros((4, H * W))                   # colour times alpha, intensity
     hits = np.zeros(H * W, dtype=np.int64)       # crossings met
     g = np.zeros((H, W, L.G_SIZE), dtype=np.float32)
@@ -227,7 +409,8 @@ def _merged(layers, views, drawn, box, bg8, texture, stop):
         front_trans = np.ones(H * W)
         opaque = np.full(H * W, np.inf)
     n = len(layers)
-    info = [_layer_colours(view, p.material, box, texture) for p, view in zip(layers, views)]
+    info = [_layer_colours(view, p.material, box, texture, p.source, p.domain)
+            for p, view in zip(layers, views)]
     ts = [draft._planes(view) for view in views]
     acc = np.zeros((4, H * W))
     trans = np.ones(H * W)
@@ -243,17 +426,17 @@ def _merged(layers, views, drawn, box, bg8, texture, stop):
         cols = np.arange(c0, min(W, c0 + block), dtype=np.float64)
         parts = []
         for k, (p, view, (surface, _)) in enumerate(zip(layers, views, drawn)):
-            a, n_show, table, _, lower_rgb, planes = info[k]
+            a, n_show, colours, _ = info[k]
             if n_show == 0:             # (not drawn, nor its crossings counted)
                 continue
             for th in draft.halves(view, ts[k]):    # (two passes past the nadir)
-                x, ev = _block(surface, view, p.material, p.terms,
-                               (table, lower_rgb, planes), th, cols, c0, n_show, k)
+                x, ev = _block(surface, view, p.material, p.terms, colours, th, cols, c0,
+                               n_show, k)
                 evals[c0:c0 + cols.size] += ev // max(cols.size, 1)
                 if x is None:
                     continue
                 hits[x["hit"]] += x["count"]
-                x["a"] = np.full(x["at"].size, a)
+                x["a"] = x.pop("alpha", np.full(x["at"].size, a))
                 x["layer"] = np.full(x["at"].size, k, dtype=np.int8)
                 if x["shade"] is None:
                     x["shade"] = np.full(x["at"].size, np.nan)

@@ -34,8 +34,7 @@ several opaque surfaces are drafted one by one and merged by depth (renderer.py)
 A perspective eye over the domain looking down past the nadir is drawn by the column
 pass's two passes from the eye's t, forward and back (split, halves). Scenes it does
 not draw (a perspective viewpoint over the domain that neither that nor the lod engine
-draws: an eye under the surface; a line drawing looking down past the nadir) wait for
-the kernels as before.
+draws: an eye under the surface) wait for the kernels as before.
 """
 from __future__ import annotations
 
@@ -63,8 +62,8 @@ MAX_DRAFT_PLANES = 20_000
 def supports(quality, view, surface):
     """Whether the draft can draw this layer's picture: a shaded picture or a line
     drawing (renderer.py checks the rest), and in perspective a viewpoint in front of
-    the whole domain (one ascending pass per column), or for a shaded picture an eye
-    over it looking down past the nadir (split: two passes from the eye's t) or a fly
+    the whole domain (one ascending pass per column), an eye over it looking down past
+    the nadir (split: two passes from the eye's t), or for a shaded picture a fly
     camera's inside the scene that the level-of-detail engine draws (passes/lod.py
     supports: the eye above the ground, every ray going farther with its distance), on
     planes a pixel's footprint apart from the eye (_planes). An area-sampled one is
@@ -76,10 +75,10 @@ def supports(quality, view, surface):
     t_eye = -view.d3 * math.cos(view.alpha)       # the viewpoint's t (eqs. 4, 10)
     if view.t_range[0] > t_eye:
         return True
-    if quality.method == "horizon":     # (a line drawing's planes are the column pass's)
-        return False
     if split(view):         # (looking down past the nadir: two passes from the eye's t)
         return True
+    if quality.method == "horizon":     # (a line drawing's planes are the column pass's)
+        return False
     from . import lod
     return lod.supports(surface, view)
 
@@ -556,37 +555,47 @@ def split(view):
     return min(view.d1 * ca - y0 * sa for y0 in (-half, half)) <= 0.0
 
 
-def halves(view, t):
+def halves(view, t, index=False):
     """The planes ``t`` (_planes') in the passes that sample them, each front to back:
     the one pass, or for a split view (split) the column pass's two from the eye's t,
-    forward and back, each starting at the eye's t (or the domain's end nearer it)."""
+    forward and back, each starting at the eye's t (or the domain's end nearer it).
+    With ``index``, (planes, each one's number k on the grid t0 + k step, -1 at a
+    pass's ends, as kernels/column.py _pass_plane numbers them) pairs."""
+    k = np.arange(t.size)
+    k[0] = k[-1] = -1                    # (a pass's ends)
     if not split(view):
-        return [t]
+        return [(t, k)] if index else [t]
     t_eye = -view.d3 * math.cos(view.alpha)
     t_lo, t_hi = view.t_range
     out = []
     if t_hi > t_eye:
         start = max(t_lo, t_eye)
-        out.append(np.concatenate([[start], t[t > start]]))
+        on = t > start
+        out.append((np.concatenate([[start], t[on]]), np.concatenate([[-1], k[on]])))
     if t_lo < t_eye:
         start = min(t_hi, t_eye)
-        out.append(np.concatenate([[start], t[t < start][::-1]]))
-    return out
+        on = t < start
+        out.append((np.concatenate([[start], t[on][::-1]]),
+                    np.concatenate([[-1], k[on][::-1]])))
+    return out if index else [h for h, _ in out]
 
 
-def _split_block(surface, view, cols, t):
+def _split_block(surface, view, cols, t, hrec=None, hstride=0):
     """A split view's (split) block of columns ``cols``: each pass's first span over
     each pixel centre (_paint), a pixel taking the pass that reaches it first (each ray
-    goes one way from the eye: the passes' pixels meet at the nadir's row alone).
-    Returns (hit (H, m), the G-buffer entries of the hit pixels in row order, the
-    evaluations of f)."""
+    goes one way from the eye: the passes' pixels meet at the nadir's row alone); a
+    line drawing's records of each pass into hrec (the block's). Returns (hit (H, m),
+    the G-buffer entries of the hit pixels in row order, the evaluations of f)."""
     H = view.height
     hit = np.zeros((H, cols.size), dtype=bool)
     vals = np.zeros((H, cols.size, L.G_SIZE))
     evals = 0
-    for th in halves(view, t):
+    for th, kh in halves(view, t, index=True):
         smp, pair, ev = _samples(surface, view, cols, th)
         evals += ev
+        if hstride > 0:
+            from .draft_horizon import horizon_records
+            horizon_records(smp, pair, th, hstride, hrec, kh)
         got, k, c, rows = _paint(smp["y"], pair, H)
         fresh = ~hit[got]
         pts = span_points(smp, k[fresh], c[fresh], rows[fresh], view)
@@ -713,7 +722,8 @@ def draft_geometry(surface, view, hrec=None, hstride=0):
     for c0 in range(0, W, block):
         cols = np.arange(c0, min(W, c0 + block), dtype=np.float64)
         if twice:           # (looking down past the nadir: no fold traced ray by ray)
-            hit, vals, ev = _split_block(surface, view, cols, t)
+            hit, vals, ev = _split_block(surface, view, cols, t, None if hrec is None else
+                                         hrec[c0:c0 + cols.size], hstride)
             evals[c0:c0 + cols.size] = ev // max(cols.size, 1)
             g[:, c0:c0 + cols.size][hit] = vals
             seen[:, c0:c0 + cols.size] = hit
@@ -722,7 +732,8 @@ def draft_geometry(surface, view, hrec=None, hstride=0):
         evals[c0:c0 + cols.size] = ev // max(cols.size, 1)
         if hstride > 0:
             from .draft_horizon import horizon_records
-            horizon_records(smp, pair, t, hstride, hrec[c0:c0 + cols.size])
+            horizon_records(smp, pair, t, hstride, hrec[c0:c0 + cols.size],
+                            halves(view, t, index=True)[0][1])
         hit, k, c, rows = _paint(smp["y"], pair, H)
         gb = g[:, c0:c0 + cols.size]
         gb[hit] = span_points(smp, k, c, rows, view)

@@ -31,20 +31,21 @@ LINE_BYTES = 96
 MARKS = 1 << 22
 
 
-def horizon_records(smp, pair, t, hstride, out):
-    """Write the horizon records of one block of columns into ``out`` (m, lines,
-    H_SIZE): from the draft's samples ``smp`` on planes ``t`` (n,) and its ``pair``
-    (draft._samples'), line k on plane k hstride, as column.py's _column_pass records
-    it: its row (NaN where that plane's sample is not on the surface), the run's
-    floating interval before it and the run's first t."""
+def horizon_records(smp, pair, t, hstride, out, index):
+    """Write the horizon records of one pass over a block of columns into ``out`` (m,
+    lines, H_SIZE; a split view's two passes write lines of their own): from the
+    draft's samples ``smp`` on planes ``t`` (n,) and its ``pair`` (draft._samples'),
+    ``index`` each plane's number on the grid (draft.halves', -1 at a pass's ends),
+    line l on plane number l hstride, as column.py's _column_pass records it: its row
+    (NaN where that plane's sample is not on the surface), the run's floating interval
+    before it and the run's first t."""
     y, ok, edge, tt = smp["y"], smp["ok"], smp["edge"], smp["t"]
     n, m = y.shape
     nh = out.shape[1]
-    out[..., H_Y] = np.nan
     lo = np.full(m, np.inf)
     hi = np.full(m, -np.inf)
     start = np.full(m, np.nan)
-    for k in range(min(n, nh * hstride)):
+    for k in range(n):
         if k > 0:                        # the run goes on from the sample before, or not
             on = pair[k - 1]
             lo = np.where(on, lo, np.inf)
@@ -52,11 +53,12 @@ def horizon_records(smp, pair, t, hstride, out):
             start = np.where(on, start, tt[k])
         else:
             start = tt[0].copy()
-        if k % hstride == 0:
+        g = int(index[k])
+        if g >= 0 and g % hstride == 0 and g // hstride < nh:
             # a line where the plane's own sample is on the surface (not a run's end
             # bisected into its place, nor an orthographic plane clipped to the domain)
             line = ok[k] & ~edge[k] & (tt[k] == t[k])
-            rec = out[:, k // hstride]
+            rec = out[:, g // hstride]
             rec[:, H_Y] = np.where(line, y[k], np.nan)
             rec[:, H_LO] = lo
             rec[:, H_HI] = hi
@@ -131,6 +133,7 @@ def draft_line_pass(surface, view, hstride, n_lines, background):
     W, H = view.width, view.height
     check_bytes(W, H, W * H * LINE_BYTES + W * n_lines * H_SIZE * 8)
     hrec = np.empty((W, n_lines, H_SIZE))
+    hrec[..., H_Y] = np.nan
     try:
         g, seen, evals = draft_geometry(surface, view, hrec, hstride)
     except MemoryError:

@@ -16,12 +16,16 @@ kernels the warm-up compiles besides the default picture's, the terrain's first.
     python benchmarks/bench_first.py --compile   # where the compile's time goes
     python benchmarks/bench_first.py --shadows   # a first picture with shadows
     python benchmarks/bench_first.py --lines     # a first line drawing
+    python benchmarks/bench_first.py --scenes    # objects, several surfaces, ...
 
 ``--shadows`` instead times a first picture with shadows (1920x1080, the sun at 120/15)
 and then one with soft shadows (a light of 1 degree), drafted (passes/draft_shadow.py)
 while the warm-up compiles the column pass's and the shadows' kernels. ``--lines`` times
 a line drawing (method="horizon", passes/draft_horizon.py) and then plot_wireframe's
 hidden-line drawing (fill=False), both drafted while the column pass's kernels compile.
+``--scenes`` times the first picture of each of SCENES (objects with shadows or
+translucency, several translucent or shadowed surfaces, a translucent surface's colour
+field and lines, a perspective view from straight above) with drafts on and off.
 
 ``--compile`` instead compiles with an empty cache, in a process of its own on one
 core, the default picture's kernels and then every kernel (warmup.warm_all), as the
@@ -63,6 +67,71 @@ LINES_SCRIPT = SCRIPT.replace(
     'a = fc.render("3*sin(u*cos(v))", **kw)',
     'a = fc.render("3*sin(u*cos(v))", method="horizon", **kw)').replace(
     'projection="perspective", **kw', 'projection="perspective", wireframe=40, fill=False, **kw')
+
+#: --scenes: a fresh install's first picture of each (1920x1080), its code after SCENE_HEAD
+SCENE_HEAD = """
+import sys, time
+import numpy as np
+import floatcol as fc
+from floatcol import warmup
+x = np.linspace(0, 6, 200)
+dem = fc.HeightField(np.add.outer(np.sin(x), np.cos(x)) * 30 + np.add.outer(x, x) * 5)
+objs = [fc.pole(40 + 20 * k, 60, 40) for k in range(5)] + [fc.box(100, 120, 20, 20, 25),
+                                                          fc.tree(150, 80, 30)]
+size = (1920, 1080)
+t = time.perf_counter()
+"""
+SCENES = {
+    "a height field with objects and shadows":
+        "r = fc.render(dem, objects=objs, shadows=True, lightsource=(120, 30), size=size)",
+    "a translucent height field with objects":
+        "r = fc.render(dem, objects=objs, opacity=0.5, size=size)",
+    "two translucent surfaces (render_many)":
+        "r = fc.render_many([fc.Layer('sin(u)*cos(v)', ((-3, 3), (-3, 3)), "
+        "fc.Material(opacity=0.5)), fc.Layer('0.5*cos(u*v)', ((-3, 3), (-3, 3)), "
+        "fc.Material(opacity=0.5, cmap='plasma'))], size=size)",
+    "a plate's shadow on a wave (render_many)":
+        "r = fc.render_many([fc.Layer('sin(u)*cos(v)', ((-3, 3), (-3, 3))), "
+        "fc.Layer('1.5 + 0*u', ((-1, 1), (-1.5, 1.5)))], shadows=True, "
+        "lightsource=(300, 40), size=size)",
+    "translucent, a colour field and a wireframe":
+        "r = fc.render('sin(u)*cos(v)', (-3, 3), (-3, 3), opacity=0.5, wireframe=20, "
+        "color='u*v', size=size)",
+    "perspective from straight above (elev 90)":
+        "r = fc.render('sin(u)*cos(v)', (-3, 3), (-3, 3), projection='perspective', "
+        "elev=90, size=size)",
+}
+SCENE_TAIL = """
+print(f"{time.perf_counter() - t:.2f} {r.stats['engine']}")
+lock = warmup._lock_path()
+pid = open(lock).read().strip() if lock and __import__("os").path.exists(lock) else "0"
+print(pid or 0)
+"""
+
+
+def scenes_main():
+    """--scenes: each scene's first picture after a fresh install, drafts on (the
+    warm-up it starts stopped before the next scene) and off."""
+    import signal
+    print(f"{os.cpu_count()} cpus; a fresh install's first picture, 1920x1080\n")
+    print("| scene | drafts on s | engine | drafts off s | engine |\n|---|---|---|---|---|")
+    for name, code in SCENES.items():
+        out = []
+        for drafts in (True, False):
+            with tempfile.TemporaryDirectory() as cache:
+                env = dict(os.environ, NUMBA_CACHE_DIR=cache,
+                           FLOATCOL_DRAFT="1" if drafts else "0")
+                got = subprocess.run([sys.executable, "-c", SCENE_HEAD + code + SCENE_TAIL],
+                                     env=env, check=True, capture_output=True,
+                                     text=True).stdout.split()
+                sec, engine, pid = float(got[-3]), got[-2], int(got[-1])
+                if pid and alive(pid):          # (the warm-up: not beside the next scene)
+                    os.kill(pid, signal.SIGTERM)
+                    while alive(pid):
+                        time.sleep(0.2)
+                out.append((sec, engine))
+        print(f"| {name} | {out[0][0]:.2f} | {out[0][1]} | {out[1][0]:.2f} | {out[1][1]} |",
+              flush=True)
 
 
 TERRAIN_SCRIPT = """
@@ -277,6 +346,8 @@ if __name__ == "__main__":
     chosen = [a for a in sys.argv[1:] if a in OPTIONS]
     if chosen:
         options_main(chosen[0])
+    elif "--scenes" in sys.argv[1:]:
+        scenes_main()
     elif "--compile" in sys.argv[1:]:
         compile_main("--plain" in sys.argv[1:])
     else:

@@ -492,8 +492,9 @@ def parse_expression(expr, names=DEFAULT_VARS):
 # ---------------------------------------------------------------- compilation
 
 #: Inner functions of the compiled surfaces: 1/0 is an infinity (a hole), never an
-#: exception (which a cfunc could only swallow).
-_njit = numba.njit(error_model="numpy")
+#: exception (which a cfunc could only swallow); FMA contraction as the kernels'
+#: (kernels/_jit.py _MATH)
+_njit = numba.njit(error_model="numpy", fastmath={"contract"})
 
 
 def _numba_namespace():
@@ -704,7 +705,7 @@ def _compile_batch(e, derivs, su, sv, st):
     LLVM vectorises. None if it does not compile."""
     from .kernels.vmath import VECTOR_FUNCTIONS
     try:
-        g = numba.njit(error_model="numpy", inline="always")(
+        g = numba.njit(error_model="numpy", inline="always", fastmath={"contract"})(
             _lambdify_real((su, sv, st), (e, *derivs), cse=True, functions=VECTOR_FUNCTIONS))
 
         def batch(u, v, t, out, n):

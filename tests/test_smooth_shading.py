@@ -97,7 +97,7 @@ def test_pixels_wider_than_a_cell_are_unchanged():
 def _node_by_node(z, su, sv, gx, gy):
     """The smooth gradient as it was computed before (each node's central difference
     on its own, one-sided at the edges; interpolated bilinearly), in Python's doubles:
-    the kernel's must be the same, bit for bit (its pictures unchanged)."""
+    the kernel's must be the same but for the roundings its fused multiply-adds save."""
     nv, nu = z.shape
     i = min(max(int(gx), 0), nu - 2)
     j = min(max(int(gy), 0), nv - 2)
@@ -117,9 +117,9 @@ def _node_by_node(z, su, sv, gx, gy):
 
 def test_the_smooth_gradient_is_the_node_by_node_one():
     """kernels/lod.py's _smooth_gradient (the cell's indices found once; the smooth
-    pass's, the lod engine's and the march's) against _node_by_node, bit for bit, at
-    every level of the pyramid, at random points and on the grid's edges and corners,
-    on tiny grids too."""
+    pass's, the lod engine's and the march's) against _node_by_node, within a rounding
+    or two (bit for bit before the kernels' FMA contraction), at every level of the
+    pyramid, at random points and on the grid's edges and corners, on tiny grids too."""
     from floatcol.kernels.area import LV_NU, LV_NV, LV_OFF
     from floatcol.kernels.lod import LT_SU, LT_SV, _smooth_gradient, level_table
     from floatcol.passes.area import levels
@@ -136,7 +136,12 @@ def test_the_smooth_gradient_is_the_node_by_node_one():
             su, sv = lt[k, LT_SU], lt[k, LT_SV]
             for u, v in pts:
                 want = _node_by_node(zk, su, sv, (u - hf.hfp[0]) * su, (v - hf.hfp[2]) * sv)
-                assert _smooth_gradient(flat, lt, k, hf.hfp, u, v) == want, (k, u, v)
+                got = _smooth_gradient(flat, lt, k, hf.hfp, u, v)
+                # (within the roundings that the kernels' fused multiply-adds leave out:
+                # kernels/_jit.py _MATH)
+                tol = 1e-13 * (1.0 + max(abs(want[0]), abs(want[1])))
+                assert abs(got[0] - want[0]) <= tol and abs(got[1] - want[1]) <= tol, \
+                    (k, u, v)
 
 
 def test_the_fade_between_half_a_cell_and_a_cell():

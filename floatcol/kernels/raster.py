@@ -6,7 +6,11 @@ import numpy as np
 
 from numba import prange
 
-from ._jit import function_type, kernel_calling, ngjit, ngjit_inline, ngjit_parallel
+# (exact products: _jit.py _MATH)
+from ._jit import function_type, kernel_calling
+from ._jit import ngjit_exact as ngjit
+from ._jit import ngjit_inline_exact as ngjit_inline
+from ._jit import ngjit_parallel_exact as ngjit_parallel
 
 
 @ngjit
@@ -445,7 +449,7 @@ def _object_edges_functions(drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_u
                            rgb, ortho, d3, z_under, before, after, rgba)),)
 
 
-@kernel_calling(_object_edges_functions, (object_edges_column,))
+@kernel_calling(_object_edges_functions, (object_edges_column,), exact=True)
 def object_edges_kernel(drawn, touched, cx, cy, e, tris, rgb, ortho, d3, z_under, before,
                         after, rgba, column):
     """Antialias the objects' edges (floatcol/objects.py): a pixel whose 3 x 3

@@ -23,8 +23,9 @@ import numpy as np
 from numba import types
 from numba.extending import intrinsic
 
-#: Compiled once (cached on disk); LLVM inlines them into the caller (module docstring)
-_vjit = numba.njit(cache=True, nogil=True, error_model="numpy")
+#: Compiled once (cached on disk); LLVM inlines them into the caller (module docstring);
+#: a multiplication and an addition may be one FMA instruction (_jit.py _MATH)
+_vjit = numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
 
 # Cody-Waite reduction by pi/2 in three parts (fdlibm's constants): PIO2_1 has 33
 # significant bits, so k * PIO2_1 is exact for |k| < 2**20.

@@ -65,7 +65,8 @@ def draft_translucent(surface, view, material, terms, box, bg8, shadows=None, so
     intensity, depth, tiled G-buffer, evaluations per column, w_limits, shadow or None,
     layers (H, W) int16); ``shadows`` as draft.draft_pass's, ``source`` its texture or
     colour field (passes/colour.py prepare's: a translucent one's is a texture), or
-    None."""
+    None. Without its lines: they change each crossing's alpha, which
+    draft_translucent_layers composites (renderer.py sends such a surface there)."""
     W, H = view.width, view.height
     check_bytes(W, H, W * H * draft.DRAFT_BYTES)
     try:
@@ -79,7 +80,7 @@ def _layer_colours(view, material, box, texture, source=None, domain=None):
     colour map over f's range (as the kernels' layers take it: hidden ones show), the
     lower side's colour, the shadow planes or None, its texture
     (translucency.layer_texture's) or None, and its contours and wireframe
-    (translucency.layer_lines', over its ``domain``) or None."""
+    (translucency.layer_lines', over its ``domain``; None without a domain) or None."""
     from .translucency import layer_lines, layer_texture
     a = float(material.opacity)
     lut, w_lo, w_hi, w_limits = material.color_table(np.array([view.f_range]), box[2])
@@ -89,16 +90,17 @@ def _layer_colours(view, material, box, texture, source=None, domain=None):
         from .draft_shadow import shadow_planes
         planes = shadow_planes(texture)
     tex = layer_texture(source, box)
-    lines = layer_lines(material, domain, box, w_limits, source) if material.overlaid \
-        else np.zeros(0)
+    lines = layer_lines(material, domain, box, w_limits, source) \
+        if material.overlaid and domain is not None else np.zeros(0)
     return a, shown(a), ((lut, w_lo, w_hi), lower_rgb, planes, tex if tex[0].size else None,
                          lines if lines.size else None), w_limits
 
 
 def _pixel_grads(view, pts, vx, vy, vz):
-    """kernels/layers.py _axis_grads over arrays: (along, step) where along(gx, gy, gz)
-    is how much a quantity whose gradient's screen image is g changes from each
-    crossing's point to the one a pixel away on the screen."""
+    """kernels/layers.py _axis_grads over arrays: (along, the view's (cos a, sin a, cos
+    b, sin b)), where along(gx, gy, gz) is how much a quantity whose gradient's screen
+    image is g changes from each crossing's point to the one a pixel away on the
+    screen."""
     from ..kernels.layers import GRAZE
     ca, sa, cb, sb = draft._params(view)
     m = np.full(pts.shape[0], 1.0 / view.scale)

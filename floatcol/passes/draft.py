@@ -533,7 +533,7 @@ def _evaluate(surface, u, v, ok):
 def _column_planes(view):
     """Whether the draft samples the column pass's planes, view.step apart (_planes):
     orthographic, the eye in front of the domain, or looking down past the nadir
-    (_split); else a fly camera's."""
+    (split); else a fly camera's."""
     ca = math.cos(view.alpha)
     return view.orthographic or view.t_range[0] > -view.d3 * ca or not ca > 1e-9 \
         or split(view)

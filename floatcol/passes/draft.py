@@ -32,9 +32,8 @@ layer (passes/draft_layers.py), contours and wireframes are drawn on it in numpy
 line drawing's horizon lines are marked from its samples (passes/draft_horizon.py);
 several opaque surfaces are drafted one by one and merged by depth (renderer.py).
 A perspective eye over the domain looking down past the nadir is drawn by the column
-pass's two passes from the eye's t, forward and back (split, halves). Scenes it does
-not draw (a perspective viewpoint over the domain that neither that nor the lod engine
-draws: an eye under the surface) wait for the kernels as before.
+pass's two passes from the eye's t, forward and back (split, halves); any other eye
+over the domain (above the surface or under it) by one pass from the eye.
 """
 from __future__ import annotations
 
@@ -63,11 +62,11 @@ def supports(quality, view, surface):
     """Whether the draft can draw this layer's picture: a shaded picture or a line
     drawing (renderer.py checks the rest), and in perspective a viewpoint in front of
     the whole domain (one ascending pass per column), an eye over it looking down past
-    the nadir (split: two passes from the eye's t), or for a shaded picture a fly
-    camera's inside the scene that the level-of-detail engine draws (passes/lod.py
-    supports: the eye above the ground, every ray going farther with its distance), on
-    planes a pixel's footprint apart from the eye (_planes). An area-sampled one is
-    drawn at the pixel centres, as every draft is (no antialiasing)."""
+    the nadir (split: two passes from the eye's t), or for a shaded picture any other
+    eye over it (a fly camera's inside the scene, above the surface or under it: every
+    ray goes farther in t) on planes a pixel's footprint apart from the eye (_planes).
+    An area-sampled one is drawn at the pixel centres, as every draft is (no
+    antialiasing)."""
     if quality.method not in ("column", "horizon"):
         return False
     if view.orthographic:
@@ -77,10 +76,11 @@ def supports(quality, view, surface):
         return True
     if split(view):         # (looking down past the nadir: two passes from the eye's t)
         return True
-    if quality.method == "horizon":     # (a line drawing's planes are the column pass's)
-        return False
-    from . import lod
-    return lod.supports(surface, view)
+    # the eye over the domain, every ray going farther in t: one pass from the eye on
+    # planes a footprint apart (_planes), the eye above the surface or under it (the
+    # lod engine's pyramid asks it above); a line drawing's lines are the column pass's
+    # planes
+    return quality.method != "horizon"
 
 
 def _params(view):

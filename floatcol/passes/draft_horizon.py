@@ -78,8 +78,9 @@ def _marks(hrec, cols, H):
     jc = np.floor(yc + 0.5)
     own = np.isfinite(yc)
     c, k = np.nonzero(own)
-    out.append((cols[c], jc[c, k], yc[c, k], k, np.zeros(c.size, dtype=np.int64),
-                np.zeros(c.size, dtype=np.int64)))
+    # (a row far beyond the picture marks nothing: clipped before it becomes an int)
+    out.append((cols[c], np.clip(jc[c, k], -1.0, H), yc[c, k], k,
+                np.zeros(c.size, dtype=np.int64), np.zeros(c.size, dtype=np.int64)))
     for part, dc in ((1, -1), (2, 1)):
         nb = cols + dc
         inside = (nb >= 0) & (nb < W)

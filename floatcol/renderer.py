@@ -412,7 +412,7 @@ def _draft_layer(p, view, drawn, box, quality, background, t_start, stacklevel, 
     surface, domain = drawn
     material = p.material
     if quality.method == "horizon":
-        return _draft_lines(p, view, drawn, box, quality, background, t_start, stacklevel)
+        return _draft_lines(p, view, drawn, box, quality, background, t_start, stacklevel + 1)
     material.check_limits()
     t_setup = time.perf_counter()
     shadows = None if texture is None else (texture, index)
@@ -437,15 +437,8 @@ def _draft_layer(p, view, drawn, box, quality, background, t_start, stacklevel, 
                 overlays.lines_alone(rgba, material, p.source, planes, w_limits, c_limits,
                                      p.domain, color.to_rgba8(background),
                                      draw=overlays.draw_lines)
-    t_end = time.perf_counter()
-    if nowhere_finite(surface, domain) and not (side != 0).any():
-        warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,
-                      stacklevel=stacklevel + 1)
-    stats = {"samples": int(evals.sum()), "seconds": t_end - t_start,
-             "kernel_seconds": t_end - t_setup, "setup_seconds": t_setup - t_start,
-             "planes": view.planes, "step": view.step, "scale": view.scale, "lines": 0,
-             "method": "column", "derivatives": surface.derivatives, "w_limits": w_limits,
-             "box": box, "engine": "draft", **extra}
+    stats = _draft_stats(p, view, drawn, box, evals, side != 0, t_start, t_setup,
+                         stacklevel + 1, w_limits=w_limits, **extra)
     if c_limits is not None:
         stats["c_limits"] = c_limits   # the colour field's range on the colormap
     return Render(rgba, intensity, side, depth, stats, view, gbuf, box=box, shadow=shadow)
@@ -490,16 +483,24 @@ def _draft_lines(p, view, drawn, box, quality, background, t_start, stacklevel):
     t_setup = time.perf_counter()
     rgba, side, intensity, depth, seen, line_t, gbuf, evals = draft_line_pass(
         surface, view, hstride, n_lines, background)
+    stats = _draft_stats(p, view, drawn, box, evals, seen, t_start, t_setup, stacklevel + 1,
+                         lines=n_lines, method="horizon", w_limits=None)
+    return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t, seen, box=box)
+
+
+def _draft_stats(p, view, drawn, box, evals, seen, t_start, t_setup, stacklevel, **fields):
+    """A drafted layer's stats (as _layer's, engine "draft"; ``fields`` over them), once
+    it warned where f is nowhere finite and nothing is ``seen``."""
+    surface, domain = drawn
     t_end = time.perf_counter()
     if nowhere_finite(surface, domain) and not seen.any():
         warnings.warn(empty_message(p.surface, p.domain), RuntimeWarning,
                       stacklevel=stacklevel + 1)
-    stats = {"samples": int(evals.sum()), "seconds": t_end - t_start,
-             "kernel_seconds": t_end - t_setup, "setup_seconds": t_setup - t_start,
-             "planes": view.planes, "step": view.step, "scale": view.scale, "lines": n_lines,
-             "method": "horizon", "derivatives": surface.derivatives, "w_limits": None,
-             "box": box, "engine": "draft"}
-    return Render(rgba, intensity, side, depth, stats, view, gbuf, line_t, seen, box=box)
+    return {"samples": int(evals.sum()), "seconds": t_end - t_start,
+            "kernel_seconds": t_end - t_setup, "setup_seconds": t_setup - t_start,
+            "planes": view.planes, "step": view.step, "scale": view.scale, "lines": 0,
+            "method": "column", "derivatives": surface.derivatives, "box": box,
+            "engine": "draft", **fields}
 
 
 def default_background(method, shading):

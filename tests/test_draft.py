@@ -1117,3 +1117,12 @@ def test_an_eye_under_the_surface_is_drafted(drafts, expr, U, elev, azim, cam, m
     assert (ref.side == -1).mean() > 0.05                       # its lower side seen
     assert (r.side == ref.side).mean() >= 0.9999
     assert psnr(r.intensity, ref.intensity) >= min_psnr
+
+
+def test_a_drafts_empty_picture_warns_at_the_callers_line(drafts):
+    """The warning of a picture that f leaves empty points at the caller's line, a
+    line drawing's draft too (it had pointed one frame short, into render.py)."""
+    for kw in (dict(), dict(method="horizon")):
+        with pytest.warns(RuntimeWarning, match="NaN, infinite or complex everywhere") as got:
+            fc.render("sqrt(-1-u**2)", u=(-1, 1), v=(-1, 1), size=(40, 30), **kw)
+        assert got[0].filename == __file__

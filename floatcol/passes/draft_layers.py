@@ -44,6 +44,7 @@ import numpy as np
 from ..kernels import layout as L
 from . import draft
 from .geometry import check_bytes, too_large
+from .overlays import grid_distance, level_distance, line_cover
 
 #: the transmittance below which a pixel takes no more crossings (kernels/layers.py's)
 STOP = 1.0 / 512.0
@@ -132,22 +133,9 @@ def _grid_bilinear(grid, nx, ny, x, y, su, sv):
 
 
 def _cover(dist, grad, width):
-    """kernels/texture.py _line_cover over arrays."""
-    with np.errstate(invalid="ignore", divide="ignore"):
-        px = np.where(grad > 0.0, dist / np.where(grad > 0.0, grad, 1.0),
-                      np.where(dist == 0.0, 0.0, np.inf))
-        cov = np.clip(width * 0.5 + 0.5 - px, 0.0, 1.0)
-    return np.where(np.isfinite(dist) & ~np.isnan(grad), cov, 0.0)
-
-
-def _to_level(levels, q):
-    """|q - the nearest of the sorted ``levels``| (inf: none)."""
-    if levels.size == 0:
-        return np.full(q.shape, np.inf)
-    k = np.searchsorted(levels, np.nan_to_num(q))
-    up = np.where(k < levels.size, levels[np.minimum(k, levels.size - 1)] - q, np.inf)
-    down = np.where(k > 0, q - levels[np.maximum(k - 1, 0)], np.inf)
-    return np.where(np.isnan(q), np.nan, np.minimum(up, down))
+    """overlays.line_cover, none where dist or grad is not a number (kernels/texture.py
+    _line_cover)."""
+    return np.where(np.isfinite(dist) & ~np.isnan(grad), line_cover(dist, grad, width), 0.0)
 
 
 def _lines(view, ln, pts, vx, vy, vz):
@@ -185,8 +173,7 @@ def _lines(view, ln, pts, vx, vy, vz):
     if wire == 1.0:
         for x, x0, dx, grad in ((u, ln[T.LN_U0], ln[T.LN_DU], gu),
                                 (v, ln[T.LN_V0], ln[T.LN_DV], gv)):
-            dist = np.abs(x - (x0 + np.floor((x - x0) / dx + 0.5) * dx))
-            over(T.LN_ER, _cover(dist, grad, ln[T.LN_EW]))
+            over(T.LN_ER, _cover(grid_distance(x, x0, dx), grad, ln[T.LN_EW]))
     elif wire != 0.0:
         base = T.LN_SIZE + nlev + fn * fn
         nu, nw = int(ln[T.LN_NWU]), int(ln[T.LN_NWV])
@@ -199,10 +186,12 @@ def _lines(view, ln, pts, vx, vy, vz):
             wa, au, av = _grid_bilinear(ij[..., 0], gnx, gny, x, y, ln[T.LN_GSU], ln[T.LN_GSV])
             wb, bu, bv = _grid_bilinear(ij[..., 1], gnx, gny, x, y, ln[T.LN_GSU], ln[T.LN_GSV])
             gu, gv = field_grad(au, av), field_grad(bu, bv)
-        over(T.LN_ER, _cover(_to_level(ln[base:base + nu], wa), gu, ln[T.LN_EW]))
-        over(T.LN_ER, _cover(_to_level(ln[base + nu:base + nu + nw], wb), gv, ln[T.LN_EW]))
+        for levels, q_wire, grad in ((ln[base:base + nu], wa, gu),
+                                     (ln[base + nu:base + nu + nw], wb, gv)):
+            over(T.LN_ER, _cover(level_distance(levels, q_wire), grad, ln[T.LN_EW]))
     if nlev > 0:
-        over(T.LN_CR, _cover(_to_level(ln[T.LN_SIZE:T.LN_SIZE + nlev], q), gw, ln[T.LN_CW]))
+        levels = ln[T.LN_SIZE:T.LN_SIZE + nlev]
+        over(T.LN_CR, _cover(level_distance(levels, q), gw, ln[T.LN_CW]))
     return out, al
 
 

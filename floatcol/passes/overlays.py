@@ -30,6 +30,31 @@ def _draw(rgba, q, seen, width, rgb, levels=None, origin=0.0, spacing=0.0):
                  np.asarray(rgb, dtype=np.float64)[:3], rgba)
 
 
+def grid_distance(q, origin, spacing):
+    """|q - the nearest of origin + k spacing| (lines_kernel's wireframe distance)."""
+    return np.abs(q - (origin + np.floor((q - origin) / spacing + 0.5) * spacing))
+
+
+def level_distance(levels, q):
+    """|q - the nearest of the sorted ``levels``| (inf: none; NaN where q is)."""
+    if levels.size == 0:
+        return np.full(np.shape(q), np.inf)
+    k = np.searchsorted(levels, np.nan_to_num(q))
+    up = np.where(k < levels.size, levels[np.minimum(k, levels.size - 1)] - q, np.inf)
+    down = np.where(k > 0, q - levels[np.maximum(k - 1, 0)], np.inf)
+    return np.where(np.isnan(q), np.nan, np.minimum(up, down))
+
+
+def line_cover(dist, grad, width):
+    """The part of a pixel a line of ``width`` pixels covers at ``dist`` (q's units)
+    from it, q changing ``grad`` a pixel: clip(width / 2 + 1/2 - d, 0, 1) of d = dist /
+    grad pixels (lines_kernel's; NaN where dist or grad is)."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        px = np.where(grad > 0.0, dist / np.where(grad > 0.0, grad, 1.0),
+                      np.where(dist == 0.0, 0.0, np.inf))
+        return np.clip(width * 0.5 + 0.5 - px, 0.0, 1.0)
+
+
 def draw_lines(rgba, q, seen, width, rgb, levels=None, origin=0.0, spacing=0.0):
     """_draw in numpy (a fresh install's drafts: no compile), lines_kernel's arithmetic:
     the lines q = level (the sorted ``levels``, or origin + k spacing where spacing >
@@ -44,19 +69,14 @@ def draw_lines(rgba, q, seen, width, rgb, levels=None, origin=0.0, spacing=0.0):
         gy = np.fmin(np.abs(p[:-2, 1:-1] - c), np.abs(p[2:, 1:-1] - c))
         grad = np.where(np.isfinite(gx) & np.isfinite(gy), np.sqrt(gx * gx + gy * gy), np.nan)
         if spacing > 0.0:
-            dist = np.abs(qs - (origin + np.floor((qs - origin) / spacing + 0.5) * spacing))
+            dist = grid_distance(qs, origin, spacing)
         else:
             lv = np.sort(np.asarray(levels, dtype=np.float64)) if levels is not None \
                 else np.zeros(0)
             if lv.size == 0:
                 return
-            k = np.searchsorted(lv, np.nan_to_num(qs))
-            up = np.where(k < lv.size, lv[np.minimum(k, lv.size - 1)] - qs, np.inf)
-            down = np.where(k > 0, qs - lv[np.maximum(k - 1, 0)], np.inf)
-            dist = np.where(np.isnan(qs), np.nan, np.minimum(up, down))
-        px = np.where(grad > 0.0, dist / np.where(grad > 0.0, grad, 1.0),
-                      np.where(dist == 0.0, 0.0, np.inf))
-        cov = np.clip(width * 0.5 + 0.5 - px, 0.0, 1.0)
+            dist = level_distance(lv, qs)
+        cov = line_cover(dist, grad, width)
     at = seen & np.isfinite(qs) & np.isfinite(grad) & np.isfinite(dist) & (cov > 0.0)
     if not at.any():
         return

@@ -716,6 +716,7 @@ def draft_geometry(surface, view, hrec=None, hstride=0):
     block = max(1, BLOCK_SAMPLES // max(t.size, 1))
     origin = _origins(view)
     twice = split(view)
+    index = halves(view, t, index=True)[0][1]      # (the planes' numbers: a line's)
     traces = not view.orthographic and _column_planes(view) and hstride == 0 and not twice
     rays = None
     budget = RAY_EVALS
@@ -732,8 +733,7 @@ def draft_geometry(surface, view, hrec=None, hstride=0):
         evals[c0:c0 + cols.size] = ev // max(cols.size, 1)
         if hstride > 0:
             from .draft_horizon import horizon_records
-            horizon_records(smp, pair, t, hstride, hrec[c0:c0 + cols.size],
-                            halves(view, t, index=True)[0][1])
+            horizon_records(smp, pair, t, hstride, hrec[c0:c0 + cols.size], index)
         hit, k, c, rows = _paint(smp["y"], pair, H)
         gb = g[:, c0:c0 + cols.size]
         gb[hit] = span_points(smp, k, c, rows, view)
